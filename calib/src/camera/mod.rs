@@ -1,0 +1,1 @@
+//! Camera models and calibration (method.md §2–4).

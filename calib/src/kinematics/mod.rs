@@ -1,0 +1,1 @@
+//! Robot kinematic model, identification and compensation (method.md §5–8).

@@ -1,0 +1,15 @@
+//! Pure, synchronous numerics of robocal (see `../shared/docs/method.md`).
+//!
+//! This crate never imports HTTP, database or job code: plain functions on
+//! plain types; degenerate input returns an error, never a panic. Frames are
+//! named `a_to_b` = the pose of frame b expressed in frame a
+//! (`p_a = a_to_b * p_b`), lengths are millimetres, angles radians inside the
+//! numerics unless a name says `_deg`.
+
+pub mod camera;
+pub mod geometry;
+pub mod kinematics;
+pub mod sim;
+pub mod solver;
+pub mod stats;
+pub mod vision;

@@ -1,0 +1,1 @@
+//! Whole-campaign simulator: perturbed robot, flange camera, joints, images, truth.

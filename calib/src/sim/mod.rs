@@ -1,0 +1,4 @@
+//! Simulator: target images and whole campaigns with known truth.
+
+pub mod campaign;
+pub mod render;

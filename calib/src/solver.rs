@@ -1,0 +1,1 @@
+//! The one Levenberg–Marquardt solver (method.md §6).

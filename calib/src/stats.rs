@@ -1,0 +1,1 @@
+//! Accuracy statistics for reports (method.md §7).

@@ -1,0 +1,1 @@
+//! Dot-grid target detection (method.md §1): threshold, blobs, ellipses, grid.
