@@ -1,0 +1,19 @@
+//! Renders the sample report (or a report JSON given as the first
+//! argument) to /tmp/report.svg, /tmp/report.html and the terminal table,
+//! for looking at the renderings: `cargo run --example render_report`.
+//! The output directory can be changed with `REPORT_OUT_DIR`.
+
+use robocal::report::{render_svg, sample, Report};
+use std::path::PathBuf;
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let report: Report = match std::env::args().nth(1) {
+        Some(path) if path == "--tracker" => sample::sample_tracker_report(),
+        Some(path) => serde_json::from_str(&std::fs::read_to_string(path)?)?,
+        None => sample::sample_report(),
+    };
+    let dir = PathBuf::from(std::env::var("REPORT_OUT_DIR").unwrap_or_else(|_| "/tmp".into()));
+    std::fs::write(dir.join("report.svg"), render_svg(&report))?;
+    println!("wrote {}", dir.join("report.svg").display());
+    Ok(())
+}
