@@ -3,7 +3,7 @@
 //! for looking at the renderings: `cargo run --example render_report`.
 //! The output directory can be changed with `REPORT_OUT_DIR`.
 
-use robocal::report::{render_svg, sample, Report};
+use robocal::report::{render_html, render_svg, render_table, sample, Report};
 use std::path::PathBuf;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -14,6 +14,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let dir = PathBuf::from(std::env::var("REPORT_OUT_DIR").unwrap_or_else(|_| "/tmp".into()));
     std::fs::write(dir.join("report.svg"), render_svg(&report))?;
-    println!("wrote {}", dir.join("report.svg").display());
+    std::fs::write(dir.join("report.html"), render_html(&report))?;
+    print!("{}", render_table(&report));
+    println!("wrote {0}/report.svg and {0}/report.html", dir.display());
     Ok(())
 }

@@ -4,7 +4,7 @@
 //! systematic pattern (unmodelled distortion, a decentred lens) stands out
 //! of the detection noise; the cells are shaded by their RMS residual.
 
-use super::format::significant;
+use super::field_key::{key, principal_point, FieldKey};
 use super::model::{CameraReport, Report, ResidualSample};
 use super::plot::*;
 
@@ -19,7 +19,7 @@ const NOTE_HEIGHT: f64 = 80.0;
 /// Grid cells across the image width when averaging.
 const GRID_COLUMNS: usize = 16;
 /// Cells averaging fewer residuals are shaded but get no arrow (too noisy).
-const MIN_CELL_SAMPLES: usize = 4;
+pub const MIN_CELL_SAMPLES: usize = 4;
 /// Arrow magnification is set by this quantile of arrow lengths, so a
 /// single wild cell cannot shrink all the others to dots.
 const LENGTH_QUANTILE: f64 = 0.95;
@@ -27,15 +27,14 @@ const LENGTH_QUANTILE: f64 = 0.95;
 const RAW_ARROW_LIMIT: usize = 400;
 /// The longest arrow fills at most this fraction of a cell.
 const ARROW_FILL: f64 = 0.9;
-const ARROW_COLOR: &str = "#111";
+/// Cells overlap by this much so that no anti-aliasing seams show.
+const CELL_OVERLAP: f64 = 0.6;
+pub const ARROW_COLOR: &str = "#111";
 const HEAD_ANGLE_RAD: f64 = 0.45;
 const HEAD_LENGTH: f64 = 4.0;
 /// Shading ramp for the per-cell RMS: light grey to lavender.
 const RAMP_LOW: [f64; 3] = [250.0, 250.0, 250.0];
 const RAMP_HIGH: [f64; 3] = [150.0, 140.0, 205.0];
-const COLOUR_BAR_WIDTH: f64 = 14.0;
-const COLOUR_BAR_STEPS: usize = 24;
-const KEY_LINE: f64 = 16.0;
 
 /// Height of the chart at `width` (image aspect preserved).
 pub fn field_height(report: &Report, width: f64) -> f64 {
@@ -109,7 +108,7 @@ fn grid_cells(samples: &[ResidualSample], camera: &CameraReport, cell_px: f64) -
 /// The largest 1-2-5 magnification that keeps the longest arrow inside
 /// [`ARROW_FILL`] of a cell.
 fn magnification(max_residual_px: f64, cell_px: f64) -> f64 {
-    if !(max_residual_px > 0.0) {
+    if max_residual_px.is_nan() || max_residual_px <= 0.0 {
         return 1.0;
     }
     let raw = ARROW_FILL * cell_px / max_residual_px;
@@ -121,7 +120,7 @@ fn magnification(max_residual_px: f64, cell_px: f64) -> f64 {
     (mantissa * power).max(1.0)
 }
 
-fn ramp(t: f64) -> String {
+pub fn ramp(t: f64) -> String {
     let t = if t.is_finite() {
         t.clamp(0.0, 1.0)
     } else {
@@ -133,7 +132,7 @@ fn ramp(t: f64) -> String {
     format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2])
 }
 
-fn arrow(svg: &mut Svg, x0: f64, y0: f64, x1: f64, y1: f64) {
+pub fn arrow(svg: &mut Svg, x0: f64, y0: f64, x1: f64, y1: f64) {
     let (dx, dy) = (x1 - x0, y1 - y0);
     let len = (dx * dx + dy * dy).sqrt();
     if len < 0.5 {
@@ -215,8 +214,8 @@ pub fn residual_field_chart(report: &Report, width: f64, _height: f64) -> Svg {
             svg.rect(
                 x,
                 y,
-                cw.min(area.right() - x),
-                ch.min(area.bottom() - y),
+                (cw + CELL_OVERLAP).min(area.right() - x),
+                (ch + CELL_OVERLAP).min(area.bottom() - y),
                 &ramp((c.rms_px - shade_scale.lo) / (shade_scale.hi - shade_scale.lo)),
                 1.0,
             );
@@ -245,153 +244,14 @@ pub fn residual_field_chart(report: &Report, width: f64, _height: f64) -> Svg {
         arrow(&mut svg, x0, y0, x1, y1);
     }
     principal_point(&mut svg, camera, &xs, &ys);
-    key(
-        &mut svg,
-        area,
-        camera,
-        &samples,
+    let field_key = FieldKey {
         averaged,
         factor,
         cell_px,
-        &shade_scale,
-    );
+        shade: &shade_scale,
+    };
+    key(&mut svg, area, camera, &samples, &field_key);
     svg
-}
-
-fn principal_point(svg: &mut Svg, camera: &CameraReport, xs: &Scale, ys: &Scale) {
-    let (x, y) = (xs.map(camera.cx), ys.map(camera.cy));
-    svg.line(x - 6.0, y, x + 6.0, y, AFTER_COLOR, 1.5);
-    svg.line(x, y - 6.0, x, y + 6.0, AFTER_COLOR, 1.5);
-}
-
-/// The explanatory key right of the image: what an arrow means, its
-/// magnification and a reference arrow, the shading colour bar.
-#[allow(clippy::too_many_arguments)]
-fn key(
-    svg: &mut Svg,
-    area: Area,
-    camera: &CameraReport,
-    samples: &[ResidualSample],
-    averaged: bool,
-    factor: f64,
-    cell_px: f64,
-    shade: &Scale,
-) {
-    let x = area.right() + 24.0;
-    let mut y = area.y + 8.0;
-    let mut line = |svg: &mut Svg, text: &str| {
-        svg.text(x, y, "start", FONT_SIZE, TEXT_COLOR, text);
-        y += KEY_LINE;
-    };
-    let rms = (samples
-        .iter()
-        .map(|s| s.dx_px * s.dx_px + s.dy_px * s.dy_px)
-        .sum::<f64>()
-        / samples.len().max(1) as f64)
-        .sqrt();
-    line(svg, &format!("{} residuals", samples.len()));
-    line(svg, "(observed − predicted dot centre)");
-    line(svg, &format!("RMS {} px", significant(rms, 2)));
-    line(
-        svg,
-        &format!("image {} x {} px", camera.image_width, camera.image_height),
-    );
-    if averaged {
-        line(
-            svg,
-            &format!("arrow: mean of a {0:.0} x {0:.0} px cell", cell_px),
-        );
-        line(
-            svg,
-            &format!("(no arrow under {MIN_CELL_SAMPLES} residuals in a cell)"),
-        );
-    } else {
-        line(svg, "arrow: one residual");
-    }
-    svg.bold_text(
-        x,
-        y,
-        "start",
-        FONT_SIZE,
-        &format!("arrows magnified {}x", significant(factor, 3)),
-    );
-    y += KEY_LINE + 6.0;
-    // A reference arrow of a round residual length.
-    let reference_px = nice_step(0.6 * cell_px / factor);
-    let px_per_image_px = area.w / f64::from(camera.image_width.max(1));
-    let len = reference_px * factor * px_per_image_px;
-    arrow(svg, x, y - 4.0, x + len, y - 4.0);
-    svg.text(
-        x + len + 6.0,
-        y,
-        "start",
-        FONT_SIZE,
-        TEXT_COLOR,
-        &format!("= {} px residual", significant(reference_px, 2)),
-    );
-    y += KEY_LINE + 6.0;
-    svg.line(x, y - 4.0, x + 10.0, y - 4.0, AFTER_COLOR, 1.5);
-    svg.line(x + 5.0, y - 9.0, x + 5.0, y + 1.0, AFTER_COLOR, 1.5);
-    svg.text(
-        x + 16.0,
-        y,
-        "start",
-        FONT_SIZE,
-        TEXT_COLOR,
-        "principal point (cx, cy)",
-    );
-    y += KEY_LINE + 10.0;
-    if !averaged {
-        return;
-    }
-    svg.bold_text(x, y, "start", FONT_SIZE, "cell RMS residual [px]");
-    y += 8.0;
-    let bar_h = (area.bottom() - y).min(160.0);
-    let bar = Area {
-        x,
-        y,
-        w: COLOUR_BAR_WIDTH,
-        h: bar_h,
-    };
-    let step_h = bar_h / COLOUR_BAR_STEPS as f64;
-    for i in 0..COLOUR_BAR_STEPS {
-        let t = (i as f64 + 0.5) / COLOUR_BAR_STEPS as f64;
-        svg.rect(
-            x,
-            bar.bottom() - (i as f64 + 1.0) * step_h,
-            COLOUR_BAR_WIDTH,
-            step_h + 0.3,
-            &ramp(t),
-            1.0,
-        );
-    }
-    svg.outline(x, y, COLOUR_BAR_WIDTH, bar_h, AXIS_COLOR);
-    let bar_scale = Scale {
-        start: bar.bottom(),
-        end: bar.y,
-        ..*shade
-    };
-    for tick in bar_scale.ticks() {
-        let ty = bar_scale.map(tick.value);
-        svg.line(
-            bar.right(),
-            ty,
-            bar.right() + TICK_LENGTH,
-            ty,
-            AXIS_COLOR,
-            1.0,
-        );
-        if let Some(label) = tick.label {
-            svg.text(
-                bar.right() + TICK_LENGTH + 3.0,
-                ty + 4.0,
-                "start",
-                FONT_SIZE,
-                TEXT_COLOR,
-                &label,
-            );
-        }
-    }
 }
 
 #[cfg(test)]

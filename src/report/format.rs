@@ -2,7 +2,7 @@
 //! Every string that comes from a report (serial, pose ids, notes, warnings)
 //! goes through [`escape_xml`] before it reaches SVG or HTML.
 
-use super::model::Report;
+use super::model::{ErrorStats, Report};
 
 /// Escapes the five XML special characters so that arbitrary text is safe
 /// in SVG/HTML element content and in double- or single-quoted attributes.
@@ -64,12 +64,14 @@ pub fn significant(value: f64, digits: i32) -> String {
 const STD_SIGNIFICANT_DIGITS: i32 = 2;
 /// Most decimals printed for a value quoted with its standard deviation.
 const MAX_VALUE_DECIMALS: i32 = 9;
+/// Decimals of a value without a usable standard deviation (held fixed).
+const DECIMALS_WITHOUT_STD: usize = 3;
 
 /// Decimals that show a standard deviation to two significant digits; the
 /// value is printed to the same decimals (metrology convention).
 pub fn decimals_for_std(std: f64) -> usize {
     if !std.is_finite() || std <= 0.0 {
-        return 4;
+        return DECIMALS_WITHOUT_STD;
     }
     let magnitude = std.log10().floor() as i32;
     (STD_SIGNIFICANT_DIGITS - 1 - magnitude).clamp(0, MAX_VALUE_DECIMALS) as usize
@@ -83,6 +85,18 @@ pub fn with_precision_of(value: f64, std: f64) -> String {
         significant(value, 6)
     }
 }
+
+/// Reads one statistic out of [`ErrorStats`].
+pub type StatGetter = fn(&ErrorStats) -> f64;
+
+/// The statistics quoted in the report tables, in order (method.md §7).
+pub const STAT_ROWS: [(&str, StatGetter); 5] = [
+    ("mean", |s| s.mean_mm),
+    ("median", |s| s.median_mm),
+    ("std dev", |s| s.std_mm),
+    ("RMS", |s| s.rms_mm),
+    ("max", |s| s.max_mm),
+];
 
 /// Before/after mean ratio ("how many times smaller the error became").
 pub fn improvement_factor(report: &Report) -> Option<f64> {

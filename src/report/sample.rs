@@ -77,6 +77,7 @@ pub fn sample_report() -> Report {
     let before = summary(val.iter().map(|p| p.before_error_mm));
     let after = summary(val.iter().map(|p| p.after_error_mm));
     let (parameters, identifiability) = sample_parameters(&mut rng);
+    let low_angle_views = camera.views.iter().filter(|v| v.warning.is_some()).count();
     Report {
         serial: "IRB2400-SN-48213".into(),
         version: 3,
@@ -104,7 +105,7 @@ pub fn sample_report() -> Report {
         notes: vec![
             "joint6.d_mm and joint6.theta_offset_deg were held at nominal: they trade exactly against the hand-eye transform.".into(),
             "joint1.d_mm and joint1.theta_offset_deg were held at nominal: they trade exactly against the base frame.".into(),
-            "3 views have a board-to-image angle under 20 degrees; the focal length rests on the other views.".into(),
+            format!("{low_angle_views} views have a board-to-image angle under 20 degrees; the focal length rests on the other views."),
             "Joint compliance and gear backlash are not modelled; expect larger errors under heavy payloads.".into(),
         ],
     }

@@ -3,21 +3,22 @@
 //! (in `field.rs`). [`render_svg`] puts them on one self-contained sheet
 //! under a header; the HTML report embeds the charts one by one.
 
+use super::distribution::{axis_chart, histogram_chart};
 use super::field::{field_height, residual_field_chart};
-use super::format::{fixed, headline, mm};
+use super::format::{headline, mm};
 use super::model::{PoseReport, Report};
 use super::plot::*;
 
 /// Width of the whole sheet and of full-width charts.
-pub const SHEET_WIDTH: f64 = 1000.0;
+pub const SHEET_WIDTH: f64 = 880.0;
 /// Width of the two charts side by side.
 pub const HALF_WIDTH: f64 = SHEET_WIDTH / 2.0;
 const HEADER_HEIGHT: f64 = 78.0;
 pub const POSE_CHART_HEIGHT: f64 = 330.0;
 pub const SMALL_CHART_HEIGHT: f64 = 310.0;
 /// Room left of the plot area for tick labels and the rotated axis label.
-const MARGIN_LEFT: f64 = 66.0;
-const MARGIN_RIGHT: f64 = 24.0;
+pub(super) const MARGIN_LEFT: f64 = 66.0;
+pub(super) const MARGIN_RIGHT: f64 = 24.0;
 /// Room above the plot area for the title and legend.
 const MARGIN_TOP: f64 = 54.0;
 const MARGIN_BOTTOM: f64 = 50.0;
@@ -25,21 +26,12 @@ const MARGIN_BOTTOM: f64 = 50.0;
 const POSE_LABEL_ROOM: f64 = 18.0;
 /// Room right of the pose chart for the mean labels.
 const MEAN_LABEL_ROOM: f64 = 70.0;
-const TITLE_Y: f64 = 20.0;
-const LEGEND_Y: f64 = 40.0;
+pub(super) const TITLE_Y: f64 = 20.0;
+pub(super) const LEGEND_Y: f64 = 40.0;
 const DOT_RADIUS: f64 = 3.6;
 /// Most pose ids written under the pose axis before thinning them out.
 const MAX_POSE_LABELS: usize = 40;
-const SMALL_FONT: f64 = 9.5;
-/// Histogram bins per decade on a log axis, and bins on a linear axis.
-const BINS_PER_DECADE: usize = 8;
-const LINEAR_BINS: usize = 12;
-const HISTOGRAM_OPACITY: f64 = 0.6;
-/// Count axis ends at least here so that its ticks are whole numbers.
-const MIN_COUNT_AXIS: f64 = 5.0;
-/// Relative width of a bar inside its slot in the per-axis chart.
-const AXIS_BAR_FILL: f64 = 0.32;
-const WHISKER_CAP: f64 = 7.0;
+pub(super) const SMALL_FONT: f64 = 9.5;
 
 /// The whole report as one standalone SVG document.
 pub fn render_svg(report: &Report) -> String {
@@ -135,7 +127,7 @@ fn header(svg: &mut Svg, report: &Report) {
     svg.bold_text(MARGIN_LEFT / 3.0, 66.0, "start", 12.5, &headline(report));
 }
 
-fn plot_area(width: f64, height: f64, extra_bottom: f64, margin_right: f64) -> Area {
+pub(super) fn plot_area(width: f64, height: f64, extra_bottom: f64, margin_right: f64) -> Area {
     Area {
         x: MARGIN_LEFT,
         y: MARGIN_TOP,
@@ -146,7 +138,7 @@ fn plot_area(width: f64, height: f64, extra_bottom: f64, margin_right: f64) -> A
 
 /// The poses the accuracy statistics are about: the validation set, or
 /// every pose when the campaign has none (the title says which).
-fn judged_poses(report: &Report) -> (Vec<&PoseReport>, &'static str) {
+pub(super) fn judged_poses(report: &Report) -> (Vec<&PoseReport>, &'static str) {
     let val: Vec<&PoseReport> = report.per_pose.iter().filter(|p| p.set == "val").collect();
     if val.is_empty() {
         (
@@ -158,7 +150,7 @@ fn judged_poses(report: &Report) -> (Vec<&PoseReport>, &'static str) {
     }
 }
 
-fn axis_label(what: &str, scale: &Scale) -> String {
+pub(super) fn axis_label(what: &str, scale: &Scale) -> String {
     if scale.log {
         format!("{what} [mm] (log scale)")
     } else {
@@ -166,7 +158,7 @@ fn axis_label(what: &str, scale: &Scale) -> String {
     }
 }
 
-fn no_data(svg: &mut Svg, area: Area, text: &str) {
+pub(super) fn no_data(svg: &mut Svg, area: Area, text: &str) {
     svg.outline(area.x, area.y, area.w, area.h, GRID_COLOR);
     svg.text(
         area.x + area.w / 2.0,
@@ -279,188 +271,97 @@ fn pose_chart(report: &Report, width: f64, height: f64) -> Svg {
     svg
 }
 
-/// Bin edges over the scale's domain: equal width in log or linear space.
-fn bin_edges(scale: &Scale) -> Vec<f64> {
-    if scale.log {
-        let decades = (scale.hi.log10() - scale.lo.log10()).round() as usize;
-        let count = decades * BINS_PER_DECADE;
-        let step = (scale.hi.log10() - scale.lo.log10()) / count as f64;
-        (0..=count)
-            .map(|i| 10f64.powf(scale.lo.log10() + i as f64 * step))
-            .collect()
-    } else {
-        let step = (scale.hi - scale.lo) / LINEAR_BINS as f64;
-        (0..=LINEAR_BINS)
-            .map(|i| scale.lo + i as f64 * step)
-            .collect()
-    }
-}
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::report::sample::{sample_report, sample_tracker_report};
+    use crate::report::xml_check::check_balanced;
+    use crate::report::ErrorStats;
 
-fn histogram(values: impl Iterator<Item = f64>, edges: &[f64]) -> Vec<usize> {
-    let mut counts = vec![0; edges.len().saturating_sub(1)];
-    for v in values.filter(|v| v.is_finite()) {
-        let bin = edges.partition_point(|e| *e <= v).saturating_sub(1);
-        if let Some(c) = counts.get_mut(bin.min(edges.len().saturating_sub(2))) {
-            *c += 1;
-        }
-    }
-    counts
-}
-
-/// Overlaid histograms of the before and after 3-D errors.
-fn histogram_chart(report: &Report, width: f64, height: f64) -> Svg {
-    let mut svg = Svg::default();
-    let (poses, which) = judged_poses(report);
-    svg.title(MARGIN_LEFT, TITLE_Y, &format!("Error histogram, {which}"));
-    legend(
-        &mut svg,
-        MARGIN_LEFT,
-        LEGEND_Y,
-        &[
-            (Mark::Swatch(BEFORE_COLOR), "before"),
-            (Mark::Swatch(AFTER_COLOR), "after"),
-        ],
-    );
-    let area = plot_area(width, height, 0.0, MARGIN_RIGHT);
-    if poses.is_empty() {
-        no_data(&mut svg, area, "no poses in this report");
-        return svg;
-    }
-    let values: Vec<f64> = poses
-        .iter()
-        .flat_map(|p| [p.before_mm, p.after_mm])
-        .collect();
-    let x_scale = Scale::for_magnitudes(&values, area.x, area.right());
-    let edges = bin_edges(&x_scale);
-    let before = histogram(poses.iter().map(|p| p.before_mm), &edges);
-    let after = histogram(poses.iter().map(|p| p.after_mm), &edges);
-    let max_count = before.iter().chain(&after).copied().max().unwrap_or(0) as f64;
-    let y_scale = Scale::linear(0.0, max_count.max(MIN_COUNT_AXIS), area.bottom(), area.y);
-    y_axis(&mut svg, area, &y_scale, "number of poses");
-    x_axis(&mut svg, area, &x_scale, &axis_label("3-D error", &x_scale));
-    for (counts, color) in [(&before, BEFORE_COLOR), (&after, AFTER_COLOR)] {
-        for (i, &count) in counts.iter().enumerate().filter(|(_, c)| **c > 0) {
-            let (x0, x1) = (x_scale.map(edges[i]), x_scale.map(edges[i + 1]));
-            let top = y_scale.map(count as f64);
-            svg.rect(
-                x0 + 0.5,
-                top,
-                x1 - x0 - 1.0,
-                area.bottom() - top,
-                color,
-                HISTOGRAM_OPACITY,
+    #[test]
+    fn sheet_is_well_formed_and_shows_every_validation_pose() {
+        let report = sample_report();
+        let svg = render_svg(&report);
+        check_balanced(&svg, false).unwrap();
+        assert!(svg.starts_with("<svg xmlns=\"http://www.w3.org/2000/svg\""));
+        assert!(!svg.contains("href") && !svg.contains("url(") && !svg.contains("<image"));
+        for pose in report.per_pose.iter().filter(|p| p.set == "val") {
+            assert!(
+                svg.contains(&format!(">{}</text>", pose.pose_id)),
+                "{}",
+                pose.pose_id
             );
         }
-    }
-    svg
-}
-
-/// Mean (bar) and maximum (whisker) absolute error per axis and 3-D,
-/// before and after.
-fn axis_chart(report: &Report, width: f64, height: f64) -> Svg {
-    let mut svg = Svg::default();
-    let (_, which) = judged_poses(report);
-    svg.title(MARGIN_LEFT, TITLE_Y, &format!("Error per axis, {which}"));
-    legend(
-        &mut svg,
-        MARGIN_LEFT,
-        LEGEND_Y,
-        &[
-            (Mark::Swatch(BEFORE_COLOR), "before"),
-            (Mark::Swatch(AFTER_COLOR), "after"),
-            (Mark::Text, "(bar: mean, whisker: max)"),
-        ],
-    );
-    let area = plot_area(width, height, 0.0, MARGIN_RIGHT);
-    let (b, a) = (&report.before, &report.after);
-    let groups = [
-        ("|x|", &b.x, &a.x),
-        ("|y|", &b.y, &a.y),
-        ("|z|", &b.z, &a.z),
-        ("3-D", &b.three_d, &a.three_d),
-    ];
-    let values: Vec<f64> = groups
-        .iter()
-        .flat_map(|(_, b, a)| [b.mean_mm, b.max_mm, a.mean_mm, a.max_mm])
-        .collect();
-    if !values.iter().any(|v| v.is_finite() && *v > 0.0) {
-        no_data(&mut svg, area, "no error statistics in this report");
-        return svg;
-    }
-    let scale = Scale::for_magnitudes(&values, area.bottom(), area.y);
-    y_axis(
-        &mut svg,
-        area,
-        &scale,
-        &axis_label("absolute error", &scale),
-    );
-    svg.line(
-        area.x,
-        area.bottom(),
-        area.right(),
-        area.bottom(),
-        AXIS_COLOR,
-        1.0,
-    );
-    let slot = area.w / groups.len() as f64;
-    for (g, (name, before, after)) in groups.iter().enumerate() {
-        let centre = area.x + slot * (g as f64 + 0.5);
-        let bar_w = slot * AXIS_BAR_FILL;
-        for (k, (stats, color)) in [(before, BEFORE_COLOR), (after, AFTER_COLOR)]
-            .iter()
-            .enumerate()
-        {
-            let x = centre + (k as f64 - 1.0) * bar_w - 1.0 + 2.0 * k as f64;
-            let top = scale.map(stats.mean_mm);
-            svg.rect(x, top, bar_w, area.bottom() - top, color, 0.85);
-            let (xm, ymax) = (x + bar_w / 2.0, scale.map(stats.max_mm));
-            svg.line(xm, top, xm, ymax, AXIS_COLOR, 1.2);
-            svg.line(
-                xm - WHISKER_CAP / 2.0,
-                ymax,
-                xm + WHISKER_CAP / 2.0,
-                ymax,
-                AXIS_COLOR,
-                1.2,
-            );
-            svg.text(
-                xm,
-                ymax - 4.0,
-                "middle",
-                SMALL_FONT,
-                TEXT_COLOR,
-                &mm(stats.max_mm),
-            );
-            if area.bottom() - top > 2.0 * SMALL_FONT {
-                svg.text(
-                    xm,
-                    top + SMALL_FONT + 2.0,
-                    "middle",
-                    SMALL_FONT,
-                    "white",
-                    &mm(stats.mean_mm),
-                );
-            }
+        // One before and one after dot per validation pose.
+        let dots = |color: &str| {
+            svg.matches(&format!("r=\"{DOT_RADIUS}\" fill=\"{color}\""))
+                .count()
+        };
+        assert_eq!((dots(BEFORE_COLOR), dots(AFTER_COLOR)), (30, 30));
+        for title in [
+            "per pose",
+            "histogram",
+            "per axis",
+            "residual field",
+            "magnified",
+        ] {
+            assert!(svg.contains(title), "{title}");
         }
-        let y = area.bottom() + TICK_LENGTH + FONT_SIZE + 3.0;
-        svg.text(centre, y, "middle", FONT_SIZE, TEXT_COLOR, name);
+        for chart in [
+            pose_errors_svg,
+            histogram_svg,
+            axis_errors_svg,
+            residual_field_svg,
+        ] {
+            check_balanced(&chart(&report), false).unwrap();
+        }
     }
-    let factor = if a.three_d.mean_mm > 0.0 {
-        b.three_d.mean_mm / a.three_d.mean_mm
-    } else {
-        f64::NAN
-    };
-    let note = format!(
-        "mean 3-D error {}x smaller after calibration",
-        fixed(factor, 1)
-    );
-    svg.text(
-        area.x + area.w / 2.0,
-        area.bottom() + 34.0,
-        "middle",
-        FONT_SIZE,
-        MUTED_COLOR,
-        &note,
-    );
-    svg
+
+    #[test]
+    fn hostile_serial_and_pose_ids_are_escaped() {
+        let mut report = sample_report();
+        report.serial = "<script>alert('x')</script>".into();
+        report.per_pose.last_mut().unwrap().pose_id = "a&b<\"c\">".into();
+        let svg = render_svg(&report);
+        assert!(!svg.contains("<script"));
+        assert!(svg.contains("&lt;script&gt;alert(&#39;x&#39;)&lt;/script&gt;"));
+        assert!(svg.contains("a&amp;b&lt;&quot;c&quot;&gt;"));
+        check_balanced(&svg, false).unwrap();
+    }
+
+    #[test]
+    fn tracker_session_gets_a_note_instead_of_the_field() {
+        let svg = render_svg(&sample_tracker_report());
+        check_balanced(&svg, false).unwrap();
+        assert!(svg.contains("No camera in this session (instrument: tracker)"));
+        assert!(!svg.contains("magnified"));
+    }
+
+    #[test]
+    fn empty_and_non_finite_reports_render_without_panicking() {
+        let mut empty = sample_tracker_report();
+        empty.per_pose.clear();
+        empty.before = Default::default();
+        empty.after = Default::default();
+        let svg = render_svg(&empty);
+        check_balanced(&svg, false).unwrap();
+        assert!(svg.contains("no poses in this report") && !svg.contains("NaN"));
+
+        let mut broken = sample_report();
+        broken.per_pose[40].before_mm = f64::NAN;
+        broken.per_pose[41].after_mm = f64::INFINITY;
+        broken.after.three_d = ErrorStats {
+            mean_mm: f64::NAN,
+            ..Default::default()
+        };
+        broken.residual_field[0].dx_px = f64::NAN;
+        if let Some(camera) = broken.camera.as_mut() {
+            camera.image_width = 0;
+        }
+        let svg = render_svg(&broken);
+        check_balanced(&svg, false).unwrap();
+        assert!(!svg.contains("NaN") && !svg.contains("inf"));
+        check_balanced(&crate::report::render_html(&broken), true).unwrap();
+        assert!(!crate::report::render_table(&broken).is_empty());
+    }
 }
