@@ -5,8 +5,7 @@ use super::format::{fixed, mm};
 use super::model::Report;
 use super::plot::*;
 use super::svg::{
-    axis_label, judged_poses, no_data, plot_area, LEGEND_Y, MARGIN_LEFT, MARGIN_RIGHT, SMALL_FONT,
-    TITLE_Y,
+    axis_label, judged_poses, no_data, plot_area, LEGEND_Y, MARGIN_RIGHT, SMALL_FONT, TITLE_Y,
 };
 
 /// Histogram bins per decade on a log axis, and bins on a linear axis.
@@ -55,10 +54,10 @@ fn histogram(values: impl Iterator<Item = f64>, edges: &[f64]) -> Vec<usize> {
 pub fn histogram_chart(report: &Report, width: f64, height: f64) -> Svg {
     let mut svg = Svg::default();
     let (poses, which) = judged_poses(report);
-    svg.title(MARGIN_LEFT, TITLE_Y, &format!("Error histogram, {which}"));
+    svg.title(TITLE_X, TITLE_Y, &format!("Error histogram, {which}"));
     legend(
         &mut svg,
-        MARGIN_LEFT,
+        TITLE_X,
         LEGEND_Y,
         &[
             (Mark::Swatch(BEFORE_COLOR), "before"),
@@ -104,10 +103,10 @@ pub fn histogram_chart(report: &Report, width: f64, height: f64) -> Svg {
 pub fn axis_chart(report: &Report, width: f64, height: f64) -> Svg {
     let mut svg = Svg::default();
     let (_, which) = judged_poses(report);
-    svg.title(MARGIN_LEFT, TITLE_Y, &format!("Error per axis, {which}"));
+    svg.title(TITLE_X, TITLE_Y, &format!("Error per axis, {which}"));
     legend(
         &mut svg,
-        MARGIN_LEFT,
+        TITLE_X,
         LEGEND_Y,
         &[
             (Mark::Swatch(BEFORE_COLOR), "before"),

@@ -16,6 +16,9 @@ const KEY_WIDTH: f64 = 250.0;
 const MAX_PLOT_HEIGHT: f64 = 560.0;
 /// Height of the chart when there is no camera (just a note).
 const NOTE_HEIGHT: f64 = 80.0;
+const CHART_TITLE_Y: f64 = 20.0;
+/// Baseline of the no-camera note.
+const NOTE_Y: f64 = 46.0;
 /// Grid cells across the image width when averaging.
 const GRID_COLUMNS: usize = 16;
 /// Cells averaging fewer residuals are shaded but get no arrow (too noisy).
@@ -156,8 +159,8 @@ pub fn arrow(svg: &mut Svg, x0: f64, y0: f64, x1: f64, y1: f64) {
 pub fn residual_field_chart(report: &Report, width: f64, _height: f64) -> Svg {
     let mut svg = Svg::default();
     svg.title(
-        MARGIN_LEFT,
-        20.0,
+        TITLE_X,
+        CHART_TITLE_Y,
         "Reprojection residual field over the image",
     );
     let Some(camera) = &report.camera else {
@@ -165,7 +168,7 @@ pub fn residual_field_chart(report: &Report, width: f64, _height: f64) -> Svg {
             "No camera in this session (instrument: {}): there are no reprojection residuals to show.",
             report.instrument
         );
-        svg.text(MARGIN_LEFT, 46.0, "start", FONT_SIZE, MUTED_COLOR, &note);
+        svg.text(TITLE_X, NOTE_Y, "start", FONT_SIZE, MUTED_COLOR, &note);
         return svg;
     };
     let (pw, ph) = plot_size(camera, width);

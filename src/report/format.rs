@@ -29,7 +29,14 @@ pub const NOT_AVAILABLE: &str = "n/a";
 /// A fixed-point number, or [`NOT_AVAILABLE`] when not finite.
 pub fn fixed(value: f64, decimals: usize) -> String {
     if value.is_finite() {
-        format!("{value:.decimals$}")
+        let text = format!("{value:.decimals$}");
+        // A value that rounds to zero prints without a sign ("-0.000").
+        match text.strip_prefix('-') {
+            Some(unsigned) if unsigned.chars().all(|c| c == '0' || c == '.') => {
+                unsigned.to_string()
+            }
+            _ => text,
+        }
     } else {
         NOT_AVAILABLE.to_string()
     }
@@ -112,6 +119,16 @@ pub fn improvement_text(report: &Report) -> String {
     }
 }
 
+/// What the "before" model fits besides the base frame (method.md §7):
+/// the hand–eye transform with a flange camera, the tool point otherwise.
+pub fn before_fit(report: &Report) -> &'static str {
+    if report.camera.is_some() {
+        "hand–eye transform"
+    } else {
+        "tool point"
+    }
+}
+
 /// The one-line summary used as the header of every rendering.
 pub fn headline(report: &Report) -> String {
     format!(
@@ -143,6 +160,8 @@ mod tests {
         assert_eq!(significant(123.46, 3), "123");
         assert_eq!(significant(-2.5e-7, 2), "-2.5e-7");
         assert_eq!(significant(f64::NAN, 3), NOT_AVAILABLE);
+        assert_eq!(fixed(-0.0004, 3), "0.000");
+        assert_eq!(fixed(-0.0006, 3), "-0.001");
     }
 
     #[test]

@@ -2,7 +2,7 @@
 //! A4 print layout, the SVG charts inline, no external assets. Every string
 //! from the report is escaped. The sections live in `html_sections.rs`.
 
-use super::format::{escape_xml, improvement_text, mm};
+use super::format::{before_fit, escape_xml, improvement_text, mm};
 use super::html_sections::*;
 use super::model::Report;
 use super::svg::{axis_errors_svg, histogram_svg, pose_errors_svg, residual_field_svg};
@@ -53,7 +53,10 @@ ul.notes li { margin: 3px 0; }
   break-inside: avoid; }
 .signoff div { border-top: 1px solid #222; padding-top: 3px; font-size: 9pt; color: var(--muted); }
 footer { margin-top: 18px; font-size: 8.5pt; color: var(--muted); }
-@page { size: A4; margin: 13mm 12mm 14mm 12mm; }
+@page { size: A4; margin: 13mm 12mm 14mm 12mm;
+  @bottom-right { content: "page " counter(page) " of " counter(pages);
+  font-family: 'DejaVu Sans', Arial, sans-serif; font-size: 8pt; color: #666; } }
+tr.val td { background: #f5f8fc; }
 @media print {
   body { max-width: none; margin: 0; padding: 0; font-size: 9pt; }
   h1 { font-size: 16pt; }
@@ -63,6 +66,7 @@ footer { margin-top: 18px; font-size: 8.5pt; color: var(--muted); }
   table.data { font-size: 8.5pt; }
   table.data th, table.data td { padding: 1px 5px; }
   table.compact { font-size: 8pt; }
+  table.compact th, table.compact td { padding: 0 5px; line-height: 1.2; }
   .tables { gap: 18px; }
   figure { margin: 4px 0 8px 0; }
   .pagebreak { break-before: page; }
@@ -78,8 +82,9 @@ pub fn render_html(report: &Report) -> String {
         page,
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
          <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
-         <title>Calibration report {serial} v{}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n",
-        report.version
+         <title>Calibration report {serial} v{}</title>\n<style>{STYLE}{}</style>\n</head>\n<body>\n",
+        report.version,
+        page_footer_rule(report)
     );
     header(&mut page, report);
     accuracy(&mut page, report);
@@ -97,6 +102,25 @@ pub fn render_html(report: &Report) -> String {
         report.version
     );
     page
+}
+
+/// Characters allowed in the printed page footer (a CSS string): the
+/// serial is put there as text, so anything that could end the string or
+/// the style element is replaced.
+fn css_safe(text: &str) -> String {
+    let allowed = |c: char| c.is_ascii_alphanumeric() || " -_.:/+#".contains(c);
+    text.chars()
+        .map(|c| if allowed(c) { c } else { '?' })
+        .collect()
+}
+
+fn page_footer_rule(report: &Report) -> String {
+    format!(
+        "@page {{ @bottom-left {{ content: \"robocal calibration report, robot {} parameter set v{}\"; \
+         font-family: 'DejaVu Sans', Arial, sans-serif; font-size: 8pt; color: #666; }} }}\n",
+        css_safe(&report.serial),
+        report.version
+    )
 }
 
 fn header(page: &mut String, report: &Report) {
@@ -131,9 +155,11 @@ fn header(page: &mut String, report: &Report) {
 
 fn accuracy(page: &mut String, report: &Report) {
     page.push_str("<section>\n<h2>1. Accuracy at the validation poses</h2>\n");
-    page.push_str(
-        "<p>Before: nominal kinematics with only the base frame and hand–eye transform fitted. \
-         After: the identified parameter set. Poses not used for identification.</p>\n<div class=\"tables\">\n",
+    let _ = writeln!(
+        page,
+        "<p>Before: nominal kinematics with only the base frame and {} fitted. After: the identified \
+         parameter set. Validation poses are not used for identification.</p>\n<div class=\"tables\">",
+        before_fit(report)
     );
     stats_table(page, report);
     axis_table(page, report);
@@ -221,6 +247,7 @@ mod tests {
         let html = render_html(&report);
         assert!(!html.contains("<script") && !html.contains("<img"));
         assert!(html.contains("&lt;script&gt;alert(1)&lt;/script&gt;"));
+        assert!(html.contains("robot ?script?alert?1??/script? parameter set"));
         check_balanced(&html, true).unwrap();
     }
 

@@ -257,7 +257,7 @@ pub fn identifiability(page: &mut String, report: &Report) {
 pub fn per_pose(page: &mut String, report: &Report) {
     page.push_str(
         "<section class=\"pagebreak\">\n<h2>Appendix: error at every pose [mm]</h2>\n<p>Error = measured − predicted \
-         position, target frame. <i>val</i>: validation pose (in the statistics), <i>cal</i>: used for identification.</p>\n\
+         position, target frame. <i>val</i> (shaded): validation pose, in the statistics, <i>cal</i>: used for identification.</p>\n\
          <table class=\"data compact\"><thead><tr><th>pose</th><th>set</th>\
          <th class=\"num before\">before x</th><th class=\"num before\">y</th><th class=\"num before\">z</th><th class=\"num before\">|3-D|</th>\
          <th class=\"num after\">after x</th><th class=\"num after\">y</th><th class=\"num after\">z</th><th class=\"num after\">|3-D|</th>\
@@ -269,9 +269,10 @@ pub fn per_pose(page: &mut String, report: &Report) {
         let rms = p
             .reprojection_rms_px
             .map_or("–".to_string(), |r| fixed(r, RMS_DECIMALS));
+        let row_class = if p.set == "val" { " class=\"val\"" } else { "" };
         let _ = write!(
             page,
-            "<tr><td>{}</td><td>{}</td>",
+            "<tr{row_class}><td>{}</td><td>{}</td>",
             escape_xml(&p.pose_id),
             escape_xml(&p.set)
         );

@@ -5,7 +5,7 @@
 
 use super::distribution::{axis_chart, histogram_chart};
 use super::field::{field_height, residual_field_chart};
-use super::format::{headline, mm};
+use super::format::{before_fit, headline, mm};
 use super::model::{PoseReport, Report};
 use super::plot::*;
 
@@ -176,19 +176,20 @@ fn pose_chart(report: &Report, width: f64, height: f64) -> Svg {
     let mut svg = Svg::default();
     let (poses, which) = judged_poses(report);
     svg.title(
-        MARGIN_LEFT,
+        TITLE_X,
         TITLE_Y,
         &format!("3-D position error per pose, {which}"),
     );
+    let before_label = format!(
+        "before (nominal kinematics; base and {} fitted)",
+        before_fit(report)
+    );
     legend(
         &mut svg,
-        MARGIN_LEFT,
+        TITLE_X,
         LEGEND_Y,
         &[
-            (
-                Mark::Dot(BEFORE_COLOR),
-                "before (nominal kinematics; base and hand–eye fitted)",
-            ),
+            (Mark::Dot(BEFORE_COLOR), &before_label),
             (Mark::Dot(AFTER_COLOR), "after calibration"),
             (Mark::Dash(MUTED_COLOR), "mean"),
         ],

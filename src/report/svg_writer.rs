@@ -17,6 +17,8 @@ pub const MUTED_COLOR: &str = "#666";
 pub const BEFORE_COLOR: &str = "#d9730d";
 pub const AFTER_COLOR: &str = "#1f5fa8";
 pub const TICK_LENGTH: f64 = 5.0;
+/// Left edge of chart titles and legends (aligned with the page text).
+pub const TITLE_X: f64 = 4.0;
 /// Collects SVG elements; all text content is escaped on the way in.
 #[derive(Default)]
 pub struct Svg {
