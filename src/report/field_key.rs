@@ -69,7 +69,7 @@ pub fn key(
     if averaged {
         line(
             svg,
-            &format!("arrow: mean residual per {0:.0} x {0:.0} px cell", cell_px),
+            &format!("arrow: mean per {0:.0} x {0:.0} px cell", cell_px),
         );
         line(
             svg,

@@ -14,6 +14,10 @@ pub const SHEET_WIDTH: f64 = 880.0;
 /// Width of the two charts side by side.
 pub const HALF_WIDTH: f64 = SHEET_WIDTH / 2.0;
 const HEADER_HEIGHT: f64 = 78.0;
+/// Baselines of the header's title, metadata and summary lines.
+const HEADER_LINES: [f64; 3] = [26.0, 46.0, 66.0];
+const HEADER_TITLE_SIZE: f64 = 18.0;
+const HEADER_SUMMARY_SIZE: f64 = 12.5;
 pub const POSE_CHART_HEIGHT: f64 = 330.0;
 pub const SMALL_CHART_HEIGHT: f64 = 310.0;
 /// Room left of the plot area for tick labels and the rotated axis label.
@@ -29,6 +33,8 @@ const MEAN_LABEL_ROOM: f64 = 70.0;
 pub(super) const TITLE_Y: f64 = 20.0;
 pub(super) const LEGEND_Y: f64 = 40.0;
 const DOT_RADIUS: f64 = 3.6;
+/// Dots shrink to this fraction of the per-pose band when poses are many.
+const DOT_BAND_FRACTION: f64 = 0.3;
 /// Most pose ids written under the pose axis before thinning them out.
 const MAX_POSE_LABELS: usize = 40;
 pub(super) const SMALL_FONT: f64 = 9.5;
@@ -111,20 +117,27 @@ fn header(svg: &mut Svg, report: &Report) {
         "Calibration accuracy report: robot {}, parameter set v{}",
         report.serial, report.version
     );
-    svg.bold_text(MARGIN_LEFT / 3.0, 26.0, "start", 18.0, &title);
+    svg.bold_text(TITLE_X, HEADER_LINES[0], "start", HEADER_TITLE_SIZE, &title);
     let meta = format!(
         "created {} · job {} · session {} · {} ({})",
         report.created_at, report.job_id, report.session_id, report.instrument, report.measurement
     );
     svg.text(
-        MARGIN_LEFT / 3.0,
-        46.0,
+        TITLE_X,
+        HEADER_LINES[1],
         "start",
         FONT_SIZE,
         MUTED_COLOR,
         &meta,
     );
-    svg.bold_text(MARGIN_LEFT / 3.0, 66.0, "start", 12.5, &headline(report));
+    let summary = headline(report);
+    svg.bold_text(
+        TITLE_X,
+        HEADER_LINES[2],
+        "start",
+        HEADER_SUMMARY_SIZE,
+        &summary,
+    );
 }
 
 pub(super) fn plot_area(width: f64, height: f64, extra_bottom: f64, margin_right: f64) -> Area {
@@ -199,9 +212,12 @@ fn pose_chart(report: &Report, width: f64, height: f64) -> Svg {
         no_data(&mut svg, area, "no poses in this report");
         return svg;
     }
+    // The means are drawn too, so the axis covers them.
+    let means = [report.before.three_d.mean_mm, report.after.three_d.mean_mm];
     let values: Vec<f64> = poses
         .iter()
         .flat_map(|p| [p.before_mm, p.after_mm])
+        .chain(means)
         .collect();
     let scale = Scale::for_magnitudes(&values, area.bottom(), area.y);
     y_axis(&mut svg, area, &scale, &axis_label("3-D error", &scale));
@@ -214,13 +230,14 @@ fn pose_chart(report: &Report, width: f64, height: f64) -> Svg {
         1.0,
     );
     let band = area.w / poses.len() as f64;
+    let radius = DOT_RADIUS.min(band * DOT_BAND_FRACTION);
     let label_every = poses.len().div_ceil(MAX_POSE_LABELS);
     for (i, pose) in poses.iter().enumerate() {
         let x = area.x + band * (i as f64 + 0.5);
         let (yb, ya) = (scale.map(pose.before_mm), scale.map(pose.after_mm));
         svg.line(x, yb, x, ya, "#bbb", 1.5);
-        svg.circle(x, yb, DOT_RADIUS, BEFORE_COLOR);
-        svg.circle(x, ya, DOT_RADIUS, AFTER_COLOR);
+        svg.circle(x, yb, radius, BEFORE_COLOR);
+        svg.circle(x, ya, radius, AFTER_COLOR);
         svg.line(
             x,
             area.bottom(),
