@@ -10,7 +10,7 @@ pub mod format;
 mod html;
 mod html_sections;
 pub mod model;
-pub mod plot;
+mod plot;
 pub mod sample;
 pub mod svg;
 mod svg_writer;

@@ -332,6 +332,23 @@ mod tests {
     }
 
     #[test]
+    fn narrow_log_axis_labels_2_and_5() {
+        let s = Scale::for_magnitudes(&[0.3, 4.0], 0.0, 100.0);
+        assert!(s.log);
+        let labels: Vec<String> = s.ticks().into_iter().filter_map(|t| t.label).collect();
+        assert_eq!(labels, ["0.1", "0.2", "0.5", "1", "2", "5", "10"]);
+        assert_eq!(s.ticks().len(), 19);
+    }
+
+    #[test]
+    fn exact_scale_ends_at_the_image_border() {
+        let s = Scale::exact(0.0, 1024.0, 0.0, 512.0);
+        assert_eq!(s.map(1024.0), 512.0);
+        let last = s.ticks().last().unwrap().value;
+        assert_eq!(last, 1000.0);
+    }
+
+    #[test]
     fn degenerate_input_does_not_panic() {
         let s = Scale::for_magnitudes(&[f64::NAN, 0.0], 0.0, 10.0);
         assert!(!s.ticks().is_empty());

@@ -71,7 +71,11 @@ pub fn render_svg(report: &Report) -> String {
         y,
         &residual_field_chart(report, SHEET_WIDTH, field_h),
     );
-    standalone(SHEET_WIDTH, y + field_h, &sheet.body)
+    let title = format!(
+        "Calibration accuracy report, robot {} v{}",
+        report.serial, report.version
+    );
+    standalone(SHEET_WIDTH, y + field_h, &title, &sheet.body)
 }
 
 /// Standalone chart documents, for embedding one by one in the HTML page.
@@ -79,6 +83,7 @@ pub fn pose_errors_svg(report: &Report) -> String {
     standalone(
         SHEET_WIDTH,
         POSE_CHART_HEIGHT,
+        "3-D position error per pose",
         &pose_chart(report, SHEET_WIDTH, POSE_CHART_HEIGHT).body,
     )
 }
@@ -86,6 +91,7 @@ pub fn histogram_svg(report: &Report) -> String {
     standalone(
         HALF_WIDTH,
         SMALL_CHART_HEIGHT,
+        "Error histogram",
         &histogram_chart(report, HALF_WIDTH, SMALL_CHART_HEIGHT).body,
     )
 }
@@ -93,6 +99,7 @@ pub fn axis_errors_svg(report: &Report) -> String {
     standalone(
         HALF_WIDTH,
         SMALL_CHART_HEIGHT,
+        "Error per axis",
         &axis_chart(report, HALF_WIDTH, SMALL_CHART_HEIGHT).body,
     )
 }
@@ -101,6 +108,7 @@ pub fn residual_field_svg(report: &Report) -> String {
     standalone(
         SHEET_WIDTH,
         h,
+        "Reprojection residual field",
         &residual_field_chart(report, SHEET_WIDTH, h).body,
     )
 }

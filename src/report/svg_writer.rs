@@ -105,10 +105,12 @@ impl Svg {
 }
 
 /// Wraps chart content into a standalone `<svg>` document element.
-pub fn standalone(width: f64, height: f64, body: &str) -> String {
+/// `title` (escaped here) names the image for screen readers and tooltips.
+pub fn standalone(width: f64, height: f64, title: &str, body: &str) -> String {
     format!(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height}\" \
          viewBox=\"0 0 {width} {height}\" font-family=\"{FONT_FAMILY}\" role=\"img\">\n\
-         <rect width=\"{width}\" height=\"{height}\" fill=\"white\"/>\n{body}</svg>\n"
+         <title>{}</title>\n<rect width=\"{width}\" height=\"{height}\" fill=\"white\"/>\n{body}</svg>\n",
+        escape_xml(title)
     )
 }
