@@ -10,6 +10,10 @@
 //!   control of `mu` (Nielsen 1999, as in Madsen–Nielsen–Tingleff), which
 //!   needs far fewer rejected steps on badly scaled problems.
 //!
+//! Each step needs only `J^T J` and `J^T r`
+//! ([`LeastSquaresProblem::normal_equations`]), so block-structured problems
+//! assemble them directly.
+//!
 //! With `column_scaling` (default on) the problem is solved in the variables
 //! `D x`, `D = diag(|J_j|)` kept at its running maximum (MINPACK), so that
 //! millimetres, radians and pixels become commensurable; near-redundant
@@ -39,6 +43,44 @@ pub trait LeastSquaresProblem {
     /// override it with the analytic Jacobian where one exists.
     fn jacobian(&self, x: &DVector<f64>) -> Option<DMatrix<f64>> {
         finite_difference_jacobian(|x| self.residuals(x), x)
+    }
+
+    /// `J^T J` and `J^T r` at `x` (with `r` the residuals there): all an LM
+    /// step needs. The default forms them from [`Self::jacobian`]; problems
+    /// with block structure (bundle adjustment: each view's pose touches only
+    /// its own points) override this to assemble them without the dense
+    /// Jacobian, which turns an O(m n^2) product into O(m b^2).
+    fn normal_equations(&self, x: &DVector<f64>, r: &DVector<f64>) -> Option<NormalEquations> {
+        let jacobian = self.jacobian(x)?;
+        Some(NormalEquations::from_jacobian(&jacobian, r))
+    }
+}
+
+/// The Gauss–Newton normal equations `J^T J dx = -J^T r`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NormalEquations {
+    pub jtj: DMatrix<f64>,
+    pub jtr: DVector<f64>,
+}
+
+impl NormalEquations {
+    pub fn from_jacobian(jacobian: &DMatrix<f64>, r: &DVector<f64>) -> Self {
+        Self {
+            jtj: jacobian.tr_mul(jacobian),
+            jtr: jacobian.tr_mul(r),
+        }
+    }
+
+    /// Empty equations for `n` parameters, to be accumulated into.
+    pub fn zeros(n: usize) -> Self {
+        Self {
+            jtj: DMatrix::zeros(n, n),
+            jtr: DVector::zeros(n),
+        }
+    }
+
+    fn is_finite(&self) -> bool {
+        all_finite(self.jtj.iter().copied()) && all_finite(self.jtr.iter().copied())
     }
 }
 
@@ -118,8 +160,8 @@ pub enum SolverError {
 pub struct LmReport {
     pub x: DVector<f64>,
     pub residuals: DVector<f64>,
-    /// Jacobian at `x` (unscaled).
-    pub jacobian: DMatrix<f64>,
+    /// `J^T J` at `x` (unscaled), for the covariance.
+    pub normal_matrix: DMatrix<f64>,
     /// Sum of squared residuals at `x`.
     pub cost: f64,
     pub initial_cost: f64,
@@ -136,7 +178,7 @@ impl LmReport {
 
     /// Parameter covariance `sigma^2 (J^T J)^+` (method.md §6 **beyond**).
     pub fn covariance(&self) -> DMatrix<f64> {
-        covariance_from_jacobian(&self.jacobian, self.residual_variance())
+        covariance_from_normal_matrix(&self.normal_matrix, self.residual_variance())
     }
 
     /// Standard deviation of each parameter.
@@ -145,23 +187,30 @@ impl LmReport {
     }
 }
 
-/// `variance * (J^T J)^+`, computed from the SVD of `J` for stability;
-/// directions with singular value below [`COVARIANCE_RCOND`] times the
-/// largest contribute nothing (they are unidentifiable, not infinitely
-/// uncertain: the caller reports them as fixed).
-pub fn covariance_from_jacobian(jacobian: &DMatrix<f64>, variance: f64) -> DMatrix<f64> {
-    let n = jacobian.ncols();
-    let svd = jacobian.clone().svd(false, true);
-    let v_t = svd.v_t.expect("v_t requested");
-    let s_max = svd.singular_values.max();
+/// `variance * (J^T J)^+`. The pseudo-inverse is taken of the
+/// column-scaled matrix (unit diagonal), where eigenvalues below
+/// [`COVARIANCE_RCOND`] times the largest are treated as zero: those
+/// directions are unidentifiable, not infinitely uncertain, and the caller
+/// reports them as fixed.
+pub fn covariance_from_normal_matrix(jtj: &DMatrix<f64>, variance: f64) -> DMatrix<f64> {
+    let n = jtj.nrows();
+    let scale = jtj.diagonal().map(|d| if d > 0.0 { d.sqrt() } else { 1.0 });
+    let scaled = DMatrix::from_fn(n, n, |i, j| jtj[(i, j)] / (scale[i] * scale[j]));
+    let eigen = scaled.symmetric_eigen();
+    let largest = eigen.eigenvalues.max();
     let mut cov = DMatrix::zeros(n, n);
-    for (k, &s) in svd.singular_values.iter().enumerate() {
-        if s > COVARIANCE_RCOND * s_max && s > 0.0 {
-            let v = v_t.row(k).transpose();
-            cov += (&v * v.transpose()) * (variance / (s * s));
+    for (k, &lambda) in eigen.eigenvalues.iter().enumerate() {
+        if lambda > COVARIANCE_RCOND * largest && lambda > 0.0 {
+            let v = eigen.eigenvectors.column(k);
+            cov += (v * v.transpose()) * (variance / lambda);
         }
     }
-    cov
+    DMatrix::from_fn(n, n, |i, j| cov[(i, j)] / (scale[i] * scale[j]))
+}
+
+/// [`covariance_from_normal_matrix`] of `J^T J`.
+pub fn covariance_from_jacobian(jacobian: &DMatrix<f64>, variance: f64) -> DMatrix<f64> {
+    covariance_from_normal_matrix(&jacobian.tr_mul(jacobian), variance)
 }
 
 /// Central-difference Jacobian of `f` at `x`.
@@ -212,8 +261,13 @@ pub fn solve<P: LeastSquaresProblem + ?Sized>(
             parameters: n,
         });
     }
-    let mut jac = problem.jacobian(&x).ok_or(SolverError::InvalidStart)?;
-    if !all_finite(r.iter().copied()) || !all_finite(jac.iter().copied()) {
+    if !all_finite(r.iter().copied()) {
+        return Err(SolverError::NonFinite);
+    }
+    let mut normal = problem
+        .normal_equations(&x, &r)
+        .ok_or(SolverError::InvalidStart)?;
+    if !normal.is_finite() {
         return Err(SolverError::NonFinite);
     }
     let initial_cost = r.norm_squared();
@@ -232,7 +286,7 @@ pub fn solve<P: LeastSquaresProblem + ?Sized>(
         iterations += 1;
         if options.column_scaling {
             for j in 0..n {
-                let norm = jac.column(j).norm();
+                let norm = normal.jtj[(j, j)].max(0.0).sqrt();
                 let previous = if scale_initialised { scale[j] } else { 0.0 };
                 scale[j] = previous.max(norm);
                 if scale[j] == 0.0 {
@@ -242,12 +296,8 @@ pub fn solve<P: LeastSquaresProblem + ?Sized>(
             scale_initialised = true;
         }
         // Scaled system: J_s = J D^-1, unknown dx_s = D dx.
-        let mut js = jac.clone();
-        for j in 0..n {
-            js.column_mut(j).unscale_mut(scale[j]);
-        }
-        let a = js.transpose() * &js;
-        let g = js.transpose() * &r;
+        let a = DMatrix::from_fn(n, n, |i, j| normal.jtj[(i, j)] / (scale[i] * scale[j]));
+        let g = normal.jtr.component_div(&scale);
         if g.amax() <= options.gradient_tolerance * cost.sqrt().max(f64::MIN_POSITIVE) {
             termination = Termination::GradientConverged;
             break;
@@ -308,8 +358,10 @@ pub fn solve<P: LeastSquaresProblem + ?Sized>(
             x = candidate;
             r = new_r.expect("accepted steps have residuals");
             cost = new_cost;
-            jac = problem.jacobian(&x).ok_or(SolverError::NonFinite)?;
-            if !all_finite(jac.iter().copied()) {
+            normal = problem
+                .normal_equations(&x, &r)
+                .ok_or(SolverError::NonFinite)?;
+            if !normal.is_finite() {
                 return Err(SolverError::NonFinite);
             }
             if reduction <= options.cost_tolerance {
@@ -326,7 +378,7 @@ pub fn solve<P: LeastSquaresProblem + ?Sized>(
     Ok(LmReport {
         x,
         residuals: r,
-        jacobian: jac,
+        normal_matrix: normal.jtj,
         cost,
         initial_cost,
         iterations,
