@@ -23,6 +23,8 @@ pub const MIN_IMAGE_RANGE_GREY: f32 = 20.0;
 const MIN_BLOB_AREA_PX: f64 = 3.0;
 /// Dots below this area are too small for a sub-pixel centre.
 pub const MIN_DOT_AREA_PX: f64 = 12.0;
+/// An incomplete lattice of dots below this area is reported as too small.
+pub const SMALL_DOT_AREA_PX: f64 = 30.0;
 /// Accepted thresholded-area / moment-ellipse-area range (convexity proxy).
 const MIN_FILL_RATIO: f64 = 0.8;
 const MAX_FILL_RATIO: f64 = 1.25;
@@ -32,6 +34,9 @@ const MIN_AXIS_RATIO: f64 = 0.15;
 pub const MAX_CANDIDATES: usize = 5000;
 /// Pixel step of the grey-range sampling.
 const RANGE_SAMPLE_STEP: usize = 7;
+/// Fraction of a lattice step beyond the next dot that must still be inside
+/// the image for that dot to count as visible.
+const EDGE_FIT_FRACTION: f64 = 0.5;
 /// Area ratio slack between lattice neighbours beyond the marker's own ratio.
 const SIZE_RATIO_SLACK: f64 = 2.0;
 
@@ -121,8 +126,10 @@ fn grey_range(img: &GrayImage) -> f32 {
 struct CandidateSet {
     blobs: Vec<Blob>,
     dots: Vec<super::ellipse::RefinedDot>,
-    too_small: Vec<f64>,
-    unsharp: usize,
+    /// Centres and areas of dot-like blobs too small to refine.
+    too_small: Vec<(Vector2<f64>, f64)>,
+    /// Centres and areas of dot-like blobs rejected for contrast or edges.
+    unsharp: Vec<(Vector2<f64>, f64)>,
 }
 
 fn candidates(img: &GrayImage, target: &TargetSpec, opts: &DetectOptions) -> CandidateSet {
@@ -135,7 +142,7 @@ fn candidates(img: &GrayImage, target: &TargetSpec, opts: &DetectOptions) -> Can
         blobs: Vec::new(),
         dots: Vec::new(),
         too_small: Vec::new(),
-        unsharp: 0,
+        unsharp: Vec::new(),
     };
     for b in find_blobs(img, &thr, MIN_BLOB_AREA_PX) {
         if b.area > max_area || b.touches_border(img.width, img.height) {
@@ -147,7 +154,7 @@ fn candidates(img: &GrayImage, target: &TargetSpec, opts: &DetectOptions) -> Can
             continue;
         }
         if b.area < MIN_DOT_AREA_PX {
-            set.too_small.push(b.area);
+            set.too_small.push((Vector2::new(b.cx, b.cy), b.area));
             continue;
         }
         match refine_dot(img, &b) {
@@ -156,7 +163,7 @@ fn candidates(img: &GrayImage, target: &TargetSpec, opts: &DetectOptions) -> Can
                 set.dots.push(d);
             }
             Err(Rejection::NotAnEllipse) => {}
-            Err(_) => set.unsharp += 1,
+            Err(_) => set.unsharp.push((Vector2::new(b.cx, b.cy), b.area)),
         }
     }
     set
@@ -170,7 +177,11 @@ fn runs_off_image(lat: &Lattice, c: &[Vector2<f64>], w: usize, h: usize) -> bool
             let beyond = (i + di, j + dj);
             let back = (i - di, j - dj);
             match (lat.nodes.get(&beyond), lat.nodes.get(&back)) {
-                (None, Some(&kb)) => !inside(2.0 * c[k] - c[kb]),
+                (None, Some(&kb)) => {
+                    let step = c[k] - c[kb];
+                    // The next dot would not fit with its half-pitch surround.
+                    !inside(c[k] + step * (1.0 + EDGE_FIT_FRACTION))
+                }
                 _ => false,
             }
         })
@@ -279,6 +290,24 @@ pub fn detect_with(
     })
 }
 
+/// Median area of a lattice of at least half the board's dots among
+/// rejected blobs, if there is one (the board is there but unusable).
+fn rejected_lattice(rejected: &[(Vector2<f64>, f64)], n_dots: usize) -> Option<f64> {
+    if rejected.len() < n_dots / 2 || rejected.len() > MAX_CANDIDATES {
+        return None;
+    }
+    let centres: Vec<Vector2<f64>> = rejected.iter().map(|r| r.0).collect();
+    let areas: Vec<f64> = rejected.iter().map(|r| r.1).collect();
+    let cand = Candidates { centres: &centres, sizes: &areas, max_size_ratio: SIZE_RATIO_SLACK * 2.0 };
+    let best = grow_lattices(&cand).into_iter().next()?;
+    if best.nodes.len() < n_dots / 2 {
+        return None;
+    }
+    let mut a: Vec<f64> = best.nodes.values().map(|&k| areas[k]).collect();
+    a.sort_by(f64::total_cmp);
+    Some(a[a.len() / 2])
+}
+
 /// The clearest error when no complete board was found.
 fn explain_failure(
     lattices: &[Lattice],
@@ -289,18 +318,12 @@ fn explain_failure(
     n_dots: usize,
 ) -> DetectError {
     let Some(best) = lattices.first() else {
-        if set.too_small.len() >= n_dots / 2 {
-            let mut a = set.too_small.clone();
-            a.sort_by(f64::total_cmp);
-            return DetectError::DotsTooSmall {
-                median_area_px: a[a.len() / 2],
-                min_area_px: MIN_DOT_AREA_PX,
-            };
+        if let Some(median_area_px) = rejected_lattice(&set.too_small, n_dots) {
+            return DetectError::DotsTooSmall { median_area_px, min_area_px: MIN_DOT_AREA_PX };
         }
-        if set.unsharp >= n_dots / 2 {
+        if let Some(area) = rejected_lattice(&set.unsharp, n_dots) {
             return DetectError::DotsTooBlurred(format!(
-                "{} dot-like blobs rejected for low contrast or ragged edges",
-                set.unsharp
+                "a lattice of dots (median area {area:.0} px) has too little contrast or ragged edges"
             ));
         }
         return DetectError::NoBoard(format!("no lattice among {} dot candidates", centres.len()));
@@ -312,6 +335,12 @@ fn explain_failure(
             "found a {ni}x{nj} lattice, larger than the {}x{} target (clutter in line with the board?)",
             target.rows, target.cols
         ));
+    }
+    let mut areas: Vec<f64> = best.nodes.values().map(|&k| set.blobs[k].area).collect();
+    areas.sort_by(f64::total_cmp);
+    let median_area_px = areas[areas.len() / 2];
+    if median_area_px < SMALL_DOT_AREA_PX {
+        return DetectError::DotsTooSmall { median_area_px, min_area_px: SMALL_DOT_AREA_PX };
     }
     if runs_off_image(best, centres, img.width, img.height) {
         return DetectError::BoardPartlyOutside {

@@ -20,6 +20,9 @@ const MAX_AXIS_RATIO: f64 = 4.0;
 /// A candidate is accepted within this fraction of the local step length
 /// from the predicted position.
 const ACCEPT_TOL: f64 = 0.3;
+/// The second-nearest candidate must be at least this fraction of the local
+/// step from the predicted position.
+const UNIQUE_TOL: f64 = 0.6;
 /// Lattice neighbourhood (Chebyshev radius) used for local prediction.
 const LOCAL_RADIUS: i32 = 2;
 /// Dots needed before a local homography replaces the affine prediction.
@@ -201,15 +204,26 @@ fn grow(cand: &Candidates, seed: &Seed, used: &mut [bool]) -> Lattice {
                 continue;
             };
             let step = (p - c[from]).norm();
-            let best = c
-                .iter()
-                .enumerate()
-                .filter(|(k, _)| !used[*k])
-                .map(|(k, q)| ((q - p).norm(), k))
-                .min_by(|a, b| a.0.total_cmp(&b.0));
-            let Some((dist, k)) = best else { continue };
+            // Nearest and second-nearest candidate (used ones included): the
+            // match must be close and unambiguous, so dense clutter or noise
+            // cannot pass for a lattice.
+            let (mut first, mut second) = ((f64::MAX, usize::MAX), f64::MAX);
+            for (k, q) in c.iter().enumerate() {
+                let d = (q - p).norm();
+                if d < first.0 {
+                    second = first.0;
+                    first = (d, k);
+                } else if d < second {
+                    second = d;
+                }
+            }
+            let (dist, k) = first;
+            if k == usize::MAX || used[k] {
+                continue;
+            }
             let ratio = cand.sizes[k] / cand.sizes[from];
             if dist < ACCEPT_TOL * step
+                && second > UNIQUE_TOL * step
                 && ratio < cand.max_size_ratio
                 && ratio > 1.0 / cand.max_size_ratio
             {

@@ -20,3 +20,8 @@ pub use ellipse::{DotQuality, Ellipse};
 pub use error::DetectError;
 pub use image::{decode_image, DecodeLimits, GrayImage};
 pub use target::TargetSpec;
+
+#[cfg(test)]
+mod detect_tests;
+#[cfg(test)]
+mod real_data_tests;
