@@ -100,7 +100,10 @@ impl Scene<'_> {
     fn grey(&self, p: Vector2<f64>) -> f64 {
         let t = self.target;
         let m = self.opts.board_margin_mm;
-        let (w, h) = ((t.cols - 1) as f64 * t.pitch_mm, (t.rows - 1) as f64 * t.pitch_mm);
+        let (w, h) = (
+            (t.cols - 1) as f64 * t.pitch_mm,
+            (t.rows - 1) as f64 * t.pitch_mm,
+        );
         if p.x < -m || p.y < -m || p.x > w + m || p.y > h + m {
             return self.opts.background_grey;
         }
@@ -126,7 +129,10 @@ impl Scene<'_> {
     fn near_edge(&self, p: Vector2<f64>, reach: f64) -> bool {
         let t = self.target;
         let m = self.opts.board_margin_mm;
-        let (w, h) = ((t.cols - 1) as f64 * t.pitch_mm, (t.rows - 1) as f64 * t.pitch_mm);
+        let (w, h) = (
+            (t.cols - 1) as f64 * t.pitch_mm,
+            (t.rows - 1) as f64 * t.pitch_mm,
+        );
         let border = [p.x + m, p.y + m, w + m - p.x, h + m - p.y];
         if border.iter().any(|d| d.abs() <= reach) {
             return true;
@@ -162,7 +168,12 @@ fn check(opts: &RenderOptions, width: usize, height: usize) -> Result<(), Render
     if opts.supersampling == 0 || opts.supersampling > MAX_SUPERSAMPLING {
         return bad("supersampling must be 1..=64");
     }
-    let finite = [opts.blur_sigma_px, opts.noise_sigma_grey, opts.vignetting, opts.board_margin_mm];
+    let finite = [
+        opts.blur_sigma_px,
+        opts.noise_sigma_grey,
+        opts.vignetting,
+        opts.board_margin_mm,
+    ];
     if finite.iter().any(|v| !(v.is_finite() && *v >= 0.0)) || opts.vignetting >= 1.0 {
         return bad("blur, noise, margin must be finite and >= 0; vignetting in [0, 1)");
     }
@@ -207,7 +218,11 @@ pub fn render_target<R: Rng + ?Sized>(
     finish(&mut data, width, height, opts, rng);
     let truth = target_truth(camera, camera_to_target, target, width, height);
     Ok(RenderedView {
-        image: GrayImage { width, height, data },
+        image: GrayImage {
+            width,
+            height,
+            data,
+        },
         truth,
     })
 }
@@ -240,7 +255,9 @@ fn shade_pixel(scene: &Scene, corners: &[Option<Vector2<f64>>; 4], s: usize) -> 
 /// Separable Gaussian blur with clamped borders.
 fn gaussian_blur(data: &mut [f32], w: usize, h: usize, sigma: f64) {
     let r = (BLUR_HALF_WIDTH_SIGMAS * sigma).ceil() as isize;
-    let mut k: Vec<f32> = (-r..=r).map(|x| (-(x * x) as f64 / (2.0 * sigma * sigma)).exp() as f32).collect();
+    let mut k: Vec<f32> = (-r..=r)
+        .map(|x| (-(x * x) as f64 / (2.0 * sigma * sigma)).exp() as f32)
+        .collect();
     let total: f32 = k.iter().sum();
     k.iter_mut().for_each(|v| *v /= total);
     let mut tmp = vec![0.0f32; data.len()];
@@ -248,7 +265,11 @@ fn gaussian_blur(data: &mut [f32], w: usize, h: usize, sigma: f64) {
     for y in 0..h {
         let row = &data[y * w..(y + 1) * w];
         for x in 0..w {
-            tmp[y * w + x] = k.iter().enumerate().map(|(t, kv)| kv * row[clamp(x as isize + t as isize - r, w)]).sum();
+            tmp[y * w + x] = k
+                .iter()
+                .enumerate()
+                .map(|(t, kv)| kv * row[clamp(x as isize + t as isize - r, w)])
+                .sum();
         }
     }
     for y in 0..h {
@@ -263,7 +284,13 @@ fn gaussian_blur(data: &mut [f32], w: usize, h: usize, sigma: f64) {
 }
 
 /// Vignetting (quadratic fall-off to the corners), noise, 8-bit quantisation.
-fn finish<R: Rng + ?Sized>(data: &mut [f32], w: usize, h: usize, opts: &RenderOptions, rng: &mut R) {
+fn finish<R: Rng + ?Sized>(
+    data: &mut [f32],
+    w: usize,
+    h: usize,
+    opts: &RenderOptions,
+    rng: &mut R,
+) {
     let (cx, cy) = (0.5 * (w as f64 - 1.0), 0.5 * (h as f64 - 1.0));
     let r2_max = (cx * cx + cy * cy).max(f64::MIN_POSITIVE);
     let noise = Normal::new(0.0, opts.noise_sigma_grey).ok();
@@ -293,10 +320,23 @@ pub fn target_truth(
             let m = target.dot_centre_mm(row, col);
             let p = camera_to_target * Point3::new(m[0], m[1], m[2]);
             let (x, y, visible) = match camera.project(&p) {
-                Some(q) => (q.x, q.y, q.x >= -0.5 && q.y >= -0.5 && q.x < width as f64 - 0.5 && q.y < height as f64 - 0.5),
+                Some(q) => (
+                    q.x,
+                    q.y,
+                    q.x >= -0.5
+                        && q.y >= -0.5
+                        && q.x < width as f64 - 0.5
+                        && q.y < height as f64 - 0.5,
+                ),
                 None => (f64::NAN, f64::NAN, false),
             };
-            out.push(TruthDot { row, col, x, y, visible });
+            out.push(TruthDot {
+                row,
+                col,
+                x,
+                y,
+                visible,
+            });
         }
     }
     out

@@ -71,7 +71,9 @@ pub fn random_view<R: Rng + ?Sized>(
     );
     for _ in 0..MAX_VIEW_ATTEMPTS {
         let d = rng.random_range(ranges.distance_mm.0..=ranges.distance_mm.1);
-        let tilt = rng.random_range(ranges.tilt_deg.0..=ranges.tilt_deg.1).to_radians();
+        let tilt = rng
+            .random_range(ranges.tilt_deg.0..=ranges.tilt_deg.1)
+            .to_radians();
         let azimuth = rng.random_range(0.0..TAU);
         let roll = rng.random_range(0.0..TAU);
         let aim = centre
@@ -81,10 +83,18 @@ pub fn random_view<R: Rng + ?Sized>(
                 0.0,
             );
         // The camera sits in front of the board (negative target z).
-        let dir = Vector3::new(tilt.sin() * azimuth.cos(), tilt.sin() * azimuth.sin(), -tilt.cos());
+        let dir = Vector3::new(
+            tilt.sin() * azimuth.cos(),
+            tilt.sin() * azimuth.sin(),
+            -tilt.cos(),
+        );
         let position = aim + d * dir;
         let z = -dir;
-        let helper = if z.x.abs() < 0.9 { Vector3::x() } else { Vector3::y() };
+        let helper = if z.x.abs() < 0.9 {
+            Vector3::x()
+        } else {
+            Vector3::y()
+        };
         let x0 = helper.cross(&z).normalize();
         let y0 = z.cross(&x0);
         let r = Matrix3::from_columns(&[x0, y0, z]);
@@ -103,12 +113,14 @@ pub fn random_view<R: Rng + ?Sized>(
         let inside = (0..target.rows).all(|row| {
             (0..target.cols).all(|col| {
                 let m = target.dot_centre_mm(row, col);
-                camera.project(&(camera_to_target * Point3::new(m[0], m[1], m[2]))).is_some_and(|p| {
-                    p.x > ranges.border_px
-                        && p.y > ranges.border_px
-                        && p.x < width as f64 - ranges.border_px
-                        && p.y < height as f64 - ranges.border_px
-                })
+                camera
+                    .project(&(camera_to_target * Point3::new(m[0], m[1], m[2])))
+                    .is_some_and(|p| {
+                        p.x > ranges.border_px
+                            && p.y > ranges.border_px
+                            && p.x < width as f64 - ranges.border_px
+                            && p.y < height as f64 - ranges.border_px
+                    })
             })
         });
         if inside {

@@ -5,6 +5,7 @@
 //! pixels, and nothing per-pixel is allocated beyond the threshold buffer.
 
 use super::image::GrayImage;
+use super::threshold::LocalThreshold;
 
 /// One dark connected component (8-connected).
 #[derive(Debug, Clone, PartialEq)]
@@ -83,15 +84,16 @@ fn sum_sq(m: i64) -> f64 {
 
 /// Labels pixels darker than their threshold and returns the components with
 /// at least `min_area` pixels.
-pub fn find_blobs(img: &GrayImage, threshold: &[f32], min_area: f64) -> Vec<Blob> {
+pub fn find_blobs(img: &GrayImage, threshold: &LocalThreshold, min_area: f64) -> Vec<Blob> {
     let w = img.width;
+    let (mut thr, mut scratch) = (vec![0.0f32; w], Vec::new());
     // (x0, x1 exclusive, row) per run, and union-find parents.
     let mut runs: Vec<(u32, u32, u32)> = Vec::new();
     let mut parent: Vec<u32> = Vec::new();
     let mut prev_start = 0usize;
     for y in 0..img.height {
         let row = &img.data[y * w..(y + 1) * w];
-        let thr = &threshold[y * w..(y + 1) * w];
+        threshold.row(y, &mut thr, &mut scratch);
         let cur_start = runs.len();
         let mut x = 0usize;
         while x < w {
@@ -200,7 +202,9 @@ mod tests {
             data[30 * w + x] = 20.0;
         }
         let img = GrayImage::new(w, h, data).unwrap();
-        let thr = vec![100.0f32; w * h];
+        let flat = GrayImage::new(w, h, vec![111.0; w * h]).unwrap();
+        // Mean 111 minus the minimum 10 % offset: a flat threshold of ~100.
+        let thr = crate::vision::threshold::local_threshold(&flat, 8);
         let mut blobs = find_blobs(&img, &thr, 1.0);
         blobs.sort_by(|a, b| a.cx.partial_cmp(&b.cx).unwrap());
         assert_eq!(blobs.len(), 2);

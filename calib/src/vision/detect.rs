@@ -298,7 +298,11 @@ fn rejected_lattice(rejected: &[(Vector2<f64>, f64)], n_dots: usize) -> Option<f
     }
     let centres: Vec<Vector2<f64>> = rejected.iter().map(|r| r.0).collect();
     let areas: Vec<f64> = rejected.iter().map(|r| r.1).collect();
-    let cand = Candidates { centres: &centres, sizes: &areas, max_size_ratio: SIZE_RATIO_SLACK * 2.0 };
+    let cand = Candidates {
+        centres: &centres,
+        sizes: &areas,
+        max_size_ratio: SIZE_RATIO_SLACK * 2.0,
+    };
     let best = grow_lattices(&cand).into_iter().next()?;
     if best.nodes.len() < n_dots / 2 {
         return None;
@@ -319,7 +323,10 @@ fn explain_failure(
 ) -> DetectError {
     let Some(best) = lattices.first() else {
         if let Some(median_area_px) = rejected_lattice(&set.too_small, n_dots) {
-            return DetectError::DotsTooSmall { median_area_px, min_area_px: MIN_DOT_AREA_PX };
+            return DetectError::DotsTooSmall {
+                median_area_px,
+                min_area_px: MIN_DOT_AREA_PX,
+            };
         }
         if let Some(area) = rejected_lattice(&set.unsharp, n_dots) {
             return DetectError::DotsTooBlurred(format!(
@@ -340,7 +347,10 @@ fn explain_failure(
     areas.sort_by(f64::total_cmp);
     let median_area_px = areas[areas.len() / 2];
     if median_area_px < SMALL_DOT_AREA_PX {
-        return DetectError::DotsTooSmall { median_area_px, min_area_px: SMALL_DOT_AREA_PX };
+        return DetectError::DotsTooSmall {
+            median_area_px,
+            min_area_px: SMALL_DOT_AREA_PX,
+        };
     }
     if runs_off_image(best, centres, img.width, img.height) {
         return DetectError::BoardPartlyOutside {

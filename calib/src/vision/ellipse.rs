@@ -52,6 +52,18 @@ impl Ellipse {
         (u / self.semi_major_px).powi(2) + (v / self.semi_minor_px).powi(2)
     }
 
+    /// Coefficients `(a, b, c)` with normalised radius squared
+    /// `a dx^2 + b dx dy + c dy^2` about the centre (for tight loops).
+    pub fn quadratic_form(&self) -> (f64, f64, f64) {
+        let (s, c) = self.angle_rad.sin_cos();
+        let (ia, ib) = (self.semi_major_px.powi(-2), self.semi_minor_px.powi(-2));
+        (
+            c * c * ia + s * s * ib,
+            2.0 * s * c * (ia - ib),
+            s * s * ia + c * c * ib,
+        )
+    }
+
     /// Ellipse with the second moments of a blob (a filled ellipse has
     /// covariance `diag(a^2, b^2) / 4`).
     pub fn from_blob(b: &Blob) -> Self {
@@ -119,9 +131,12 @@ pub fn refine_dot(img: &GrayImage, blob: &Blob) -> Result<RefinedDot, Rejection>
     let y1 = ((blob.y_max as f64 + margin).ceil() as usize).min(img.height - 1);
 
     let (mut inner, mut ring) = (Vec::new(), Vec::new());
+    let (qa, qb, qc) = ell.quadratic_form();
     for y in y0..=y1 {
+        let dy = y as f64 - ell.cy;
         for x in x0..=x1 {
-            let q = ell.normalised_radius_sq(x as f64, y as f64);
+            let dx = x as f64 - ell.cx;
+            let q = qa * dx * dx + qb * dx * dy + qc * dy * dy;
             if q < INNER_RADIUS * INNER_RADIUS {
                 inner.push(img.at(x, y));
             } else if q > RING_INNER_RADIUS.powi(2) && q < RING_OUTER_RADIUS.powi(2) {
@@ -147,13 +162,18 @@ pub fn refine_dot(img: &GrayImage, blob: &Blob) -> Result<RefinedDot, Rejection>
         points.clear();
         max_slope = 0.0;
         let (qmin, qmax) = (EDGE_MIN_RADIUS.powi(2), EDGE_MAX_RADIUS.powi(2));
+        let (qa, qb, qc) = ell.quadratic_form();
+        let q_at = |x: f64, y: f64| {
+            let (dx, dy) = (x - ell.cx, y - ell.cy);
+            qa * dx * dx + qb * dx * dy + qc * dy * dy
+        };
         for y in y0..=y1 {
             for x in x0..=x1 {
                 let a = img.at(x, y);
                 if x < x1 {
                     let b = img.at(x + 1, y);
                     if (a - mid) * (b - mid) < 0.0 {
-                        let q = ell.normalised_radius_sq(x as f64 + 0.5, y as f64);
+                        let q = q_at(x as f64 + 0.5, y as f64);
                         if q > qmin && q < qmax {
                             let t = ((mid - a) / (b - a)) as f64;
                             points.push(Vector2::new(x as f64 + t, y as f64));
@@ -164,7 +184,7 @@ pub fn refine_dot(img: &GrayImage, blob: &Blob) -> Result<RefinedDot, Rejection>
                 if y < y1 {
                     let b = img.at(x, y + 1);
                     if (a - mid) * (b - mid) < 0.0 {
-                        let q = ell.normalised_radius_sq(x as f64, y as f64 + 0.5);
+                        let q = q_at(x as f64, y as f64 + 0.5);
                         if q > qmin && q < qmax {
                             let t = ((mid - a) / (b - a)) as f64;
                             points.push(Vector2::new(x as f64, y as f64 + t));

@@ -20,9 +20,9 @@ const MAX_AXIS_RATIO: f64 = 4.0;
 /// A candidate is accepted within this fraction of the local step length
 /// from the predicted position.
 const ACCEPT_TOL: f64 = 0.3;
-/// The second-nearest candidate must be at least this fraction of the local
-/// step from the predicted position.
-const UNIQUE_TOL: f64 = 0.6;
+/// The second-nearest candidate must be at least this many times farther
+/// from the predicted position than the accepted one.
+const AMBIGUITY_RATIO: f64 = 3.0;
 /// Lattice neighbourhood (Chebyshev radius) used for local prediction.
 const LOCAL_RADIUS: i32 = 2;
 /// Dots needed before a local homography replaces the affine prediction.
@@ -223,7 +223,7 @@ fn grow(cand: &Candidates, seed: &Seed, used: &mut [bool]) -> Lattice {
             }
             let ratio = cand.sizes[k] / cand.sizes[from];
             if dist < ACCEPT_TOL * step
-                && second > UNIQUE_TOL * step
+                && second > AMBIGUITY_RATIO * dist
                 && ratio < cand.max_size_ratio
                 && ratio > 1.0 / cand.max_size_ratio
             {

@@ -6,7 +6,10 @@ use std::collections::HashMap;
 
 use super::*;
 
-const CMU_DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/data/circles/cmu_datta_10x7");
+const CMU_DIR: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../shared/data/circles/cmu_datta_10x7"
+);
 /// Largest accepted median distance to OpenCV's blob centroids, px (both are
 /// uncorrected centres of ~45 px dots; OpenCV's are coarser).
 const MAX_MEDIAN_DIFF_PX: f64 = 0.15;
@@ -25,11 +28,16 @@ pub fn cmu_target() -> TargetSpec {
 }
 
 fn opencv_centres() -> HashMap<String, Vec<(f64, f64)>> {
-    let csv = std::fs::read_to_string(format!("{CMU_DIR}/derived_opencv5/centers_findCirclesGrid.csv")).unwrap();
+    let csv = std::fs::read_to_string(format!(
+        "{CMU_DIR}/derived_opencv5/centers_findCirclesGrid.csv"
+    ))
+    .unwrap();
     let mut out: HashMap<String, Vec<(f64, f64)>> = HashMap::new();
     for line in csv.lines().skip(1) {
         let f: Vec<&str> = line.split(',').collect();
-        out.entry(f[0].to_string()).or_default().push((f[4].parse().unwrap(), f[5].parse().unwrap()));
+        out.entry(f[0].to_string())
+            .or_default()
+            .push((f[4].parse().unwrap(), f[5].parse().unwrap()));
     }
     out
 }
@@ -57,5 +65,8 @@ fn all_cmu_photographs_are_detected_and_agree_with_opencv() {
     diffs.sort_by(f64::total_cmp);
     let median = diffs[diffs.len() / 2];
     let max = diffs[diffs.len() - 1];
-    assert!(median < MAX_MEDIAN_DIFF_PX && max < MAX_DIFF_PX, "median {median:.3} max {max:.3}");
+    assert!(
+        median < MAX_MEDIAN_DIFF_PX && max < MAX_DIFF_PX,
+        "median {median:.3} max {max:.3}"
+    );
 }
