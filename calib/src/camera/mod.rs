@@ -10,6 +10,7 @@ pub mod refine;
 pub mod refine_loop;
 pub mod sequence;
 pub mod tsai;
+pub mod willson;
 
 pub use calibrate::{
     calibrate, CalibrationMode, CalibrationOptions, CameraCalibration, IntrinsicsStdDev,

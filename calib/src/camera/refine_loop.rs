@@ -5,7 +5,7 @@
 //! until the predicted centre offsets stop moving. Standard deviations come
 //! from `sigma^2 (J^T J)^-1` at the solution.
 
-use nalgebra::{DMatrix, DVector, Isometry3, Point2, Point3, Vector2};
+use nalgebra::{DVector, Isometry3, Point2, Point3, Vector2};
 
 use super::bias::centre_bias;
 use super::calibrate::{CalibrationOptions, IntrinsicsStdDev};
@@ -17,6 +17,10 @@ use crate::solver::{solve, LmOptions, LmReport};
 
 /// Median absolute residual to standard deviation for a Gaussian.
 const MAD_TO_SIGMA: f64 = 1.4826;
+/// LM stopping rules of each round: a relative cost change of 1e-10 is far
+/// below the statistical resolution of any calibration (cost ~ n sigma^2).
+const LM_COST_TOLERANCE: f64 = 1e-10;
+const LM_STEP_TOLERANCE: f64 = 1e-10;
 /// Extra rounds allowed for outlier removal beyond the bias iterations.
 const EXTRA_OUTLIER_ROUNDS: usize = 5;
 
@@ -75,7 +79,11 @@ pub fn refine(input: &RefineInput) -> Result<Refinement, CameraError> {
     let mut outliers = Vec::new();
     let mut reference_weight = 0.0;
     let mut x: Option<DVector<f64>> = None;
-    let lm = LmOptions::default();
+    let lm = LmOptions {
+        cost_tolerance: LM_COST_TOLERANCE,
+        step_tolerance: LM_STEP_TOLERANCE,
+        ..LmOptions::default()
+    };
     let mut bias_iterations = 0;
     let max_rounds = options.max_bias_iterations.max(1) + EXTRA_OUTLIER_ROUNDS;
     let mut last: Option<(LmReport, Vec<Vec<(Point3<f64>, Point2<f64>)>>)> = None;
@@ -207,7 +215,9 @@ pub fn refine(input: &RefineInput) -> Result<Refinement, CameraError> {
     let sigma_px = (report.residuals.rows(0, n_img).norm_squared() / n_img as f64).sqrt();
     let std_dev = match block {
         IntrinsicsBlock::Fixed(_) => None,
-        IntrinsicsBlock::Free { .. } => intrinsics_std_dev(&report, block.len(), &intrinsics),
+        IntrinsicsBlock::Free { .. } => {
+            intrinsics_std_dev(&problem, &report, block.len(), &intrinsics)
+        }
     };
     let corrected = views
         .iter()
@@ -235,30 +245,13 @@ pub fn refine(input: &RefineInput) -> Result<Refinement, CameraError> {
     })
 }
 
-/// `J^T J` accumulated over each row's non-zero columns (the Jacobian is
-/// block-sparse: intrinsics plus one pose per row).
-fn normal_matrix(jac: &DMatrix<f64>) -> DMatrix<f64> {
-    let n = jac.ncols();
-    let mut a = DMatrix::zeros(n, n);
-    let mut nz = Vec::with_capacity(n);
-    for row in jac.row_iter() {
-        nz.clear();
-        nz.extend((0..n).filter(|&j| row[j] != 0.0));
-        for &i in &nz {
-            for &j in &nz {
-                a[(i, j)] += row[i] * row[j];
-            }
-        }
-    }
-    a
-}
-
 fn intrinsics_std_dev(
+    problem: &JointProblem,
     report: &LmReport,
     n_intr: usize,
     intr: &Intrinsics,
 ) -> Option<IntrinsicsStdDev> {
-    let a = normal_matrix(&report.jacobian);
+    let (a, _) = problem.block_normal_equations(&report.jacobian, &report.residuals);
     let inv = a.cholesky()?.inverse();
     let var = report.residual_variance();
     let sd = |i: usize| {

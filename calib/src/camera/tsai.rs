@@ -76,14 +76,18 @@ fn solve_alignment(points: &[CentredPoint], m: f64) -> Option<[f64; 5]> {
     if points.len() < STAGE1_MIN_POINTS {
         return None;
     }
-    let a = DMatrix::from_fn(points.len(), 5, |i, j| {
-        let p = &points[i];
+    // Normal equations (5x5): this runs thousands of times in the sequence
+    // searches of method.md §4.
+    let mut ata = nalgebra::Matrix5::<f64>::zeros();
+    let mut atb = nalgebra::Vector5::<f64>::zeros();
+    for p in points {
         let (xw, yw) = (p.world.x, p.world.y);
         let (xs, y) = (m * p.image.x, p.image.y);
-        [y * xw, y * yw, y, -xs * xw, -xs * yw][j]
-    });
-    let b = DVector::from_iterator(points.len(), points.iter().map(|p| m * p.image.x));
-    let v = a.svd(true, true).solve(&b, 1e-14).ok()?;
+        let row = nalgebra::Vector5::new(y * xw, y * yw, y, -xs * xw, -xs * yw);
+        ata += row * row.transpose();
+        atb += row * xs;
+    }
+    let v = ata.cholesky()?.solve(&atb);
     v.iter()
         .all(|x| x.is_finite())
         .then(|| [v[0], v[1], v[2], v[3], v[4]])
