@@ -19,6 +19,12 @@ use super::tsai::board_angle_deg;
 pub const MIN_IMAGES: usize = 3;
 /// Views with a smaller board-to-image angle get a warning (method.md §3).
 pub const WARN_BOARD_ANGLE_DEG: f64 = 20.0;
+/// The focal length counts as undetermined (views too close to
+/// fronto-parallel) when its standard deviation exceeds this fraction.
+pub const FOCAL_UNDETERMINED_REL: f64 = 0.01;
+/// ... or when the per-image Tsai focal lengths scatter by more than this
+/// (coefficient of variation).
+pub const PAPER_FX_SPREAD_MAX: f64 = 0.25;
 /// Outlier threshold in robust standard deviations (issue 4).
 pub const OUTLIER_SIGMAS: f64 = 5.0;
 
@@ -146,6 +152,7 @@ pub fn calibrate(
         })
         .collect();
     let paper = paper_sequence(&planar, image_size, &options.paper)?;
+    check_focal_determined_paper(&paper)?;
     let pairs: Vec<Vec<(Point3<f64>, Point2<f64>)>> = views.iter().map(|v| v.pairs()).collect();
     let start = options.fixed_intrinsics.unwrap_or(paper.intrinsics);
     let initial_poses = pairs
@@ -167,7 +174,42 @@ pub fn calibrate(
             options,
         })?),
     };
+    if let Some(r) = &refinement {
+        if let Some(sd) = r.std_dev {
+            if !(sd.fx <= FOCAL_UNDETERMINED_REL * r.intrinsics.fx) {
+                return Err(CameraError::AllFrontoParallel {
+                    max_angle_deg: max_board_angle_deg(&r.camera_to_target),
+                });
+            }
+        }
+    }
     finish(views, image_size, options, paper, refinement, &pairs)
+}
+
+fn max_board_angle_deg(camera_to_target: &[Isometry3<f64>]) -> f64 {
+    camera_to_target
+        .iter()
+        .map(|p| board_angle_deg(p.rotation.to_rotation_matrix().matrix()))
+        .fold(0.0, f64::max)
+}
+
+/// Near-fronto-parallel sequences show up as wildly different per-image
+/// Tsai focal lengths (stage 2 cannot separate fx and Tz, method.md §3).
+fn check_focal_determined_paper(paper: &PaperCalibration) -> Result<(), CameraError> {
+    let fx: Vec<f64> = paper.views.iter().flatten().map(|v| v.fx).collect();
+    let n = fx.len() as f64;
+    let mean = fx.iter().sum::<f64>() / n;
+    let spread = (fx.iter().map(|f| (f - mean).powi(2)).sum::<f64>() / n).sqrt() / mean;
+    if fx.len() > 1 && spread > PAPER_FX_SPREAD_MAX {
+        let max_angle_deg = paper
+            .views
+            .iter()
+            .flatten()
+            .map(|v| v.board_angle_deg)
+            .fold(0.0, f64::max);
+        return Err(CameraError::AllFrontoParallel { max_angle_deg });
+    }
+    Ok(())
 }
 
 fn check_options(n_views: usize, options: &CalibrationOptions) -> Result<(), CameraError> {
@@ -281,3 +323,11 @@ fn finish(
         paper,
     })
 }
+
+#[cfg(test)]
+#[path = "calibrate_tests.rs"]
+mod tests;
+
+#[cfg(test)]
+#[path = "cmu_tests.rs"]
+mod cmu_tests;

@@ -33,7 +33,7 @@ pub enum CameraError {
     },
     #[error("view {view}: a coordinate is not finite")]
     NonFinite { view: usize },
-    #[error("all views are within {max_angle_deg:.1} degrees of fronto-parallel: focal length and distance cannot be separated (tilt the board by 20-45 degrees)")]
+    #[error("the views are too close to fronto-parallel (largest board-to-image angle found {max_angle_deg:.1} degrees): focal length and distance cannot be separated; tilt the board by 20-45 degrees")]
     AllFrontoParallel { max_angle_deg: f64 },
     #[error("view {view}: {reason}")]
     DegenerateView { view: usize, reason: String },

@@ -21,8 +21,10 @@ const MAD_TO_SIGMA: f64 = 1.4826;
 /// below the statistical resolution of any calibration (cost ~ n sigma^2).
 const LM_COST_TOLERANCE: f64 = 1e-10;
 const LM_STEP_TOLERANCE: f64 = 1e-10;
+/// Outliers are only looked for once the bias offsets move less than this (px).
+const OUTLIER_BIAS_SETTLED_PX: f64 = 1e-3;
 /// Extra rounds allowed for outlier removal beyond the bias iterations.
-const EXTRA_OUTLIER_ROUNDS: usize = 5;
+const EXTRA_OUTLIER_ROUNDS: usize = 10;
 
 pub struct RefineInput<'a> {
     pub views: &'a [Vec<(Point3<f64>, Point2<f64>)>],
@@ -134,25 +136,9 @@ pub fn refine(input: &RefineInput) -> Result<Refinement, CameraError> {
             .collect();
         abs.sort_by(f64::total_cmp);
         let sigma = MAD_TO_SIGMA * abs[abs.len() / 2];
-        let mut new_outliers = false;
-        for (v, obs) in views.iter().enumerate() {
-            let mut remaining = active[v].iter().filter(|&&a| a).count();
-            for (i, (t, p)) in obs.iter().enumerate() {
-                if !active[v][i] || remaining <= MIN_DOTS_PER_VIEW {
-                    continue;
-                }
-                let Some(q) = intr.project(&(poses[v] * t)) else {
-                    continue;
-                };
-                let r = (p - offsets[v][i] - q).norm();
-                if r > options.outlier_sigmas * sigma {
-                    active[v][i] = false;
-                    remaining -= 1;
-                    outliers.push((v, i, r));
-                    new_outliers = true;
-                }
-            }
-        }
+        // Bias first: until the predicted offsets have settled, residuals
+        // still hold the perspective bias (several sigma near the corners)
+        // and must not be taken for outliers.
         let mut change: f64 = 0.0;
         if let Some(d) = options.dot_diameter_mm {
             bias_iterations += 1;
@@ -167,6 +153,33 @@ pub fn refine(input: &RefineInput) -> Result<Refinement, CameraError> {
                     change = change.max((off - offsets[v][i]).norm());
                     offsets[v][i] = off;
                 }
+            }
+        }
+        let mut new_outliers = false;
+        let bias_settled =
+            change <= OUTLIER_BIAS_SETTLED_PX || bias_iterations >= options.max_bias_iterations;
+        // One dot per view and round, the worst: a gross error drags its
+        // view's pose and with it the neighbours' residuals.
+        for (v, obs) in views.iter().enumerate() {
+            let remaining = active[v].iter().filter(|&&a| a).count();
+            if !bias_settled || remaining <= MIN_DOTS_PER_VIEW {
+                continue;
+            }
+            let worst = obs
+                .iter()
+                .enumerate()
+                .filter(|(i, _)| active[v][*i])
+                .filter_map(|(i, (t, p))| {
+                    Some((
+                        i,
+                        (p - offsets[v][i] - intr.project(&(poses[v] * t))?).norm(),
+                    ))
+                })
+                .max_by(|a, b| a.1.total_cmp(&b.1));
+            if let Some((i, r)) = worst.filter(|w| w.1 > options.outlier_sigmas * sigma) {
+                active[v][i] = false;
+                outliers.push((v, i, r));
+                new_outliers = true;
             }
         }
         let refs_pending = !options.reference_distances.is_empty() && reference_weight == 0.0;

@@ -71,8 +71,8 @@ impl ViewCampaignSpec {
     pub fn modern_1280x1024(seed: u64) -> Self {
         Self {
             intrinsics: Intrinsics {
-                fx: 1800.0,
-                fy: 1800.0,
+                fx: 1200.0,
+                fy: 1200.0,
                 cx: 645.3,
                 cy: 508.7,
                 k1: -0.12,
@@ -89,7 +89,7 @@ impl ViewCampaignSpec {
             views: 60,
             distance_mm: (600.0, 1000.0),
             tilt_deg: (20.0, 45.0),
-            noise_px: 0.015,
+            noise_px: 0.01,
             margin_px: 15.0,
             seed,
         }
