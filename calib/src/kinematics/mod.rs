@@ -2,6 +2,7 @@
 
 pub mod identifiability;
 pub mod identify;
+pub mod initial;
 pub mod ik;
 pub mod jacobian;
 pub mod joint_refine;
