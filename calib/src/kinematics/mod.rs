@@ -9,6 +9,7 @@ pub mod joint_refine;
 pub mod model;
 pub mod params;
 pub mod presets;
+pub mod projection;
 
 pub use model::{choose_conventions, Convention, Joint, KinematicsError, RobotModel};
 pub use params::{CalibratedModel, Instrument, ParamLayout};
