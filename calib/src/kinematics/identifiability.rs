@@ -8,7 +8,8 @@
 //! deterministic set of reference poses and fixed at their reference value;
 //! the campaign is then checked: a parameter that is structurally free but
 //! not determined by the campaign's poses (too few, too similar) is an error
-//! naming it.
+//! naming it (a few such weak parameters, up to [`MAX_WEAK_FIXED`], are
+//! held fixed and reported instead).
 
 use nalgebra::{DMatrix, DVector};
 use rand::{rngs::StdRng, Rng, SeedableRng};
@@ -27,6 +28,11 @@ pub const STRUCTURAL_TOL: f64 = 1e-7;
 /// A structurally free column whose unexplained part, on the campaign's
 /// poses, is below this fraction is not identifiable from the campaign.
 pub const CAMPAIGN_TOL: f64 = 1e-4;
+/// At most this many structurally free parameters may be left undetermined
+/// by a campaign; they are then held fixed and reported in
+/// [`IdentifiabilityReport::weak`]. More is an error: the campaign cannot
+/// identify the model.
+pub const MAX_WEAK_FIXED: usize = 3;
 /// Random poses used to find the structural redundancies.
 const REFERENCE_POSES: usize = 40;
 const REFERENCE_SEED: u64 = 0x5eed_cafe;
@@ -50,8 +56,12 @@ pub enum IdentifiabilityError {
 pub struct IdentifiabilityReport {
     /// Numerical rank of the column-scaled Jacobian of all parameters.
     pub rank: usize,
-    /// Names of the parameters held fixed as redundant.
+    /// Names of the parameters held fixed: structurally redundant ones and
+    /// the campaign's weak ones.
     pub fixed: Vec<String>,
+    /// The subset of `fixed` that this campaign's poses did not determine
+    /// (structurally identifiable): vary the poses to identify them.
+    pub weak: Vec<String>,
     /// Indices (into the layout) of the parameters that are identified.
     pub free: Vec<usize>,
     /// `s_max / s_min` of the column-scaled Jacobian of the free parameters.
@@ -173,7 +183,7 @@ pub fn analyse(
     }
     let scaled = scale_columns(jac);
     let (free, weak) = select(&scaled, &candidates, CAMPAIGN_TOL);
-    if !weak.is_empty() {
+    if weak.len() > MAX_WEAK_FIXED {
         return Err(IdentifiabilityError::Unidentifiable {
             parameters: weak.iter().map(|&i| layout.params[i].name.clone()).collect(),
         });
@@ -189,11 +199,12 @@ pub fn analyse(
     sv.sort_by(|a, b| b.total_cmp(a));
     let n = sv.len() as f64;
     let log_mean = sv.iter().map(|s| s.max(f64::MIN_POSITIVE).ln()).sum::<f64>() / n;
-    let mut fixed: Vec<usize> = structural;
+    let mut fixed: Vec<usize> = structural.into_iter().chain(weak.iter().copied()).collect();
     fixed.sort_unstable();
     Ok(IdentifiabilityReport {
         rank,
         fixed: fixed.iter().map(|&i| layout.params[i].name.clone()).collect(),
+        weak: weak.iter().map(|&i| layout.params[i].name.clone()).collect(),
         free,
         condition_number: sv[0] / sv[sv.len() - 1],
         observability_index: log_mean.exp() / (jac.nrows() as f64).sqrt(),
