@@ -138,5 +138,7 @@ mod tests {
         check(Instrument::Camera, presets::irb2400());
         check(Instrument::Camera, presets::puma560());
         check(Instrument::Tracker, presets::puma560());
+        check(Instrument::Tracker, presets::ur5());
+        check(Instrument::Camera, presets::ur10());
     }
 }
