@@ -101,7 +101,7 @@ fn truth_measurements(campaign: &Campaign, set: PoseSet) -> Vec<Measurement> {
 }
 
 /// Start model: nominal kinematics, hand–eye guess, base by registration.
-fn start_model(spec: &CampaignSpec, cal: &[Measurement]) -> Result<CalibratedModel, IdentifyError> {
+pub fn start_model(spec: &CampaignSpec, cal: &[Measurement]) -> Result<CalibratedModel, IdentifyError> {
     let mut m = CalibratedModel {
         robot: spec.nominal.clone(),
         world_to_base: Pose::identity(),
@@ -111,7 +111,26 @@ fn start_model(spec: &CampaignSpec, cal: &[Measurement]) -> Result<CalibratedMod
     Ok(m)
 }
 
-pub fn run_experiment(spec: &CampaignSpec) -> Result<ExperimentResult, ExperimentError> {
+/// A simulated campaign turned into every method's input.
+#[derive(Debug, Clone)]
+pub struct Prepared {
+    pub campaign: Campaign,
+    /// Intrinsics as the camera step delivers them.
+    pub camera_step: Intrinsics,
+    /// True camera poses plus independent camera-step-level noise.
+    pub oracle: Vec<Measurement>,
+    /// Per-image PnP with the camera step's intrinsics, no covariance.
+    pub plain: Vec<Measurement>,
+    /// The same poses with the camera step's marginal covariance.
+    pub weighted: Vec<Measurement>,
+    /// Raw image points for the joint refinement.
+    pub images: Vec<ImagePose>,
+    /// True camera poses at the validation poses.
+    pub val: Vec<Measurement>,
+}
+
+/// Simulate `spec` and build every method's input (see the module doc).
+pub fn prepare(spec: &CampaignSpec) -> Result<Prepared, ExperimentError> {
     let campaign = simulate_campaign(spec)?;
     let truth_cam = campaign.truth.intrinsics;
     let mut rng = StdRng::seed_from_u64(spec.seed ^ 0xa5a5);
@@ -161,6 +180,28 @@ pub fn run_experiment(spec: &CampaignSpec) -> Result<ExperimentResult, Experimen
         });
     }
     let val = truth_measurements(&campaign, PoseSet::Val);
+    Ok(Prepared {
+        campaign,
+        camera_step: cam_step,
+        oracle,
+        plain,
+        weighted,
+        images,
+        val,
+    })
+}
+
+pub fn run_experiment(spec: &CampaignSpec) -> Result<ExperimentResult, ExperimentError> {
+    let Prepared {
+        campaign,
+        camera_step: cam_step,
+        oracle,
+        plain,
+        weighted,
+        images,
+        val,
+    } = prepare(spec)?;
+    let sigma = spec.pixel_sigma_px;
     let run = |data: &[Measurement], mode| -> Result<Identification, ExperimentError> {
         Ok(identify(&start_model(spec, data)?, Instrument::Camera, data, mode)?)
     };
