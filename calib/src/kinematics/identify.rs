@@ -361,3 +361,7 @@ pub fn holdout_split(count: usize, fraction: f64) -> (Vec<usize>, Vec<usize>) {
     let every = (1.0 / fraction).round().max(2.0) as usize;
     (0..count).partition(|i| (i + 1) % every != 0)
 }
+
+#[cfg(test)]
+#[path = "identify_tests.rs"]
+mod tests;

@@ -321,3 +321,7 @@ pub fn simulate_campaign(spec: &CampaignSpec) -> Result<Campaign, SimError> {
     let truth = Truth::new(spec, &robot, &target_to_base, &flange_to_camera);
     Ok(Campaign { truth, poses })
 }
+
+#[cfg(test)]
+#[path = "campaign_tests.rs"]
+mod tests;

@@ -7,7 +7,11 @@ use serde::{Deserialize, Serialize};
 
 use super::campaign::{Campaign, CampaignSpec};
 use crate::camera::model::Intrinsics;
-use crate::geometry::{Pose, PoseXyzRpy};
+use crate::geometry::{pose_from_matrix_rows, pose_to_matrix_rows, GeometryError, Pose};
+
+/// A pose as a 4x4 row-major matrix (api.md "Poses"), exact to round-off
+/// unlike roll–pitch–yaw near pitch +-90 degrees.
+pub type MatrixRows = [[f64; 4]; 4];
 use crate::kinematics::RobotModel;
 
 /// The dot-grid board (method.md §1): dot (r, c) at `(c*p, r*p, 0)`.
@@ -69,9 +73,9 @@ pub struct PoseEntry {
 pub struct Truth {
     pub nominal: RobotModel,
     pub robot: RobotModel,
-    pub target_to_base: PoseXyzRpy,
-    pub flange_to_camera: PoseXyzRpy,
-    pub flange_to_camera_guess: PoseXyzRpy,
+    pub target_to_base: MatrixRows,
+    pub flange_to_camera: MatrixRows,
+    pub flange_to_camera_guess: MatrixRows,
     pub intrinsics: Intrinsics,
     pub image_width: u32,
     pub image_height: u32,
@@ -82,7 +86,7 @@ pub struct Truth {
     /// The joints the true robot really had, per pose (deg).
     pub true_joints_deg: Vec<Vec<f64>>,
     /// The true camera pose per pose (the renderer's input).
-    pub target_to_camera: Vec<PoseXyzRpy>,
+    pub target_to_camera: Vec<MatrixRows>,
     pub seed: u64,
 }
 
@@ -96,9 +100,9 @@ impl Truth {
         Self {
             nominal: spec.nominal.clone(),
             robot: robot.clone(),
-            target_to_base: PoseXyzRpy::from_pose(target_to_base),
-            flange_to_camera: PoseXyzRpy::from_pose(flange_to_camera),
-            flange_to_camera_guess: PoseXyzRpy::from_pose(&spec.flange_to_camera_guess),
+            target_to_base: pose_to_matrix_rows(target_to_base),
+            flange_to_camera: pose_to_matrix_rows(flange_to_camera),
+            flange_to_camera_guess: pose_to_matrix_rows(&spec.flange_to_camera_guess),
             intrinsics: spec.intrinsics,
             image_width: spec.image_size.0,
             image_height: spec.image_size.1,
@@ -110,6 +114,17 @@ impl Truth {
             target_to_camera: Vec::new(),
             seed: spec.seed,
         }
+    }
+}
+
+impl Truth {
+    /// The true model: robot, `target_to_base`, `flange_to_camera`.
+    pub fn model(&self) -> Result<crate::kinematics::CalibratedModel, GeometryError> {
+        Ok(crate::kinematics::CalibratedModel {
+            robot: self.robot.clone(),
+            world_to_base: pose_from_matrix_rows(&self.target_to_base)?,
+            flange_to_tool: pose_from_matrix_rows(&self.flange_to_camera)?,
+        })
     }
 }
 
@@ -143,7 +158,7 @@ impl Campaign {
         t.target_to_camera = self
             .poses
             .iter()
-            .map(|p| PoseXyzRpy::from_pose(&p.target_to_camera))
+            .map(|p| pose_to_matrix_rows(&p.target_to_camera))
             .collect();
         t
     }

@@ -280,9 +280,9 @@ pub fn run_experiment(spec: &CampaignSpec) -> Result<ExperimentResult, Experimen
 }
 
 fn exact_model(campaign: &Campaign) -> CalibratedModel {
-    CalibratedModel {
+    campaign.truth.model().unwrap_or_else(|_| CalibratedModel {
         robot: campaign.truth.robot.clone(),
-        world_to_base: campaign.truth.target_to_base.to_pose().unwrap_or_default(),
-        flange_to_tool: campaign.truth.flange_to_camera.to_pose().unwrap_or_default(),
-    }
+        world_to_base: Pose::identity(),
+        flange_to_tool: Pose::identity(),
+    })
 }
