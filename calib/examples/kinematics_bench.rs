@@ -6,18 +6,30 @@ use robocal_calib::sim::campaign::CampaignSpec;
 use robocal_calib::sim::experiment::run_experiment;
 
 fn main() {
-    let runs: u64 = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(1);
-    let first: u64 = std::env::var("SEED_START").ok().and_then(|v| v.parse().ok()).unwrap_or(0);
+    let runs: u64 = std::env::args()
+        .nth(1)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(1);
+    let first: u64 = std::env::var("SEED_START")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(0);
     let presets: Vec<String> = std::env::var("PRESETS")
         .map(|v| v.split(',').map(str::to_string).collect())
         .unwrap_or_else(|_| vec!["irb2400".into(), "puma560".into()]);
     for preset in presets.iter().map(String::as_str) {
         for seed in first..first + runs {
             let mut spec = CampaignSpec::standard(preset, seed + 1).expect("preset");
-            if let Some(v) = std::env::var("ENCODER_DEG").ok().and_then(|v| v.parse().ok()) {
+            if let Some(v) = std::env::var("ENCODER_DEG")
+                .ok()
+                .and_then(|v| v.parse().ok())
+            {
                 spec.encoder_sigma_deg = v;
             }
-            if let Some(v) = std::env::var("COMPLIANCE").ok().and_then(|v| v.parse().ok()) {
+            if let Some(v) = std::env::var("COMPLIANCE")
+                .ok()
+                .and_then(|v| v.parse().ok())
+            {
                 spec.compliance_rad_per_m = v;
             }
             match run_experiment(&spec) {

@@ -19,7 +19,9 @@ use serde_json::json;
 
 fn main() {
     let mut args = std::env::args().skip(1);
-    let out = args.next().unwrap_or_else(|| "kinematics_problem.json".into());
+    let out = args
+        .next()
+        .unwrap_or_else(|| "kinematics_problem.json".into());
     let preset = args.next().unwrap_or_else(|| "irb2400".into());
     let repeats: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(5);
     let spec = CampaignSpec::standard(&preset, 1).expect("preset");
@@ -36,20 +38,41 @@ fn main() {
     };
     let mut id = None;
     let t_identify = best(&mut || {
-        id = Some(identify(&start, Instrument::Camera, &p.weighted, IdentifyMode::Weighted).unwrap())
+        id = Some(
+            identify(
+                &start,
+                Instrument::Camera,
+                &p.weighted,
+                IdentifyMode::Weighted,
+            )
+            .unwrap(),
+        )
     });
     let id = id.expect("ran");
     let free = id.identifiability.free.clone();
     let mut fit_cost = 0.0;
     let t_fit = best(&mut || {
-        let (_, r) = fit_parameters(&id.before, Instrument::Camera, &p.weighted, &free, IdentifyMode::Weighted)
-            .unwrap();
+        let (_, r) = fit_parameters(
+            &id.before,
+            Instrument::Camera,
+            &p.weighted,
+            &free,
+            IdentifyMode::Weighted,
+        )
+        .unwrap();
         fit_cost = r.cost;
     });
     let mut joint = None;
     let t_joint = best(&mut || {
         joint = Some(
-            joint_refine(&id.model, &p.camera_step, &p.images, &free, spec.pixel_sigma_px).unwrap(),
+            joint_refine(
+                &id.model,
+                &p.camera_step,
+                &p.images,
+                &free,
+                spec.pixel_sigma_px,
+            )
+            .unwrap(),
         )
     });
     let joint = joint.expect("ran");
@@ -72,11 +95,20 @@ fn main() {
         .weighted
         .iter()
         .map(|m| {
-            let Observed::Pose { world_to_tool, covariance } = &m.observed else {
+            let Observed::Pose {
+                world_to_tool,
+                covariance,
+            } = &m.observed
+            else {
                 unreachable!("camera poses")
             };
             let cov = DMatrix::from_column_slice(6, 6, covariance.expect("weighted").as_slice());
-            let w = cov.cholesky().expect("pd").l().try_inverse().expect("invertible");
+            let w = cov
+                .cholesky()
+                .expect("pd")
+                .l()
+                .try_inverse()
+                .expect("invertible");
             let rows: Vec<Vec<f64>> = (0..6).map(|r| w.row(r).iter().copied().collect()).collect();
             json!({"q": m.joints_rad, "pose": pose_to_matrix_rows(world_to_tool), "w": rows})
         })

@@ -39,14 +39,32 @@ fn targets(preset: &str) {
     println!(
         "{preset}: before {before:.4} oracle {oracle:.4} two-step {two_step:.4} (weighted {weighted:.4}) paper {paper:.4} joint {joint:.4} compensated {comp:.4} mm"
     );
-    assert!(joint <= ORACLE_FACTOR * oracle, "joint {joint} vs oracle {oracle}");
-    assert!(joint * TWO_STEP_MARGIN <= two_step, "joint {joint} vs two-step {two_step}");
-    assert!(joint * TWO_STEP_MARGIN <= weighted, "joint {joint} vs weighted {weighted}");
-    assert!(before >= MIN_IMPROVEMENT * joint, "before {before} after {joint}");
-    assert!(comp <= COMPENSATION_FACTOR * joint, "compensated {comp} vs {joint}");
+    assert!(
+        joint <= ORACLE_FACTOR * oracle,
+        "joint {joint} vs oracle {oracle}"
+    );
+    assert!(
+        joint * TWO_STEP_MARGIN <= two_step,
+        "joint {joint} vs two-step {two_step}"
+    );
+    assert!(
+        joint * TWO_STEP_MARGIN <= weighted,
+        "joint {joint} vs weighted {weighted}"
+    );
+    assert!(
+        before >= MIN_IMPROVEMENT * joint,
+        "before {before} after {joint}"
+    );
+    assert!(
+        comp <= COMPENSATION_FACTOR * joint,
+        "compensated {comp} vs {joint}"
+    );
     for r in &results {
         assert!(r.max_ik_residual_mm < IK_SELF_TOL_MM);
-        assert_eq!(r.fixed, ["dtheta_1", "d_1", "dtheta_6", "a_6", "d_6", "alpha_6"]);
+        assert_eq!(
+            r.fixed,
+            ["dtheta_1", "d_1", "dtheta_6", "a_6", "d_6", "alpha_6"]
+        );
         assert_eq!(r.free_count, 30);
     }
 }
@@ -70,7 +88,14 @@ fn identified_parameters_lie_within_three_sigma_of_truth() {
         let mut spec = CampaignSpec::standard(preset, 1).unwrap();
         spec.encoder_sigma_deg = 0.0;
         let r = run_experiment(&spec).unwrap();
-        println!("{preset}: worst {:.2} sigma ({})", r.worst_sigma_ratio.0, r.worst_sigma_ratio.1);
-        assert!(r.worst_sigma_ratio.0 <= 3.0, "{preset}: {:?}", r.worst_sigma_ratio);
+        println!(
+            "{preset}: worst {:.2} sigma ({})",
+            r.worst_sigma_ratio.0, r.worst_sigma_ratio.1
+        );
+        assert!(
+            r.worst_sigma_ratio.0 <= 3.0,
+            "{preset}: {:?}",
+            r.worst_sigma_ratio
+        );
     }
 }

@@ -90,7 +90,13 @@ fn ur5_grid_calibration_matches_a_plain_geometric_fit() {
     let test = load_ur5("3D_UR5_uncalibrated_random_cleaned.csv");
     assert_eq!((grid.len(), test.len()), (1000, 20));
     let reference = start(presets::ur5(), UR5_TOOL_GUESS_MM, &grid);
-    let id = identify(&reference, Instrument::Tracker, &grid, IdentifyMode::Weighted).unwrap();
+    let id = identify(
+        &reference,
+        Instrument::Tracker,
+        &grid,
+        IdentifyMode::Weighted,
+    )
+    .unwrap();
     let paper = identify(&reference, Instrument::Tracker, &grid, IdentifyMode::Paper).unwrap();
     let raw: Vec<Vector3<f64>> = load_ur5_differences("3D_UR5_uncalibrated_random_cleaned.csv");
     let raw = robocal_calib::stats::AccuracyStats::from_errors(&raw);
@@ -103,9 +109,15 @@ fn ur5_grid_calibration_matches_a_plain_geometric_fit() {
         after.norm.mean_mm, after.norm.median_mm, after.norm.max_mm, after.norm.rms_mm,
         after_paper.norm.mean_mm, id.identifiability.fixed, id.identifiability.condition_number, id.iterations
     );
-    assert!(raw.norm.mean_mm > 2.0, "the controller's UR5 is ~2.5 mm off");
+    assert!(
+        raw.norm.mean_mm > 2.0,
+        "the controller's UR5 is ~2.5 mm off"
+    );
     assert!(before.norm.mean_mm > 3.0 * after.norm.mean_mm);
-    assert!(after.norm.mean_mm <= 0.105, "plain geometric fit reaches ~0.10 mm");
+    assert!(
+        after.norm.mean_mm <= 0.105,
+        "plain geometric fit reaches ~0.10 mm"
+    );
 }
 
 #[test]
@@ -121,13 +133,21 @@ fn ur10_series_b_calibration_validated_on_c_and_d() {
     ] {
         let val = load_ur10(series, file);
         let refit = |m: &CalibratedModel| {
-            let (m, _) =
-                fit_parameters(m, Instrument::Tracker, &val, &base_only, IdentifyMode::Weighted)
-                    .unwrap();
+            let (m, _) = fit_parameters(
+                m,
+                Instrument::Tracker,
+                &val,
+                &base_only,
+                IdentifyMode::Weighted,
+            )
+            .unwrap();
             validate(&m, &val).unwrap().0
         };
         let (before, after) = (refit(&id.before), refit(&id.model));
-        println!("UR10 fixed {:?} (weak {:?})", id.identifiability.fixed, id.identifiability.weak);
+        println!(
+            "UR10 fixed {:?} (weak {:?})",
+            id.identifiability.fixed, id.identifiability.weak
+        );
         println!(
             "UR10 (Landgraf 2021) B -> {series} ({} poses), instrument_to_base refitted: before {:.4} mm mean (max {:.4}); after {:.4} mm mean (median {:.4}, max {:.4}, rms {:.4})",
             val.len(), before.norm.mean_mm, before.norm.max_mm,

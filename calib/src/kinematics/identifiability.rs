@@ -77,8 +77,12 @@ pub struct IdentifiabilityReport {
 /// tool first, so the joint terms that trade against them are the ones
 /// fixed (the model keeps their nominal values, api.md "compensate").
 fn offer_order(layout: &ParamLayout) -> Vec<usize> {
-    let (mut first, mut rest): (Vec<usize>, Vec<usize>) = (0..layout.len())
-        .partition(|&i| matches!(layout.params[i].kind, ParamKind::Base(_) | ParamKind::Tool(_)));
+    let (mut first, mut rest): (Vec<usize>, Vec<usize>) = (0..layout.len()).partition(|&i| {
+        matches!(
+            layout.params[i].kind,
+            ParamKind::Base(_) | ParamKind::Tool(_)
+        )
+    });
     first.append(&mut rest);
     first
 }
@@ -185,7 +189,10 @@ pub fn analyse(
     let (free, weak) = select(&scaled, &candidates, CAMPAIGN_TOL);
     if weak.len() > MAX_WEAK_FIXED {
         return Err(IdentifiabilityError::Unidentifiable {
-            parameters: weak.iter().map(|&i| layout.params[i].name.clone()).collect(),
+            parameters: weak
+                .iter()
+                .map(|&i| layout.params[i].name.clone())
+                .collect(),
         });
     }
     let full_sv = scaled.clone().svd(false, false).singular_values;
@@ -195,16 +202,31 @@ pub fn analyse(
         .filter(|&&s| s > STRUCTURAL_TOL * s_max)
         .count();
     let free_cols = DMatrix::from_fn(jac.nrows(), free.len(), |r, c| scaled[(r, free[c])]);
-    let mut sv: Vec<f64> = free_cols.svd(false, false).singular_values.iter().copied().collect();
+    let mut sv: Vec<f64> = free_cols
+        .svd(false, false)
+        .singular_values
+        .iter()
+        .copied()
+        .collect();
     sv.sort_by(|a, b| b.total_cmp(a));
     let n = sv.len() as f64;
-    let log_mean = sv.iter().map(|s| s.max(f64::MIN_POSITIVE).ln()).sum::<f64>() / n;
+    let log_mean = sv
+        .iter()
+        .map(|s| s.max(f64::MIN_POSITIVE).ln())
+        .sum::<f64>()
+        / n;
     let mut fixed: Vec<usize> = structural.into_iter().chain(weak.iter().copied()).collect();
     fixed.sort_unstable();
     Ok(IdentifiabilityReport {
         rank,
-        fixed: fixed.iter().map(|&i| layout.params[i].name.clone()).collect(),
-        weak: weak.iter().map(|&i| layout.params[i].name.clone()).collect(),
+        fixed: fixed
+            .iter()
+            .map(|&i| layout.params[i].name.clone())
+            .collect(),
+        weak: weak
+            .iter()
+            .map(|&i| layout.params[i].name.clone())
+            .collect(),
         free,
         condition_number: sv[0] / sv[sv.len() - 1],
         observability_index: log_mean.exp() / (jac.nrows() as f64).sqrt(),

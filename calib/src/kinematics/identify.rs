@@ -28,6 +28,8 @@ pub const DEFAULT_POSITION_SIGMA_MM: f64 = 0.1;
 pub const DEFAULT_ROTATION_SIGMA_RAD: f64 = 1e-4;
 
 /// What was measured at one pose, in the world (target or instrument) frame.
+// A few thousand measurements at most: the 6x6 covariance stays inline.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, PartialEq)]
 pub enum Observed {
     /// Full tool pose with an optional 6x6 covariance in the
@@ -73,7 +75,10 @@ pub enum IdentifyError {
     #[error("no calibration poses")]
     NoPoses,
     #[error("pose {pose}: {source}")]
-    Pose { pose: usize, source: KinematicsError },
+    Pose {
+        pose: usize,
+        source: KinematicsError,
+    },
     #[error("pose {pose}: a {instrument:?} session needs {expected} measurements")]
     WrongMeasurement {
         pose: usize,
@@ -129,7 +134,11 @@ impl PoseFit<'_> {
     }
 
     /// Residual and full-column Jacobian at model `m` (x = 0 around it).
-    fn evaluate(&self, m: &CalibratedModel, with_jac: bool) -> Option<(DVector<f64>, DMatrix<f64>)> {
+    fn evaluate(
+        &self,
+        m: &CalibratedModel,
+        with_jac: bool,
+    ) -> Option<(DVector<f64>, DMatrix<f64>)> {
         let rows = self.rows();
         let cols = if with_jac { self.layout.len() } else { 0 };
         let mut r = DVector::zeros(rows * self.data.len());
@@ -138,7 +147,10 @@ impl PoseFit<'_> {
             let (pred, j) = if with_jac {
                 tool_pose_jacobian(self.layout, m, &meas.joints_rad).ok()?
             } else {
-                (m.world_to_tool(&meas.joints_rad).ok()?, DMatrix::zeros(0, 0))
+                (
+                    m.world_to_tool(&meas.joints_rad).ok()?,
+                    DMatrix::zeros(0, 0),
+                )
             };
             let e = match &meas.observed {
                 Observed::Pose { world_to_tool, .. } => pose_error(world_to_tool, &pred),
@@ -149,7 +161,8 @@ impl PoseFit<'_> {
             };
             r.rows_mut(k * rows, rows).copy_from(&(w * e.rows(0, rows)));
             if with_jac {
-                jac.rows_mut(k * rows, rows).copy_from(&(-(w * j.rows(0, rows))));
+                jac.rows_mut(k * rows, rows)
+                    .copy_from(&(-(w * j.rows(0, rows))));
             }
         }
         Some((r, jac))

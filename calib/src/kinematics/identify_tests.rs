@@ -11,10 +11,16 @@ fn setup(instrument: Instrument) -> (CalibratedModel, CalibratedModel, Vec<Measu
     let mut rng = StdRng::seed_from_u64(11);
     let truth = CalibratedModel {
         robot: perturb_robot(&spec.nominal, &spec, &mut rng),
-        world_to_base: crate::geometry::pose_from_xyz_rpy_deg([1500.0, -200.0, 300.0], [5.0, -3.0, 170.0])
-            .unwrap(),
-        flange_to_tool: crate::geometry::pose_from_xyz_rpy_deg([2.0, 58.0, 113.0], [0.5, -0.8, 1.0])
-            .unwrap(),
+        world_to_base: crate::geometry::pose_from_xyz_rpy_deg(
+            [1500.0, -200.0, 300.0],
+            [5.0, -3.0, 170.0],
+        )
+        .unwrap(),
+        flange_to_tool: crate::geometry::pose_from_xyz_rpy_deg(
+            [2.0, 58.0, 113.0],
+            [0.5, -0.8, 1.0],
+        )
+        .unwrap(),
     };
     let data: Vec<Measurement> = (0..40)
         .map(|_| {
@@ -61,11 +67,25 @@ fn noise_free_campaigns_are_recovered_exactly_in_both_modes() {
             let id = identify(&start, instrument, &data, mode).unwrap();
             let (before, _) = validate(&id.before, &data).unwrap();
             let (after, _) = validate(&id.model, &data).unwrap();
-            assert!(before.norm.mean_mm > 0.3, "{instrument:?} {mode:?}: {before:?}");
-            assert!(after.norm.max_mm < EXACT_TOL_MM, "{instrument:?} {mode:?}: {after:?}");
+            assert!(
+                before.norm.mean_mm > 0.3,
+                "{instrument:?} {mode:?}: {before:?}"
+            );
+            assert!(
+                after.norm.max_mm < EXACT_TOL_MM,
+                "{instrument:?} {mode:?}: {after:?}"
+            );
             assert_eq!(id.identifiability.fixed.len(), 6);
-            let free_std: Vec<f64> = id.identifiability.free.iter().map(|&i| id.std_devs[i]).collect();
-            assert!(free_std.iter().all(|s| *s < 1e-6), "exact data, no uncertainty");
+            let free_std: Vec<f64> = id
+                .identifiability
+                .free
+                .iter()
+                .map(|&i| id.std_devs[i])
+                .collect();
+            assert!(
+                free_std.iter().all(|s| *s < 1e-6),
+                "exact data, no uncertainty"
+            );
         }
     }
 }

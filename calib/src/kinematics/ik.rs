@@ -169,7 +169,7 @@ mod tests {
         let q_true = [0.2, 0.3, -0.2, 0.5, 0.8, -0.4];
         let target = model.world_to_tool(&q_true).unwrap();
         let seed: Vec<f64> = q_true.iter().map(|q| q + 0.1).collect();
-        let sol = inverse_kinematics(&model, &target, &[seed.clone()]).unwrap();
+        let sol = inverse_kinematics(&model, &target, std::slice::from_ref(&seed)).unwrap();
         assert!(sol.residual_mm < 1e-6, "{sol:?}");
         let reached = model.world_to_tool(&sol.joints_rad).unwrap();
         assert!((reached.translation.vector - target.translation.vector).norm() < 1e-6);
@@ -196,7 +196,10 @@ mod tests {
         model.robot.joints[4].max_rad = 0.5; // joint 5 must reach 0.8
         assert!(matches!(
             inverse_kinematics(&model, &target, &[q.to_vec()]),
-            Err(IkError::Limits(KinematicsError::OutsideLimits { joint: 5, .. }))
+            Err(IkError::Limits(KinematicsError::OutsideLimits {
+                joint: 5,
+                ..
+            }))
         ));
     }
 }

@@ -100,8 +100,7 @@ mod tests {
             robot,
             world_to_base: pose_from_xyz_rpy_deg([100.0, -800.0, 300.0], [10.0, -20.0, 170.0])
                 .unwrap(),
-            flange_to_tool: pose_from_xyz_rpy_deg([30.0, -20.0, 110.0], [5.0, 3.0, 80.0])
-                .unwrap(),
+            flange_to_tool: pose_from_xyz_rpy_deg([30.0, -20.0, 110.0], [5.0, 3.0, 80.0]).unwrap(),
         };
         let layout = ParamLayout::new(&model.robot, instrument);
         // Evaluate away from x = 0 too: the Jacobian at the applied model.

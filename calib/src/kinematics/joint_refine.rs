@@ -62,7 +62,11 @@ impl ImageFit<'_> {
     }
 
     fn rows(&self) -> usize {
-        2 * self.poses.iter().map(|p| p.observations.len()).sum::<usize>()
+        2 * self
+            .poses
+            .iter()
+            .map(|p| p.observations.len())
+            .sum::<usize>()
     }
 
     fn params(&self) -> usize {
@@ -136,7 +140,11 @@ pub fn joint_refine(
         poses,
         sigma_px: if sigma_px > 0.0 { sigma_px } else { 1.0 },
     };
-    let report = solve(&problem, DVector::zeros(problem.params()), &LmOptions::default())?;
+    let report = solve(
+        &problem,
+        DVector::zeros(problem.params()),
+        &LmOptions::default(),
+    )?;
     let (model, cam) = problem.unpack(&report.x);
     let at = ImageFit {
         reference: &model,
@@ -190,8 +198,10 @@ mod tests {
             .collect();
         let layout = ParamLayout::new(&truth.robot, Instrument::Camera);
         let free: Vec<usize> = (0..layout.len())
-            .filter(|&i| !["dtheta_1", "d_1", "dtheta_6", "a_6", "d_6", "alpha_6"]
-                .contains(&layout.params[i].name.as_str()))
+            .filter(|&i| {
+                !["dtheta_1", "d_1", "dtheta_6", "a_6", "d_6", "alpha_6"]
+                    .contains(&layout.params[i].name.as_str())
+            })
             .collect();
         let fit = ImageFit {
             layout: &layout,
@@ -201,10 +211,17 @@ mod tests {
             poses: &poses[..3],
             sigma_px: 0.5,
         };
-        let x = DVector::from_fn(fit.params(), |i, _| if i < free.len() { 1e-4 } else { 1e-3 });
+        let x = DVector::from_fn(
+            fit.params(),
+            |i, _| if i < free.len() { 1e-4 } else { 1e-3 },
+        );
         let analytic = fit.jacobian(&x).unwrap();
         let fd = finite_difference_jacobian(|x| fit.residuals(x), &x).unwrap();
-        assert!((&analytic - &fd).amax() < 1e-4 * fd.amax(), "{}", (&analytic - &fd).amax());
+        assert!(
+            (&analytic - &fd).amax() < 1e-4 * fd.amax(),
+            "{}",
+            (&analytic - &fd).amax()
+        );
         // Start off the truth (intrinsics and kinematics), recover it.
         let mut cam = c.truth.intrinsics;
         cam.fx *= 1.001;

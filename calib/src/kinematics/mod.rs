@@ -2,8 +2,8 @@
 
 pub mod identifiability;
 pub mod identify;
-pub mod initial;
 pub mod ik;
+pub mod initial;
 pub mod jacobian;
 pub mod joint_refine;
 pub mod model;

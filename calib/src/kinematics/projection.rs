@@ -45,8 +45,12 @@ pub fn project_with_jacobians(
     let dp_dt: Matrix3<f64> = -r_t;
     let dp_dr: Matrix3<f64> = r_t * rel.cross_matrix();
     let mut j_pose = SMatrix::<f64, 2, 6>::zeros();
-    j_pose.fixed_view_mut::<2, 3>(0, 0).copy_from(&(duv_dp * dp_dt));
-    j_pose.fixed_view_mut::<2, 3>(0, 3).copy_from(&(duv_dp * dp_dr));
+    j_pose
+        .fixed_view_mut::<2, 3>(0, 0)
+        .copy_from(&(duv_dp * dp_dt));
+    j_pose
+        .fixed_view_mut::<2, 3>(0, 3)
+        .copy_from(&(duv_dp * dp_dr));
     let (x, y) = (n.x, n.y);
     let r2 = x * x + y * y;
     let (fx, fy) = (cam.fx, cam.fy);
@@ -112,20 +116,34 @@ mod tests {
         for k in 0..6 {
             let mut d = Vector6::zeros();
             d[k] = h;
-            let plus = cam.project(&(perturb_left(&pose, &d).inverse() * p)).unwrap();
+            let plus = cam
+                .project(&(perturb_left(&pose, &d).inverse() * p))
+                .unwrap();
             d[k] = -h;
-            let minus = cam.project(&(perturb_left(&pose, &d).inverse() * p)).unwrap();
+            let minus = cam
+                .project(&(perturb_left(&pose, &d).inverse() * p))
+                .unwrap();
             let fd = (plus - minus) / (2.0 * h);
-            assert!((fd - jp.column(k)).amax() < 1e-4 * (1.0 + fd.amax()), "pose {k}");
+            assert!(
+                (fd - jp.column(k)).amax() < 1e-4 * (1.0 + fd.amax()),
+                "pose {k}"
+            );
         }
         for k in 0..8 {
             let mut d = [0.0; 8];
             d[k] = h;
-            let plus = apply_intrinsics(&cam, &d).project(&(pose.inverse() * p)).unwrap();
+            let plus = apply_intrinsics(&cam, &d)
+                .project(&(pose.inverse() * p))
+                .unwrap();
             d[k] = -h;
-            let minus = apply_intrinsics(&cam, &d).project(&(pose.inverse() * p)).unwrap();
+            let minus = apply_intrinsics(&cam, &d)
+                .project(&(pose.inverse() * p))
+                .unwrap();
             let fd = (plus - minus) / (2.0 * h);
-            assert!((fd - jc.column(k)).amax() < 1e-4 * (1.0 + fd.amax()), "cam {k}");
+            assert!(
+                (fd - jc.column(k)).amax() < 1e-4 * (1.0 + fd.amax()),
+                "cam {k}"
+            );
         }
         assert!((uv - cam.project(&(pose.inverse() * p)).unwrap()).norm() < 1e-9);
     }

@@ -126,7 +126,11 @@ pub struct SimPose {
 impl SimPose {
     /// `(target point mm, observed pixel)` pairs: the joint refinement's input.
     pub fn observations(&self, board: &Board) -> Vec<(Point3<f64>, Point2<f64>)> {
-        board.points().into_iter().zip(self.observed_px.iter().copied()).collect()
+        board
+            .points()
+            .into_iter()
+            .zip(self.observed_px.iter().copied())
+            .collect()
     }
 }
 
@@ -199,7 +203,9 @@ fn image_of_board(spec: &CampaignSpec, target_to_camera: &Pose) -> Option<Vec<Po
 /// at `distance`, looking at the board centre (jittered), rolled a little.
 fn station(spec: &CampaignSpec, rng: &mut StdRng) -> Pose {
     let centre = spec.board.centre();
-    let tilt = rng.random_range(spec.tilt_deg.0..=spec.tilt_deg.1).to_radians();
+    let tilt = rng
+        .random_range(spec.tilt_deg.0..=spec.tilt_deg.1)
+        .to_radians();
     let azimuth = rng.random_range(0.0..std::f64::consts::TAU);
     let distance = rng.random_range(spec.distance_mm.0..=spec.distance_mm.1);
     let dir = Vector3::new(
@@ -220,7 +226,8 @@ fn station(spec: &CampaignSpec, rng: &mut StdRng) -> Pose {
     let look = Rotation3::from_basis_unchecked(&[x0, y0, z]);
     let roll = Rotation3::from_axis_angle(
         &Vector3::z_axis(),
-        rng.random_range(-ROLL_JITTER_DEG..=ROLL_JITTER_DEG).to_radians(),
+        rng.random_range(-ROLL_JITTER_DEG..=ROLL_JITTER_DEG)
+            .to_radians(),
     );
     Pose::from_parts(
         position.into(),
@@ -251,8 +258,7 @@ pub fn simulate_campaign(spec: &CampaignSpec) -> Result<Campaign, SimError> {
         * spec.flange_to_camera_guess;
     let mid = 0.5 * (spec.distance_mm.0 + spec.distance_mm.1);
     let c = spec.board.centre();
-    let base_to_target =
-        base_to_home_camera * Pose::translation(-c.x, -c.y, mid);
+    let base_to_target = base_to_home_camera * Pose::translation(-c.x, -c.y, mid);
     let target_to_base = base_to_target.inverse();
     let nominal_model = CalibratedModel {
         robot: spec.nominal.clone(),

@@ -38,8 +38,9 @@ impl Board {
     pub fn points(&self) -> Vec<Point3<f64>> {
         (0..self.rows)
             .flat_map(|r| {
-                (0..self.cols)
-                    .map(move |c| Point3::new(c as f64 * self.pitch_mm, r as f64 * self.pitch_mm, 0.0))
+                (0..self.cols).map(move |c| {
+                    Point3::new(c as f64 * self.pitch_mm, r as f64 * self.pitch_mm, 0.0)
+                })
             })
             .collect()
     }

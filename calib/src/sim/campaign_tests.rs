@@ -24,13 +24,23 @@ fn stations_respect_distance_tilt_and_image_bounds() {
         for p in &c.poses {
             let cam = p.target_to_camera.translation.vector;
             let d = (cam - centre.coords).norm();
-            assert!(d > spec.distance_mm.0 - STATION_SLACK_MM && d < spec.distance_mm.1 + STATION_SLACK_MM);
+            assert!(
+                d > spec.distance_mm.0 - STATION_SLACK_MM
+                    && d < spec.distance_mm.1 + STATION_SLACK_MM
+            );
             let tilt = (-(cam - centre.coords).z / d).acos().to_degrees();
-            assert!(tilt > spec.tilt_deg.0 - STATION_SLACK_DEG && tilt < spec.tilt_deg.1 + STATION_SLACK_DEG, "{tilt}");
+            assert!(
+                tilt > spec.tilt_deg.0 - STATION_SLACK_DEG
+                    && tilt < spec.tilt_deg.1 + STATION_SLACK_DEG,
+                "{tilt}"
+            );
             assert!(cam.z < 0.0, "camera in front of the board (method.md §1)");
             assert_eq!(p.ideal_px.len(), 81);
             let (w, h) = (spec.image_size.0 as f64, spec.image_size.1 as f64);
-            assert!(p.ideal_px.iter().all(|uv| uv.x > 0.0 && uv.y > 0.0 && uv.x < w && uv.y < h));
+            assert!(p
+                .ideal_px
+                .iter()
+                .all(|uv| uv.x > 0.0 && uv.y > 0.0 && uv.x < w && uv.y < h));
             spec.nominal.check_limits(&p.joints_rad).unwrap();
             // The truth is consistent: true robot at true joints gives the pose.
             let truth = c.truth.model().unwrap();
@@ -67,7 +77,11 @@ fn truth_differs_from_nominal_at_the_stated_level_and_round_trips() {
     // serde_json parses floats to within an ulp unless `float_roundtrip` is on.
     for (a, b) in parsed.iter().zip(&entries) {
         assert_eq!((&a.image, a.set), (&b.image, b.set));
-        assert!(a.joints_deg.iter().zip(&b.joints_deg).all(|(x, y)| (x - y).abs() < 1e-12));
+        assert!(a
+            .joints_deg
+            .iter()
+            .zip(&b.joints_deg)
+            .all(|(x, y)| (x - y).abs() < 1e-12));
     }
 }
 
@@ -80,9 +94,19 @@ fn noise_and_compliance_are_applied_and_seeded() {
     let b = simulate_campaign(&spec).unwrap();
     assert_eq!(a, b, "same seed, same campaign");
     let p = &a.poses[0];
-    let dq: f64 = p.joints_rad.iter().zip(&p.true_joints_rad).map(|(x, y)| (x - y).abs()).sum();
+    let dq: f64 = p
+        .joints_rad
+        .iter()
+        .zip(&p.true_joints_rad)
+        .map(|(x, y)| (x - y).abs())
+        .sum();
     assert!(dq > 1e-5);
-    let noise: f64 = p.ideal_px.iter().zip(&p.observed_px).map(|(x, y)| (x - y).norm()).sum::<f64>()
+    let noise: f64 = p
+        .ideal_px
+        .iter()
+        .zip(&p.observed_px)
+        .map(|(x, y)| (x - y).norm())
+        .sum::<f64>()
         / p.ideal_px.len() as f64;
     assert!(noise > 0.03 && noise < 0.3, "{noise}");
     spec.cal_poses = 0;
@@ -90,5 +114,8 @@ fn noise_and_compliance_are_applied_and_seeded() {
     assert!(matches!(simulate_campaign(&spec), Err(SimError::Spec(_))));
     spec.val_poses = 2;
     spec.distance_mm = (5000.0, 6000.0);
-    assert!(matches!(simulate_campaign(&spec), Err(SimError::Unreachable { .. })));
+    assert!(matches!(
+        simulate_campaign(&spec),
+        Err(SimError::Unreachable { .. })
+    ));
 }

@@ -30,7 +30,6 @@ use crate::kinematics::joint_refine::{joint_refine, ImagePose};
 use crate::kinematics::{CalibratedModel, Instrument};
 use crate::stats::AccuracyStats;
 
-
 #[derive(Debug, thiserror::Error)]
 pub enum ExperimentError {
     #[error(transparent)]
@@ -79,7 +78,9 @@ fn camera_step_intrinsics(
     cov: &nalgebra::DMatrix<f64>,
     rng: &mut StdRng,
 ) -> Intrinsics {
-    let l = Cholesky::new(cov.clone()).map(|c| c.l()).unwrap_or_else(|| cov.map(|_| 0.0));
+    let l = Cholesky::new(cov.clone())
+        .map(|c| c.l())
+        .unwrap_or_else(|| cov.map(|_| 0.0));
     let z = DVector::from_fn(cov.nrows(), |_, _| StandardNormal.sample(rng));
     crate::kinematics::projection::apply_intrinsics(truth, (l * z).as_slice())
 }
@@ -101,7 +102,10 @@ fn truth_measurements(campaign: &Campaign, set: PoseSet) -> Vec<Measurement> {
 }
 
 /// Start model: nominal kinematics, hand–eye guess, base by registration.
-pub fn start_model(spec: &CampaignSpec, cal: &[Measurement]) -> Result<CalibratedModel, IdentifyError> {
+pub fn start_model(
+    spec: &CampaignSpec,
+    cal: &[Measurement],
+) -> Result<CalibratedModel, IdentifyError> {
     let mut m = CalibratedModel {
         robot: spec.nominal.clone(),
         world_to_base: Pose::identity(),
@@ -136,13 +140,17 @@ pub fn prepare(spec: &CampaignSpec) -> Result<Prepared, ExperimentError> {
     let mut rng = StdRng::seed_from_u64(spec.seed ^ 0xa5a5);
     let sigma = spec.pixel_sigma_px;
     let board = campaign.truth.board;
-    let cal_poses: Vec<_> = campaign.poses.iter().filter(|p| p.set == PoseSet::Cal).collect();
+    let cal_poses: Vec<_> = campaign
+        .poses
+        .iter()
+        .filter(|p| p.set == PoseSet::Cal)
+        .collect();
     let bundle: Vec<_> = cal_poses
         .iter()
         .map(|p| (p.target_to_camera, board.points()))
         .collect();
-    let precision = camera_step_precision(&truth_cam, &bundle, sigma)
-        .ok_or(ExperimentError::Degenerate)?;
+    let precision =
+        camera_step_precision(&truth_cam, &bundle, sigma).ok_or(ExperimentError::Degenerate)?;
     let cam_step = camera_step_intrinsics(&truth_cam, &precision.intrinsics, &mut rng);
     let (mut oracle, mut plain, mut weighted, mut images) = (vec![], vec![], vec![], vec![]);
     for (p, cov) in cal_poses.iter().zip(&precision.poses) {
@@ -203,7 +211,12 @@ pub fn run_experiment(spec: &CampaignSpec) -> Result<ExperimentResult, Experimen
     } = prepare(spec)?;
     let sigma = spec.pixel_sigma_px;
     let run = |data: &[Measurement], mode| -> Result<Identification, ExperimentError> {
-        Ok(identify(&start_model(spec, data)?, Instrument::Camera, data, mode)?)
+        Ok(identify(
+            &start_model(spec, data)?,
+            Instrument::Camera,
+            data,
+            mode,
+        )?)
     };
     let stats = |m: &CalibratedModel| -> Result<AccuracyStats, ExperimentError> {
         Ok(validate(m, &val)?.0)
@@ -225,14 +238,12 @@ pub fn run_experiment(spec: &CampaignSpec) -> Result<ExperimentResult, Experimen
     let exact: Vec<Measurement> = campaign
         .poses
         .iter()
-        .map(|p| {
-            Measurement {
-                joints_rad: p.joints_rad.clone(),
-                observed: Observed::Pose {
-                    world_to_tool: true_model.world_to_tool(&p.joints_rad).unwrap_or_default(),
-                    covariance: None,
-                },
-            }
+        .map(|p| Measurement {
+            joints_rad: p.joints_rad.clone(),
+            observed: Observed::Pose {
+                world_to_tool: true_model.world_to_tool(&p.joints_rad).unwrap_or_default(),
+                covariance: None,
+            },
         })
         .collect();
     let (equivalent, _) = fit_parameters(
@@ -245,7 +256,12 @@ pub fn run_experiment(spec: &CampaignSpec) -> Result<ExperimentResult, Experimen
     let diff: DVector<f64> = joint.layout.difference(&joint.model, &equivalent);
     let worst = free
         .iter()
-        .map(|&i| ((diff[i] / joint.std_devs[i]).abs(), joint.layout.params[i].name.clone()))
+        .map(|&i| {
+            (
+                (diff[i] / joint.std_devs[i]).abs(),
+                joint.layout.params[i].name.clone(),
+            )
+        })
         .max_by(|a, b| a.0.total_cmp(&b.0))
         .unwrap_or((0.0, String::new()));
 
@@ -253,9 +269,11 @@ pub fn run_experiment(spec: &CampaignSpec) -> Result<ExperimentResult, Experimen
     let (mut comp, mut max_res) = (vec![], 0.0f64);
     for p in campaign.poses.iter().filter(|p| p.set == PoseSet::Val) {
         let target = p.target_to_camera;
-        let sol = inverse_kinematics(&joint.model, &target, &[p.joints_rad.clone()])?;
+        let sol = inverse_kinematics(&joint.model, &target, std::slice::from_ref(&p.joints_rad))?;
         max_res = max_res.max(sol.residual_mm);
-        let reached = true_model.world_to_tool(&sol.joints_rad).unwrap_or_default();
+        let reached = true_model
+            .world_to_tool(&sol.joints_rad)
+            .unwrap_or_default();
         comp.push(reached.translation.vector - target.translation.vector);
     }
     Ok(ExperimentResult {

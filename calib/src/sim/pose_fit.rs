@@ -69,7 +69,9 @@ pub fn fit_camera_pose(
         start: pose,
         ..problem
     };
-    let jac = at.jacobian(&DVector::zeros(6)).ok_or(SolverError::NonFinite)?;
+    let jac = at
+        .jacobian(&DVector::zeros(6))
+        .ok_or(SolverError::NonFinite)?;
     let variance = sigma_px.map_or(report.residual_variance(), |s| s * s);
     let cov = covariance_from_jacobian(&jac, variance);
     Ok(PoseFit {
