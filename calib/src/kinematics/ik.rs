@@ -76,6 +76,41 @@ impl LeastSquaresProblem for IkProblem<'_> {
     }
 }
 
+/// Fractions of each joint's range tried by [`default_seeds`].
+const SEED_FRACTIONS: [f64; 3] = [0.25, 0.5, 0.75];
+/// Joints (0-based) whose seed values are varied: the arm's three and the
+/// wrist bend, which select the elbow, shoulder and wrist-flip branches.
+const SEEDED_JOINTS: [usize; 4] = [0, 1, 2, 4];
+
+/// Seeds for a target given without any: a grid over the branch-selecting
+/// joints at [`SEED_FRACTIONS`] of their ranges (others mid-range). The
+/// nearest solution to the first (mid-range) seed wins.
+pub fn default_seeds(model: &CalibratedModel) -> Vec<Vec<f64>> {
+    let joints = &model.robot.joints;
+    let at = |i: usize, f: f64| {
+        let j = &joints[i];
+        j.min_rad + f * (j.max_rad - j.min_rad)
+    };
+    let varied: Vec<usize> = SEEDED_JOINTS
+        .iter()
+        .copied()
+        .filter(|&i| i < joints.len())
+        .collect();
+    let count = SEED_FRACTIONS.len().pow(varied.len() as u32);
+    // Index 0 of the odometer is the middle fraction, so the first seed is mid-range.
+    let order = [1usize, 0, 2];
+    (0..count)
+        .map(|mut k| {
+            let mut q: Vec<f64> = (0..joints.len()).map(|i| at(i, 0.5)).collect();
+            for &i in &varied {
+                q[i] = at(i, SEED_FRACTIONS[order[k % 3]]);
+                k /= 3;
+            }
+            q
+        })
+        .collect()
+}
+
 /// Bring each angle into its joint's limits by whole turns where possible.
 fn wrap_into_limits(model: &CalibratedModel, q: &mut [f64]) {
     for (v, j) in q.iter_mut().zip(&model.robot.joints) {
@@ -182,6 +217,23 @@ mod tests {
             inverse_kinematics(&model, &target, &[]),
             Err(IkError::NoSeed)
         ));
+    }
+
+    #[test]
+    fn default_seeds_find_a_solution_without_a_user_seed() {
+        let model = CalibratedModel {
+            robot: presets::puma560(),
+            world_to_base: Pose::identity(),
+            flange_to_tool: Pose::translation(0.0, 0.0, 100.0),
+        };
+        let seeds = default_seeds(&model);
+        assert_eq!(seeds.len(), 81);
+        let target = model
+            .world_to_tool(&[0.4, 1.2, -2.0, 0.3, 0.9, -0.5])
+            .unwrap();
+        let sol = inverse_kinematics(&model, &target, &seeds).unwrap();
+        assert!(sol.residual_mm < 1e-6);
+        model.robot.check_limits(&sol.joints_rad).unwrap();
     }
 
     #[test]

@@ -115,6 +115,15 @@ impl CalibratedModel {
     pub fn world_to_tool(&self, q_rad: &[f64]) -> Result<Pose, KinematicsError> {
         Ok(self.world_to_base * self.robot.base_to_flange(q_rad)? * self.flange_to_tool)
     }
+
+    /// The same model with another tool on the flange (api.md "compensate":
+    /// a torch seen by the camera is `flange_to_camera * camera_to_torch`).
+    pub fn with_tool(&self, flange_to_tool: Pose) -> Self {
+        Self {
+            flange_to_tool,
+            ..self.clone()
+        }
+    }
 }
 
 /// The parameter vector's layout for one robot and instrument.
