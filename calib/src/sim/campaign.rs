@@ -160,8 +160,9 @@ pub fn perturb_robot(nominal: &RobotModel, spec: &CampaignSpec, rng: &mut StdRng
 }
 
 /// Joint 2 and 3 deflection from gravity, proportional to the horizontal
-/// lever arm from each joint's axis to the flange (unmodelled error).
-fn compliance(robot: &RobotModel, q: &[f64], rad_per_m: f64) -> Vec<f64> {
+/// lever arm from each joint's axis to the flange (unmodelled error): the
+/// joints the true robot has when its encoders read `q`.
+pub fn compliance(robot: &RobotModel, q: &[f64], rad_per_m: f64) -> Vec<f64> {
     let mut out = q.to_vec();
     if rad_per_m == 0.0 || q.len() < 3 {
         return out;

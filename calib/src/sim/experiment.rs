@@ -15,7 +15,7 @@ use nalgebra::{Cholesky, DVector, Vector6};
 use rand::{rngs::StdRng, SeedableRng};
 use rand_distr::{Distribution, StandardNormal};
 
-use super::campaign::{simulate_campaign, Campaign, CampaignSpec, SimError};
+use super::campaign::{compliance, simulate_campaign, Campaign, CampaignSpec, SimError};
 use super::campaign_io::PoseSet;
 use super::pose_fit::{camera_step_precision, fit_camera_pose};
 use crate::camera::model::Intrinsics;
@@ -271,9 +271,13 @@ pub fn run_experiment(spec: &CampaignSpec) -> Result<ExperimentResult, Experimen
         let target = p.target_to_camera;
         let sol = inverse_kinematics(&joint.model, &target, std::slice::from_ref(&p.joints_rad))?;
         max_res = max_res.max(sol.residual_mm);
-        let reached = true_model
-            .world_to_tool(&sol.joints_rad)
-            .unwrap_or_default();
+        // The true robot, compliance included (encoder noise is random).
+        let q_true = compliance(
+            &campaign.truth.robot,
+            &sol.joints_rad,
+            spec.compliance_rad_per_m,
+        );
+        let reached = true_model.world_to_tool(&q_true).unwrap_or_default();
         comp.push(reached.translation.vector - target.translation.vector);
     }
     Ok(ExperimentResult {
