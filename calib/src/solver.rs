@@ -40,6 +40,18 @@ pub trait LeastSquaresProblem {
     fn jacobian(&self, x: &DVector<f64>) -> Option<DMatrix<f64>> {
         finite_difference_jacobian(|x| self.residuals(x), x)
     }
+
+    /// `(J^T J, J^T r)` from the problem's own Jacobian and residuals.
+    /// Block-sparse problems (bundle-style camera calibration: each image
+    /// row touches the intrinsics and one pose) override this to skip the
+    /// dense `O(m n^2)` product; the default lets the solver form it.
+    fn normal_equations(
+        &self,
+        _jacobian: &DMatrix<f64>,
+        _residuals: &DVector<f64>,
+    ) -> Option<(DMatrix<f64>, DVector<f64>)> {
+        None
+    }
 }
 
 /// How the damping `mu` evolves.
@@ -242,12 +254,24 @@ pub fn solve<P: LeastSquaresProblem + ?Sized>(
             scale_initialised = true;
         }
         // Scaled system: J_s = J D^-1, unknown dx_s = D dx.
-        let mut js = jac.clone();
-        for j in 0..n {
-            js.column_mut(j).unscale_mut(scale[j]);
-        }
-        let a = js.transpose() * &js;
-        let g = js.transpose() * &r;
+        let (a, g) = match problem.normal_equations(&jac, &r) {
+            Some((mut a, mut g)) => {
+                for i in 0..n {
+                    g[i] /= scale[i];
+                    for j in 0..n {
+                        a[(i, j)] /= scale[i] * scale[j];
+                    }
+                }
+                (a, g)
+            }
+            None => {
+                let mut js = jac.clone();
+                for j in 0..n {
+                    js.column_mut(j).unscale_mut(scale[j]);
+                }
+                (js.transpose() * &js, js.transpose() * &r)
+            }
+        };
         if g.amax() <= options.gradient_tolerance * cost.sqrt().max(f64::MIN_POSITIVE) {
             termination = Termination::GradientConverged;
             break;

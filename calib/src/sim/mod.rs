@@ -5,3 +5,4 @@ pub mod campaign_io;
 pub mod experiment;
 pub mod pose_fit;
 pub mod render;
+pub mod views;
