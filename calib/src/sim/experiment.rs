@@ -15,10 +15,11 @@ use nalgebra::{Cholesky, DVector, Vector6};
 use rand::{rngs::StdRng, SeedableRng};
 use rand_distr::{Distribution, StandardNormal};
 
+use super::camera_step::camera_step_precision;
 use super::campaign::{compliance, simulate_campaign, Campaign, CampaignSpec, SimError};
 use super::campaign_io::PoseSet;
-use super::pose_fit::{camera_step_precision, fit_camera_pose};
 use crate::camera::model::Intrinsics;
+use crate::camera::pose::estimate_pose;
 use crate::geometry::{perturb_left, Pose};
 use crate::kinematics::identify::{
     fit_parameters, identify, validate, Identification, IdentifyError, IdentifyMode, Measurement,
@@ -37,7 +38,7 @@ pub enum ExperimentError {
     #[error(transparent)]
     Identify(#[from] IdentifyError),
     #[error("pose fit: {0}")]
-    PoseFit(#[from] crate::solver::SolverError),
+    PoseFit(#[from] crate::camera::error::CameraError),
     #[error("the camera bundle is degenerate")]
     Degenerate,
     #[error("compensation: {0}")]
@@ -166,8 +167,8 @@ pub fn prepare(spec: &CampaignSpec) -> Result<Prepared, ExperimentError> {
                 covariance: Some(cov),
             },
         });
-        // The PnP starts from the truth: only its converged result matters.
-        let fit = fit_camera_pose(&cam_step, &p.target_to_camera, &obs, None)?;
+        // OpenCV-style PnP: homography start, LM on the reprojection error.
+        let fit = estimate_pose(&cam_step, &obs, None)?;
         plain.push(Measurement {
             joints_rad: q.clone(),
             observed: Observed::Pose {
