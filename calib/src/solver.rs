@@ -41,13 +41,22 @@ pub trait LeastSquaresProblem {
         finite_difference_jacobian(|x| self.residuals(x), x)
     }
 
-    /// `(J^T J, J^T r)` from the problem's own Jacobian and residuals.
-    /// Block-sparse problems (bundle-style camera calibration: each image
-    /// row touches the intrinsics and one pose) override this to skip the
-    /// dense `O(m n^2)` product; the default lets the solver form it.
+    /// Solve `A d = g` for the (column-scaled, damped) normal matrix `A` of
+    /// this problem, exploiting its structure (e.g. a Schur complement over
+    /// block-diagonal pose blocks); `None` falls back to dense Cholesky.
+    fn solve_normal(&self, _a: &DMatrix<f64>, _g: &DVector<f64>) -> Option<DVector<f64>> {
+        None
+    }
+
+    /// `(J^T J, J^T r)` at `x` (with `r` = residuals at `x`) assembled by
+    /// the problem itself. Block-sparse problems (bundle-style camera
+    /// calibration: each image row touches the intrinsics and one pose)
+    /// override this so that the solver never forms the dense Jacobian
+    /// during the iterations (it asks for it once, for the report). The
+    /// default `None` lets the solver use [`Self::jacobian`].
     fn normal_equations(
         &self,
-        _jacobian: &DMatrix<f64>,
+        _x: &DVector<f64>,
         _residuals: &DVector<f64>,
     ) -> Option<(DMatrix<f64>, DVector<f64>)> {
         None
@@ -203,6 +212,29 @@ fn all_finite(v: impl IntoIterator<Item = f64>) -> bool {
     v.into_iter().all(f64::is_finite)
 }
 
+/// The Jacobian (when the solver forms the normal equations itself) and
+/// the unscaled `(J^T J, J^T r)` at `x`.
+#[allow(clippy::type_complexity)]
+fn linearise<P: LeastSquaresProblem + ?Sized>(
+    problem: &P,
+    x: &DVector<f64>,
+    r: &DVector<f64>,
+) -> Result<(Option<DMatrix<f64>>, DMatrix<f64>, DVector<f64>), SolverError> {
+    if let Some((a, g)) = problem.normal_equations(x, r) {
+        if !all_finite(a.iter().copied()) || !all_finite(g.iter().copied()) {
+            return Err(SolverError::NonFinite);
+        }
+        return Ok((None, a, g));
+    }
+    let jac = problem.jacobian(x).ok_or(SolverError::InvalidStart)?;
+    if !all_finite(jac.iter().copied()) {
+        return Err(SolverError::NonFinite);
+    }
+    let a = jac.transpose() * &jac;
+    let g = jac.transpose() * r;
+    Ok((Some(jac), a, g))
+}
+
 /// Minimise `|r(x)|^2` from `x0`.
 pub fn solve<P: LeastSquaresProblem + ?Sized>(
     problem: &P,
@@ -224,10 +256,10 @@ pub fn solve<P: LeastSquaresProblem + ?Sized>(
             parameters: n,
         });
     }
-    let mut jac = problem.jacobian(&x).ok_or(SolverError::InvalidStart)?;
-    if !all_finite(r.iter().copied()) || !all_finite(jac.iter().copied()) {
+    if !all_finite(r.iter().copied()) {
         return Err(SolverError::NonFinite);
     }
+    let (mut jac, mut a_raw, mut g_raw) = linearise(problem, &x, &r)?;
     let initial_cost = r.norm_squared();
     let mut cost = initial_cost;
     let mut scale: DVector<f64> = DVector::from_element(n, 1.0);
@@ -244,7 +276,7 @@ pub fn solve<P: LeastSquaresProblem + ?Sized>(
         iterations += 1;
         if options.column_scaling {
             for j in 0..n {
-                let norm = jac.column(j).norm();
+                let norm = a_raw[(j, j)].max(0.0).sqrt();
                 let previous = if scale_initialised { scale[j] } else { 0.0 };
                 scale[j] = previous.max(norm);
                 if scale[j] == 0.0 {
@@ -254,24 +286,14 @@ pub fn solve<P: LeastSquaresProblem + ?Sized>(
             scale_initialised = true;
         }
         // Scaled system: J_s = J D^-1, unknown dx_s = D dx.
-        let (a, g) = match problem.normal_equations(&jac, &r) {
-            Some((mut a, mut g)) => {
-                for i in 0..n {
-                    g[i] /= scale[i];
-                    for j in 0..n {
-                        a[(i, j)] /= scale[i] * scale[j];
-                    }
-                }
-                (a, g)
+        let mut a = a_raw.clone();
+        let mut g = g_raw.clone();
+        for i in 0..n {
+            g[i] /= scale[i];
+            for j in 0..n {
+                a[(i, j)] /= scale[i] * scale[j];
             }
-            None => {
-                let mut js = jac.clone();
-                for j in 0..n {
-                    js.column_mut(j).unscale_mut(scale[j]);
-                }
-                (js.transpose() * &js, js.transpose() * &r)
-            }
-        };
+        }
         if g.amax() <= options.gradient_tolerance * cost.sqrt().max(f64::MIN_POSITIVE) {
             termination = Termination::GradientConverged;
             break;
@@ -290,11 +312,14 @@ pub fn solve<P: LeastSquaresProblem + ?Sized>(
             for j in 0..n {
                 damped[(j, j)] += mu;
             }
-            let Some(chol) = damped.cholesky() else {
+            let solved = problem
+                .solve_normal(&damped, &g)
+                .or_else(|| damped.cholesky().map(|c| c.solve(&g)));
+            let Some(solution) = solved else {
                 mu = (mu * 10.0).max(1e-12);
                 continue;
             };
-            let step_s = -chol.solve(&g);
+            let step_s = -solution;
             let step = step_s.component_div(&scale);
             let candidate = &x + &step;
             let new_r = problem
@@ -332,10 +357,7 @@ pub fn solve<P: LeastSquaresProblem + ?Sized>(
             x = candidate;
             r = new_r.expect("accepted steps have residuals");
             cost = new_cost;
-            jac = problem.jacobian(&x).ok_or(SolverError::NonFinite)?;
-            if !all_finite(jac.iter().copied()) {
-                return Err(SolverError::NonFinite);
-            }
+            (jac, a_raw, g_raw) = linearise(problem, &x, &r).map_err(|_| SolverError::NonFinite)?;
             if reduction <= options.cost_tolerance {
                 termination = Termination::CostConverged;
                 break 'outer;
@@ -347,10 +369,14 @@ pub fn solve<P: LeastSquaresProblem + ?Sized>(
             break;
         }
     }
+    let jacobian = match jac {
+        Some(j) => j,
+        None => problem.jacobian(&x).ok_or(SolverError::NonFinite)?,
+    };
     Ok(LmReport {
         x,
         residuals: r,
-        jacobian: jac,
+        jacobian,
         cost,
         initial_cost,
         iterations,

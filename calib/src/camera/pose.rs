@@ -175,3 +175,7 @@ pub fn estimate_pose(
         rms_px: (report.cost / observations.len() as f64).sqrt(),
     })
 }
+
+#[cfg(test)]
+#[path = "pose_tests.rs"]
+mod tests;

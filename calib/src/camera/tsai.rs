@@ -239,3 +239,7 @@ pub fn calibrate_view(
         board_angle_deg: board_angle_deg(&s1.rotation),
     })
 }
+
+#[cfg(test)]
+#[path = "tsai_tests.rs"]
+mod tests;
