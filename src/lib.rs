@@ -14,6 +14,7 @@ pub mod domain;
 pub mod jobs;
 pub mod metrics;
 pub mod pipeline;
+pub mod report;
 pub mod robot_model;
 pub mod schema;
 pub mod server;

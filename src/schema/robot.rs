@@ -11,9 +11,6 @@ pub const MAX_JOINTS: usize = 12;
 pub const MAX_SERIAL_LEN: usize = 64;
 /// Longest model name.
 pub const MAX_MODEL_LEN: usize = 200;
-/// Below this |alpha| (radians) two consecutive axes are parallel and the
-/// link gets Hayati's beta instead of d (method.md, kinematic model).
-pub const PARALLEL_ALPHA_RAD: f64 = 1e-6;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
 #[serde(rename_all = "snake_case")]
@@ -163,13 +160,9 @@ impl KinematicsDoc {
         }
     }
 
-    /// Every joint with its convention set (see [`crate::robot_model::auto_convention`]).
-    pub fn resolved(mut self) -> KinematicsDoc {
-        for j in &mut self.joints {
-            if j.convention.is_none() {
-                j.convention = Some(crate::robot_model::auto_convention(j.alpha_deg));
-            }
-        }
-        self
+    /// Every joint with its convention set, as the numerics will use it
+    /// (the core's `choose_conventions`: Hayati between parallel axes).
+    pub fn resolved(self) -> KinematicsDoc {
+        crate::robot_model::model_to_doc(&crate::robot_model::doc_to_model(&self))
     }
 }
