@@ -6,6 +6,7 @@ pub mod error;
 pub mod model;
 pub mod observations;
 pub mod pose;
+pub mod projection_jacobian;
 pub mod refine;
 pub mod refine_loop;
 pub mod sequence;

@@ -6,12 +6,13 @@
 //! Parameter vector: the intrinsics block (empty when intrinsics are fixed)
 //! followed by `[t, rotation vector]` of each view's `camera_to_target`.
 
-use nalgebra::{DMatrix, DVector, Isometry3, Point2, Point3, Vector6};
+use nalgebra::{DMatrix, DVector, Isometry3, Point2, Point3, SMatrix, SVector, Vector6};
 use serde::{Deserialize, Serialize};
 
 use super::model::Intrinsics;
+use super::projection_jacobian::{projection_jacobian, INTRINSIC_PARAMS};
 use crate::geometry::{pose_from_vector, pose_to_vector};
-use crate::solver::{LeastSquaresProblem, NormalEquations, FINITE_DIFFERENCE_STEP};
+use crate::solver::{LeastSquaresProblem, FINITE_DIFFERENCE_STEP};
 
 /// Pose parameters per view.
 pub const POSE_PARAMS: usize = 6;
@@ -173,14 +174,105 @@ impl LeastSquaresProblem for JointProblem<'_> {
         Some(r)
     }
 
-    fn normal_equations(&self, x: &DVector<f64>, r: &DVector<f64>) -> Option<NormalEquations> {
-        let jac = self.jacobian(x)?;
-        let (jtj, jtr) = self.block_normal_equations(&jac, r);
-        Some(NormalEquations { jtj, jtr })
+    /// Schur complement: eliminate each view's 6x6 pose block, solve the
+    /// small intrinsics system, back-substitute (reference rows couple
+    /// poses, so they fall back to the dense solve).
+    fn solve_normal(&self, a: &DMatrix<f64>, g: &DVector<f64>) -> Option<DVector<f64>> {
+        if !self.references.is_empty() {
+            return None;
+        }
+        let ni = self.block.len();
+        let mut schur = a.view((0, 0), (ni, ni)).into_owned();
+        let mut rhs = g.rows(0, ni).into_owned();
+        let mut inverses = Vec::with_capacity(self.views.len());
+        for v in 0..self.views.len() {
+            let base = ni + POSE_PARAMS * v;
+            let app: SMatrix<f64, POSE_PARAMS, POSE_PARAMS> = a
+                .fixed_view::<POSE_PARAMS, POSE_PARAMS>(base, base)
+                .into_owned();
+            let app_inv = app.cholesky()?.inverse();
+            let aip = a.view((0, base), (ni, POSE_PARAMS));
+            let w = aip * app_inv;
+            schur -= &w * aip.transpose();
+            rhs -= &w * g.fixed_rows::<POSE_PARAMS>(base);
+            inverses.push(app_inv);
+        }
+        let di = if ni > 0 {
+            schur.cholesky()?.solve(&rhs)
+        } else {
+            DVector::zeros(0)
+        };
+        let mut d = DVector::zeros(g.len());
+        d.rows_mut(0, ni).copy_from(&di);
+        for (v, app_inv) in inverses.iter().enumerate() {
+            let base = ni + POSE_PARAMS * v;
+            let api = a.view((base, 0), (POSE_PARAMS, ni));
+            let dp = app_inv * (g.fixed_rows::<POSE_PARAMS>(base) - api * &di);
+            d.fixed_rows_mut::<POSE_PARAMS>(base).copy_from(&dp);
+        }
+        Some(d)
     }
 
-    /// Central differences that exploit the block structure: intrinsics
-    /// touch every image row, a pose only its own image's rows.
+    /// Assembled point by point from the analytic projection Jacobian,
+    /// never forming the dense (mostly zero) Jacobian.
+    fn normal_equations(
+        &self,
+        x: &DVector<f64>,
+        r: &DVector<f64>,
+    ) -> Option<(DMatrix<f64>, DVector<f64>)> {
+        let n = x.len();
+        let ni = self.block.len();
+        let offsets = self.row_offsets();
+        let intr = self.intrinsics(x);
+        let mut a = DMatrix::zeros(n, n);
+        let mut g = DVector::zeros(n);
+        for (v, obs) in self.views.iter().enumerate() {
+            let base = ni + POSE_PARAMS * v;
+            let pose = Vector6::from_column_slice(&x.as_slice()[base..base + POSE_PARAMS]);
+            let mut aii = SMatrix::<f64, INTRINSIC_PARAMS, INTRINSIC_PARAMS>::zeros();
+            let mut aip = SMatrix::<f64, INTRINSIC_PARAMS, POSE_PARAMS>::zeros();
+            let mut app = SMatrix::<f64, POSE_PARAMS, POSE_PARAMS>::zeros();
+            let mut gi = SVector::<f64, INTRINSIC_PARAMS>::zeros();
+            let mut gp = SVector::<f64, POSE_PARAMS>::zeros();
+            for (i, (p, _)) in obs.iter().enumerate() {
+                let (ji, jp) = projection_jacobian(&intr, &pose, p)?;
+                // Residual = observed - projected: J = -d projection.
+                let rr = -nalgebra::Vector2::new(r[offsets[v] + 2 * i], r[offsets[v] + 2 * i + 1]);
+                aii += ji.tr_mul(&ji);
+                aip += ji.tr_mul(&jp);
+                app += jp.tr_mul(&jp);
+                gi += ji.tr_mul(&rr);
+                gp += jp.tr_mul(&rr);
+            }
+            a.view_mut((base, base), (POSE_PARAMS, POSE_PARAMS))
+                .copy_from(&app);
+            g.rows_mut(base, POSE_PARAMS).copy_from(&gp);
+            if ni > 0 {
+                let mut block = a.view_mut((0, 0), (ni, ni));
+                block += aii.view((0, 0), (ni, ni));
+                a.view_mut((0, base), (ni, POSE_PARAMS))
+                    .copy_from(&aip.view((0, 0), (ni, POSE_PARAMS)));
+                a.view_mut((base, 0), (POSE_PARAMS, ni))
+                    .copy_from(&aip.view((0, 0), (ni, POSE_PARAMS)).transpose());
+                let mut gblock = g.rows_mut(0, ni);
+                gblock += gi.rows(0, ni);
+            }
+        }
+        if !self.references.is_empty() {
+            let base = offsets[self.views.len()];
+            let jac = self.reference_jacobian(x);
+            for k in 0..self.references.len() {
+                let row = jac.row(k);
+                a += row.transpose() * row;
+                g += row.transpose() * r[base + k];
+            }
+        }
+        Some((a, g))
+    }
+
+    /// Analytic image rows ([`projection_jacobian`]): intrinsics touch
+    /// every image row, a pose only its own image's rows; the few
+    /// reference-distance rows by central differences.
     fn jacobian(&self, x: &DVector<f64>) -> Option<DMatrix<f64>> {
         let offsets = self.row_offsets();
         let n_img_rows = offsets[self.views.len()];
@@ -188,58 +280,55 @@ impl LeastSquaresProblem for JointProblem<'_> {
         let ni = self.block.len();
         let mut jac = DMatrix::zeros(n_rows, x.len());
         let intr = self.intrinsics(x);
-        let poses: Vec<_> = (0..self.views.len()).map(|v| self.pose(x, v)).collect();
-        let step = |value: f64| FINITE_DIFFERENCE_STEP * value.abs().max(1.0);
-        let mut plus = vec![0.0; n_img_rows];
-        let mut minus = vec![0.0; n_img_rows];
-        let mut probe = x.clone();
-        for j in 0..ni {
-            let h = step(x[j]);
-            probe[j] = x[j] + h;
-            let ip = self.intrinsics(&probe);
-            probe[j] = x[j] - h;
-            let im = self.intrinsics(&probe);
-            probe[j] = x[j];
-            for (v, obs) in self.views.iter().enumerate() {
-                let rows = offsets[v]..offsets[v + 1];
-                Self::view_residuals(&ip, &poses[v], obs, &mut plus[rows.clone()])?;
-                Self::view_residuals(&im, &poses[v], obs, &mut minus[rows])?;
-            }
-            for row in 0..n_img_rows {
-                jac[(row, j)] = (plus[row] - minus[row]) / (2.0 * h);
+        for (v, obs) in self.views.iter().enumerate() {
+            let base = ni + POSE_PARAMS * v;
+            let pose = Vector6::from_column_slice(&x.as_slice()[base..base + POSE_PARAMS]);
+            for (i, (p, _)) in obs.iter().enumerate() {
+                let (ji, jp) = projection_jacobian(&intr, &pose, p)?;
+                let row = offsets[v] + 2 * i;
+                for k in 0..2 {
+                    // Residual = observed - projected.
+                    for j in 0..ni {
+                        jac[(row + k, j)] = -ji[(k, j)];
+                    }
+                    for j in 0..POSE_PARAMS {
+                        jac[(row + k, base + j)] = -jp[(k, j)];
+                    }
+                }
             }
         }
-        for (v, obs) in self.views.iter().enumerate() {
-            let rows = offsets[v]..offsets[v + 1];
-            let base = ni + POSE_PARAMS * v;
-            let refs: Vec<usize> = (0..self.references.len())
-                .filter(|&k| self.references[k].view_a == v || self.references[k].view_b == v)
-                .collect();
-            for c in 0..POSE_PARAMS {
-                let j = base + c;
-                let h = step(x[j]);
-                probe[j] = x[j] + h;
-                let pp = self.pose(&probe, v);
-                Self::view_residuals(&intr, &pp, obs, &mut plus[rows.clone()])?;
-                let ref_plus: Vec<f64> = refs.iter().map(|&k| self.ref_at(&probe, k)).collect();
-                probe[j] = x[j] - h;
-                let pm = self.pose(&probe, v);
-                Self::view_residuals(&intr, &pm, obs, &mut minus[rows.clone()])?;
-                let ref_minus: Vec<f64> = refs.iter().map(|&k| self.ref_at(&probe, k)).collect();
-                probe[j] = x[j];
-                for row in rows.clone() {
-                    jac[(row, j)] = (plus[row] - minus[row]) / (2.0 * h);
-                }
-                for (i, &k) in refs.iter().enumerate() {
-                    jac[(n_img_rows + k, j)] = (ref_plus[i] - ref_minus[i]) / (2.0 * h);
-                }
-            }
+        let refs = self.reference_jacobian(x);
+        for k in 0..self.references.len() {
+            jac.row_mut(n_img_rows + k).copy_from(&refs.row(k));
         }
         Some(jac)
     }
 }
 
 impl JointProblem<'_> {
+    /// Rows of the reference-distance residuals (central differences over
+    /// the two poses involved).
+    fn reference_jacobian(&self, x: &DVector<f64>) -> DMatrix<f64> {
+        let ni = self.block.len();
+        let mut jac = DMatrix::zeros(self.references.len(), x.len());
+        let mut probe = x.clone();
+        for (k, rf) in self.references.iter().enumerate() {
+            for view in [rf.view_a, rf.view_b] {
+                for c in 0..POSE_PARAMS {
+                    let j = ni + POSE_PARAMS * view + c;
+                    let h = FINITE_DIFFERENCE_STEP * x[j].abs().max(1.0);
+                    probe[j] = x[j] + h;
+                    let plus = self.ref_at(&probe, k);
+                    probe[j] = x[j] - h;
+                    let minus = self.ref_at(&probe, k);
+                    probe[j] = x[j];
+                    jac[(k, j)] = (plus - minus) / (2.0 * h);
+                }
+            }
+        }
+        jac
+    }
+
     /// `(J^T J, J^T r)` using the block structure: the rows of view `v`
     /// touch only the intrinsics and pose `v`; reference rows are dense.
     pub fn block_normal_equations(
