@@ -20,7 +20,8 @@ pub struct ServeConfig {
     #[arg(long, env = "ROBOCAL_BIND", default_value = "127.0.0.1:8080")]
     pub bind: SocketAddr,
 
-    /// Database URL (`sqlite://path.db`); the file is created and migrated at start.
+    /// Database URL: `sqlite://path.db` (the file is created) or `postgres://user@host/db`
+    /// (a fleet of replicas sharing one database); migrated at start.
     #[arg(long, env = "DATABASE_URL", default_value = "sqlite://robocal.db")]
     pub database_url: String,
 
@@ -69,8 +70,19 @@ pub struct ServeConfig {
     pub log_format: LogFormat,
 
     /// Test hook: the validation stage sleeps this long per pose (0 = off).
-    #[arg(long, env = "ROBOCAL_TEST_STAGE_DELAY_MS", default_value_t = 0, hide = true)]
+    #[arg(
+        long,
+        env = "ROBOCAL_TEST_STAGE_DELAY_MS",
+        default_value_t = 0,
+        hide = true
+    )]
     pub test_stage_delay_ms: u64,
+
+    /// Test hook: a succeeded job whose pipeline identified no parameter set
+    /// stores a marker set (naming the job) as the serial's next version, so
+    /// the fleet tests can check versions and exactly-once completion.
+    #[arg(long, env = "ROBOCAL_TEST_PARAMETER_SETS", hide = true)]
+    pub test_parameter_sets: bool,
 }
 
 impl ServeConfig {
@@ -93,9 +105,18 @@ impl ServeConfig {
             ("max_queued", self.max_queued),
             ("lease_secs", self.lease_secs as i64),
             ("poll_ms", self.poll_ms as i64),
-            ("max_image_bytes", self.max_image_bytes.min(i64::MAX as u64) as i64),
-            ("max_archive_bytes", self.max_archive_bytes.min(i64::MAX as u64) as i64),
-            ("max_json_bytes", self.max_json_bytes.min(i64::MAX as u64) as i64),
+            (
+                "max_image_bytes",
+                self.max_image_bytes.min(i64::MAX as u64) as i64,
+            ),
+            (
+                "max_archive_bytes",
+                self.max_archive_bytes.min(i64::MAX as u64) as i64,
+            ),
+            (
+                "max_json_bytes",
+                self.max_json_bytes.min(i64::MAX as u64) as i64,
+            ),
         ];
         for (name, value) in positive {
             if value < 1 {

@@ -66,7 +66,12 @@ pub async fn layer(State(state): State<AppState>, mut req: Request, next: Next) 
     if !req.uri().path().starts_with("/v1/") {
         return next.run(req).await;
     }
-    match authenticate(&state, &req).await {
+    let needed = required_scope(req.method(), req.uri().path());
+    let header = req
+        .headers()
+        .get(header::AUTHORIZATION)
+        .map(|v| v.to_str().map(str::to_string).unwrap_or_default());
+    match authenticate(&state, needed, header).await {
         Ok(principal) => {
             req.extensions_mut().insert(principal);
             next.run(req).await
@@ -75,9 +80,11 @@ pub async fn layer(State(state): State<AppState>, mut req: Request, next: Next) 
     }
 }
 
-async fn authenticate(state: &AppState, req: &Request) -> Result<Principal, ApiError> {
-    let needed = required_scope(req.method(), req.uri().path());
-    let header = req.headers().get(header::AUTHORIZATION);
+async fn authenticate(
+    state: &AppState,
+    needed: Scope,
+    header: Option<String>,
+) -> Result<Principal, ApiError> {
     let Some(header) = header else {
         if state.config.is_loopback() && state.store.count_tokens().await? == 0 {
             return Ok(Principal::Anonymous);
@@ -87,12 +94,12 @@ async fn authenticate(state: &AppState, req: &Request) -> Result<Principal, ApiE
         ));
     };
     let token = header
-        .to_str()
-        .ok()
-        .and_then(|v| v.strip_prefix("Bearer "))
+        .strip_prefix("Bearer ")
         .map(str::trim)
         .filter(|t| !t.is_empty() && t.len() <= 256)
-        .ok_or_else(|| ApiError::unauthorized("the Authorization header must be `Bearer <token>`"))?;
+        .ok_or_else(|| {
+            ApiError::unauthorized("the Authorization header must be `Bearer <token>`")
+        })?;
     let record = state
         .store
         .find_token(&hash_token(token))

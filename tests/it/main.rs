@@ -9,4 +9,6 @@ mod ops;
 mod poses;
 mod restart;
 mod robots;
-mod support;
+mod store_ops;
+pub(crate) mod support;
+pub(crate) mod test_db;

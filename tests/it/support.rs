@@ -1,8 +1,8 @@
 //! Test harness: `spawn_app()` starts the real server in-process on port 0
 //! with a fresh database; `spawn_binary()` runs the real `robocal` binary
-//! (for kill -9 / SIGTERM tests). The backend is a parameter
-//! (`ROBOCAL_TEST_BACKEND`, default `sqlite`) so the same tests run on
-//! every store backend.
+//! (for kill -9 / SIGTERM tests). The backend is fixed per test binary:
+//! `tests/it` runs every test on SQLite, `tests/pg` compiles the same modules
+//! again for PostgreSQL (see `test_db.rs` for the per-test databases).
 
 use std::io::{BufRead, BufReader, Write};
 use std::net::SocketAddr;
@@ -14,22 +14,29 @@ use robocal::server::{start, RunningServer};
 use serde_json::{json, Value};
 use sha2::{Digest, Sha256};
 
+pub use super::test_db::TestDb;
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Backend {
     Sqlite,
+    Postgres,
 }
 
+/// The backend of this test binary: `pg` is the PostgreSQL suite.
 pub fn backend() -> Backend {
-    match std::env::var("ROBOCAL_TEST_BACKEND").as_deref() {
-        Ok("sqlite") | Err(_) => Backend::Sqlite,
-        Ok(other) => panic!("unknown ROBOCAL_TEST_BACKEND {other:?}"),
+    if env!("CARGO_CRATE_NAME") == "pg" {
+        Backend::Postgres
+    } else {
+        Backend::Sqlite
     }
 }
 
-/// A fresh, empty database for one test, on the selected backend.
-pub fn fresh_database(dir: &tempfile::TempDir) -> String {
+/// A fresh, empty database for one test, on the selected backend. Keep the
+/// guard for the whole test: the PostgreSQL database is dropped with it.
+pub fn fresh_database(dir: &tempfile::TempDir) -> TestDb {
     match backend() {
-        Backend::Sqlite => format!("sqlite://{}/robocal.db", dir.path().display()),
+        Backend::Sqlite => TestDb::sqlite(dir),
+        Backend::Postgres => TestDb::postgres(),
     }
 }
 
@@ -40,6 +47,7 @@ pub struct TestApp {
     pub database_url: String,
     server: Option<RunningServer>,
     pub dir: tempfile::TempDir,
+    _db: TestDb,
 }
 
 pub fn test_config(database_url: &str, dir: &tempfile::TempDir) -> ServeConfig {
@@ -59,7 +67,8 @@ pub async fn spawn_app() -> TestApp {
 
 pub async fn spawn_app_with(tweak: impl FnOnce(&mut ServeConfig)) -> TestApp {
     let dir = tempfile::tempdir().unwrap();
-    let database_url = fresh_database(&dir);
+    let db = fresh_database(&dir);
+    let database_url = db.to_string();
     let mut config = test_config(&database_url, &dir);
     tweak(&mut config);
     let server = start(config).await.expect("server starts");
@@ -71,6 +80,7 @@ pub async fn spawn_app_with(tweak: impl FnOnce(&mut ServeConfig)) -> TestApp {
         database_url,
         server: Some(server),
         dir,
+        _db: db,
     }
 }
 
@@ -84,11 +94,21 @@ impl TestApp {
     }
 
     pub async fn put_json(&self, path: &str, body: &Value) -> reqwest::Response {
-        self.client.put(self.url(path)).json(body).send().await.unwrap()
+        self.client
+            .put(self.url(path))
+            .json(body)
+            .send()
+            .await
+            .unwrap()
     }
 
     pub async fn post_json(&self, path: &str, body: &Value) -> reqwest::Response {
-        self.client.post(self.url(path)).json(body).send().await.unwrap()
+        self.client
+            .post(self.url(path))
+            .json(body)
+            .send()
+            .await
+            .unwrap()
     }
 
     pub async fn shutdown(mut self) {
@@ -99,13 +119,18 @@ impl TestApp {
 
     /// A robot `serial` with the 6-joint test table, and a camera session.
     pub async fn robot_and_session(&self, serial: &str) -> String {
-        let r = self.put_json(&format!("/v1/robots/{serial}"), &robot_body()).await;
+        let r = self
+            .put_json(&format!("/v1/robots/{serial}"), &robot_body())
+            .await;
         assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
         let r = self
             .post_json(&format!("/v1/robots/{serial}/sessions"), &session_body())
             .await;
         assert_eq!(r.status(), 201);
-        r.json::<Value>().await.unwrap()["id"].as_str().unwrap().to_string()
+        r.json::<Value>().await.unwrap()["id"]
+            .as_str()
+            .unwrap()
+            .to_string()
     }
 
     /// Adds `cal` calibration and `val` validation poses with image points.
@@ -113,14 +138,22 @@ impl TestApp {
         for i in 0..cal + val {
             let set = if i < cal { "cal" } else { "val" };
             let r = self
-                .post_json(&format!("/v1/sessions/{session}/poses"), &point_pose(i, set))
+                .post_json(
+                    &format!("/v1/sessions/{session}/poses"),
+                    &point_pose(i, set),
+                )
                 .await;
             assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
         }
     }
 
     /// Polls a job until `done(job)` or the timeout.
-    pub async fn wait_job(&self, job: &str, timeout: Duration, done: impl Fn(&Value) -> bool) -> Value {
+    pub async fn wait_job(
+        &self,
+        job: &str,
+        timeout: Duration,
+        done: impl Fn(&Value) -> bool,
+    ) -> Value {
         wait_job_at(&self.client, &self.base, job, timeout, done).await
     }
 }
@@ -145,13 +178,19 @@ pub async fn wait_job_at(
         if done(&v) {
             return v;
         }
-        assert!(start.elapsed() < timeout, "job did not get there in time: {v}");
+        assert!(
+            start.elapsed() < timeout,
+            "job did not get there in time: {v}"
+        );
         tokio::time::sleep(Duration::from_millis(50)).await;
     }
 }
 
 pub fn is_finished(v: &Value) -> bool {
-    matches!(v["state"].as_str(), Some("succeeded" | "failed" | "cancelled"))
+    matches!(
+        v["state"].as_str(),
+        Some("succeeded" | "failed" | "cancelled")
+    )
 }
 
 pub fn robot_body() -> Value {
@@ -193,7 +232,11 @@ pub fn point_pose(i: usize, set: &str) -> Value {
 /// A small valid PNG whose pixels depend on `seed` (so each is a distinct blob).
 pub fn png(width: u32, height: u32, seed: u8) -> Vec<u8> {
     let img = image::RgbImage::from_fn(width, height, |x, y| {
-        image::Rgb([(x as u8).wrapping_mul(3) ^ seed, (y as u8).wrapping_add(seed), seed])
+        image::Rgb([
+            (x as u8).wrapping_mul(3) ^ seed,
+            (y as u8).wrapping_add(seed),
+            seed,
+        ])
     });
     let mut out = std::io::Cursor::new(Vec::new());
     img.write_to(&mut out, image::ImageFormat::Png).unwrap();
