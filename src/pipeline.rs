@@ -92,10 +92,7 @@ pub enum PipelineError {
     Invalid(Vec<FieldError>),
     /// A numerical stage failed (degenerate data): not retried.
     #[error("{stage}: {message}")]
-    Numerical {
-        stage: &'static str,
-        message: String,
-    },
+    Numerical { stage: &'static str, message: String },
     #[error("cancelled")]
     Cancelled,
 }
@@ -154,19 +151,12 @@ pub fn validate(
         if cancel.load(Ordering::Relaxed) {
             return Err(PipelineError::Cancelled);
         }
-        progress(
-            Stage::Validate,
-            &format!("pose {} of {}", i + 1, input.poses.len()),
-            i as f64 / total,
-        );
+        progress(Stage::Validate, &format!("pose {} of {}", i + 1, input.poses.len()), i as f64 / total);
         let field = |name: &str| format!("poses[{}].{name}", pose.id);
         if pose.joints_deg.len() != joint_count {
             errors.push(FieldError::new(
                 field("joints_deg"),
-                format!(
-                    "{} values for a {joint_count}-joint robot",
-                    pose.joints_deg.len()
-                ),
+                format!("{} values for a {joint_count}-joint robot", pose.joints_deg.len()),
             ));
         }
         match input.session.instrument {
@@ -176,10 +166,9 @@ pub fn validate(
                         errors.push(FieldError::new(field("image"), message));
                     }
                 }
-                None if pose.image_points.is_empty() => errors.push(FieldError::new(
-                    field("image"),
-                    "neither image nor image points",
-                )),
+                None if pose.image_points.is_empty() => {
+                    errors.push(FieldError::new(field("image"), "neither image nor image points"))
+                }
                 None => {}
             },
             Instrument::Tracker => {
@@ -221,9 +210,7 @@ fn sleep_cancellable(total: Duration, cancel: &AtomicBool) -> Result<(), Pipelin
 pub fn check_image(bytes: &[u8], expected: Option<(u32, u32)>) -> Result<(u32, u32), String> {
     let format = image::guess_format(bytes).map_err(|_| "not a PNG or JPEG image".to_string())?;
     if !matches!(format, image::ImageFormat::Png | image::ImageFormat::Jpeg) {
-        return Err(format!(
-            "{format:?} images are not accepted; send PNG or JPEG"
-        ));
+        return Err(format!("{format:?} images are not accepted; send PNG or JPEG"));
     }
     let mut reader = image::ImageReader::with_format(Cursor::new(bytes), format);
     let mut limits = image::Limits::default();
@@ -231,9 +218,7 @@ pub fn check_image(bytes: &[u8], expected: Option<(u32, u32)>) -> Result<(u32, u
     limits.max_image_width = Some(crate::schema::session::MAX_IMAGE_SIDE);
     limits.max_image_height = Some(crate::schema::session::MAX_IMAGE_SIDE);
     reader.limits(limits);
-    let img = reader
-        .decode()
-        .map_err(|e| format!("cannot decode image: {e}"))?;
+    let img = reader.decode().map_err(|e| format!("cannot decode image: {e}"))?;
     let (w, h) = (img.width(), img.height());
     if let Some((ew, eh)) = expected {
         if (w, h) != (ew, eh) {

@@ -187,9 +187,7 @@ impl Worker {
                 return;
             }
             Ok(Err(PipelineError::Cancelled)) => return,
-            Ok(Err(e)) => JobOutcome::Failed {
-                error: e.to_string(),
-            },
+            Ok(Err(e)) => JobOutcome::Failed { error: e.to_string() },
             Err(join) => JobOutcome::Retry {
                 error: format!("pipeline crashed: {}", panic_message(join)),
             },
@@ -210,9 +208,7 @@ impl Worker {
         match lease.finish(&outcome).await {
             Ok(LeaseStatus::Held) => {}
             Ok(status) => tracing::info!(job_id = %lease.job.id, ?status, "outcome not recorded"),
-            Err(e) => {
-                tracing::error!(job_id = %lease.job.id, error = %e, "recording outcome failed")
-            }
+            Err(e) => tracing::error!(job_id = %lease.job.id, error = %e, "recording outcome failed"),
         }
     }
 }
@@ -237,8 +233,12 @@ fn mark_test_parameter_set(outcome: &mut JobOutcome, job: &crate::domain::Claime
     } = outcome
     {
         *set = Some(crate::domain::NewParameterSet {
-            parameters: serde_json::json!({"test_marker": true, "job_id": job.id, "attempt": job.attempt}),
-            report: serde_json::json!({"test_marker": true}),
+            parameters: serde_json::json!({
+                "test_marker": true,
+                "job_id": job.id,
+                "attempt": job.attempt,
+            }),
+            report: serde_json::json!({ "test_marker": true }),
         });
     }
 }
