@@ -70,7 +70,12 @@ pub struct ServeConfig {
     pub log_format: LogFormat,
 
     /// Test hook: the validation stage sleeps this long per pose (0 = off).
-    #[arg(long, env = "ROBOCAL_TEST_STAGE_DELAY_MS", default_value_t = 0, hide = true)]
+    #[arg(
+        long,
+        env = "ROBOCAL_TEST_STAGE_DELAY_MS",
+        default_value_t = 0,
+        hide = true
+    )]
     pub test_stage_delay_ms: u64,
 
     /// Test hook: a succeeded job whose pipeline identified no parameter set
@@ -100,9 +105,18 @@ impl ServeConfig {
             ("max_queued", self.max_queued),
             ("lease_secs", self.lease_secs as i64),
             ("poll_ms", self.poll_ms as i64),
-            ("max_image_bytes", self.max_image_bytes.min(i64::MAX as u64) as i64),
-            ("max_archive_bytes", self.max_archive_bytes.min(i64::MAX as u64) as i64),
-            ("max_json_bytes", self.max_json_bytes.min(i64::MAX as u64) as i64),
+            (
+                "max_image_bytes",
+                self.max_image_bytes.min(i64::MAX as u64) as i64,
+            ),
+            (
+                "max_archive_bytes",
+                self.max_archive_bytes.min(i64::MAX as u64) as i64,
+            ),
+            (
+                "max_json_bytes",
+                self.max_json_bytes.min(i64::MAX as u64) as i64,
+            ),
         ];
         for (name, value) in positive {
             if value < 1 {

@@ -67,7 +67,8 @@ pub fn is_safe_name(name: &str) -> bool {
 impl DatasetReader {
     pub fn open(path: &Path, limits: DatasetLimits) -> Result<DatasetReader, DatasetError> {
         let file = File::open(path).map_err(|e| malformed("archive", e))?;
-        let archive = ZipArchive::new(file).map_err(|e| malformed("archive", format!("not a zip archive: {e}")))?;
+        let archive = ZipArchive::new(file)
+            .map_err(|e| malformed("archive", format!("not a zip archive: {e}")))?;
         if archive.len() > MAX_ENTRIES {
             return Err(DatasetError::Invalid(vec![FieldError::new(
                 "archive",
@@ -95,7 +96,10 @@ impl DatasetReader {
             let path = e.path().to_string();
             let inner = e.into_inner();
             if inner.classify() == serde_json::error::Category::Data {
-                DatasetError::Invalid(vec![FieldError::new(format!("{MANIFEST}{path}"), inner.to_string())])
+                DatasetError::Invalid(vec![FieldError::new(
+                    format!("{MANIFEST}{path}"),
+                    inner.to_string(),
+                )])
             } else {
                 malformed(MANIFEST, format!("malformed JSON: {inner}"))
             }
@@ -118,7 +122,12 @@ impl DatasetReader {
         self.read_entry(name, self.limits.max_image_bytes, "max_image_bytes")
     }
 
-    fn read_entry(&mut self, name: &str, limit: u64, limit_name: &'static str) -> Result<Vec<u8>, DatasetError> {
+    fn read_entry(
+        &mut self,
+        name: &str,
+        limit: u64,
+        limit_name: &'static str,
+    ) -> Result<Vec<u8>, DatasetError> {
         let entry = match self.archive.by_name(name) {
             Ok(e) => e,
             Err(zip::result::ZipError::FileNotFound) => {
@@ -138,12 +147,41 @@ impl DatasetReader {
             .map_err(|e| malformed(&format!("archive/{name}"), format!("corrupt entry: {e}")))?;
         if buf.len() as u64 > cap {
             return Err(if cap == limit {
-                DatasetError::TooLarge { limit: limit_name, bytes: limit }
+                DatasetError::TooLarge {
+                    limit: limit_name,
+                    bytes: limit,
+                }
             } else {
-                DatasetError::TooLarge { limit: "max_archive_bytes", bytes: self.limits.max_total_bytes }
+                DatasetError::TooLarge {
+                    limit: "max_archive_bytes",
+                    bytes: self.limits.max_total_bytes,
+                }
             });
         }
         self.total += buf.len() as u64;
         Ok(buf)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::is_safe_name;
+
+    #[test]
+    fn unsafe_names_are_recognised() {
+        for bad in [
+            "../x.png",
+            "a/../../x",
+            "/etc/passwd",
+            "\\win",
+            "C:/x",
+            "a\\..\\b",
+            "",
+        ] {
+            assert!(!is_safe_name(bad), "{bad:?}");
+        }
+        for good in ["poses.json", "img/0001.png", "a..b.png", "dir/.hidden.png"] {
+            assert!(is_safe_name(good), "{good:?}");
+        }
     }
 }

@@ -40,7 +40,9 @@ enum TokenCommand {
 fn init_logging(format: LogFormat) {
     let filter = tracing_subscriber::EnvFilter::try_from_default_env()
         .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("info,sqlx=warn"));
-    let builder = tracing_subscriber::fmt().with_env_filter(filter).with_writer(std::io::stderr);
+    let builder = tracing_subscriber::fmt()
+        .with_env_filter(filter)
+        .with_writer(std::io::stderr);
     match format {
         LogFormat::Json => builder.json().init(),
         LogFormat::Text => builder.init(),
@@ -53,9 +55,15 @@ async fn main() -> ExitCode {
     let result: Result<(), String> = match cli.command {
         Command::Serve(config) => {
             init_logging(config.log_format);
-            robocal::server::run(config).await.map_err(|e| e.to_string())
+            robocal::server::run(config)
+                .await
+                .map_err(|e| e.to_string())
         }
-        Command::Token(TokenCommand::Create { scope, name, database_url }) => {
+        Command::Token(TokenCommand::Create {
+            scope,
+            name,
+            database_url,
+        }) => {
             let scope = Scope::parse(&scope).unwrap_or(Scope::Read);
             robocal::api::tokens::create_from_cli(&database_url, &name, scope).await
         }

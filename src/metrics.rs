@@ -43,7 +43,11 @@ impl Metrics {
 
     /// Appends the request metrics in Prometheus text format.
     pub fn render(&self, out: &mut String) {
-        let map = self.requests.lock().unwrap_or_else(|e| e.into_inner()).clone();
+        let map = self
+            .requests
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .clone();
         out.push_str("# HELP robocal_http_requests_total HTTP requests served.\n");
         out.push_str("# TYPE robocal_http_requests_total counter\n");
         for ((method, route, status), h) in &map {
@@ -73,8 +77,16 @@ impl Metrics {
                 "robocal_http_request_duration_seconds_bucket{{{labels},le=\"+Inf\"}} {}",
                 h.count
             );
-            let _ = writeln!(out, "robocal_http_request_duration_seconds_sum{{{labels}}} {}", h.sum_s);
-            let _ = writeln!(out, "robocal_http_request_duration_seconds_count{{{labels}}} {}", h.count);
+            let _ = writeln!(
+                out,
+                "robocal_http_request_duration_seconds_sum{{{labels}}} {}",
+                h.sum_s
+            );
+            let _ = writeln!(
+                out,
+                "robocal_http_request_duration_seconds_count{{{labels}}} {}",
+                h.count
+            );
         }
     }
 }

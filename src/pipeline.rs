@@ -15,6 +15,8 @@ use std::time::Duration;
 
 use serde_json::json;
 
+use robocal_calib::kinematics::RobotModel;
+
 use crate::domain::NewParameterSet;
 use crate::schema::job::{CalibrationOptions, Validation};
 use crate::schema::robot::KinematicsDoc;
@@ -55,7 +57,9 @@ impl Stage {
 #[derive(Debug, Clone)]
 pub struct Input {
     pub serial: String,
-    /// The robot's resolved joint table (conventions chosen).
+    /// The robot's nominal model, as the numerics take it (radians).
+    pub robot: RobotModel,
+    /// The same joint table as stored and served (degrees, conventions explicit).
     pub kinematics: KinematicsDoc,
     pub session: SessionBody,
     pub poses: Vec<PoseInput>,
@@ -92,7 +96,10 @@ pub enum PipelineError {
     Invalid(Vec<FieldError>),
     /// A numerical stage failed (degenerate data): not retried.
     #[error("{stage}: {message}")]
-    Numerical { stage: &'static str, message: String },
+    Numerical {
+        stage: &'static str,
+        message: String,
+    },
     #[error("cancelled")]
     Cancelled,
 }
@@ -126,7 +133,7 @@ pub fn validate(
     progress: &dyn Fn(Stage, &str, f64),
     cancel: &AtomicBool,
 ) -> Result<serde_json::Value, PipelineError> {
-    let joint_count = input.kinematics.joints.len();
+    let joint_count = input.robot.dof();
     let mut errors = Vec::new();
     let cal = input.poses.iter().filter(|p| p.set == PoseSet::Cal).count();
     let val = input.poses.len() - cal;
@@ -151,12 +158,19 @@ pub fn validate(
         if cancel.load(Ordering::Relaxed) {
             return Err(PipelineError::Cancelled);
         }
-        progress(Stage::Validate, &format!("pose {} of {}", i + 1, input.poses.len()), i as f64 / total);
+        progress(
+            Stage::Validate,
+            &format!("pose {} of {}", i + 1, input.poses.len()),
+            i as f64 / total,
+        );
         let field = |name: &str| format!("poses[{}].{name}", pose.id);
         if pose.joints_deg.len() != joint_count {
             errors.push(FieldError::new(
                 field("joints_deg"),
-                format!("{} values for a {joint_count}-joint robot", pose.joints_deg.len()),
+                format!(
+                    "{} values for a {joint_count}-joint robot",
+                    pose.joints_deg.len()
+                ),
             ));
         }
         match input.session.instrument {
@@ -166,9 +180,10 @@ pub fn validate(
                         errors.push(FieldError::new(field("image"), message));
                     }
                 }
-                None if pose.image_points.is_empty() => {
-                    errors.push(FieldError::new(field("image"), "neither image nor image points"))
-                }
+                None if pose.image_points.is_empty() => errors.push(FieldError::new(
+                    field("image"),
+                    "neither image nor image points",
+                )),
                 None => {}
             },
             Instrument::Tracker => {
@@ -210,7 +225,9 @@ fn sleep_cancellable(total: Duration, cancel: &AtomicBool) -> Result<(), Pipelin
 pub fn check_image(bytes: &[u8], expected: Option<(u32, u32)>) -> Result<(u32, u32), String> {
     let format = image::guess_format(bytes).map_err(|_| "not a PNG or JPEG image".to_string())?;
     if !matches!(format, image::ImageFormat::Png | image::ImageFormat::Jpeg) {
-        return Err(format!("{format:?} images are not accepted; send PNG or JPEG"));
+        return Err(format!(
+            "{format:?} images are not accepted; send PNG or JPEG"
+        ));
     }
     let mut reader = image::ImageReader::with_format(Cursor::new(bytes), format);
     let mut limits = image::Limits::default();
@@ -218,7 +235,9 @@ pub fn check_image(bytes: &[u8], expected: Option<(u32, u32)>) -> Result<(u32, u
     limits.max_image_width = Some(crate::schema::session::MAX_IMAGE_SIDE);
     limits.max_image_height = Some(crate::schema::session::MAX_IMAGE_SIDE);
     reader.limits(limits);
-    let img = reader.decode().map_err(|e| format!("cannot decode image: {e}"))?;
+    let img = reader
+        .decode()
+        .map_err(|e| format!("cannot decode image: {e}"))?;
     let (w, h) = (img.width(), img.height());
     if let Some((ew, eh)) = expected {
         if (w, h) != (ew, eh) {

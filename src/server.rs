@@ -54,8 +54,14 @@ pub async fn start(config: ServeConfig) -> Result<RunningServer, StartError> {
     }
     let listener = tokio::net::TcpListener::bind(config.bind)
         .await
-        .map_err(|source| StartError::Bind { addr: config.bind, source })?;
-    let addr = listener.local_addr().map_err(|source| StartError::Bind { addr: config.bind, source })?;
+        .map_err(|source| StartError::Bind {
+            addr: config.bind,
+            source,
+        })?;
+    let addr = listener.local_addr().map_err(|source| StartError::Bind {
+        addr: config.bind,
+        source,
+    })?;
     let policy = QueuePolicy {
         lease: config.lease(),
         max_attempts: config.max_attempts,

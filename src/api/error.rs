@@ -70,12 +70,20 @@ impl ApiError {
     /// 400: the request cannot be read at all (malformed JSON, multipart, zip).
     pub fn malformed(field: impl Into<String>, message: impl Into<String>) -> ApiError {
         let (field, message) = (field.into(), message.into());
-        ApiError::new(StatusCode::BAD_REQUEST, "malformed", format!("{field}: {message}"))
-            .with_field(field, message)
+        ApiError::new(
+            StatusCode::BAD_REQUEST,
+            "malformed",
+            format!("{field}: {message}"),
+        )
+        .with_field(field, message)
     }
 
     pub fn not_found(what: &str, id: &str) -> ApiError {
-        ApiError::new(StatusCode::NOT_FOUND, "not-found", format!("{what} {id:?} not found"))
+        ApiError::new(
+            StatusCode::NOT_FOUND,
+            "not-found",
+            format!("{what} {id:?} not found"),
+        )
     }
 
     pub fn conflict(detail: impl Into<String>) -> ApiError {
@@ -94,7 +102,11 @@ impl ApiError {
     }
 
     pub fn unsupported_media(detail: impl Into<String>) -> ApiError {
-        ApiError::new(StatusCode::UNSUPPORTED_MEDIA_TYPE, "unsupported-media-type", detail)
+        ApiError::new(
+            StatusCode::UNSUPPORTED_MEDIA_TYPE,
+            "unsupported-media-type",
+            detail,
+        )
     }
 
     pub fn unauthorized(detail: impl Into<String>) -> ApiError {
@@ -130,9 +142,11 @@ impl ApiError {
 impl From<StoreError> for ApiError {
     fn from(e: StoreError) -> ApiError {
         match e {
-            StoreError::NotFound(what) => {
-                ApiError::new(StatusCode::NOT_FOUND, "not-found", format!("{what} not found"))
-            }
+            StoreError::NotFound(what) => ApiError::new(
+                StatusCode::NOT_FOUND,
+                "not-found",
+                format!("{what} not found"),
+            ),
             StoreError::Conflict(detail) => ApiError::conflict(detail),
             StoreError::QueueFull => ApiError::queue_full(crate::api::QUEUE_FULL_RETRY_AFTER_SECS),
             StoreError::Backend(_) => ApiError::internal(e),

@@ -45,7 +45,9 @@ impl<T: DeserializeOwned + Default> FromRequest<AppState> for OptionalJson<T> {
             return Ok(OptionalJson(T::default()));
         }
         if !has_type {
-            return Err(ApiError::unsupported_media("send Content-Type: application/json"));
+            return Err(ApiError::unsupported_media(
+                "send Content-Type: application/json",
+            ));
         }
         parse_json(&bytes).map(OptionalJson)
     }
@@ -62,7 +64,10 @@ pub fn is_json(content_type: Option<&str>) -> bool {
 }
 
 async fn json_bytes(req: Request, state: &AppState) -> Result<Bytes, ApiError> {
-    let ct = req.headers().get(CONTENT_TYPE).and_then(|v| v.to_str().ok());
+    let ct = req
+        .headers()
+        .get(CONTENT_TYPE)
+        .and_then(|v| v.to_str().ok());
     if !is_json(ct) {
         return Err(ApiError::unsupported_media(
             "expected Content-Type: application/json",
@@ -115,19 +120,19 @@ pub fn parse_json<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
         match inner.classify() {
             serde_json::error::Category::Data => {
                 let field = missing_field(&message)
-                    .or_else(|| unknown_field(&message))
-                    .map(|m| if path == "." { m.to_string() } else { format!("{path}.{m}") })
+                    .map(|m| {
+                        if path == "." {
+                            m.to_string()
+                        } else {
+                            format!("{path}.{m}")
+                        }
+                    })
                     .unwrap_or_else(|| if path == "." { "body".into() } else { path });
                 ApiError::invalid(field, message)
             }
             _ => ApiError::malformed("body", format!("malformed JSON: {message}")),
         }
     })
-}
-
-fn unknown_field(message: &str) -> Option<&str> {
-    let rest = message.strip_prefix("unknown field `")?;
-    rest.split('`').next()
 }
 
 fn missing_field(message: &str) -> Option<&str> {
@@ -160,20 +165,31 @@ impl<S: Send + Sync> FromRequestParts<S> for Paging {
 
     async fn from_request_parts(parts: &mut Parts, _state: &S) -> Result<Self, ApiError> {
         let raw: RawPaging = match parts.uri.query() {
-            None => RawPaging { limit: None, cursor: None },
+            None => RawPaging {
+                limit: None,
+                cursor: None,
+            },
             Some(q) => serde_urlencoded_like(q)?,
         };
         let limit = match raw.limit {
             None => DEFAULT_LIMIT,
             Some(s) => match s.parse::<i64>() {
                 Ok(n) if (1..=MAX_LIMIT).contains(&n) => n,
-                _ => return Err(ApiError::invalid("limit", format!("an integer 1 to {MAX_LIMIT}"))),
+                _ => {
+                    return Err(ApiError::invalid(
+                        "limit",
+                        format!("an integer 1 to {MAX_LIMIT}"),
+                    ))
+                }
             },
         };
         if raw.cursor.as_ref().is_some_and(|c| c.len() > 200) {
             return Err(ApiError::invalid("cursor", "too long"));
         }
-        Ok(Paging { limit, cursor: raw.cursor.filter(|c| !c.is_empty()) })
+        Ok(Paging {
+            limit,
+            cursor: raw.cursor.filter(|c| !c.is_empty()),
+        })
     }
 }
 

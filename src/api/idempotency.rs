@@ -32,7 +32,11 @@ pub async fn layer(State(state): State<AppState>, req: Request, next: Next) -> R
         return next.run(req).await;
     };
     let key = match key.to_str() {
-        Ok(k) if !k.is_empty() && k.len() <= MAX_KEY_LEN && k.bytes().all(|b| b.is_ascii_graphic()) => {
+        Ok(k)
+            if !k.is_empty()
+                && k.len() <= MAX_KEY_LEN
+                && k.bytes().all(|b| b.is_ascii_graphic()) =>
+        {
             k.to_string()
         }
         _ => {
@@ -57,7 +61,8 @@ pub async fn layer(State(state): State<AppState>, req: Request, next: Next) -> R
     match state.store.claim_idempotency(&scope).await {
         Err(e) => ApiError::from(e).into_response(),
         Ok(IdempotencyClaim::InFlight) => {
-            ApiError::conflict("a request with this Idempotency-Key is still running").into_response()
+            ApiError::conflict("a request with this Idempotency-Key is still running")
+                .into_response()
         }
         Ok(IdempotencyClaim::Replay(stored)) => replay(stored),
         Ok(IdempotencyClaim::Fresh) => {

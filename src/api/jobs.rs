@@ -127,7 +127,10 @@ async fn get_job(State(state): State<AppState>, Path(id): Path<String>) -> ApiRe
     responses((status = 200, body = JobOut),
               (status = 404, body = Problem, content_type = "application/problem+json"),
               (status = 409, body = Problem, content_type = "application/problem+json")))]
-async fn cancel_job(State(state): State<AppState>, Path(id): Path<String>) -> ApiResult<Json<JobOut>> {
+async fn cancel_job(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+) -> ApiResult<Json<JobOut>> {
     let job = state
         .store
         .cancel_job(&id)

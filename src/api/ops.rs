@@ -39,7 +39,9 @@ pub struct Readiness {
 /// The process is up.
 #[utoipa::path(get, path = "/healthz", tag = "ops", security(()), responses((status = 200, body = Health)))]
 async fn healthz() -> Json<Health> {
-    Json(Health { status: "ok".into() })
+    Json(Health {
+        status: "ok".into(),
+    })
 }
 
 /// The database answers and the workers run (503 otherwise).
@@ -52,7 +54,11 @@ async fn readyz(State(state): State<AppState>) -> Response {
     };
     let workers = state.workers_alive.load(Ordering::SeqCst);
     let ready = database == "ok" && workers > 0;
-    let status = if ready { StatusCode::OK } else { StatusCode::SERVICE_UNAVAILABLE };
+    let status = if ready {
+        StatusCode::OK
+    } else {
+        StatusCode::SERVICE_UNAVAILABLE
+    };
     let body = Readiness {
         status: if ready { "ready" } else { "not ready" }.into(),
         database,
@@ -81,10 +87,17 @@ async fn metrics(State(state): State<AppState>) -> ApiResult<Response> {
     }
     out.push_str("# HELP robocal_workers_alive Worker loops running in this process.\n");
     out.push_str("# TYPE robocal_workers_alive gauge\n");
-    let _ = writeln!(out, "robocal_workers_alive {}", state.workers_alive.load(Ordering::SeqCst));
+    let _ = writeln!(
+        out,
+        "robocal_workers_alive {}",
+        state.workers_alive.load(Ordering::SeqCst)
+    );
     state.metrics.render(&mut out);
     Ok((
-        [(header::CONTENT_TYPE, "text/plain; version=0.0.4; charset=utf-8")],
+        [(
+            header::CONTENT_TYPE,
+            "text/plain; version=0.0.4; charset=utf-8",
+        )],
         out,
     )
         .into_response())

@@ -12,7 +12,7 @@ use utoipa_axum::router::OpenApiRouter;
 use utoipa_axum::routes;
 
 use super::error::{ApiError, ApiResult, Problem};
-use super::extract::{is_json, read_limited, parse_json, Paging};
+use super::extract::{is_json, parse_json, read_limited, Paging};
 use super::sessions::find_session;
 use super::upload::{ingest_image, read_field_limited, robot_joint_count, session_spec};
 use super::AppState;
@@ -77,8 +77,12 @@ impl From<PoseRecord> for PoseOut {
             detected_points: points.len(),
             points,
             image: p.image,
-            measured_position_mm: serde_json::from_value(measured["measured_position_mm"].clone()).ok().flatten(),
-            measured_pose: serde_json::from_value(measured["measured_pose"].clone()).ok().flatten(),
+            measured_position_mm: serde_json::from_value(measured["measured_position_mm"].clone())
+                .ok()
+                .flatten(),
+            measured_pose: serde_json::from_value(measured["measured_pose"].clone())
+                .ok()
+                .flatten(),
             created_at: p.created_at,
         }
     }
@@ -112,12 +116,21 @@ async fn add_pose(
         .to_string();
     let pose = if content_type.starts_with("multipart/form-data") {
         if spec.instrument != Instrument::Camera {
-            return Err(ApiError::invalid("image", "a tracker session takes JSON measurements"));
+            return Err(ApiError::invalid(
+                "image",
+                "a tracker session takes JSON measurements",
+            ));
         }
         let multipart = Multipart::from_request(req, &state)
             .await
             .map_err(|e| ApiError::malformed("multipart", e.body_text()))?;
-        multipart_pose(&state, multipart, spec.camera.as_ref().map(|c| (c.width, c.height)), joint_count).await?
+        multipart_pose(
+            &state,
+            multipart,
+            spec.camera.as_ref().map(|c| (c.width, c.height)),
+            joint_count,
+        )
+        .await?
     } else if is_json(Some(&content_type)) {
         let bytes = read_limited(req, state.config.max_json_bytes, "max_json_bytes").await?;
         let body: PoseJsonBody = parse_json(&bytes)?;
@@ -129,14 +142,16 @@ async fn add_pose(
         ));
     };
     let mut stored = state.store.add_poses(&session.id, &[pose]).await?;
-    let record = stored.pop().ok_or_else(|| ApiError::internal("pose not stored"))?;
+    let record = stored
+        .pop()
+        .ok_or_else(|| ApiError::internal("pose not stored"))?;
     Ok((StatusCode::CREATED, Json(record.into())))
 }
 
 fn json_pose(body: PoseJsonBody) -> NewPose {
-    let measured = body.measured_position_mm.map(|p| {
-        json!({ "measured_position_mm": p, "measured_pose": body.measured_pose })
-    });
+    let measured = body
+        .measured_position_mm
+        .map(|p| json!({ "measured_position_mm": p, "measured_pose": body.measured_pose }));
     NewPose {
         joints_deg: body.joints_deg,
         set: body.set.as_str().to_string(),
@@ -152,15 +167,18 @@ async fn multipart_pose(
     camera_size: Option<(u32, u32)>,
     joint_count: usize,
 ) -> ApiResult<NewPose> {
-    let malformed = |e: axum::extract::multipart::MultipartError| ApiError::malformed("multipart", e.body_text());
+    let malformed = |e: axum::extract::multipart::MultipartError| {
+        ApiError::malformed("multipart", e.body_text())
+    };
     let (mut joints, mut set, mut image) = (None, PoseSet::Cal, None);
     while let Some(mut field) = multipart.next_field().await.map_err(malformed)? {
         let name = field.name().unwrap_or("").to_string();
         match name.as_str() {
             "joints_deg" => {
                 let bytes = read_field_limited(&mut field, MAX_TEXT_PART, "max_json_bytes").await?;
-                let parsed: Vec<f64> = serde_json::from_slice(&bytes)
-                    .map_err(|e| ApiError::invalid("joints_deg", format!("a JSON array of numbers: {e}")))?;
+                let parsed: Vec<f64> = serde_json::from_slice(&bytes).map_err(|e| {
+                    ApiError::invalid("joints_deg", format!("a JSON array of numbers: {e}"))
+                })?;
                 joints = Some(parsed);
             }
             "set" => {
@@ -174,7 +192,10 @@ async fn multipart_pose(
                 image = Some(read_field_limited(&mut field, limit, "max_image_bytes").await?);
             }
             other => {
-                return Err(ApiError::invalid(other.to_string(), "unknown part (expected joints_deg, set, image)"))
+                return Err(ApiError::invalid(
+                    other.to_string(),
+                    "unknown part (expected joints_deg, set, image)",
+                ))
             }
         }
     }

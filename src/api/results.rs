@@ -62,7 +62,10 @@ fn parse_version(version: &str) -> ApiResult<Option<i64>> {
     }
     match version.parse::<i64>() {
         Ok(v) if v >= 1 => Ok(Some(v)),
-        _ => Err(ApiError::invalid("version", "a positive integer or \"latest\"")),
+        _ => Err(ApiError::invalid(
+            "version",
+            "a positive integer or \"latest\"",
+        )),
     }
 }
 
@@ -88,7 +91,10 @@ async fn list_parameter_sets(
 ) -> ApiResult<Json<ParameterSetList>> {
     let before = match paging.cursor.as_deref() {
         None => None,
-        Some(c) => Some(c.parse::<i64>().map_err(|_| ApiError::invalid("cursor", "not a cursor of this listing"))?),
+        Some(c) => Some(
+            c.parse::<i64>()
+                .map_err(|_| ApiError::invalid("cursor", "not a cursor of this listing"))?,
+        ),
     };
     let page = state
         .store

@@ -86,7 +86,11 @@ async fn put_robot(
         .get_robot(&serial)
         .await?
         .ok_or_else(|| ApiError::not_found("robot", &serial))?;
-    let status = if created { StatusCode::CREATED } else { StatusCode::OK };
+    let status = if created {
+        StatusCode::CREATED
+    } else {
+        StatusCode::OK
+    };
     Ok((status, Json(stored.try_into()?)))
 }
 
@@ -94,7 +98,10 @@ async fn put_robot(
 #[utoipa::path(get, path = "/v1/robots/{serial}", tag = "robots",
     params(("serial" = String, Path, description = "Robot serial number")),
     responses((status = 200, body = RobotOut), (status = 404, body = Problem, content_type = "application/problem+json")))]
-async fn get_robot(State(state): State<AppState>, Path(serial): Path<String>) -> ApiResult<Json<RobotOut>> {
+async fn get_robot(
+    State(state): State<AppState>,
+    Path(serial): Path<String>,
+) -> ApiResult<Json<RobotOut>> {
     let robot = state
         .store
         .get_robot(&serial)
@@ -107,7 +114,10 @@ async fn get_robot(State(state): State<AppState>, Path(serial): Path<String>) ->
 #[utoipa::path(delete, path = "/v1/robots/{serial}", tag = "robots",
     params(("serial" = String, Path, description = "Robot serial number")),
     responses((status = 204, description = "Deleted"), (status = 404, body = Problem, content_type = "application/problem+json")))]
-async fn delete_robot(State(state): State<AppState>, Path(serial): Path<String>) -> ApiResult<StatusCode> {
+async fn delete_robot(
+    State(state): State<AppState>,
+    Path(serial): Path<String>,
+) -> ApiResult<StatusCode> {
     if state.store.delete_robot(&serial).await? {
         Ok(StatusCode::NO_CONTENT)
     } else {

@@ -115,6 +115,9 @@ async fn list_sessions(
 #[utoipa::path(get, path = "/v1/sessions/{id}", tag = "sessions",
     params(("id" = String, Path, description = "Session id")),
     responses((status = 200, body = SessionOut), (status = 404, body = Problem, content_type = "application/problem+json")))]
-async fn get_session(State(state): State<AppState>, Path(id): Path<String>) -> ApiResult<Json<SessionOut>> {
+async fn get_session(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+) -> ApiResult<Json<SessionOut>> {
     Ok(Json(find_session(&state, &id).await?.try_into()?))
 }

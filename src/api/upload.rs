@@ -8,9 +8,9 @@ use axum::extract::{Path, Request, State};
 use axum::http::{header, StatusCode};
 use axum::Json;
 use futures_util::StreamExt;
-use tokio::io::AsyncWriteExt;
 use serde::Serialize;
 use sha2::{Digest, Sha256};
+use tokio::io::AsyncWriteExt;
 use utoipa::ToSchema;
 use utoipa_axum::router::OpenApiRouter;
 use utoipa_axum::routes;
@@ -45,7 +45,10 @@ pub async fn robot_joint_count(state: &AppState, serial: &str) -> ApiResult<usiz
         .get_robot(serial)
         .await?
         .ok_or_else(|| ApiError::not_found("robot", serial))?;
-    Ok(robot.kinematics["joints"].as_array().map(Vec::len).unwrap_or(0))
+    Ok(robot.kinematics["joints"]
+        .as_array()
+        .map(Vec::len)
+        .unwrap_or(0))
 }
 
 /// Reads a multipart field, refusing more than `limit` bytes.
@@ -130,7 +133,10 @@ async fn upload_dataset(
     let session = find_session(&state, &id).await?;
     let spec = session_spec(&session)?;
     if spec.instrument != Instrument::Camera {
-        return Err(ApiError::invalid("instrument", "datasets of images need a camera session"));
+        return Err(ApiError::invalid(
+            "instrument",
+            "datasets of images need a camera session",
+        ));
     }
     let joint_count = robot_joint_count(&state, &session.serial).await?;
     let content_type = req
@@ -138,8 +144,13 @@ async fn upload_dataset(
         .get(header::CONTENT_TYPE)
         .and_then(|v| v.to_str().ok())
         .unwrap_or("");
-    if !matches!(content_type, "application/zip" | "application/x-zip-compressed" | "application/octet-stream") {
-        return Err(ApiError::unsupported_media("send the archive as Content-Type: application/zip"));
+    if !matches!(
+        content_type,
+        "application/zip" | "application/x-zip-compressed" | "application/octet-stream"
+    ) {
+        return Err(ApiError::unsupported_media(
+            "send the archive as Content-Type: application/zip",
+        ));
     }
     let archive = spool_to_file(&state, req).await?;
     let limits = DatasetLimits {
@@ -155,7 +166,12 @@ async fn upload_dataset(
         c.fail("poses.json", "holds no poses");
     }
     for (i, p) in reader.manifest.iter().enumerate() {
-        check_joints(&mut c, &format!("poses.json[{i}].joints_deg"), &p.joints_deg, joint_count);
+        check_joints(
+            &mut c,
+            &format!("poses.json[{i}].joints_deg"),
+            &p.joints_deg,
+            joint_count,
+        );
     }
     c.finish()?;
     let camera_size = spec.camera.as_ref().map(|k| (k.width, k.height));
@@ -164,11 +180,14 @@ async fn upload_dataset(
         let doc = reader.manifest[i].clone();
         let field = format!("poses.json[{i}].image");
         let (back, result) = tokio::task::spawn_blocking(move || {
-            let result = reader.read_image(&doc.image).map_err(ApiError::from).and_then(|bytes| {
-                check_and_hash(&bytes, camera_size)
-                    .map(|meta| (meta, bytes))
-                    .map_err(|m| ApiError::invalid(field, m))
-            });
+            let result = reader
+                .read_image(&doc.image)
+                .map_err(ApiError::from)
+                .and_then(|bytes| {
+                    check_and_hash(&bytes, camera_size)
+                        .map(|meta| (meta, bytes))
+                        .map_err(|m| ApiError::invalid(field, m))
+                });
             (reader, result)
         })
         .await
@@ -212,7 +231,8 @@ async fn spool_to_file(state: &AppState, req: Request) -> ApiResult<tempfile::Na
     let mut stream = req.into_body().into_data_stream();
     let mut written: u64 = 0;
     while let Some(chunk) = stream.next().await {
-        let chunk = chunk.map_err(|e| ApiError::malformed("body", format!("reading upload: {e}")))?;
+        let chunk =
+            chunk.map_err(|e| ApiError::malformed("body", format!("reading upload: {e}")))?;
         written += chunk.len() as u64;
         if written > limit {
             return Err(ApiError::too_large("max_archive_bytes", limit));

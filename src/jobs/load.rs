@@ -80,6 +80,7 @@ pub async fn load_input(
     }
     Ok(Input {
         serial: session.serial,
+        robot: crate::robot_model::doc_to_model(&kinematics),
         kinematics,
         session: spec,
         poses,

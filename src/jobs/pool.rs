@@ -14,7 +14,7 @@ use tokio::time::Instant;
 
 use super::load::{load_input, LoadError};
 use super::queue::{claim_next, Lease, QueuePolicy};
-use crate::domain::{JobOutcome, LeaseStatus, NewParameterSet};
+use crate::domain::{JobOutcome, LeaseStatus};
 use crate::pipeline::{self, PipelineError, Stage};
 use crate::store::DynStore;
 
@@ -96,7 +96,11 @@ impl Worker {
                     tokio::select! {
                         _ = tokio::time::sleep(self.config.poll) => {}
                         _ = self.wake.notified() => {}
-                        _ = self.shutdown.changed() => {}
+                        changed = self.shutdown.changed() => {
+                            if changed.is_err() {
+                                break; // the server is gone
+                            }
+                        }
                     }
                 }
                 Err(e) => {
@@ -157,10 +161,11 @@ impl Worker {
                         Err(e) => tracing::warn!(error = %e, "lease renewal failed"),
                     }
                 }
-                _ = self.shutdown.changed(), if deadline.is_none() => {}
-            }
-            if *self.shutdown.borrow() && deadline.is_none() {
-                deadline = Some(Instant::now() + self.config.grace);
+                changed = self.shutdown.changed(), if deadline.is_none() => {
+                    if changed.is_err() || *self.shutdown.borrow() {
+                        deadline = Some(Instant::now() + self.config.grace);
+                    }
+                }
             }
             if deadline.is_some_and(|d| Instant::now() >= d) && !releasing {
                 releasing = true;
@@ -173,10 +178,7 @@ impl Worker {
         }
         let outcome = match result {
             Ok(Ok(out)) => JobOutcome::Succeeded {
-                parameter_set: out.parameter_set.map(|p| NewParameterSet {
-                    parameters: p.parameters,
-                    report: p.report,
-                }),
+                parameter_set: out.parameter_set,
                 summary: out.summary,
             },
             Ok(Err(PipelineError::Cancelled)) if releasing => {
@@ -187,7 +189,9 @@ impl Worker {
                 return;
             }
             Ok(Err(PipelineError::Cancelled)) => return,
-            Ok(Err(e)) => JobOutcome::Failed { error: e.to_string() },
+            Ok(Err(e)) => JobOutcome::Failed {
+                error: e.to_string(),
+            },
             Err(join) => JobOutcome::Retry {
                 error: format!("pipeline crashed: {}", panic_message(join)),
             },
@@ -208,7 +212,9 @@ impl Worker {
         match lease.finish(&outcome).await {
             Ok(LeaseStatus::Held) => {}
             Ok(status) => tracing::info!(job_id = %lease.job.id, ?status, "outcome not recorded"),
-            Err(e) => tracing::error!(job_id = %lease.job.id, error = %e, "recording outcome failed"),
+            Err(e) => {
+                tracing::error!(job_id = %lease.job.id, error = %e, "recording outcome failed")
+            }
         }
     }
 }

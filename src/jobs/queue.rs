@@ -64,7 +64,10 @@ pub async fn claim_next(
     let now = now_unix_ms();
     let failed = store.fail_exhausted_jobs(now).await?;
     if failed > 0 {
-        tracing::warn!(failed, "jobs failed after their last attempt's lease expired");
+        tracing::warn!(
+            failed,
+            "jobs failed after their last attempt's lease expired"
+        );
     }
     let until = now + policy.lease.as_millis() as i64;
     Ok(store

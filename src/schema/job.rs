@@ -72,7 +72,10 @@ impl CalibrationOptions {
                 || h.holdout_fraction <= 0.0
                 || h.holdout_fraction >= 1.0
             {
-                c.fail("validation.holdout_fraction", "must be between 0 and 1 (exclusive)");
+                c.fail(
+                    "validation.holdout_fraction",
+                    "must be between 0 and 1 (exclusive)",
+                );
             }
         }
         c.finish()

@@ -39,7 +39,10 @@ impl Checker {
     /// A finite number within `[-bound, bound]`.
     pub fn bounded(&mut self, field: impl Into<String>, value: f64, bound: f64, unit: &str) {
         if !value.is_finite() || value.abs() > bound {
-            self.fail(field, format!("must be a finite number within ±{bound} {unit}"));
+            self.fail(
+                field,
+                format!("must be a finite number within ±{bound} {unit}"),
+            );
         }
     }
 
@@ -78,14 +81,30 @@ pub struct PoseDoc {
 impl PoseDoc {
     pub fn check(&self, c: &mut Checker, field: &str) {
         for (i, v) in self.translation_mm.iter().enumerate() {
-            c.bounded(format!("{field}.translation_mm[{i}]"), *v, MAX_LENGTH_MM, "mm");
+            c.bounded(
+                format!("{field}.translation_mm[{i}]"),
+                *v,
+                MAX_LENGTH_MM,
+                "mm",
+            );
         }
         for (i, v) in self.rotation_deg.iter().enumerate() {
-            c.bounded(format!("{field}.rotation_deg[{i}]"), *v, MAX_ANGLE_DEG, "deg");
+            c.bounded(
+                format!("{field}.rotation_deg[{i}]"),
+                *v,
+                MAX_ANGLE_DEG,
+                "deg",
+            );
         }
         if let Some(m) = &self.matrix {
-            if m.iter().flatten().any(|v| !v.is_finite() || v.abs() > MAX_LENGTH_MM) {
-                c.fail(format!("{field}.matrix"), "entries must be finite and bounded");
+            if m.iter()
+                .flatten()
+                .any(|v| !v.is_finite() || v.abs() > MAX_LENGTH_MM)
+            {
+                c.fail(
+                    format!("{field}.matrix"),
+                    "entries must be finite and bounded",
+                );
             }
         }
     }

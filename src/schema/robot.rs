@@ -132,7 +132,9 @@ impl RobotBody {
             doc.check(&mut c);
         }
         c.finish()?;
-        Ok(doc.map(|d| d.resolved()).unwrap_or(KinematicsDoc { joints: vec![] }))
+        Ok(doc
+            .map(|d| d.resolved())
+            .unwrap_or(KinematicsDoc { joints: vec![] }))
     }
 }
 
@@ -140,14 +142,22 @@ impl KinematicsDoc {
     pub fn check(&self, c: &mut Checker) {
         let n = self.joints.len();
         if n == 0 || n > MAX_JOINTS {
-            c.fail("kinematics.joints", format!("must hold 1 to {MAX_JOINTS} joints"));
+            c.fail(
+                "kinematics.joints",
+                format!("must hold 1 to {MAX_JOINTS} joints"),
+            );
         }
         for (i, j) in self.joints.iter().enumerate() {
             let f = |name: &str| format!("kinematics.joints[{i}].{name}");
             c.bounded(f("a_mm"), j.a_mm, MAX_LENGTH_MM, "mm");
             c.bounded(f("d_mm"), j.d_mm, MAX_LENGTH_MM, "mm");
             c.bounded(f("alpha_deg"), j.alpha_deg, MAX_ANGLE_DEG, "deg");
-            c.bounded(f("theta_offset_deg"), j.theta_offset_deg, MAX_ANGLE_DEG, "deg");
+            c.bounded(
+                f("theta_offset_deg"),
+                j.theta_offset_deg,
+                MAX_ANGLE_DEG,
+                "deg",
+            );
             c.bounded(f("beta_deg"), j.beta_deg, MAX_ANGLE_DEG, "deg");
             c.bounded(f("min_deg"), j.min_deg, MAX_ANGLE_DEG, "deg");
             c.bounded(f("max_deg"), j.max_deg, MAX_ANGLE_DEG, "deg");

@@ -82,7 +82,12 @@ impl SessionBody {
                         }
                     }
                     c.positive("target.pitch_mm", t.pitch_mm, MAX_LENGTH_MM, "mm");
-                    c.positive("target.dot_diameter_mm", t.dot_diameter_mm, t.pitch_mm.abs(), "mm");
+                    c.positive(
+                        "target.dot_diameter_mm",
+                        t.dot_diameter_mm,
+                        t.pitch_mm.abs(),
+                        "mm",
+                    );
                     c.positive(
                         "target.origin_marker_diameter_mm",
                         t.origin_marker_diameter_mm,
@@ -100,7 +105,12 @@ impl SessionBody {
                         }
                     }
                     c.positive("camera.pixel_size_um", k.pixel_size_um, MAX_PIXEL_UM, "um");
-                    c.positive("camera.nominal_focal_mm", k.nominal_focal_mm, MAX_FOCAL_MM, "mm");
+                    c.positive(
+                        "camera.nominal_focal_mm",
+                        k.nominal_focal_mm,
+                        MAX_FOCAL_MM,
+                        "mm",
+                    );
                 }
             }
         }
@@ -170,7 +180,10 @@ pub fn check_joints(c: &mut Checker, field: &str, joints_deg: &[f64], joint_coun
     if joints_deg.len() != joint_count {
         c.fail(
             field,
-            format!("the robot has {joint_count} joints, got {} values", joints_deg.len()),
+            format!(
+                "the robot has {joint_count} joints, got {} values",
+                joints_deg.len()
+            ),
         );
     }
     for (i, v) in joints_deg.iter().enumerate() {
@@ -179,14 +192,21 @@ pub fn check_joints(c: &mut Checker, field: &str, joints_deg: &[f64], joint_coun
 }
 
 impl PoseJsonBody {
-    pub fn check(&self, instrument: Instrument, camera: Option<&CameraDoc>, joint_count: usize)
-        -> Result<(), Vec<FieldError>> {
+    pub fn check(
+        &self,
+        instrument: Instrument,
+        camera: Option<&CameraDoc>,
+        joint_count: usize,
+    ) -> Result<(), Vec<FieldError>> {
         let mut c = Checker::default();
         check_joints(&mut c, "joints_deg", &self.joints_deg, joint_count);
         match instrument {
             Instrument::Camera => {
                 if self.measured_position_mm.is_some() || self.measured_pose.is_some() {
-                    c.fail("measured_position_mm", "a camera session takes image_points");
+                    c.fail(
+                        "measured_position_mm",
+                        "a camera session takes image_points",
+                    );
                 }
                 match &self.image_points {
                     None => c.fail("image_points", "required (or upload an image as multipart)"),
@@ -195,13 +215,21 @@ impl PoseJsonBody {
             }
             Instrument::Tracker => {
                 if self.image_points.is_some() {
-                    c.fail("image_points", "a tracker session takes measured_position_mm");
+                    c.fail(
+                        "image_points",
+                        "a tracker session takes measured_position_mm",
+                    );
                 }
                 match &self.measured_position_mm {
                     None => c.fail("measured_position_mm", "required for a tracker session"),
                     Some(p) => {
                         for (i, v) in p.iter().enumerate() {
-                            c.bounded(format!("measured_position_mm[{i}]"), *v, MAX_LENGTH_MM, "mm");
+                            c.bounded(
+                                format!("measured_position_mm[{i}]"),
+                                *v,
+                                MAX_LENGTH_MM,
+                                "mm",
+                            );
                         }
                     }
                 }
@@ -216,9 +244,14 @@ impl PoseJsonBody {
 
 fn check_points(c: &mut Checker, points: &[ImagePointDoc], camera: Option<&CameraDoc>) {
     if points.is_empty() || points.len() > MAX_POINTS_PER_POSE {
-        c.fail("image_points", format!("must hold 1 to {MAX_POINTS_PER_POSE} points"));
+        c.fail(
+            "image_points",
+            format!("must hold 1 to {MAX_POINTS_PER_POSE} points"),
+        );
     }
-    let (w, h) = camera.map(|k| (k.width as f64, k.height as f64)).unwrap_or((f64::MAX, f64::MAX));
+    let (w, h) = camera
+        .map(|k| (k.width as f64, k.height as f64))
+        .unwrap_or((f64::MAX, f64::MAX));
     for (i, p) in points.iter().enumerate() {
         if !p.x.is_finite() || p.x < 0.0 || p.x > w {
             c.fail(format!("image_points[{i}].x"), "must lie inside the image");
@@ -241,4 +274,3 @@ pub struct DatasetPoseDoc {
     #[serde(default)]
     pub set: PoseSet,
 }
-

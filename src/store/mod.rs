@@ -67,8 +67,7 @@ pub trait SessionStore: Send + Sync {
     async fn put_blob(&self, meta: &ImageMeta, data: &[u8]) -> StoreResult<()>;
     async fn get_blob(&self, sha256: &str) -> StoreResult<Option<Vec<u8>>>;
     /// Inserts all poses in one transaction (all or none), in order.
-    async fn add_poses(&self, session_id: &str, poses: &[NewPose])
-        -> StoreResult<Vec<PoseRecord>>;
+    async fn add_poses(&self, session_id: &str, poses: &[NewPose]) -> StoreResult<Vec<PoseRecord>>;
     async fn get_pose(&self, session_id: &str, pose_id: &str) -> StoreResult<Option<PoseRecord>>;
     async fn list_poses(
         &self,
@@ -145,8 +144,12 @@ pub trait ResultStore: Send + Sync {
 
 #[async_trait]
 pub trait AuthStore: Send + Sync {
-    async fn create_token(&self, name: &str, token_hash: &str, scope: Scope)
-        -> StoreResult<TokenRecord>;
+    async fn create_token(
+        &self,
+        name: &str,
+        token_hash: &str,
+        scope: Scope,
+    ) -> StoreResult<TokenRecord>;
     async fn find_token(&self, token_hash: &str) -> StoreResult<Option<TokenRecord>>;
     async fn list_tokens(&self) -> StoreResult<Vec<TokenRecord>>;
     async fn count_tokens(&self) -> StoreResult<i64>;

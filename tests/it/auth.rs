@@ -10,7 +10,9 @@ use crate::support::*;
 async fn token(app: &TestApp, scope: Scope) -> String {
     let s = store::connect(&app.database_url).await.unwrap();
     let t = generate_token();
-    s.create_token("test", &hash_token(&t), scope).await.unwrap();
+    s.create_token("test", &hash_token(&t), scope)
+        .await
+        .unwrap();
     t
 }
 
@@ -29,28 +31,89 @@ async fn token_scopes_are_enforced() {
     assert_eq!(r.status(), 401);
     assert_eq!(r.headers()["www-authenticate"], "Bearer");
     assert_eq!(app.get("/healthz").await.status(), 200);
-    let bad = c.get(app.url("/v1/robots")).bearer_auth("rbc_wrong").send().await.unwrap();
+    let bad = c
+        .get(app.url("/v1/robots"))
+        .bearer_auth("rbc_wrong")
+        .send()
+        .await
+        .unwrap();
     assert_eq!(bad.status(), 401);
 
     // read: can read, cannot write.
-    assert_eq!(c.get(app.url("/v1/robots")).bearer_auth(&read).send().await.unwrap().status(), 200);
-    let r = c.put(app.url("/v1/robots/A1")).bearer_auth(&read).json(&robot_body()).send().await.unwrap();
+    assert_eq!(
+        c.get(app.url("/v1/robots"))
+            .bearer_auth(&read)
+            .send()
+            .await
+            .unwrap()
+            .status(),
+        200
+    );
+    let r = c
+        .put(app.url("/v1/robots/A1"))
+        .bearer_auth(&read)
+        .json(&robot_body())
+        .send()
+        .await
+        .unwrap();
     assert_eq!(r.status(), 403);
 
     // write: can write, cannot manage tokens.
-    let r = c.put(app.url("/v1/robots/A1")).bearer_auth(&write).json(&robot_body()).send().await.unwrap();
+    let r = c
+        .put(app.url("/v1/robots/A1"))
+        .bearer_auth(&write)
+        .json(&robot_body())
+        .send()
+        .await
+        .unwrap();
     assert_eq!(r.status(), 201);
-    let r = c.post(app.url("/v1/tokens")).bearer_auth(&write).json(&json!({"name": "x", "scope": "read"})).send().await.unwrap();
+    let r = c
+        .post(app.url("/v1/tokens"))
+        .bearer_auth(&write)
+        .json(&json!({"name": "x", "scope": "read"}))
+        .send()
+        .await
+        .unwrap();
     assert_eq!(r.status(), 403);
-    assert_eq!(c.get(app.url("/v1/tokens")).bearer_auth(&write).send().await.unwrap().status(), 403);
+    assert_eq!(
+        c.get(app.url("/v1/tokens"))
+            .bearer_auth(&write)
+            .send()
+            .await
+            .unwrap()
+            .status(),
+        403
+    );
 
     // admin: manages tokens; a new token works at once and its secret is not listed.
-    let r = c.post(app.url("/v1/tokens")).bearer_auth(&admin).json(&json!({"name": "ci", "scope": "read"})).send().await.unwrap();
+    let r = c
+        .post(app.url("/v1/tokens"))
+        .bearer_auth(&admin)
+        .json(&json!({"name": "ci", "scope": "read"}))
+        .send()
+        .await
+        .unwrap();
     assert_eq!(r.status(), 201);
     let created: Value = r.json().await.unwrap();
     let new = created["token"].as_str().unwrap();
-    assert_eq!(c.get(app.url("/v1/robots/A1")).bearer_auth(new).send().await.unwrap().status(), 200);
-    let list = c.get(app.url("/v1/tokens")).bearer_auth(&admin).send().await.unwrap().text().await.unwrap();
+    assert_eq!(
+        c.get(app.url("/v1/robots/A1"))
+            .bearer_auth(new)
+            .send()
+            .await
+            .unwrap()
+            .status(),
+        200
+    );
+    let list = c
+        .get(app.url("/v1/tokens"))
+        .bearer_auth(&admin)
+        .send()
+        .await
+        .unwrap()
+        .text()
+        .await
+        .unwrap();
     assert!(!list.contains(new), "secrets are never listed");
     assert!(list.contains("\"ci\""));
 }
@@ -77,16 +140,43 @@ async fn binary_refuses_open_bind_without_tokens_and_serves_with_one() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("loopback"));
 
     let out = run_binary(&["token", "create", "--scope", "read", "--database-url", &db]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let token = String::from_utf8(out.stdout).unwrap().trim().to_string();
     assert!(token.starts_with("rbc_"));
 
-    let mut server = spawn_binary(&["--bind", "0.0.0.0:0", "--database-url", &db, "--workers", "1"], &[]);
+    let mut server = spawn_binary(
+        &[
+            "--bind",
+            "0.0.0.0:0",
+            "--database-url",
+            &db,
+            "--workers",
+            "1",
+        ],
+        &[],
+    );
     let port = server.base.rsplit(':').next().unwrap().to_string();
     let base = format!("http://127.0.0.1:{port}");
     let c = reqwest::Client::new();
-    assert_eq!(c.get(format!("{base}/v1/robots")).send().await.unwrap().status(), 401, "anonymous refused");
-    let ok = c.get(format!("{base}/v1/robots")).bearer_auth(&token).send().await.unwrap();
+    assert_eq!(
+        c.get(format!("{base}/v1/robots"))
+            .send()
+            .await
+            .unwrap()
+            .status(),
+        401,
+        "anonymous refused"
+    );
+    let ok = c
+        .get(format!("{base}/v1/robots"))
+        .bearer_auth(&token)
+        .send()
+        .await
+        .unwrap();
     assert_eq!(ok.status(), 200);
     server.child.kill().unwrap();
     server.child.wait().unwrap();

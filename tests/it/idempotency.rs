@@ -22,7 +22,10 @@ async fn replayed_writes_return_the_stored_response_and_create_nothing() {
     assert_eq!(again.headers()["location"], location);
     assert_eq!(again.headers()["idempotent-replayed"], "true");
     let again: Value = again.json().await.unwrap();
-    assert_eq!(again["job_id"], first["job_id"], "the same job, not a new one");
+    assert_eq!(
+        again["job_id"], first["job_id"],
+        "the same job, not a new one"
+    );
 
     // A new key makes a new job.
     let other: Value = post("job-2").await.unwrap().json().await.unwrap();
@@ -51,7 +54,12 @@ async fn replayed_writes_return_the_stored_response_and_create_nothing() {
         .await
         .unwrap();
     assert_eq!(p1["id"], p2["id"]);
-    let s: Value = app.get(&format!("/v1/sessions/{session}")).await.json().await.unwrap();
+    let s: Value = app
+        .get(&format!("/v1/sessions/{session}"))
+        .await
+        .json()
+        .await
+        .unwrap();
     assert_eq!(s["pose_count"], 5);
 
     // The same key on another route is independent.

@@ -2,6 +2,7 @@
 
 mod auth;
 mod hostile;
+mod hostile_uploads;
 mod idempotency;
 mod jobs;
 mod openapi;

@@ -9,7 +9,16 @@ fn committed_openapi_document_is_current() {
         committed.trim() == current.trim(),
         "openapi/openapi.json is stale: run `cargo run -- openapi > openapi/openapi.json`"
     );
-    for route in ["/v1/robots/{serial}", "/v1/sessions/{id}/poses", "/v1/sessions/{id}/dataset", "/v1/jobs/{id}", "/healthz"] {
-        assert!(current.contains(&format!("\"{route}\"")), "{route} documented");
+    for route in [
+        "/v1/robots/{serial}",
+        "/v1/sessions/{id}/poses",
+        "/v1/sessions/{id}/dataset",
+        "/v1/jobs/{id}",
+        "/healthz",
+    ] {
+        assert!(
+            current.contains(&format!("\"{route}\"")),
+            "{route} documented"
+        );
     }
 }

@@ -26,10 +26,17 @@ async fn multipart_pose_stores_image_byte_identical() {
     assert_eq!(pose["image"]["sha256"], sha256_hex(&bytes));
     assert_eq!(pose["image"]["width"], CAMERA_W);
     let id = pose["id"].as_str().unwrap();
-    let back = app.get(&format!("/v1/sessions/{session}/poses/{id}/image")).await;
+    let back = app
+        .get(&format!("/v1/sessions/{session}/poses/{id}/image"))
+        .await;
     assert_eq!(back.headers()["content-type"], "image/png");
     assert_eq!(sha256_hex(&back.bytes().await.unwrap()), sha256_hex(&bytes));
-    let got: Value = app.get(&format!("/v1/sessions/{session}/poses/{id}")).await.json().await.unwrap();
+    let got: Value = app
+        .get(&format!("/v1/sessions/{session}/poses/{id}"))
+        .await
+        .json()
+        .await
+        .unwrap();
     assert_eq!(got["joints_deg"], json!([1.0, 2.0, 3.0, 4.0, 5.0, 6.0]));
 }
 
@@ -38,13 +45,20 @@ async fn json_poses_points_and_tracker_measurements() {
     let app = spawn_app().await;
     let session = app.robot_and_session("J1").await;
     app.add_point_poses(&session, 3, 2).await;
-    let list: Value = app.get(&format!("/v1/sessions/{session}/poses?limit=4")).await.json().await.unwrap();
+    let list: Value = app
+        .get(&format!("/v1/sessions/{session}/poses?limit=4"))
+        .await
+        .json()
+        .await
+        .unwrap();
     assert_eq!(list["items"].as_array().unwrap().len(), 4);
     assert_eq!(list["items"][0]["detected_points"], 3);
     assert_eq!(list["items"][0]["points"][0]["x"], 10.5);
     let cursor = list["next_cursor"].as_str().unwrap();
     let rest: Value = app
-        .get(&format!("/v1/sessions/{session}/poses?limit=4&cursor={cursor}"))
+        .get(&format!(
+            "/v1/sessions/{session}/poses?limit=4&cursor={cursor}"
+        ))
         .await
         .json()
         .await
@@ -99,8 +113,18 @@ async fn dataset_zip_creates_all_poses() {
     let out: Value = r.json().await.unwrap();
     assert_eq!(out["poses_created"], 4);
     let last = out["pose_ids"][3].as_str().unwrap();
-    let back = app.get(&format!("/v1/sessions/{session}/poses/{last}/image")).await;
-    assert_eq!(sha256_hex(&back.bytes().await.unwrap()), sha256_hex(&images[3]));
-    let s: Value = app.get(&format!("/v1/sessions/{session}")).await.json().await.unwrap();
+    let back = app
+        .get(&format!("/v1/sessions/{session}/poses/{last}/image"))
+        .await;
+    assert_eq!(
+        sha256_hex(&back.bytes().await.unwrap()),
+        sha256_hex(&images[3])
+    );
+    let s: Value = app
+        .get(&format!("/v1/sessions/{session}"))
+        .await
+        .json()
+        .await
+        .unwrap();
     assert_eq!(s["pose_count"], 4);
 }

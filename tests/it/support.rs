@@ -5,7 +5,6 @@
 //! again for PostgreSQL (see `test_db.rs` for the per-test databases).
 
 use std::io::{BufRead, BufReader, Write};
-use std::net::SocketAddr;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
@@ -42,11 +41,10 @@ pub fn fresh_database(dir: &tempfile::TempDir) -> TestDb {
 
 pub struct TestApp {
     pub base: String,
-    pub addr: SocketAddr,
     pub client: reqwest::Client,
     pub database_url: String,
     server: Option<RunningServer>,
-    pub dir: tempfile::TempDir,
+    _dir: tempfile::TempDir,
     _db: TestDb,
 }
 
@@ -75,11 +73,10 @@ pub async fn spawn_app_with(tweak: impl FnOnce(&mut ServeConfig)) -> TestApp {
     let addr = server.addr;
     TestApp {
         base: format!("http://{addr}"),
-        addr,
         client: reqwest::Client::new(),
         database_url,
         server: Some(server),
-        dir,
+        _dir: dir,
         _db: db,
     }
 }
@@ -94,28 +91,45 @@ impl TestApp {
     }
 
     pub async fn put_json(&self, path: &str, body: &Value) -> reqwest::Response {
-        self.client.put(self.url(path)).json(body).send().await.unwrap()
+        self.client
+            .put(self.url(path))
+            .json(body)
+            .send()
+            .await
+            .unwrap()
     }
 
     pub async fn post_json(&self, path: &str, body: &Value) -> reqwest::Response {
-        self.client.post(self.url(path)).json(body).send().await.unwrap()
+        self.client
+            .post(self.url(path))
+            .json(body)
+            .send()
+            .await
+            .unwrap()
     }
 
-    pub async fn shutdown(mut self) {
+    /// Stops the server cleanly; the returned directory keeps the database.
+    pub async fn shutdown(mut self) -> tempfile::TempDir {
         if let Some(s) = self.server.take() {
             s.shutdown().await;
         }
+        self._dir
     }
 
     /// A robot `serial` with the 6-joint test table, and a camera session.
     pub async fn robot_and_session(&self, serial: &str) -> String {
-        let r = self.put_json(&format!("/v1/robots/{serial}"), &robot_body()).await;
+        let r = self
+            .put_json(&format!("/v1/robots/{serial}"), &robot_body())
+            .await;
         assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
         let r = self
             .post_json(&format!("/v1/robots/{serial}/sessions"), &session_body())
             .await;
         assert_eq!(r.status(), 201);
-        r.json::<Value>().await.unwrap()["id"].as_str().unwrap().to_string()
+        r.json::<Value>().await.unwrap()["id"]
+            .as_str()
+            .unwrap()
+            .to_string()
     }
 
     /// Adds `cal` calibration and `val` validation poses with image points.
@@ -123,14 +137,22 @@ impl TestApp {
         for i in 0..cal + val {
             let set = if i < cal { "cal" } else { "val" };
             let r = self
-                .post_json(&format!("/v1/sessions/{session}/poses"), &point_pose(i, set))
+                .post_json(
+                    &format!("/v1/sessions/{session}/poses"),
+                    &point_pose(i, set),
+                )
                 .await;
             assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
         }
     }
 
     /// Polls a job until `done(job)` or the timeout.
-    pub async fn wait_job(&self, job: &str, timeout: Duration, done: impl Fn(&Value) -> bool) -> Value {
+    pub async fn wait_job(
+        &self,
+        job: &str,
+        timeout: Duration,
+        done: impl Fn(&Value) -> bool,
+    ) -> Value {
         wait_job_at(&self.client, &self.base, job, timeout, done).await
     }
 }
@@ -155,13 +177,19 @@ pub async fn wait_job_at(
         if done(&v) {
             return v;
         }
-        assert!(start.elapsed() < timeout, "job did not get there in time: {v}");
+        assert!(
+            start.elapsed() < timeout,
+            "job did not get there in time: {v}"
+        );
         tokio::time::sleep(Duration::from_millis(50)).await;
     }
 }
 
 pub fn is_finished(v: &Value) -> bool {
-    matches!(v["state"].as_str(), Some("succeeded" | "failed" | "cancelled"))
+    matches!(
+        v["state"].as_str(),
+        Some("succeeded" | "failed" | "cancelled")
+    )
 }
 
 pub fn robot_body() -> Value {
@@ -203,7 +231,11 @@ pub fn point_pose(i: usize, set: &str) -> Value {
 /// A small valid PNG whose pixels depend on `seed` (so each is a distinct blob).
 pub fn png(width: u32, height: u32, seed: u8) -> Vec<u8> {
     let img = image::RgbImage::from_fn(width, height, |x, y| {
-        image::Rgb([(x as u8).wrapping_mul(3) ^ seed, (y as u8).wrapping_add(seed), seed])
+        image::Rgb([
+            (x as u8).wrapping_mul(3) ^ seed,
+            (y as u8).wrapping_add(seed),
+            seed,
+        ])
     });
     let mut out = std::io::Cursor::new(Vec::new());
     img.write_to(&mut out, image::ImageFormat::Png).unwrap();

@@ -1,5 +1,26 @@
 //! Camera models and calibration (method.md §2–4).
 
+pub mod bias;
+pub mod calibrate;
+pub mod error;
 pub mod model;
+pub mod observations;
+pub mod pose;
+pub mod projection_jacobian;
+pub mod refine;
+pub mod refine_loop;
+pub mod sequence;
+pub mod tsai;
+pub mod willson;
 
+pub use calibrate::{
+    calibrate, CalibrationMode, CalibrationOptions, CameraCalibration, IntrinsicsStdDev,
+    OutlierDot, ViewReport,
+};
+pub use error::CameraError;
 pub use model::Intrinsics;
+pub use observations::{DotObservation, ImageSize, ViewObservations};
+pub use pose::{estimate_pose, PoseEstimate};
+pub use refine::StationDistance;
+pub use sequence::PaperOptions;
+pub use tsai::Stage2Form;

@@ -197,7 +197,8 @@ impl JobStore for SqliteStore {
             } => {
                 let mut result = json!({ "summary": summary });
                 if let Some(set) = parameter_set {
-                    let version = insert_parameter_set_tx(&mut tx, &serial, Some(job_id), set).await?;
+                    let version =
+                        insert_parameter_set_tx(&mut tx, &serial, Some(job_id), set).await?;
                     result["serial"] = json!(serial);
                     result["version"] = json!(version);
                 }

@@ -77,7 +77,11 @@ impl RobotStore for SqliteStore {
 }
 
 /// The cursor of a full page is its last key; a short page is the last one.
-pub(super) fn page_cursor<T>(items: &[T], limit: i64, key: impl Fn(&T) -> String) -> Option<String> {
+pub(super) fn page_cursor<T>(
+    items: &[T],
+    limit: i64,
+    key: impl Fn(&T) -> String,
+) -> Option<String> {
     if items.len() as i64 == limit {
         items.last().map(key)
     } else {

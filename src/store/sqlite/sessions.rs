@@ -121,17 +121,15 @@ impl SessionStore for SqliteStore {
     }
 
     async fn get_blob(&self, sha256: &str) -> StoreResult<Option<Vec<u8>>> {
-        Ok(sqlx::query_scalar("SELECT data FROM blobs WHERE sha256 = ?")
-            .bind(sha256)
-            .fetch_optional(&self.pool)
-            .await?)
+        Ok(
+            sqlx::query_scalar("SELECT data FROM blobs WHERE sha256 = ?")
+                .bind(sha256)
+                .fetch_optional(&self.pool)
+                .await?,
+        )
     }
 
-    async fn add_poses(
-        &self,
-        session_id: &str,
-        poses: &[NewPose],
-    ) -> StoreResult<Vec<PoseRecord>> {
+    async fn add_poses(&self, session_id: &str, poses: &[NewPose]) -> StoreResult<Vec<PoseRecord>> {
         let mut tx = self.begin_immediate().await?;
         let exists: Option<i64> = sqlx::query_scalar("SELECT 1 FROM sessions WHERE id = ?")
             .bind(session_id)
@@ -162,7 +160,13 @@ impl SessionStore for SqliteStore {
             .bind(serde_json::to_string(&record.joints_deg)?)
             .bind(&record.set)
             .bind(record.image.as_ref().map(|i| i.sha256.clone()))
-            .bind(record.image.as_ref().map(serde_json::to_string).transpose()?)
+            .bind(
+                record
+                    .image
+                    .as_ref()
+                    .map(serde_json::to_string)
+                    .transpose()?,
+            )
             .bind(record.points.to_string())
             .bind(record.measured.as_ref().map(|m| m.to_string()))
             .bind(&record.created_at)

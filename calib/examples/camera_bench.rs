@@ -1,0 +1,113 @@
+//! Benchmark (issue 4): time to calibrate 60 images' points, beside OpenCV's
+//! `calibrateCamera` on the same points in the same run.
+//!
+//! `cargo run --release -p robocal-calib --example camera_bench -- [repeats]`
+//! (runs `python3 bench/opencv_calibrate.py`; needs opencv-python-headless).
+
+use std::io::Write;
+use std::time::Instant;
+
+use robocal_calib::camera::{calibrate, CalibrationOptions, CameraCalibration, ViewObservations};
+use robocal_calib::sim::point_views::{simulate_views, ViewCampaignSpec};
+
+const SCRIPT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../bench/opencv_calibrate.py");
+
+fn median_seconds(
+    repeats: usize,
+    views: &[ViewObservations],
+    options: &CalibrationOptions,
+) -> (f64, CameraCalibration) {
+    let mut times = Vec::new();
+    let mut last = None;
+    for _ in 0..repeats {
+        let start = Instant::now();
+        last = Some(calibrate(views, options).expect("calibration"));
+        times.push(start.elapsed().as_secs_f64());
+    }
+    times.sort_by(f64::total_cmp);
+    (times[times.len() / 2], last.expect("repeats >= 1"))
+}
+
+fn main() {
+    let repeats: usize = std::env::args()
+        .nth(1)
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(5)
+        .max(1);
+    let spec = ViewCampaignSpec::modern_1280x1024(2024);
+    let sims = simulate_views(&spec).expect("simulation");
+    let views: Vec<ViewObservations> = sims.iter().map(|s| s.observations.clone()).collect();
+    let path =
+        std::env::temp_dir().join(format!("robocal_camera_bench_{}.csv", std::process::id()));
+    let mut file = std::fs::File::create(&path).expect("temp file");
+    writeln!(file, "view,row,col,x_mm,y_mm,z_mm,u_px,v_px").unwrap();
+    for (v, view) in views.iter().enumerate() {
+        for d in &view.dots {
+            let (t, p) = (d.target_mm, d.pixel);
+            writeln!(
+                file,
+                "{v},{},{},{},{},{},{:.10},{:.10}",
+                d.row, d.col, t.x, t.y, t.z, p.x, p.y
+            )
+            .unwrap();
+        }
+    }
+    drop(file);
+    let points: usize = views.iter().map(|v| v.dots.len()).sum();
+    println!(
+        "campaign: {} views, {points} points, 1280x1024, noise {} px",
+        views.len(),
+        spec.noise_px
+    );
+    for (label, options) in [
+        (
+            "robocal refined (k1,k2,p1,p2), no bias correction",
+            CalibrationOptions::default(),
+        ),
+        (
+            "robocal refined (k1,k2,p1,p2) + bias correction",
+            CalibrationOptions {
+                dot_diameter_mm: Some(spec.board.dot_diameter_mm),
+                ..Default::default()
+            },
+        ),
+        (
+            "robocal refined (k1,k2,p1,p2,k3)",
+            CalibrationOptions {
+                estimate_k3: true,
+                ..Default::default()
+            },
+        ),
+    ] {
+        let (secs, cal) = median_seconds(repeats, &views, &options);
+        let i = cal.intrinsics;
+        println!(
+            "{label:52} median {secs:.3} s  rms {:.5} px  fx {:.3} fy {:.3} cx {:.3} cy {:.3}",
+            cal.rms_px, i.fx, i.fy, i.cx, i.cy
+        );
+    }
+    let output = std::process::Command::new("python3")
+        .args([
+            SCRIPT,
+            path.to_str().unwrap(),
+            "1280",
+            "1024",
+            &repeats.to_string(),
+        ])
+        .output();
+    match output {
+        Ok(o) if o.status.success() => {
+            println!("opencv: {}", String::from_utf8_lossy(&o.stdout).trim())
+        }
+        Ok(o) => println!(
+            "opencv script failed: {}",
+            String::from_utf8_lossy(&o.stderr)
+        ),
+        Err(e) => println!("could not run python3: {e}"),
+    }
+    let _ = std::fs::remove_file(&path);
+    println!(
+        "truth: fx {} fy {} cx {} cy {}",
+        spec.intrinsics.fx, spec.intrinsics.fy, spec.intrinsics.cx, spec.intrinsics.cy
+    );
+}

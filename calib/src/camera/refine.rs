@@ -1,0 +1,377 @@
+//! Joint Levenberg–Marquardt refinement over all images (method.md §4
+//! **beyond**): `fx, m, cx, cy, k1, k2, p1, p2` (optionally `k3`) and every
+//! image's pose, minimising the reprojection error; optional reference
+//! distances between camera stations (the paper's CMM travel) tune `fx`.
+//!
+//! Parameter vector: the intrinsics block (empty when intrinsics are fixed)
+//! followed by `[t, rotation vector]` of each view's `camera_to_target`.
+
+use nalgebra::{DMatrix, DVector, Isometry3, Point2, Point3, SMatrix, SVector, Vector6};
+use serde::{Deserialize, Serialize};
+
+use super::model::Intrinsics;
+use super::projection_jacobian::{projection_jacobian, INTRINSIC_PARAMS};
+use crate::geometry::{pose_from_vector, pose_to_vector};
+use crate::solver::{LeastSquaresProblem, FINITE_DIFFERENCE_STEP};
+
+/// Pose parameters per view.
+pub const POSE_PARAMS: usize = 6;
+
+/// A measured distance between the camera stations of two views (method.md §4).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct StationDistance {
+    pub view_a: usize,
+    pub view_b: usize,
+    pub distance_mm: f64,
+    pub sigma_mm: f64,
+}
+
+/// Which intrinsics are free.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum IntrinsicsBlock {
+    /// `[fx, m, cx, cy, k1, k2, p1, p2]`, plus `k3` when `with_k3`.
+    Free {
+        with_k3: bool,
+    },
+    Fixed(Intrinsics),
+}
+
+impl IntrinsicsBlock {
+    pub fn len(&self) -> usize {
+        match self {
+            Self::Free { with_k3: true } => 9,
+            Self::Free { with_k3: false } => 8,
+            Self::Fixed(_) => 0,
+        }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Parameter values of `intr` in this block's layout.
+    pub fn encode(&self, intr: &Intrinsics) -> Vec<f64> {
+        let all = [
+            intr.fx,
+            intr.fy / intr.fx,
+            intr.cx,
+            intr.cy,
+            intr.k1,
+            intr.k2,
+            intr.p1,
+            intr.p2,
+            intr.k3,
+        ];
+        all[..self.len()].to_vec()
+    }
+
+    pub fn decode(&self, x: &[f64]) -> Intrinsics {
+        match self {
+            Self::Fixed(i) => *i,
+            Self::Free { with_k3 } => Intrinsics {
+                fx: x[0],
+                fy: x[0] * x[1],
+                cx: x[2],
+                cy: x[3],
+                k1: x[4],
+                k2: x[5],
+                p1: x[6],
+                p2: x[7],
+                k3: if *with_k3 { x[8] } else { 0.0 },
+            },
+        }
+    }
+}
+
+/// The joint reprojection problem; `views[v]` are the (bias-corrected)
+/// observations still in use.
+pub struct JointProblem<'a> {
+    pub views: &'a [Vec<(Point3<f64>, Point2<f64>)>],
+    pub block: IntrinsicsBlock,
+    pub references: &'a [StationDistance],
+    /// Weight of a reference-distance residual: pixel sigma / distance sigma.
+    pub reference_weight: f64,
+}
+
+impl JointProblem<'_> {
+    pub fn parameter_count(&self) -> usize {
+        self.block.len() + POSE_PARAMS * self.views.len()
+    }
+
+    fn row_offsets(&self) -> Vec<usize> {
+        let mut offsets = Vec::with_capacity(self.views.len() + 1);
+        let mut o = 0;
+        for v in self.views {
+            offsets.push(o);
+            o += 2 * v.len();
+        }
+        offsets.push(o);
+        offsets
+    }
+
+    pub fn pose(&self, x: &DVector<f64>, view: usize) -> Isometry3<f64> {
+        let o = self.block.len() + POSE_PARAMS * view;
+        pose_from_vector(&Vector6::from_column_slice(
+            &x.as_slice()[o..o + POSE_PARAMS],
+        ))
+    }
+
+    /// Initial parameter vector.
+    pub fn encode(&self, intr: &Intrinsics, camera_to_target: &[Isometry3<f64>]) -> DVector<f64> {
+        let mut x = self.block.encode(intr);
+        for p in camera_to_target {
+            x.extend_from_slice(pose_to_vector(p).as_slice());
+        }
+        DVector::from_vec(x)
+    }
+
+    pub fn intrinsics(&self, x: &DVector<f64>) -> Intrinsics {
+        self.block.decode(&x.as_slice()[..self.block.len()])
+    }
+
+    fn view_residuals(
+        intr: &Intrinsics,
+        pose: &Isometry3<f64>,
+        obs: &[(Point3<f64>, Point2<f64>)],
+        out: &mut [f64],
+    ) -> Option<()> {
+        super::pose::reprojection_residuals(intr, pose, obs, out)
+    }
+
+    fn reference_residual(
+        &self,
+        a: &Isometry3<f64>,
+        b: &Isometry3<f64>,
+        r: &StationDistance,
+    ) -> f64 {
+        // Camera position in the target frame: -R^T T (paper eqs. 37–39).
+        let ca = a.inverse().translation.vector;
+        let cb = b.inverse().translation.vector;
+        self.reference_weight * ((ca - cb).norm() - r.distance_mm)
+    }
+}
+
+impl LeastSquaresProblem for JointProblem<'_> {
+    fn residuals(&self, x: &DVector<f64>) -> Option<DVector<f64>> {
+        let intr = self.intrinsics(x);
+        let offsets = self.row_offsets();
+        let n_rows = offsets[self.views.len()] + self.references.len();
+        let mut r = DVector::zeros(n_rows);
+        for (v, obs) in self.views.iter().enumerate() {
+            let pose = self.pose(x, v);
+            Self::view_residuals(
+                &intr,
+                &pose,
+                obs,
+                &mut r.as_mut_slice()[offsets[v]..offsets[v + 1]],
+            )?;
+        }
+        let base = offsets[self.views.len()];
+        for (k, rf) in self.references.iter().enumerate() {
+            r[base + k] =
+                self.reference_residual(&self.pose(x, rf.view_a), &self.pose(x, rf.view_b), rf);
+        }
+        Some(r)
+    }
+
+    /// Schur complement: eliminate each view's 6x6 pose block, solve the
+    /// small intrinsics system, back-substitute (reference rows couple
+    /// poses, so they fall back to the dense solve).
+    fn solve_normal(&self, a: &DMatrix<f64>, g: &DVector<f64>) -> Option<DVector<f64>> {
+        if !self.references.is_empty() {
+            return None;
+        }
+        let ni = self.block.len();
+        let mut schur = a.view((0, 0), (ni, ni)).into_owned();
+        let mut rhs = g.rows(0, ni).into_owned();
+        let mut inverses = Vec::with_capacity(self.views.len());
+        for v in 0..self.views.len() {
+            let base = ni + POSE_PARAMS * v;
+            let app: SMatrix<f64, POSE_PARAMS, POSE_PARAMS> = a
+                .fixed_view::<POSE_PARAMS, POSE_PARAMS>(base, base)
+                .into_owned();
+            let app_inv = app.cholesky()?.inverse();
+            let aip = a.view((0, base), (ni, POSE_PARAMS));
+            let w = aip * app_inv;
+            schur -= &w * aip.transpose();
+            rhs -= &w * g.fixed_rows::<POSE_PARAMS>(base);
+            inverses.push(app_inv);
+        }
+        let di = if ni > 0 {
+            schur.cholesky()?.solve(&rhs)
+        } else {
+            DVector::zeros(0)
+        };
+        let mut d = DVector::zeros(g.len());
+        d.rows_mut(0, ni).copy_from(&di);
+        for (v, app_inv) in inverses.iter().enumerate() {
+            let base = ni + POSE_PARAMS * v;
+            let api = a.view((base, 0), (POSE_PARAMS, ni));
+            let dp = app_inv * (g.fixed_rows::<POSE_PARAMS>(base) - api * &di);
+            d.fixed_rows_mut::<POSE_PARAMS>(base).copy_from(&dp);
+        }
+        Some(d)
+    }
+
+    /// Assembled point by point from the analytic projection Jacobian,
+    /// never forming the dense (mostly zero) Jacobian.
+    fn normal_equations(
+        &self,
+        x: &DVector<f64>,
+        r: &DVector<f64>,
+    ) -> Option<(DMatrix<f64>, DVector<f64>)> {
+        let n = x.len();
+        let ni = self.block.len();
+        let offsets = self.row_offsets();
+        let intr = self.intrinsics(x);
+        let mut a = DMatrix::zeros(n, n);
+        let mut g = DVector::zeros(n);
+        for (v, obs) in self.views.iter().enumerate() {
+            let base = ni + POSE_PARAMS * v;
+            let pose = Vector6::from_column_slice(&x.as_slice()[base..base + POSE_PARAMS]);
+            let mut aii = SMatrix::<f64, INTRINSIC_PARAMS, INTRINSIC_PARAMS>::zeros();
+            let mut aip = SMatrix::<f64, INTRINSIC_PARAMS, POSE_PARAMS>::zeros();
+            let mut app = SMatrix::<f64, POSE_PARAMS, POSE_PARAMS>::zeros();
+            let mut gi = SVector::<f64, INTRINSIC_PARAMS>::zeros();
+            let mut gp = SVector::<f64, POSE_PARAMS>::zeros();
+            for (i, (p, _)) in obs.iter().enumerate() {
+                let (ji, jp) = projection_jacobian(&intr, &pose, p)?;
+                // Residual = observed - projected: J = -d projection.
+                let rr = -nalgebra::Vector2::new(r[offsets[v] + 2 * i], r[offsets[v] + 2 * i + 1]);
+                aii += ji.tr_mul(&ji);
+                aip += ji.tr_mul(&jp);
+                app += jp.tr_mul(&jp);
+                gi += ji.tr_mul(&rr);
+                gp += jp.tr_mul(&rr);
+            }
+            a.view_mut((base, base), (POSE_PARAMS, POSE_PARAMS))
+                .copy_from(&app);
+            g.rows_mut(base, POSE_PARAMS).copy_from(&gp);
+            if ni > 0 {
+                let mut block = a.view_mut((0, 0), (ni, ni));
+                block += aii.view((0, 0), (ni, ni));
+                a.view_mut((0, base), (ni, POSE_PARAMS))
+                    .copy_from(&aip.view((0, 0), (ni, POSE_PARAMS)));
+                a.view_mut((base, 0), (POSE_PARAMS, ni))
+                    .copy_from(&aip.view((0, 0), (ni, POSE_PARAMS)).transpose());
+                let mut gblock = g.rows_mut(0, ni);
+                gblock += gi.rows(0, ni);
+            }
+        }
+        if !self.references.is_empty() {
+            let base = offsets[self.views.len()];
+            let jac = self.reference_jacobian(x);
+            for k in 0..self.references.len() {
+                let row = jac.row(k);
+                a += row.transpose() * row;
+                g += row.transpose() * r[base + k];
+            }
+        }
+        Some((a, g))
+    }
+
+    /// Analytic image rows ([`projection_jacobian`]): intrinsics touch
+    /// every image row, a pose only its own image's rows; the few
+    /// reference-distance rows by central differences.
+    fn jacobian(&self, x: &DVector<f64>) -> Option<DMatrix<f64>> {
+        let offsets = self.row_offsets();
+        let n_img_rows = offsets[self.views.len()];
+        let n_rows = n_img_rows + self.references.len();
+        let ni = self.block.len();
+        let mut jac = DMatrix::zeros(n_rows, x.len());
+        let intr = self.intrinsics(x);
+        for (v, obs) in self.views.iter().enumerate() {
+            let base = ni + POSE_PARAMS * v;
+            let pose = Vector6::from_column_slice(&x.as_slice()[base..base + POSE_PARAMS]);
+            for (i, (p, _)) in obs.iter().enumerate() {
+                let (ji, jp) = projection_jacobian(&intr, &pose, p)?;
+                let row = offsets[v] + 2 * i;
+                for k in 0..2 {
+                    // Residual = observed - projected.
+                    for j in 0..ni {
+                        jac[(row + k, j)] = -ji[(k, j)];
+                    }
+                    for j in 0..POSE_PARAMS {
+                        jac[(row + k, base + j)] = -jp[(k, j)];
+                    }
+                }
+            }
+        }
+        let refs = self.reference_jacobian(x);
+        for k in 0..self.references.len() {
+            jac.row_mut(n_img_rows + k).copy_from(&refs.row(k));
+        }
+        Some(jac)
+    }
+}
+
+impl JointProblem<'_> {
+    /// Rows of the reference-distance residuals (central differences over
+    /// the two poses involved).
+    fn reference_jacobian(&self, x: &DVector<f64>) -> DMatrix<f64> {
+        let ni = self.block.len();
+        let mut jac = DMatrix::zeros(self.references.len(), x.len());
+        let mut probe = x.clone();
+        for (k, rf) in self.references.iter().enumerate() {
+            for view in [rf.view_a, rf.view_b] {
+                for c in 0..POSE_PARAMS {
+                    let j = ni + POSE_PARAMS * view + c;
+                    let h = FINITE_DIFFERENCE_STEP * x[j].abs().max(1.0);
+                    probe[j] = x[j] + h;
+                    let plus = self.ref_at(&probe, k);
+                    probe[j] = x[j] - h;
+                    let minus = self.ref_at(&probe, k);
+                    probe[j] = x[j];
+                    jac[(k, j)] = (plus - minus) / (2.0 * h);
+                }
+            }
+        }
+        jac
+    }
+
+    /// `(J^T J, J^T r)` using the block structure: the rows of view `v`
+    /// touch only the intrinsics and pose `v`; reference rows are dense.
+    pub fn block_normal_equations(
+        &self,
+        jac: &DMatrix<f64>,
+        r: &DVector<f64>,
+    ) -> (DMatrix<f64>, DVector<f64>) {
+        let n = jac.ncols();
+        let ni = self.block.len();
+        let offsets = self.row_offsets();
+        let mut a = DMatrix::zeros(n, n);
+        let mut g = DVector::zeros(n);
+        for v in 0..self.views.len() {
+            let (o, rows) = (offsets[v], offsets[v + 1] - offsets[v]);
+            let p = ni + POSE_PARAMS * v;
+            let jp = jac.view((o, p), (rows, POSE_PARAMS));
+            let rv = r.rows(o, rows);
+            a.view_mut((p, p), (POSE_PARAMS, POSE_PARAMS))
+                .copy_from(&jp.tr_mul(&jp));
+            g.rows_mut(p, POSE_PARAMS).copy_from(&jp.tr_mul(&rv));
+            if ni > 0 {
+                let ji = jac.view((o, 0), (rows, ni));
+                let mut aii = a.view_mut((0, 0), (ni, ni));
+                aii += ji.tr_mul(&ji);
+                let aip = ji.tr_mul(&jp);
+                a.view_mut((0, p), (ni, POSE_PARAMS)).copy_from(&aip);
+                a.view_mut((p, 0), (POSE_PARAMS, ni))
+                    .copy_from(&aip.transpose());
+                let mut gi = g.rows_mut(0, ni);
+                gi += ji.tr_mul(&rv);
+            }
+        }
+        let base = offsets[self.views.len()];
+        for k in 0..self.references.len() {
+            let row = jac.row(base + k);
+            a += row.transpose() * row;
+            g += row.transpose() * r[base + k];
+        }
+        (a, g)
+    }
+
+    fn ref_at(&self, x: &DVector<f64>, k: usize) -> f64 {
+        let rf = &self.references[k];
+        self.reference_residual(&self.pose(x, rf.view_a), &self.pose(x, rf.view_b), rf)
+    }
+}
