@@ -9,7 +9,8 @@
 
 #[path = "../it/main.rs"]
 mod it;
-use it::support;
+// The modules name each other `crate::support`, `crate::hostile`...: the same paths here.
+use it::*;
 
 mod fleet;
 
