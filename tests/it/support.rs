@@ -108,12 +108,13 @@ impl TestApp {
             .unwrap()
     }
 
-    /// Stops the server cleanly; the returned directory keeps the database.
-    pub async fn shutdown(mut self) -> tempfile::TempDir {
+    /// Stops the server cleanly; the returned directory and database guard
+    /// keep the database (SQLite file, PostgreSQL database) while held.
+    pub async fn shutdown(mut self) -> (tempfile::TempDir, TestDb) {
         if let Some(s) = self.server.take() {
             s.shutdown().await;
         }
-        self._dir
+        (self._dir, self._db)
     }
 
     /// A robot `serial` with the 6-joint test table, and a camera session.
