@@ -355,9 +355,10 @@ async fn two_hundred_concurrent_writers_across_replicas() {
     let c = reqwest::Client::new();
     let fleet = start_replicas(3, &db, "1", "0");
     let mut sessions = Vec::new();
-    for i in 0..2 {
+    for (i, replica) in fleet.iter().take(2).enumerate() {
+        let serial = format!("W{i}");
         sessions.push(
-            robot_with_session(&c, &fleet[i].base, &format!("W{i}"), 100 + i as u8)
+            robot_with_session(&c, &replica.base, &serial, 100 + i as u8)
                 .await
                 .0,
         );
