@@ -67,7 +67,7 @@ async fn job_with_too_few_poses_fails_naming_the_problem() {
 
 #[tokio::test]
 async fn running_job_reports_progress_and_can_be_cancelled() {
-    let app = spawn_app_with(|c| c.test_stage_delay_ms = 300).await;
+    let app = spawn_app_with(|c| c.test_stage_delay_ms = 500).await;
     let session = app.robot_and_session("J3").await;
     app.add_point_poses(&session, 5, 1).await;
     let job = start_job(&app, &session, None)
