@@ -67,6 +67,9 @@ CREATE TABLE jobs (
     finished_at       TEXT
 );
 CREATE INDEX jobs_by_state ON jobs(state, id);
+-- Claims look only at unfinished jobs, oldest first: a small partial index,
+-- however many finished jobs the table keeps.
+CREATE INDEX jobs_claimable_by_id ON jobs(id) WHERE state IN ('queued', 'running');
 
 -- Prompt pickup across replicas: whenever a job becomes claimable (inserted
 -- queued, released, or put back for a retry) every listening replica hears
