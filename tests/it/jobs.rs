@@ -198,7 +198,8 @@ async fn shutdown_releases_running_job_without_counting_the_attempt() {
 #[tokio::test]
 async fn queue_reclaims_expired_leases_until_max_attempts() {
     let dir = tempfile::tempdir().unwrap();
-    let s = store::connect(&fresh_database(&dir)).await.unwrap();
+    let db = fresh_database(&dir);
+    let s = store::connect(&db).await.unwrap();
     let app_like = robocal::domain::RobotRecord {
         serial: "X".into(),
         model: "m".into(),
