@@ -8,6 +8,7 @@
 pub use robocal_calib as calib;
 
 pub mod api;
+pub mod client;
 pub mod config;
 pub mod dataset;
 pub mod domain;

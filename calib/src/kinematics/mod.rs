@@ -12,4 +12,4 @@ pub mod presets;
 pub mod projection;
 
 pub use model::{choose_conventions, Convention, Joint, KinematicsError, RobotModel};
-pub use params::{CalibratedModel, Instrument, ParamLayout};
+pub use params::{CalibratedModel, Instrument, ParamKind, ParamLayout};
