@@ -11,7 +11,7 @@ use super::bias::centre_bias;
 use super::calibrate::{CalibrationOptions, IntrinsicsStdDev};
 use super::error::CameraError;
 use super::model::Intrinsics;
-use super::observations::MIN_DOTS_PER_VIEW;
+use super::observations::{Correspondences, MIN_DOTS_PER_VIEW};
 use super::refine::{IntrinsicsBlock, JointProblem};
 use crate::solver::{solve, LmOptions, LmReport};
 
@@ -88,7 +88,7 @@ pub fn refine(input: &RefineInput) -> Result<Refinement, CameraError> {
     };
     let mut bias_iterations = 0;
     let max_rounds = options.max_bias_iterations.max(1) + EXTRA_OUTLIER_ROUNDS;
-    let mut last: Option<(LmReport, Vec<Vec<(Point3<f64>, Point2<f64>)>>)> = None;
+    let mut last: Option<(LmReport, Vec<Correspondences>)> = None;
     for _ in 0..max_rounds {
         let used: Vec<Vec<(Point3<f64>, Point2<f64>)>> = views
             .iter()
