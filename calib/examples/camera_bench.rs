@@ -8,7 +8,7 @@ use std::io::Write;
 use std::time::Instant;
 
 use robocal_calib::camera::{calibrate, CalibrationOptions, CameraCalibration, ViewObservations};
-use robocal_calib::sim::views::{simulate_views, ViewCampaignSpec};
+use robocal_calib::sim::point_views::{simulate_views, ViewCampaignSpec};
 
 const SCRIPT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../bench/opencv_calibrate.py");
 

@@ -6,7 +6,7 @@
 use std::time::Instant;
 
 use robocal_calib::camera::{calibrate, CalibrationMode, CalibrationOptions, CameraCalibration};
-use robocal_calib::sim::views::{simulate_views, SimulatedView, ViewCampaignSpec};
+use robocal_calib::sim::point_views::{simulate_views, SimulatedView, ViewCampaignSpec};
 
 /// One campaign's errors against the truth.
 struct Errors {

@@ -179,3 +179,52 @@ fn undefined_regions_are_stepped_around() {
     let report = solve(&Sqrt, DVector::from_vec(vec![0.01]), &LmOptions::default()).unwrap();
     assert!((report.x[0] - 4.0).abs() < 1e-8);
 }
+
+#[test]
+fn covariance_equals_inverse_normal_matrix_when_well_conditioned() {
+    let problem = exp_data([2500.0, 1.3e-3, 40.0], 0.5, 3);
+    let x = DVector::from_vec(vec![2500.0, 1.3e-3, 40.0]);
+    let jac = problem.jacobian(&x).unwrap();
+    let jtj = jac.tr_mul(&jac);
+    let direct = jtj.clone().try_inverse().unwrap() * 2.0;
+    let ours = covariance_from_normal_matrix(&jtj, 2.0);
+    for (a, b) in direct.iter().zip(ours.iter()) {
+        assert!((a - b).abs() <= 1e-8 * a.abs().max(1e-30), "{a} vs {b}");
+    }
+}
+
+/// A problem that assembles its normal equations itself converges to the
+/// same answer as the dense default.
+#[test]
+fn assembled_normal_equations_match_dense_path() {
+    struct Assembled(ExpDecay);
+    impl LeastSquaresProblem for Assembled {
+        fn residuals(&self, x: &DVector<f64>) -> Option<DVector<f64>> {
+            self.0.residuals(x)
+        }
+        fn normal_equations(&self, x: &DVector<f64>, r: &DVector<f64>) -> Option<NormalEquations> {
+            let mut ne = NormalEquations::zeros(3);
+            for (k, t) in self.0.t.iter().enumerate() {
+                let e = (-x[1] * t).exp();
+                let row = nalgebra::Vector3::new(e, -x[0] * t * e, 1.0);
+                for i in 0..3 {
+                    ne.jtr[i] += row[i] * r[k];
+                    for j in 0..3 {
+                        ne.jtj[(i, j)] += row[i] * row[j];
+                    }
+                }
+            }
+            Some(ne)
+        }
+    }
+    let truth = [2500.0, 1.3e-3, 40.0];
+    let x0 = DVector::from_vec(vec![1000.0, 1e-3, 0.0]);
+    let dense = solve(&exp_data(truth, 0.5, 9), x0.clone(), &LmOptions::default()).unwrap();
+    let fast = solve(
+        &Assembled(exp_data(truth, 0.5, 9)),
+        x0,
+        &LmOptions::default(),
+    )
+    .unwrap();
+    assert!((&dense.x - &fast.x).amax() < 1e-6 * dense.x.amax());
+}

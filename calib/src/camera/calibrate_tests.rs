@@ -3,7 +3,7 @@
 
 use super::*;
 use crate::camera::refine::StationDistance;
-use crate::sim::views::{simulate_views, SimulatedView, ViewCampaignSpec};
+use crate::sim::point_views::{simulate_views, SimulatedView, ViewCampaignSpec};
 
 /// Issue 4 targets.
 const FOCAL_REL_TOL: f64 = 1e-4;

@@ -5,7 +5,7 @@ use rand::{rngs::StdRng, SeedableRng};
 use rand_distr::{Distribution, Normal};
 
 use super::*;
-use crate::sim::views::{simulate_views, ViewCampaignSpec};
+use crate::sim::point_views::{simulate_views, ViewCampaignSpec};
 
 /// Noise realisations for the covariance check.
 const REALISATIONS: usize = 200;

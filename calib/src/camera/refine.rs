@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 use super::model::Intrinsics;
 use super::projection_jacobian::{projection_jacobian, INTRINSIC_PARAMS};
 use crate::geometry::{pose_from_vector, pose_to_vector};
-use crate::solver::{LeastSquaresProblem, FINITE_DIFFERENCE_STEP};
+use crate::solver::{LeastSquaresProblem, NormalEquations, FINITE_DIFFERENCE_STEP};
 
 /// Pose parameters per view.
 pub const POSE_PARAMS: usize = 6;
@@ -174,52 +174,9 @@ impl LeastSquaresProblem for JointProblem<'_> {
         Some(r)
     }
 
-    /// Schur complement: eliminate each view's 6x6 pose block, solve the
-    /// small intrinsics system, back-substitute (reference rows couple
-    /// poses, so they fall back to the dense solve).
-    fn solve_normal(&self, a: &DMatrix<f64>, g: &DVector<f64>) -> Option<DVector<f64>> {
-        if !self.references.is_empty() {
-            return None;
-        }
-        let ni = self.block.len();
-        let mut schur = a.view((0, 0), (ni, ni)).into_owned();
-        let mut rhs = g.rows(0, ni).into_owned();
-        let mut inverses = Vec::with_capacity(self.views.len());
-        for v in 0..self.views.len() {
-            let base = ni + POSE_PARAMS * v;
-            let app: SMatrix<f64, POSE_PARAMS, POSE_PARAMS> = a
-                .fixed_view::<POSE_PARAMS, POSE_PARAMS>(base, base)
-                .into_owned();
-            let app_inv = app.cholesky()?.inverse();
-            let aip = a.view((0, base), (ni, POSE_PARAMS));
-            let w = aip * app_inv;
-            schur -= &w * aip.transpose();
-            rhs -= &w * g.fixed_rows::<POSE_PARAMS>(base);
-            inverses.push(app_inv);
-        }
-        let di = if ni > 0 {
-            schur.cholesky()?.solve(&rhs)
-        } else {
-            DVector::zeros(0)
-        };
-        let mut d = DVector::zeros(g.len());
-        d.rows_mut(0, ni).copy_from(&di);
-        for (v, app_inv) in inverses.iter().enumerate() {
-            let base = ni + POSE_PARAMS * v;
-            let api = a.view((base, 0), (POSE_PARAMS, ni));
-            let dp = app_inv * (g.fixed_rows::<POSE_PARAMS>(base) - api * &di);
-            d.fixed_rows_mut::<POSE_PARAMS>(base).copy_from(&dp);
-        }
-        Some(d)
-    }
-
     /// Assembled point by point from the analytic projection Jacobian,
     /// never forming the dense (mostly zero) Jacobian.
-    fn normal_equations(
-        &self,
-        x: &DVector<f64>,
-        r: &DVector<f64>,
-    ) -> Option<(DMatrix<f64>, DVector<f64>)> {
+    fn normal_equations(&self, x: &DVector<f64>, r: &DVector<f64>) -> Option<NormalEquations> {
         let n = x.len();
         let ni = self.block.len();
         let offsets = self.row_offsets();
@@ -267,7 +224,7 @@ impl LeastSquaresProblem for JointProblem<'_> {
                 g += row.transpose() * r[base + k];
             }
         }
-        Some((a, g))
+        Some(NormalEquations { jtj: a, jtr: g })
     }
 
     /// Analytic image rows ([`projection_jacobian`]): intrinsics touch
@@ -327,47 +284,6 @@ impl JointProblem<'_> {
             }
         }
         jac
-    }
-
-    /// `(J^T J, J^T r)` using the block structure: the rows of view `v`
-    /// touch only the intrinsics and pose `v`; reference rows are dense.
-    pub fn block_normal_equations(
-        &self,
-        jac: &DMatrix<f64>,
-        r: &DVector<f64>,
-    ) -> (DMatrix<f64>, DVector<f64>) {
-        let n = jac.ncols();
-        let ni = self.block.len();
-        let offsets = self.row_offsets();
-        let mut a = DMatrix::zeros(n, n);
-        let mut g = DVector::zeros(n);
-        for v in 0..self.views.len() {
-            let (o, rows) = (offsets[v], offsets[v + 1] - offsets[v]);
-            let p = ni + POSE_PARAMS * v;
-            let jp = jac.view((o, p), (rows, POSE_PARAMS));
-            let rv = r.rows(o, rows);
-            a.view_mut((p, p), (POSE_PARAMS, POSE_PARAMS))
-                .copy_from(&jp.tr_mul(&jp));
-            g.rows_mut(p, POSE_PARAMS).copy_from(&jp.tr_mul(&rv));
-            if ni > 0 {
-                let ji = jac.view((o, 0), (rows, ni));
-                let mut aii = a.view_mut((0, 0), (ni, ni));
-                aii += ji.tr_mul(&ji);
-                let aip = ji.tr_mul(&jp);
-                a.view_mut((0, p), (ni, POSE_PARAMS)).copy_from(&aip);
-                a.view_mut((p, 0), (POSE_PARAMS, ni))
-                    .copy_from(&aip.transpose());
-                let mut gi = g.rows_mut(0, ni);
-                gi += ji.tr_mul(&rv);
-            }
-        }
-        let base = offsets[self.views.len()];
-        for k in 0..self.references.len() {
-            let row = jac.row(base + k);
-            a += row.transpose() * row;
-            g += row.transpose() * r[base + k];
-        }
-        (a, g)
     }
 
     fn ref_at(&self, x: &DVector<f64>, k: usize) -> f64 {

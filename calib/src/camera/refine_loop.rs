@@ -259,13 +259,12 @@ pub fn refine(input: &RefineInput) -> Result<Refinement, CameraError> {
 }
 
 fn intrinsics_std_dev(
-    problem: &JointProblem,
+    _problem: &JointProblem,
     report: &LmReport,
     n_intr: usize,
     intr: &Intrinsics,
 ) -> Option<IntrinsicsStdDev> {
-    let (a, _) = problem.block_normal_equations(&report.jacobian, &report.residuals);
-    let inv = a.cholesky()?.inverse();
+    let inv = report.normal_matrix.clone().cholesky()?.inverse();
     let var = report.residual_variance();
     let sd = |i: usize| {
         if i < n_intr {

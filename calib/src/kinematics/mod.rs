@@ -1,6 +1,15 @@
 //! Robot kinematic model, identification and compensation (method.md §5–8).
 
+pub mod identifiability;
+pub mod identify;
+pub mod ik;
+pub mod initial;
+pub mod jacobian;
+pub mod joint_refine;
 pub mod model;
+pub mod params;
 pub mod presets;
+pub mod projection;
 
 pub use model::{choose_conventions, Convention, Joint, KinematicsError, RobotModel};
+pub use params::{CalibratedModel, Instrument, ParamLayout};

@@ -53,6 +53,42 @@ pub fn puma560() -> RobotModel {
     ])
 }
 
+/// Universal Robots UR5 (CB-series), standard DH.
+///
+/// Source: Universal Robots, "DH parameters for calculations of kinematics
+/// and dynamics" (universal-robots.com support article): d1 89.159,
+/// a2 -425, a3 -392.25, d4 109.15, d5 94.65, d6 82.3 mm; alpha 90, 0, 0,
+/// 90, -90, 0 deg; joint ranges +-360 deg. Checked against the Jacobi 2025
+/// laser-tracker data (`shared/data/kinematic/ur5_wam_jacobi2025`): its
+/// nominal targets are this model's flange plus a 31 mm tool, to 0.007 mm.
+/// Links 2 and 3 (parallel axes 2-3-4) become Hayati.
+pub fn ur5() -> RobotModel {
+    ur([89.159, -425.0, -392.25, 109.15, 94.65, 82.3])
+}
+
+/// Universal Robots UR10 (CB-series), standard DH.
+///
+/// Source: as [`ur5`]: d1 127.3, a2 -612, a3 -572.3, d4 163.941, d5 115.7,
+/// d6 92.2 mm, the same twists and ranges.
+pub fn ur10() -> RobotModel {
+    ur([127.3, -612.0, -572.3, 163.941, 115.7, 92.2])
+}
+
+/// UR joint range (deg), every joint.
+const UR_JOINT_RANGE_DEG: f64 = 360.0;
+
+fn ur([d1, a2, a3, d4, d5, d6]: [f64; 6]) -> RobotModel {
+    let r = (-UR_JOINT_RANGE_DEG, UR_JOINT_RANGE_DEG);
+    auto([
+        Joint::dh(0.0, 90.0, d1, 0.0, r),
+        Joint::dh(a2, 0.0, 0.0, 0.0, r),
+        Joint::dh(a3, 0.0, 0.0, 0.0, r),
+        Joint::dh(0.0, 90.0, d4, 0.0, r),
+        Joint::dh(0.0, -90.0, d5, 0.0, r),
+        Joint::dh(0.0, 0.0, d6, 0.0, r),
+    ])
+}
+
 /// A preset by its contract name.
 pub fn by_name(name: &str) -> Option<RobotModel> {
     match name {

@@ -1,1 +1,334 @@
-//! Whole-campaign simulator: perturbed robot, flange camera, joints, images, truth.
+//! Whole-campaign simulator (method.md §5–7): a robot with perturbed
+//! kinematics, a flange camera with an unknown hand–eye transform, camera
+//! stations 600–1000 mm from the board at 20–45 degrees reached through the
+//! *nominal* inverse kinematics, encoder noise and optional joint compliance
+//! (an unmodelled error), and the ideal (optionally noisy) image of every
+//! dot. The renderer (`sim/render.rs`) turns [`SimPose::target_to_camera`]
+//! into images; this file only produces geometry and truth.
+
+use nalgebra::{Point2, Point3, Rotation3, UnitQuaternion, Vector3};
+use rand::{rngs::StdRng, Rng, SeedableRng};
+use rand_distr::{Distribution, Normal};
+
+use super::campaign_io::{Board, PoseSet, Truth};
+use crate::camera::model::Intrinsics;
+use crate::geometry::{pose_from_xyz_rpy_deg, Pose};
+use crate::kinematics::ik::inverse_kinematics;
+use crate::kinematics::{CalibratedModel, Convention, RobotModel};
+
+/// Attempts per accepted station before the campaign is declared impossible.
+const MAX_ATTEMPTS_PER_POSE: usize = 200;
+/// Dots must lie this far inside the image border (px).
+const IMAGE_MARGIN_PX: f64 = 20.0;
+/// Random aim point offset from the board centre (mm).
+const AIM_JITTER_MM: f64 = 30.0;
+/// Random roll of the camera about its axis (deg).
+const ROLL_JITTER_DEG: f64 = 25.0;
+
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SimError {
+    #[error("could only place {placed} of {wanted} camera stations within reach and view")]
+    Unreachable { placed: usize, wanted: usize },
+    #[error("invalid campaign specification: {0}")]
+    Spec(String),
+}
+
+/// Everything that defines a simulated campaign.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CampaignSpec {
+    pub nominal: RobotModel,
+    /// Joints (rad) at which the camera looks at the board centre from the
+    /// middle distance along the board normal: places the board.
+    pub home_joints_rad: Vec<f64>,
+    pub cal_poses: usize,
+    pub val_poses: usize,
+    pub joint_offset_sigma_deg: f64,
+    pub length_sigma_mm: f64,
+    pub twist_sigma_deg: f64,
+    pub encoder_sigma_deg: f64,
+    /// Joint 2/3 deflection per metre of horizontal lever arm (rad/m); 0 = off.
+    pub compliance_rad_per_m: f64,
+    pub pixel_sigma_px: f64,
+    pub distance_mm: (f64, f64),
+    pub tilt_deg: (f64, f64),
+    pub board: Board,
+    pub intrinsics: Intrinsics,
+    pub image_size: (u32, u32),
+    /// Hand–eye as the user would guess it; the truth differs from it.
+    pub flange_to_camera_guess: Pose,
+    pub hand_eye_sigma_mm: f64,
+    pub hand_eye_sigma_deg: f64,
+    pub seed: u64,
+}
+
+impl CampaignSpec {
+    /// The campaign: 60 + 30 poses, ~0.1 deg offsets, ~0.8 mm
+    /// lengths, ~0.05 deg twists, 0.1 px dot noise, a 2048x1536 camera with
+    /// a 12 mm lens (3.45 um pixels) and the 9x9 25 mm-pitch board.
+    pub fn standard(preset: &str, seed: u64) -> Result<Self, SimError> {
+        let nominal = crate::kinematics::presets::by_name(preset)
+            .ok_or_else(|| SimError::Spec(format!("unknown preset {preset}")))?;
+        let home_deg: [f64; 6] = match preset {
+            "irb2400" => [0.0, 10.0, 10.0, 0.0, 60.0, 0.0],
+            _ => [0.0, 70.0, -140.0, 0.0, -20.0, 0.0],
+        };
+        Ok(Self {
+            nominal,
+            home_joints_rad: home_deg.iter().map(|d| d.to_radians()).collect(),
+            cal_poses: 60,
+            val_poses: 30,
+            joint_offset_sigma_deg: 0.1,
+            length_sigma_mm: 0.8,
+            twist_sigma_deg: 0.05,
+            encoder_sigma_deg: 0.0001,
+            compliance_rad_per_m: 0.0,
+            pixel_sigma_px: 0.1,
+            distance_mm: (600.0, 1000.0),
+            tilt_deg: (20.0, 45.0),
+            board: Board::standard(),
+            intrinsics: Intrinsics {
+                fx: 3480.0,
+                fy: 3478.0,
+                cx: 1030.0,
+                cy: 760.0,
+                k1: -0.08,
+                k2: 0.05,
+                p1: 2e-4,
+                p2: -1e-4,
+                k3: 0.0,
+            },
+            image_size: (2048, 1536),
+            flange_to_camera_guess: pose_from_xyz_rpy_deg([0.0, 60.0, 110.0], [0.0, 0.0, 0.0])
+                .map_err(|e| SimError::Spec(e.to_string()))?,
+            hand_eye_sigma_mm: 3.0,
+            hand_eye_sigma_deg: 1.0,
+            seed,
+        })
+    }
+}
+
+/// One simulated pose.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SimPose {
+    /// Joints the controller records (what the campaign file carries).
+    pub joints_rad: Vec<f64>,
+    /// Joints the true robot really had (encoder error, compliance).
+    pub true_joints_rad: Vec<f64>,
+    /// True camera pose in the target frame (the renderer's input).
+    pub target_to_camera: Pose,
+    pub set: PoseSet,
+    /// Ideal image of every dot centre, board order (row-major).
+    pub ideal_px: Vec<Point2<f64>>,
+    /// `ideal_px` plus Gaussian noise of the spec's `pixel_sigma_px`.
+    pub observed_px: Vec<Point2<f64>>,
+}
+
+impl SimPose {
+    /// `(target point mm, observed pixel)` pairs: the joint refinement's input.
+    pub fn observations(&self, board: &Board) -> Vec<(Point3<f64>, Point2<f64>)> {
+        board
+            .points()
+            .into_iter()
+            .zip(self.observed_px.iter().copied())
+            .collect()
+    }
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Campaign {
+    pub truth: Truth,
+    pub poses: Vec<SimPose>,
+}
+
+fn gauss(rng: &mut StdRng, sigma: f64) -> f64 {
+    Normal::new(0.0, sigma.max(0.0)).map_or(0.0, |n| n.sample(rng))
+}
+
+/// The true robot: nominal plus Gaussian errors on every parameter.
+pub fn perturb_robot(nominal: &RobotModel, spec: &CampaignSpec, rng: &mut StdRng) -> RobotModel {
+    let mut robot = nominal.clone();
+    for j in robot.joints.iter_mut() {
+        j.theta_offset_rad += gauss(rng, spec.joint_offset_sigma_deg.to_radians());
+        j.a_mm += gauss(rng, spec.length_sigma_mm);
+        j.alpha_rad += gauss(rng, spec.twist_sigma_deg.to_radians());
+        match j.convention {
+            Convention::Dh => j.d_mm += gauss(rng, spec.length_sigma_mm),
+            Convention::Hayati => j.beta_rad += gauss(rng, spec.twist_sigma_deg.to_radians()),
+        }
+    }
+    robot
+}
+
+/// Joint 2 and 3 deflection from gravity, proportional to the horizontal
+/// lever arm from each joint's axis to the flange (unmodelled error): the
+/// joints the true robot has when its encoders read `q`.
+pub fn compliance(robot: &RobotModel, q: &[f64], rad_per_m: f64) -> Vec<f64> {
+    let mut out = q.to_vec();
+    if rad_per_m == 0.0 || q.len() < 3 {
+        return out;
+    }
+    let Ok(flange) = robot.base_to_flange(q) else {
+        return out;
+    };
+    let mut frame = Pose::identity();
+    for (i, (joint, &qi)) in robot.joints.iter().zip(q).enumerate().take(3) {
+        if i >= 1 {
+            let lever = flange.translation.vector - frame.translation.vector;
+            let horizontal_m = (lever.x * lever.x + lever.y * lever.y).sqrt() / 1000.0;
+            out[i] += rad_per_m * horizontal_m;
+        }
+        frame *= joint.link_transform(qi);
+    }
+    out
+}
+
+/// Ideal pixels of all dots, if every one is inside the image margins.
+fn image_of_board(spec: &CampaignSpec, target_to_camera: &Pose) -> Option<Vec<Point2<f64>>> {
+    let inv = target_to_camera.inverse();
+    let (w, h) = (spec.image_size.0 as f64, spec.image_size.1 as f64);
+    spec.board
+        .points()
+        .iter()
+        .map(|p| {
+            let uv = spec.intrinsics.project(&(inv * p))?;
+            let inside = uv.x > IMAGE_MARGIN_PX
+                && uv.y > IMAGE_MARGIN_PX
+                && uv.x < w - IMAGE_MARGIN_PX
+                && uv.y < h - IMAGE_MARGIN_PX;
+            inside.then_some(uv)
+        })
+        .collect()
+}
+
+/// A camera station in the target frame: `tilt` from the board normal,
+/// at `distance`, looking at the board centre (jittered), rolled a little.
+fn station(spec: &CampaignSpec, rng: &mut StdRng) -> Pose {
+    let centre = spec.board.centre();
+    let tilt = rng
+        .random_range(spec.tilt_deg.0..=spec.tilt_deg.1)
+        .to_radians();
+    let azimuth = rng.random_range(0.0..std::f64::consts::TAU);
+    let distance = rng.random_range(spec.distance_mm.0..=spec.distance_mm.1);
+    let dir = Vector3::new(
+        tilt.sin() * azimuth.cos(),
+        tilt.sin() * azimuth.sin(),
+        -tilt.cos(),
+    );
+    let position = centre.coords + dir * distance;
+    let aim = centre.coords
+        + Vector3::new(
+            rng.random_range(-AIM_JITTER_MM..=AIM_JITTER_MM),
+            rng.random_range(-AIM_JITTER_MM..=AIM_JITTER_MM),
+            0.0,
+        );
+    let z = (aim - position).normalize();
+    let x0 = (Vector3::x() - z * z.x).normalize();
+    let y0 = z.cross(&x0);
+    let look = Rotation3::from_basis_unchecked(&[x0, y0, z]);
+    let roll = Rotation3::from_axis_angle(
+        &Vector3::z_axis(),
+        rng.random_range(-ROLL_JITTER_DEG..=ROLL_JITTER_DEG)
+            .to_radians(),
+    );
+    Pose::from_parts(
+        position.into(),
+        UnitQuaternion::from_rotation_matrix(&(look * roll)),
+    )
+}
+
+/// Simulate a campaign (see the module doc).
+pub fn simulate_campaign(spec: &CampaignSpec) -> Result<Campaign, SimError> {
+    let dof = spec.nominal.dof();
+    if spec.home_joints_rad.len() != dof || spec.cal_poses + spec.val_poses == 0 {
+        return Err(SimError::Spec("home joints or pose counts".into()));
+    }
+    let mut rng = StdRng::seed_from_u64(spec.seed);
+    let robot = perturb_robot(&spec.nominal, spec, &mut rng);
+    let he = [0, 1, 2].map(|_| gauss(&mut rng, spec.hand_eye_sigma_mm));
+    let hr = [0, 1, 2].map(|_| gauss(&mut rng, spec.hand_eye_sigma_deg).to_radians());
+    let flange_to_camera = crate::geometry::perturb_left(
+        &spec.flange_to_camera_guess,
+        &nalgebra::Vector6::new(he[0], he[1], he[2], hr[0], hr[1], hr[2]),
+    );
+    // Board: centred on the nominal home camera's axis at mid distance,
+    // target z along the camera z (method.md §1: z points into the board).
+    let base_to_home_camera = spec
+        .nominal
+        .base_to_flange(&spec.home_joints_rad)
+        .map_err(|e| SimError::Spec(e.to_string()))?
+        * spec.flange_to_camera_guess;
+    let mid = 0.5 * (spec.distance_mm.0 + spec.distance_mm.1);
+    let c = spec.board.centre();
+    let base_to_target = base_to_home_camera * Pose::translation(-c.x, -c.y, mid);
+    let target_to_base = base_to_target.inverse();
+    let nominal_model = CalibratedModel {
+        robot: spec.nominal.clone(),
+        world_to_base: target_to_base,
+        flange_to_tool: spec.flange_to_camera_guess,
+    };
+    let true_model = CalibratedModel {
+        robot: robot.clone(),
+        world_to_base: target_to_base,
+        flange_to_tool: flange_to_camera,
+    };
+    let wanted = spec.cal_poses + spec.val_poses;
+    let mut poses = Vec::with_capacity(wanted);
+    let pixel = Normal::new(0.0, spec.pixel_sigma_px.max(f64::MIN_POSITIVE))
+        .map_err(|e| SimError::Spec(e.to_string()))?;
+    let mut attempts = 0;
+    while poses.len() < wanted {
+        attempts += 1;
+        if attempts > MAX_ATTEMPTS_PER_POSE * wanted {
+            return Err(SimError::Unreachable {
+                placed: poses.len(),
+                wanted,
+            });
+        }
+        let desired = station(spec, &mut rng);
+        let seeds = vec![spec.home_joints_rad.clone()];
+        let Ok(sol) = inverse_kinematics(&nominal_model, &desired, &seeds) else {
+            continue;
+        };
+        let joints = sol.joints_rad;
+        let noisy: Vec<f64> = joints
+            .iter()
+            .map(|q| q + gauss(&mut rng, spec.encoder_sigma_deg.to_radians()))
+            .collect();
+        let true_joints = compliance(&robot, &noisy, spec.compliance_rad_per_m);
+        let Ok(target_to_camera) = true_model.world_to_tool(&true_joints) else {
+            continue;
+        };
+        let Some(ideal_px) = image_of_board(spec, &target_to_camera) else {
+            continue;
+        };
+        let observed_px = ideal_px
+            .iter()
+            .map(|p| {
+                if spec.pixel_sigma_px > 0.0 {
+                    Point2::new(p.x + pixel.sample(&mut rng), p.y + pixel.sample(&mut rng))
+                } else {
+                    *p
+                }
+            })
+            .collect();
+        let set = if poses.len() < spec.cal_poses {
+            PoseSet::Cal
+        } else {
+            PoseSet::Val
+        };
+        poses.push(SimPose {
+            joints_rad: joints,
+            true_joints_rad: true_joints,
+            target_to_camera,
+            set,
+            ideal_px,
+            observed_px,
+        });
+    }
+    let truth = Truth::new(spec, &robot, &target_to_base, &flange_to_camera);
+    Ok(Campaign { truth, poses })
+}
+
+#[cfg(test)]
+#[path = "campaign_tests.rs"]
+mod tests;

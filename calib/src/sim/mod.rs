@@ -1,5 +1,11 @@
 //! Simulator: target images and whole campaigns with known truth.
 
+pub mod camera_step;
 pub mod campaign;
+pub mod campaign_io;
+pub mod experiment;
+/// Views as point observations (no image): camera-calibration tests.
+pub mod point_views;
 pub mod render;
+/// Random board views for rendering: detector tests and benchmarks.
 pub mod views;

@@ -1,1 +1,27 @@
 //! Dot-grid target detection (method.md §1): threshold, blobs, ellipses, grid.
+//!
+//! Entry points: [`decode_image`] for untrusted bytes, [`detect`] /
+//! [`detect_with`] for a grey image and a [`TargetSpec`].
+
+pub mod bias;
+pub mod blobs;
+pub mod detect;
+pub mod ellipse;
+pub mod error;
+pub mod grid;
+pub mod homography;
+pub mod image;
+pub mod order;
+pub mod target;
+pub mod threshold;
+
+pub use detect::{detect, detect_dynamic, detect_with, DetectOptions, Detection, DotObservation};
+pub use ellipse::{DotQuality, Ellipse};
+pub use error::DetectError;
+pub use image::{decode_image, DecodeLimits, GrayImage};
+pub use target::TargetSpec;
+
+#[cfg(test)]
+mod detect_tests;
+#[cfg(test)]
+mod real_data_tests;

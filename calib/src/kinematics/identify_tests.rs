@@ -1,0 +1,131 @@
+use super::*;
+use crate::kinematics::initial::initial_world_to_base;
+use crate::sim::campaign::{perturb_robot, CampaignSpec};
+use rand::{rngs::StdRng, Rng, SeedableRng};
+
+/// Noise-free data recovers the model to round-off.
+const EXACT_TOL_MM: f64 = 1e-6;
+
+fn setup(instrument: Instrument) -> (CalibratedModel, CalibratedModel, Vec<Measurement>) {
+    let spec = CampaignSpec::standard("irb2400", 3).unwrap();
+    let mut rng = StdRng::seed_from_u64(11);
+    let truth = CalibratedModel {
+        robot: perturb_robot(&spec.nominal, &spec, &mut rng),
+        world_to_base: crate::geometry::pose_from_xyz_rpy_deg(
+            [1500.0, -200.0, 300.0],
+            [5.0, -3.0, 170.0],
+        )
+        .unwrap(),
+        flange_to_tool: crate::geometry::pose_from_xyz_rpy_deg(
+            [2.0, 58.0, 113.0],
+            [0.5, -0.8, 1.0],
+        )
+        .unwrap(),
+    };
+    let data: Vec<Measurement> = (0..40)
+        .map(|_| {
+            let q: Vec<f64> = truth
+                .robot
+                .joints
+                .iter()
+                .map(|j| rng.random_range(0.6 * j.min_rad..0.6 * j.max_rad))
+                .collect();
+            let pose = truth.world_to_tool(&q).unwrap();
+            let observed = match instrument {
+                Instrument::Camera => Observed::Pose {
+                    world_to_tool: pose,
+                    covariance: None,
+                },
+                Instrument::Tracker => Observed::Position {
+                    position_mm: pose.translation.vector,
+                    covariance: None,
+                },
+            };
+            Measurement {
+                joints_rad: q,
+                observed,
+            }
+        })
+        .collect();
+    let mut start = CalibratedModel {
+        robot: spec.nominal.clone(),
+        world_to_base: Pose::identity(),
+        flange_to_tool: match instrument {
+            Instrument::Camera => spec.flange_to_camera_guess,
+            Instrument::Tracker => Pose::translation(0.0, 60.0, 110.0),
+        },
+    };
+    start.world_to_base = initial_world_to_base(&start, &data).unwrap();
+    (truth, start, data)
+}
+
+#[test]
+fn noise_free_campaigns_are_recovered_exactly_in_both_modes() {
+    for instrument in [Instrument::Camera, Instrument::Tracker] {
+        let (_, start, data) = setup(instrument);
+        for mode in [IdentifyMode::Weighted, IdentifyMode::Paper] {
+            let id = identify(&start, instrument, &data, mode).unwrap();
+            let (before, _) = validate(&id.before, &data).unwrap();
+            let (after, _) = validate(&id.model, &data).unwrap();
+            assert!(
+                before.norm.mean_mm > 0.3,
+                "{instrument:?} {mode:?}: {before:?}"
+            );
+            assert!(
+                after.norm.max_mm < EXACT_TOL_MM,
+                "{instrument:?} {mode:?}: {after:?}"
+            );
+            assert_eq!(id.identifiability.fixed.len(), 6);
+            let free_std: Vec<f64> = id
+                .identifiability
+                .free
+                .iter()
+                .map(|&i| id.std_devs[i])
+                .collect();
+            assert!(
+                free_std.iter().all(|s| *s < 1e-6),
+                "exact data, no uncertainty"
+            );
+        }
+    }
+}
+
+#[test]
+fn bad_input_is_an_error_value() {
+    let (_, start, mut data) = setup(Instrument::Camera);
+    assert!(matches!(
+        identify(&start, Instrument::Camera, &[], IdentifyMode::Weighted),
+        Err(IdentifyError::NoPoses)
+    ));
+    let good = data.clone();
+    data[3].joints_rad.pop();
+    assert!(matches!(
+        identify(&start, Instrument::Camera, &data, IdentifyMode::Weighted),
+        Err(IdentifyError::Pose { pose: 3, .. })
+    ));
+    let mut data = good.clone();
+    data[5].observed = Observed::Position {
+        position_mm: Vector3::zeros(),
+        covariance: None,
+    };
+    assert!(matches!(
+        identify(&start, Instrument::Camera, &data, IdentifyMode::Weighted),
+        Err(IdentifyError::WrongMeasurement { pose: 5, .. })
+    ));
+    let mut data = good;
+    if let Observed::Pose { covariance, .. } = &mut data[2].observed {
+        *covariance = Some(-Matrix6::identity());
+    }
+    assert!(matches!(
+        identify(&start, Instrument::Camera, &data, IdentifyMode::Weighted),
+        Err(IdentifyError::BadCovariance { pose: 2 })
+    ));
+}
+
+#[test]
+fn holdout_takes_every_kth_pose() {
+    let (cal, val) = holdout_split(10, 0.3);
+    assert_eq!(val, [2, 5, 8]);
+    assert_eq!(cal.len(), 7);
+    assert_eq!(holdout_split(4, 0.0).1.len(), 0);
+}

@@ -1,0 +1,166 @@
+//! Serialisable parts of a simulated campaign: the board, the campaign
+//! directory's `poses.json` entries (api.md "Sessions": the zip upload's
+//! `[{"joints_deg","image","set"}]`) and `truth.json`.
+
+use nalgebra::Point3;
+use serde::{Deserialize, Serialize};
+
+use super::campaign::{Campaign, CampaignSpec};
+use crate::camera::model::Intrinsics;
+use crate::geometry::{pose_from_matrix_rows, pose_to_matrix_rows, GeometryError, Pose};
+
+/// A pose as a 4x4 row-major matrix (api.md "Poses"), exact to round-off
+/// unlike roll–pitch–yaw near pitch +-90 degrees.
+pub type MatrixRows = [[f64; 4]; 4];
+use crate::kinematics::RobotModel;
+
+/// The dot-grid board (method.md §1): dot (r, c) at `(c*p, r*p, 0)`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Board {
+    pub rows: usize,
+    pub cols: usize,
+    pub pitch_mm: f64,
+    pub dot_diameter_mm: f64,
+}
+
+impl Board {
+    /// The 9x9 board, 25 mm pitch, 8 mm dots.
+    pub fn standard() -> Self {
+        Self {
+            rows: 9,
+            cols: 9,
+            pitch_mm: 25.0,
+            dot_diameter_mm: 8.0,
+        }
+    }
+
+    /// Dot centres in the target frame, row-major.
+    pub fn points(&self) -> Vec<Point3<f64>> {
+        (0..self.rows)
+            .flat_map(|r| {
+                (0..self.cols).map(move |c| {
+                    Point3::new(c as f64 * self.pitch_mm, r as f64 * self.pitch_mm, 0.0)
+                })
+            })
+            .collect()
+    }
+
+    pub fn centre(&self) -> Point3<f64> {
+        Point3::new(
+            0.5 * (self.cols.saturating_sub(1)) as f64 * self.pitch_mm,
+            0.5 * (self.rows.saturating_sub(1)) as f64 * self.pitch_mm,
+            0.0,
+        )
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PoseSet {
+    Cal,
+    Val,
+}
+
+/// One row of `poses.json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PoseEntry {
+    pub joints_deg: Vec<f64>,
+    pub image: String,
+    pub set: PoseSet,
+}
+
+/// `truth.json`: what the simulator knows and the calibration must find.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Truth {
+    pub nominal: RobotModel,
+    pub robot: RobotModel,
+    pub target_to_base: MatrixRows,
+    pub flange_to_camera: MatrixRows,
+    pub flange_to_camera_guess: MatrixRows,
+    pub intrinsics: Intrinsics,
+    pub image_width: u32,
+    pub image_height: u32,
+    pub board: Board,
+    pub pixel_sigma_px: f64,
+    pub encoder_sigma_deg: f64,
+    pub compliance_rad_per_m: f64,
+    /// The joints the true robot really had, per pose (deg).
+    pub true_joints_deg: Vec<Vec<f64>>,
+    /// The true camera pose per pose (the renderer's input).
+    pub target_to_camera: Vec<MatrixRows>,
+    pub seed: u64,
+}
+
+impl Truth {
+    pub(crate) fn new(
+        spec: &CampaignSpec,
+        robot: &RobotModel,
+        target_to_base: &Pose,
+        flange_to_camera: &Pose,
+    ) -> Self {
+        Self {
+            nominal: spec.nominal.clone(),
+            robot: robot.clone(),
+            target_to_base: pose_to_matrix_rows(target_to_base),
+            flange_to_camera: pose_to_matrix_rows(flange_to_camera),
+            flange_to_camera_guess: pose_to_matrix_rows(&spec.flange_to_camera_guess),
+            intrinsics: spec.intrinsics,
+            image_width: spec.image_size.0,
+            image_height: spec.image_size.1,
+            board: spec.board,
+            pixel_sigma_px: spec.pixel_sigma_px,
+            encoder_sigma_deg: spec.encoder_sigma_deg,
+            compliance_rad_per_m: spec.compliance_rad_per_m,
+            true_joints_deg: Vec::new(),
+            target_to_camera: Vec::new(),
+            seed: spec.seed,
+        }
+    }
+}
+
+impl Truth {
+    /// The true model: robot, `target_to_base`, `flange_to_camera`.
+    pub fn model(&self) -> Result<crate::kinematics::CalibratedModel, GeometryError> {
+        Ok(crate::kinematics::CalibratedModel {
+            robot: self.robot.clone(),
+            world_to_base: pose_from_matrix_rows(&self.target_to_base)?,
+            flange_to_tool: pose_from_matrix_rows(&self.flange_to_camera)?,
+        })
+    }
+}
+
+/// Name of pose `index`'s image inside the campaign directory.
+pub fn image_name(index: usize) -> String {
+    format!("images/{:04}.png", index + 1)
+}
+
+impl Campaign {
+    /// The rows of `poses.json`, images named by [`image_name`].
+    pub fn pose_entries(&self) -> Vec<PoseEntry> {
+        self.poses
+            .iter()
+            .enumerate()
+            .map(|(i, p)| PoseEntry {
+                joints_deg: p.joints_rad.iter().map(|q| q.to_degrees()).collect(),
+                image: image_name(i),
+                set: p.set,
+            })
+            .collect()
+    }
+
+    /// `truth.json` with the per-pose truth filled in.
+    pub fn full_truth(&self) -> Truth {
+        let mut t = self.truth.clone();
+        t.true_joints_deg = self
+            .poses
+            .iter()
+            .map(|p| p.true_joints_rad.iter().map(|q| q.to_degrees()).collect())
+            .collect();
+        t.target_to_camera = self
+            .poses
+            .iter()
+            .map(|p| pose_to_matrix_rows(&p.target_to_camera))
+            .collect();
+        t
+    }
+}

@@ -1,0 +1,74 @@
+//! Why a detection failed: every failure is a clear error value, never a
+//! wrong ordering (issue 3).
+
+use thiserror::Error;
+
+/// Errors of decoding an image and of finding the dot grid in it.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum DetectError {
+    /// The target description is not physically meaningful.
+    #[error("invalid target description: {0}")]
+    InvalidTarget(String),
+    /// The bytes are not a decodable PNG/JPEG (empty, truncated, unknown format).
+    #[error("cannot decode image: {0}")]
+    Decode(String),
+    /// The image header claims dimensions beyond the configured limits.
+    #[error("image {width}x{height} exceeds the limit of {max_width}x{max_height} pixels")]
+    ImageTooLarge {
+        width: u32,
+        height: u32,
+        max_width: u32,
+        max_height: u32,
+    },
+    /// The image is too small to hold a dot grid.
+    #[error("image {width}x{height} is too small (minimum {min_side} px per side)")]
+    ImageTooSmall {
+        width: usize,
+        height: usize,
+        min_side: usize,
+    },
+    /// The grey-level buffer does not match its stated dimensions.
+    #[error("pixel buffer holds {len} values, expected {width}x{height}")]
+    BufferSize {
+        width: usize,
+        height: usize,
+        len: usize,
+    },
+    /// The image has (almost) no contrast: empty, all black or all white.
+    #[error("image has no usable contrast (grey-level range {range:.1})")]
+    NoContrast { range: f32 },
+    /// No lattice of dots resembling the board was found.
+    #[error("no board found: {0}")]
+    NoBoard(String),
+    /// A lattice was found but part of it lies outside the image.
+    #[error(
+        "board partly outside the image: found {found_rows}x{found_cols} of {rows}x{cols} dots"
+    )]
+    BoardPartlyOutside {
+        found_rows: usize,
+        found_cols: usize,
+        rows: usize,
+        cols: usize,
+    },
+    /// A lattice was found but it does not match the target description.
+    #[error("dot lattice does not match the target: {0}")]
+    GridMismatch(String),
+    /// More than one complete board is visible.
+    #[error("ambiguous: {0} complete boards are visible")]
+    AmbiguousBoards(usize),
+    /// The target has an origin marker but no corner dot is larger.
+    #[error("origin marker not found: {0}")]
+    MarkerNotFound(String),
+    /// More than one dot looks like the origin marker.
+    #[error("origin marker ambiguous: {0}")]
+    MarkerAmbiguous(String),
+    /// The dots are too small in the image for a sub-pixel centre.
+    #[error("dots too small: median area {median_area_px:.1} px, minimum {min_area_px:.1} px")]
+    DotsTooSmall {
+        median_area_px: f64,
+        min_area_px: f64,
+    },
+    /// The dot edges are too blurred (or too low in contrast) for a sub-pixel centre.
+    #[error("dots too blurred: {0}")]
+    DotsTooBlurred(String),
+}

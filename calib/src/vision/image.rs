@@ -1,0 +1,148 @@
+//! Grey-level image buffer the detector works on, and safe decoding of
+//! untrusted bytes (limits are checked before any pixel allocation).
+
+use std::io::Cursor;
+
+use image::{DynamicImage, ImageReader, Limits};
+
+use super::error::DetectError;
+
+/// Default largest accepted image side, pixels.
+pub const DEFAULT_MAX_SIDE_PX: u32 = 12_000;
+/// Default largest decoder allocation, bytes (a 12k x 12k 16-bit RGB image is
+/// ~860 MB; keep a service worker well below that).
+pub const DEFAULT_MAX_ALLOC_BYTES: u64 = 512 * 1024 * 1024;
+/// Grey levels are expressed on the 8-bit scale whatever the source depth.
+pub const WHITE_LEVEL: f32 = 255.0;
+/// 16-bit to 8-bit grey-level scale.
+const U16_TO_U8_SCALE: f32 = 1.0 / 257.0;
+
+/// Decoding limits for untrusted image bytes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DecodeLimits {
+    pub max_width: u32,
+    pub max_height: u32,
+    pub max_alloc_bytes: u64,
+}
+
+impl Default for DecodeLimits {
+    fn default() -> Self {
+        Self {
+            max_width: DEFAULT_MAX_SIDE_PX,
+            max_height: DEFAULT_MAX_SIDE_PX,
+            max_alloc_bytes: DEFAULT_MAX_ALLOC_BYTES,
+        }
+    }
+}
+
+/// Row-major grey levels on the 8-bit scale (0 black .. 255 white), any
+/// source depth; the pixel in column `j`, row `i` has centre `(j, i)`
+/// (method.md §1).
+#[derive(Debug, Clone, PartialEq)]
+pub struct GrayImage {
+    pub width: usize,
+    pub height: usize,
+    pub data: Vec<f32>,
+}
+
+impl GrayImage {
+    /// Wraps a buffer, checking its length.
+    pub fn new(width: usize, height: usize, data: Vec<f32>) -> Result<Self, DetectError> {
+        if width.checked_mul(height) != Some(data.len()) {
+            return Err(DetectError::BufferSize {
+                width,
+                height,
+                len: data.len(),
+            });
+        }
+        Ok(Self {
+            width,
+            height,
+            data,
+        })
+    }
+
+    /// Converts any decoded image to grey (luma of colour, 16-bit scaled to 8-bit).
+    pub fn from_dynamic(img: &DynamicImage) -> Self {
+        let (width, height) = (img.width() as usize, img.height() as usize);
+        let data = match img {
+            DynamicImage::ImageLuma8(g) => g.as_raw().iter().map(|&v| v as f32).collect(),
+            DynamicImage::ImageLuma16(g) => g
+                .as_raw()
+                .iter()
+                .map(|&v| v as f32 * U16_TO_U8_SCALE)
+                .collect(),
+            other if other.color().has_color() && other.color().bytes_per_pixel() > 4 => other
+                .to_luma16()
+                .as_raw()
+                .iter()
+                .map(|&v| v as f32 * U16_TO_U8_SCALE)
+                .collect(),
+            other => other
+                .to_luma8()
+                .as_raw()
+                .iter()
+                .map(|&v| v as f32)
+                .collect(),
+        };
+        Self {
+            width,
+            height,
+            data,
+        }
+    }
+
+    /// Grey level at column `x`, row `y` (no bounds check beyond the slice's).
+    #[inline]
+    pub fn at(&self, x: usize, y: usize) -> f32 {
+        self.data[y * self.width + x]
+    }
+
+    /// Rounds to an 8-bit image (for writing PNGs).
+    pub fn to_luma8(&self) -> image::GrayImage {
+        let raw = self
+            .data
+            .iter()
+            .map(|&v| v.round().clamp(0.0, WHITE_LEVEL) as u8)
+            .collect();
+        image::GrayImage::from_raw(self.width as u32, self.height as u32, raw)
+            .expect("length checked at construction")
+    }
+}
+
+fn reader(bytes: &[u8]) -> Result<ImageReader<Cursor<&[u8]>>, DetectError> {
+    let r = ImageReader::new(Cursor::new(bytes))
+        .with_guessed_format()
+        .map_err(|e| DetectError::Decode(e.to_string()))?;
+    if r.format().is_none() {
+        return Err(DetectError::Decode("unrecognised image format".into()));
+    }
+    Ok(r)
+}
+
+/// Decodes untrusted PNG/JPEG bytes to grey, rejecting oversized headers
+/// before allocating pixels and truncated or unknown data with an error.
+pub fn decode_image(bytes: &[u8], limits: &DecodeLimits) -> Result<GrayImage, DetectError> {
+    if bytes.is_empty() {
+        return Err(DetectError::Decode("empty input".into()));
+    }
+    let (width, height) = reader(bytes)?
+        .into_dimensions()
+        .map_err(|e| DetectError::Decode(e.to_string()))?;
+    if width > limits.max_width || height > limits.max_height {
+        return Err(DetectError::ImageTooLarge {
+            width,
+            height,
+            max_width: limits.max_width,
+            max_height: limits.max_height,
+        });
+    }
+    let mut r = reader(bytes)?;
+    let mut lim = Limits::default();
+    lim.max_image_width = Some(limits.max_width);
+    lim.max_image_height = Some(limits.max_height);
+    lim.max_alloc = Some(limits.max_alloc_bytes);
+    r.limits(lim);
+    let img = r.decode().map_err(|e| DetectError::Decode(e.to_string()))?;
+    Ok(GrayImage::from_dynamic(&img))
+}

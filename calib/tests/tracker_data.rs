@@ -1,0 +1,159 @@
+//! Real robots, position only (issue 5): the laser-tracker campaigns in
+//! `shared/data/kinematic/` through the tracker-session identification
+//! (`instrument_to_base` + `flange_to_tool`, 3 rows per pose). Run with
+//! `--nocapture` to print the before/after figures for BENCHMARKS.md.
+
+use nalgebra::Vector3;
+use robocal_calib::geometry::Pose;
+use robocal_calib::kinematics::identify::{
+    fit_parameters, frame_indices, identify, validate, IdentifyMode, Measurement, Observed,
+};
+use robocal_calib::kinematics::initial::initial_world_to_base;
+use robocal_calib::kinematics::{presets, CalibratedModel, Instrument, ParamLayout, RobotModel};
+
+const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/data/kinematic");
+/// The UR5 data's nominal tool: its targets are the nominal flange plus
+/// this offset (see presets::ur5).
+const UR5_TOOL_GUESS_MM: [f64; 3] = [0.0, 0.0, 31.0];
+/// T-Mac probe to flange, `Trafo_TM_F_init.txt` (about 109 mm along z).
+const UR10_TOOL_GUESS_MM: [f64; 3] = [0.0, 0.0, 109.0];
+
+fn position(joints_rad: Vec<f64>, p: [f64; 3]) -> Measurement {
+    Measurement {
+        joints_rad,
+        observed: Observed::Position {
+            position_mm: Vector3::from(p),
+            covariance: None,
+        },
+    }
+}
+
+/// Jacobi 2025 CSV: `step_order,x_t,y_t,z_t,x_dif,y_dif,z_dif,joint_1..6`
+/// (mm, deg); the measured position is target minus difference.
+fn load_ur5(file: &str) -> Vec<Measurement> {
+    let text = std::fs::read_to_string(format!("{DATA}/ur5_wam_jacobi2025/{file}")).unwrap();
+    text.lines()
+        .skip(1)
+        .filter(|l| !l.trim().is_empty())
+        .map(|line| {
+            let v: Vec<f64> = line.split(',').map(|s| s.trim().parse().unwrap()).collect();
+            let measured = [v[1] - v[4], v[2] - v[5], v[3] - v[6]];
+            position(v[7..13].iter().map(|d| d.to_radians()).collect(), measured)
+        })
+        .collect()
+}
+
+/// The data's own `*_dif` columns: the controller's error (nominal model).
+fn load_ur5_differences(file: &str) -> Vec<Vector3<f64>> {
+    let text = std::fs::read_to_string(format!("{DATA}/ur5_wam_jacobi2025/{file}")).unwrap();
+    text.lines()
+        .skip(1)
+        .filter(|l| !l.trim().is_empty())
+        .map(|line| {
+            let v: Vec<f64> = line.split(',').map(|s| s.trim().parse().unwrap()).collect();
+            Vector3::new(v[4], v[5], v[6])
+        })
+        .collect()
+}
+
+/// Landgraf 2021 CSV: `;`-separated, decimal comma; joints (rad) in columns
+/// 7..13, measured x, y, z (mm) in columns 14, 16, 18.
+fn load_ur10(series: &str, file: &str) -> Vec<Measurement> {
+    let text =
+        std::fs::read_to_string(format!("{DATA}/ur10_landgraf2021/{series}/{file}")).unwrap();
+    text.lines()
+        .skip(1)
+        .filter(|l| !l.trim().is_empty())
+        .map(|line| {
+            let v: Vec<f64> = line
+                .split(';')
+                .map(|s| s.trim().replace(',', ".").parse().unwrap_or(f64::NAN))
+                .collect();
+            position(v[7..13].to_vec(), [v[14], v[16], v[18]])
+        })
+        .collect()
+}
+
+fn start(robot: RobotModel, tool_mm: [f64; 3], data: &[Measurement]) -> CalibratedModel {
+    let mut m = CalibratedModel {
+        robot,
+        world_to_base: Pose::identity(),
+        flange_to_tool: Pose::translation(tool_mm[0], tool_mm[1], tool_mm[2]),
+    };
+    m.world_to_base = initial_world_to_base(&m, data).unwrap();
+    m
+}
+
+#[test]
+fn ur5_grid_calibration_matches_a_plain_geometric_fit() {
+    let grid = load_ur5("3D_UR5_uncalibrated_grid_cleaned.csv");
+    let test = load_ur5("3D_UR5_uncalibrated_random_cleaned.csv");
+    assert_eq!((grid.len(), test.len()), (1000, 20));
+    let reference = start(presets::ur5(), UR5_TOOL_GUESS_MM, &grid);
+    let id = identify(
+        &reference,
+        Instrument::Tracker,
+        &grid,
+        IdentifyMode::Weighted,
+    )
+    .unwrap();
+    let paper = identify(&reference, Instrument::Tracker, &grid, IdentifyMode::Paper).unwrap();
+    let raw: Vec<Vector3<f64>> = load_ur5_differences("3D_UR5_uncalibrated_random_cleaned.csv");
+    let raw = robocal_calib::stats::AccuracyStats::from_errors(&raw);
+    let (before, _) = validate(&id.before, &test).unwrap();
+    let (after, _) = validate(&id.model, &test).unwrap();
+    let (after_paper, _) = validate(&paper.model, &test).unwrap();
+    println!(
+        "UR5 (Jacobi 2025), 1000 grid poses -> 20 random: controller as is {:.4} mm mean; nominal kinematics with base and tool fitted {:.4} mm mean (median {:.4}, max {:.4}); after {:.4} mm mean (median {:.4}, max {:.4}, rms {:.4}); paper mode {:.4}; fixed {:?}; cond {:.1}; {} iterations",
+        raw.norm.mean_mm, before.norm.mean_mm, before.norm.median_mm, before.norm.max_mm,
+        after.norm.mean_mm, after.norm.median_mm, after.norm.max_mm, after.norm.rms_mm,
+        after_paper.norm.mean_mm, id.identifiability.fixed, id.identifiability.condition_number, id.iterations
+    );
+    assert!(
+        raw.norm.mean_mm > 2.0,
+        "the controller's UR5 is ~2.5 mm off"
+    );
+    assert!(before.norm.mean_mm > 3.0 * after.norm.mean_mm);
+    assert!(
+        after.norm.mean_mm <= 0.105,
+        "plain geometric fit reaches ~0.10 mm"
+    );
+}
+
+#[test]
+fn ur10_series_b_calibration_validated_on_c_and_d() {
+    let b = load_ur10("Series_B", "measurements_joint_configurations.csv");
+    let reference = start(presets::ur10(), UR10_TOOL_GUESS_MM, &b);
+    let id = identify(&reference, Instrument::Tracker, &b, IdentifyMode::Weighted).unwrap();
+    let layout = ParamLayout::new(&reference.robot, Instrument::Tracker);
+    let base_only = frame_indices(&layout, false);
+    for (series, file) in [
+        ("Series_C", "measurements_random_poses.csv"),
+        ("Series_D", "measurements_iso_cubes.csv"),
+    ] {
+        let val = load_ur10(series, file);
+        let refit = |m: &CalibratedModel| {
+            let (m, _) = fit_parameters(
+                m,
+                Instrument::Tracker,
+                &val,
+                &base_only,
+                IdentifyMode::Weighted,
+            )
+            .unwrap();
+            validate(&m, &val).unwrap().0
+        };
+        let (before, after) = (refit(&id.before), refit(&id.model));
+        println!(
+            "UR10 fixed {:?} (weak {:?})",
+            id.identifiability.fixed, id.identifiability.weak
+        );
+        println!(
+            "UR10 (Landgraf 2021) B -> {series} ({} poses), instrument_to_base refitted: before {:.4} mm mean (max {:.4}); after {:.4} mm mean (median {:.4}, max {:.4}, rms {:.4})",
+            val.len(), before.norm.mean_mm, before.norm.max_mm,
+            after.norm.mean_mm, after.norm.median_mm, after.norm.max_mm, after.norm.rms_mm
+        );
+        assert!(after.norm.mean_mm < 0.75 * before.norm.mean_mm);
+        assert!(after.norm.mean_mm < 0.65);
+    }
+}

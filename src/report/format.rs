@@ -1,0 +1,173 @@
+//! Text escaping and number formatting shared by the report renderings.
+//! Every string that comes from a report (serial, pose ids, notes, warnings)
+//! goes through [`escape_xml`] before it reaches SVG or HTML.
+
+use super::model::{ErrorStats, Report};
+
+/// Escapes the five XML special characters so that arbitrary text is safe
+/// in SVG/HTML element content and in double- or single-quoted attributes.
+pub fn escape_xml(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&#39;"),
+            // Control characters are not allowed in XML 1.0 documents.
+            c if c.is_control() && c != '\n' && c != '\t' => out.push('\u{FFFD}'),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+/// Placeholder printed for a value that is missing or not finite.
+pub const NOT_AVAILABLE: &str = "n/a";
+
+/// A fixed-point number, or [`NOT_AVAILABLE`] when not finite.
+pub fn fixed(value: f64, decimals: usize) -> String {
+    if value.is_finite() {
+        let text = format!("{value:.decimals$}");
+        // A value that rounds to zero prints without a sign ("-0.000").
+        match text.strip_prefix('-') {
+            Some(unsigned) if unsigned.chars().all(|c| c == '0' || c == '.') => {
+                unsigned.to_string()
+            }
+            _ => text,
+        }
+    } else {
+        NOT_AVAILABLE.to_string()
+    }
+}
+
+/// Significant digits kept for a length error in mm (0.0934, 1.84, 12.3).
+const ERROR_SIGNIFICANT_DIGITS: i32 = 3;
+
+/// A length error in mm with three significant digits (at most 4 decimals).
+pub fn mm(value: f64) -> String {
+    significant(value, ERROR_SIGNIFICANT_DIGITS)
+}
+
+/// `value` rounded to `digits` significant digits, plain notation for
+/// ordinary magnitudes and scientific for very large or small ones.
+pub fn significant(value: f64, digits: i32) -> String {
+    if !value.is_finite() {
+        return NOT_AVAILABLE.to_string();
+    }
+    if value == 0.0 {
+        return "0".to_string();
+    }
+    let magnitude = value.abs().log10().floor() as i32;
+    if !(-4..6).contains(&magnitude) {
+        return format!("{:.*e}", (digits - 1).max(0) as usize, value);
+    }
+    let decimals = (digits - 1 - magnitude).max(0) as usize;
+    format!("{value:.decimals$}")
+}
+
+/// Significant digits of a standard deviation when quoting `value ± std`.
+const STD_SIGNIFICANT_DIGITS: i32 = 2;
+/// Most decimals printed for a value quoted with its standard deviation.
+const MAX_VALUE_DECIMALS: i32 = 9;
+/// Decimals of a value without a usable standard deviation (held fixed).
+const DECIMALS_WITHOUT_STD: usize = 3;
+
+/// Decimals that show a standard deviation to two significant digits; the
+/// value is printed to the same decimals (metrology convention).
+pub fn decimals_for_std(std: f64) -> usize {
+    if !std.is_finite() || std <= 0.0 {
+        return DECIMALS_WITHOUT_STD;
+    }
+    let magnitude = std.log10().floor() as i32;
+    (STD_SIGNIFICANT_DIGITS - 1 - magnitude).clamp(0, MAX_VALUE_DECIMALS) as usize
+}
+
+/// `value` printed to the precision its standard deviation supports.
+pub fn with_precision_of(value: f64, std: f64) -> String {
+    if std.is_finite() && std > 0.0 {
+        fixed(value, decimals_for_std(std))
+    } else {
+        significant(value, 6)
+    }
+}
+
+/// Reads one statistic out of [`ErrorStats`].
+pub type StatGetter = fn(&ErrorStats) -> f64;
+
+/// The statistics quoted in the report tables, in order (method.md §7).
+pub const STAT_ROWS: [(&str, StatGetter); 5] = [
+    ("mean", |s| s.mean_mm),
+    ("median", |s| s.median_mm),
+    ("std dev", |s| s.std_mm),
+    ("RMS", |s| s.rms_mm),
+    ("max", |s| s.max_mm),
+];
+
+/// Before/after mean ratio ("how many times smaller the error became").
+pub fn improvement_factor(report: &Report) -> Option<f64> {
+    let (before, after) = (report.before.three_d.mean_mm, report.after.three_d.mean_mm);
+    (before.is_finite() && after.is_finite() && after > 0.0).then(|| before / after)
+}
+
+/// The improvement factor as text ("19.6x"), or "n/a".
+pub fn improvement_text(report: &Report) -> String {
+    match improvement_factor(report) {
+        Some(f) => format!("{}x", significant(f, 3)),
+        None => NOT_AVAILABLE.to_string(),
+    }
+}
+
+/// What the "before" model fits besides the base frame (method.md §7):
+/// the hand–eye transform with a flange camera, the tool point otherwise.
+pub fn before_fit(report: &Report) -> &'static str {
+    if report.camera.is_some() {
+        "hand–eye transform"
+    } else {
+        "tool point"
+    }
+}
+
+/// The one-line summary used as the header of every rendering.
+pub fn headline(report: &Report) -> String {
+    format!(
+        "mean 3-D error at {} validation poses: {} mm before → {} mm after ({} smaller)",
+        report.after.three_d.n,
+        mm(report.before.three_d.mean_mm),
+        mm(report.after.three_d.mean_mm),
+        improvement_text(report)
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn escapes_markup_and_quotes() {
+        assert_eq!(
+            escape_xml(r#"<script>alert('x' & "y")</script>"#),
+            "&lt;script&gt;alert(&#39;x&#39; &amp; &quot;y&quot;)&lt;/script&gt;"
+        );
+        assert_eq!(escape_xml("a\u{1}b"), "a\u{FFFD}b");
+    }
+
+    #[test]
+    fn significant_digits() {
+        assert_eq!(significant(0.093_41, 3), "0.0934");
+        assert_eq!(significant(1.8449, 3), "1.84");
+        assert_eq!(significant(123.46, 3), "123");
+        assert_eq!(significant(-2.5e-7, 2), "-2.5e-7");
+        assert_eq!(significant(f64::NAN, 3), NOT_AVAILABLE);
+        assert_eq!(fixed(-0.0004, 3), "0.000");
+        assert_eq!(fixed(-0.0006, 3), "-0.001");
+    }
+
+    #[test]
+    fn value_follows_std_precision() {
+        assert_eq!(with_precision_of(1403.2461, 0.41), "1403.25");
+        assert_eq!(with_precision_of(-0.213_456, 0.0012), "-0.2135");
+        assert_eq!(with_precision_of(640.0, 12.0), "640");
+    }
+}

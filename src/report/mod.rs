@@ -1,0 +1,24 @@
+//! The accuracy report of a parameter set (api.md "Results"): its data
+//! model, and its renderings: one SVG sheet of charts ([`render_svg`]), a
+//! printable self-contained HTML page ([`render_html`]) and a plain-text
+//! terminal table ([`render_table`]).
+
+mod distribution;
+mod field;
+mod field_key;
+pub mod format;
+mod html;
+mod html_sections;
+pub mod model;
+mod plot;
+pub mod sample;
+pub mod svg;
+mod svg_writer;
+mod table;
+#[cfg(test)]
+mod xml_check;
+
+pub use html::render_html;
+pub use model::*;
+pub use svg::render_svg;
+pub use table::render_table;

@@ -1,0 +1,162 @@
+//! The report JSON of api.md (`GET .../parameter-sets/{version}/report`).
+//! Built by the pipeline from the calibration results; rendered by the
+//! sibling modules. Lengths in mm, angles in degrees, image data in pixels.
+
+use serde::{Deserialize, Serialize};
+
+/// Statistics of a set of error magnitudes (method.md §7).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct ErrorStats {
+    pub n: usize,
+    pub mean_mm: f64,
+    pub median_mm: f64,
+    pub std_mm: f64,
+    pub max_mm: f64,
+    pub rms_mm: f64,
+}
+
+/// 3-D error statistics plus the same of the absolute error per axis
+/// (in the world = target or instrument frame).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct AccuracySummary {
+    #[serde(flatten)]
+    pub three_d: ErrorStats,
+    pub x: ErrorStats,
+    pub y: ErrorStats,
+    pub z: ErrorStats,
+}
+
+/// One camera view's fit.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ViewReport {
+    pub pose_id: String,
+    pub rms_px: f64,
+    pub board_angle_deg: f64,
+    /// E.g. "board-to-image angle under 20 degrees: focal length poorly conditioned".
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub warning: Option<String>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CameraReport {
+    /// "refined" (default) or "paper".
+    pub mode: String,
+    pub image_width: u32,
+    pub image_height: u32,
+    pub fx: f64,
+    pub fy: f64,
+    pub cx: f64,
+    pub cy: f64,
+    pub k1: f64,
+    pub k2: f64,
+    pub p1: f64,
+    pub p2: f64,
+    pub k3: f64,
+    /// Standard deviations in the same order and units, when estimated.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub std: Option<CameraStd>,
+    pub reprojection_rms_px: f64,
+    pub outliers_dropped: usize,
+    pub views: Vec<ViewReport>,
+}
+
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct CameraStd {
+    pub fx: f64,
+    pub fy: f64,
+    pub cx: f64,
+    pub cy: f64,
+    pub k1: f64,
+    pub k2: f64,
+    pub p1: f64,
+    pub p2: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DetectionFailure {
+    pub pose_id: String,
+    pub reason: String,
+}
+
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct DetectionReport {
+    pub images: usize,
+    pub images_detected: usize,
+    pub dots_per_image: usize,
+    pub failures: Vec<DetectionFailure>,
+}
+
+/// Per pose: position error at that pose before (nominal kinematics, only
+/// base and hand–eye fitted) and after calibration, world frame, mm.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PoseReport {
+    pub pose_id: String,
+    /// "cal" or "val".
+    pub set: String,
+    pub joints_deg: Vec<f64>,
+    pub before_error_mm: [f64; 3],
+    pub after_error_mm: [f64; 3],
+    pub before_mm: f64,
+    pub after_mm: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reprojection_rms_px: Option<f64>,
+}
+
+/// One identified parameter against its nominal value.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ParameterReport {
+    /// E.g. "joint2.a_mm", "joint3.beta_deg", "target_to_base.tx_mm".
+    pub name: String,
+    pub unit: String,
+    pub nominal: f64,
+    pub identified: f64,
+    pub std: f64,
+    /// Held fixed as unidentifiable (redundant with another parameter).
+    pub fixed: bool,
+}
+
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct IdentifiabilityReport {
+    pub parameters: usize,
+    pub rank: usize,
+    pub condition_number: f64,
+    pub observability_index: f64,
+    pub fixed: Vec<String>,
+}
+
+/// A reprojection residual at an image point (observed minus predicted),
+/// for the residual-field plot.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ResidualSample {
+    pub x_px: f64,
+    pub y_px: f64,
+    pub dx_px: f64,
+    pub dy_px: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Report {
+    pub serial: String,
+    pub version: i64,
+    pub job_id: String,
+    pub session_id: String,
+    pub created_at: String,
+    /// "camera" or "tracker".
+    pub instrument: String,
+    /// "pose" or "position".
+    pub measurement: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub camera: Option<CameraReport>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub detection: Option<DetectionReport>,
+    /// Validation-pose statistics before and after calibration.
+    pub before: AccuracySummary,
+    pub after: AccuracySummary,
+    pub per_pose: Vec<PoseReport>,
+    pub parameters: Vec<ParameterReport>,
+    pub identifiability: IdentifiabilityReport,
+    pub residual_field: Vec<ResidualSample>,
+    /// Plain-language remarks for the cell engineer (warnings, what was
+    /// held fixed and why, what remains unmodelled).
+    pub notes: Vec<String>,
+}

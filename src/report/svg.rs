@@ -1,0 +1,393 @@
+//! The report's charts as SVG (issue 6): 3-D error per validation pose,
+//! error histogram, per-axis errors, and the reprojection residual field
+//! (in `field.rs`). [`render_svg`] puts them on one self-contained sheet
+//! under a header; the HTML report embeds the charts one by one.
+
+use super::distribution::{axis_chart, histogram_chart};
+use super::field::{field_height, residual_field_chart};
+use super::format::{before_fit, headline, mm};
+use super::model::{PoseReport, Report};
+use super::plot::*;
+
+/// Width of the whole sheet and of full-width charts.
+pub const SHEET_WIDTH: f64 = 880.0;
+/// Width of the two charts side by side.
+pub const HALF_WIDTH: f64 = SHEET_WIDTH / 2.0;
+const HEADER_HEIGHT: f64 = 78.0;
+/// Baselines of the header's title, metadata and summary lines.
+const HEADER_LINES: [f64; 3] = [26.0, 46.0, 66.0];
+const HEADER_TITLE_SIZE: f64 = 18.0;
+const HEADER_SUMMARY_SIZE: f64 = 12.5;
+pub const POSE_CHART_HEIGHT: f64 = 330.0;
+pub const SMALL_CHART_HEIGHT: f64 = 310.0;
+/// Room left of the plot area for tick labels and the rotated axis label.
+pub(super) const MARGIN_LEFT: f64 = 66.0;
+pub(super) const MARGIN_RIGHT: f64 = 24.0;
+/// Room above the plot area for the title and legend.
+const MARGIN_TOP: f64 = 54.0;
+const MARGIN_BOTTOM: f64 = 50.0;
+/// Extra room under the pose chart for rotated pose ids.
+const POSE_LABEL_ROOM: f64 = 18.0;
+/// Room right of the pose chart for the mean labels.
+const MEAN_LABEL_ROOM: f64 = 70.0;
+pub(super) const TITLE_Y: f64 = 20.0;
+pub(super) const LEGEND_Y: f64 = 40.0;
+const DOT_RADIUS: f64 = 3.6;
+/// Dots shrink to this fraction of the per-pose band when poses are many.
+const DOT_BAND_FRACTION: f64 = 0.3;
+/// Most pose ids written under the pose axis before thinning them out.
+const MAX_POSE_LABELS: usize = 40;
+pub(super) const SMALL_FONT: f64 = 9.5;
+
+/// The whole report as one standalone SVG document.
+pub fn render_svg(report: &Report) -> String {
+    let mut sheet = Svg::default();
+    header(&mut sheet, report);
+    let mut y = HEADER_HEIGHT;
+    place(
+        &mut sheet,
+        0.0,
+        y,
+        &pose_chart(report, SHEET_WIDTH, POSE_CHART_HEIGHT),
+    );
+    y += POSE_CHART_HEIGHT;
+    place(
+        &mut sheet,
+        0.0,
+        y,
+        &histogram_chart(report, HALF_WIDTH, SMALL_CHART_HEIGHT),
+    );
+    place(
+        &mut sheet,
+        HALF_WIDTH,
+        y,
+        &axis_chart(report, HALF_WIDTH, SMALL_CHART_HEIGHT),
+    );
+    y += SMALL_CHART_HEIGHT;
+    let field_h = field_height(report, SHEET_WIDTH);
+    place(
+        &mut sheet,
+        0.0,
+        y,
+        &residual_field_chart(report, SHEET_WIDTH, field_h),
+    );
+    let title = format!(
+        "Calibration accuracy report, robot {} v{}",
+        report.serial, report.version
+    );
+    standalone(SHEET_WIDTH, y + field_h, &title, &sheet.body)
+}
+
+/// Standalone chart documents, for embedding one by one in the HTML page.
+pub fn pose_errors_svg(report: &Report) -> String {
+    standalone(
+        SHEET_WIDTH,
+        POSE_CHART_HEIGHT,
+        "3-D position error per pose",
+        &pose_chart(report, SHEET_WIDTH, POSE_CHART_HEIGHT).body,
+    )
+}
+pub fn histogram_svg(report: &Report) -> String {
+    standalone(
+        HALF_WIDTH,
+        SMALL_CHART_HEIGHT,
+        "Error histogram",
+        &histogram_chart(report, HALF_WIDTH, SMALL_CHART_HEIGHT).body,
+    )
+}
+pub fn axis_errors_svg(report: &Report) -> String {
+    standalone(
+        HALF_WIDTH,
+        SMALL_CHART_HEIGHT,
+        "Error per axis",
+        &axis_chart(report, HALF_WIDTH, SMALL_CHART_HEIGHT).body,
+    )
+}
+pub fn residual_field_svg(report: &Report) -> String {
+    let h = field_height(report, SHEET_WIDTH);
+    standalone(
+        SHEET_WIDTH,
+        h,
+        "Reprojection residual field",
+        &residual_field_chart(report, SHEET_WIDTH, h).body,
+    )
+}
+
+fn place(sheet: &mut Svg, x: f64, y: f64, chart: &Svg) {
+    sheet.body.push_str(&format!(
+        "<g transform=\"translate({x} {y})\">\n{}</g>\n",
+        chart.body
+    ));
+}
+
+fn header(svg: &mut Svg, report: &Report) {
+    let title = format!(
+        "Calibration accuracy report: robot {}, parameter set v{}",
+        report.serial, report.version
+    );
+    svg.bold_text(TITLE_X, HEADER_LINES[0], "start", HEADER_TITLE_SIZE, &title);
+    let meta = format!(
+        "created {} · job {} · session {} · {} ({})",
+        report.created_at, report.job_id, report.session_id, report.instrument, report.measurement
+    );
+    svg.text(
+        TITLE_X,
+        HEADER_LINES[1],
+        "start",
+        FONT_SIZE,
+        MUTED_COLOR,
+        &meta,
+    );
+    let summary = headline(report);
+    svg.bold_text(
+        TITLE_X,
+        HEADER_LINES[2],
+        "start",
+        HEADER_SUMMARY_SIZE,
+        &summary,
+    );
+}
+
+pub(super) fn plot_area(width: f64, height: f64, extra_bottom: f64, margin_right: f64) -> Area {
+    Area {
+        x: MARGIN_LEFT,
+        y: MARGIN_TOP,
+        w: width - MARGIN_LEFT - margin_right,
+        h: height - MARGIN_TOP - MARGIN_BOTTOM - extra_bottom,
+    }
+}
+
+/// The poses the accuracy statistics are about: the validation set, or
+/// every pose when the campaign has none (the title says which).
+pub(super) fn judged_poses(report: &Report) -> (Vec<&PoseReport>, &'static str) {
+    let val: Vec<&PoseReport> = report.per_pose.iter().filter(|p| p.set == "val").collect();
+    if val.is_empty() {
+        (
+            report.per_pose.iter().collect(),
+            "all poses (no validation set)",
+        )
+    } else {
+        (val, "validation poses")
+    }
+}
+
+pub(super) fn axis_label(what: &str, scale: &Scale) -> String {
+    if scale.log {
+        format!("{what} [mm] (log scale)")
+    } else {
+        format!("{what} [mm]")
+    }
+}
+
+pub(super) fn no_data(svg: &mut Svg, area: Area, text: &str) {
+    svg.outline(area.x, area.y, area.w, area.h, GRID_COLOR);
+    svg.text(
+        area.x + area.w / 2.0,
+        area.y + area.h / 2.0,
+        "middle",
+        FONT_SIZE,
+        MUTED_COLOR,
+        text,
+    );
+}
+
+/// Dumbbell plot: before and after error of each judged pose joined by a
+/// line, with both means as dashed lines.
+fn pose_chart(report: &Report, width: f64, height: f64) -> Svg {
+    let mut svg = Svg::default();
+    let (poses, which) = judged_poses(report);
+    svg.title(
+        TITLE_X,
+        TITLE_Y,
+        &format!("3-D position error per pose, {which}"),
+    );
+    let before_label = format!(
+        "before (nominal kinematics; base and {} fitted)",
+        before_fit(report)
+    );
+    legend(
+        &mut svg,
+        TITLE_X,
+        LEGEND_Y,
+        &[
+            (Mark::Dot(BEFORE_COLOR), &before_label),
+            (Mark::Dot(AFTER_COLOR), "after calibration"),
+            (Mark::Dash(MUTED_COLOR), "mean"),
+        ],
+    );
+    let area = plot_area(width, height, POSE_LABEL_ROOM, MEAN_LABEL_ROOM);
+    if poses.is_empty() {
+        no_data(&mut svg, area, "no poses in this report");
+        return svg;
+    }
+    // The means are drawn too, so the axis covers them.
+    let means = [report.before.three_d.mean_mm, report.after.three_d.mean_mm];
+    let values: Vec<f64> = poses
+        .iter()
+        .flat_map(|p| [p.before_mm, p.after_mm])
+        .chain(means)
+        .collect();
+    let scale = Scale::for_magnitudes(&values, area.bottom(), area.y);
+    y_axis(&mut svg, area, &scale, &axis_label("3-D error", &scale));
+    svg.line(
+        area.x,
+        area.bottom(),
+        area.right(),
+        area.bottom(),
+        AXIS_COLOR,
+        1.0,
+    );
+    let band = area.w / poses.len() as f64;
+    let radius = DOT_RADIUS.min(band * DOT_BAND_FRACTION);
+    let label_every = poses.len().div_ceil(MAX_POSE_LABELS);
+    for (i, pose) in poses.iter().enumerate() {
+        let x = area.x + band * (i as f64 + 0.5);
+        let (yb, ya) = (scale.map(pose.before_mm), scale.map(pose.after_mm));
+        svg.line(x, yb, x, ya, "#bbb", 1.5);
+        svg.circle(x, yb, radius, BEFORE_COLOR);
+        svg.circle(x, ya, radius, AFTER_COLOR);
+        svg.line(
+            x,
+            area.bottom(),
+            x,
+            area.bottom() + TICK_LENGTH,
+            AXIS_COLOR,
+            1.0,
+        );
+        if i % label_every == 0 {
+            let y = area.bottom() + TICK_LENGTH + 4.0;
+            svg.rotated_text(x + 3.0, y, -60.0, "end", &pose.pose_id);
+        }
+    }
+    let stats = [
+        (report.before.three_d.mean_mm, BEFORE_COLOR),
+        (report.after.three_d.mean_mm, AFTER_COLOR),
+    ];
+    for (mean, color) in stats {
+        if mean.is_finite() && mean > 0.0 {
+            let y = scale.map(mean);
+            svg.dashed_line(area.x, y, area.right(), y, color);
+            svg.text(
+                area.right() + 4.0,
+                y - 2.0,
+                "start",
+                SMALL_FONT,
+                color,
+                "mean",
+            );
+            svg.text(
+                area.right() + 4.0,
+                y + SMALL_FONT,
+                "start",
+                SMALL_FONT,
+                color,
+                &format!("{} mm", mm(mean)),
+            );
+        }
+    }
+    let x_label = "pose id";
+    svg.text(
+        area.x + area.w / 2.0,
+        height - 8.0,
+        "middle",
+        FONT_SIZE,
+        TEXT_COLOR,
+        x_label,
+    );
+    svg
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::report::sample::{sample_report, sample_tracker_report};
+    use crate::report::xml_check::check_balanced;
+    use crate::report::ErrorStats;
+
+    #[test]
+    fn sheet_is_well_formed_and_shows_every_validation_pose() {
+        let report = sample_report();
+        let svg = render_svg(&report);
+        check_balanced(&svg, false).unwrap();
+        assert!(svg.starts_with("<svg xmlns=\"http://www.w3.org/2000/svg\""));
+        assert!(!svg.contains("href") && !svg.contains("url(") && !svg.contains("<image"));
+        for pose in report.per_pose.iter().filter(|p| p.set == "val") {
+            assert!(
+                svg.contains(&format!(">{}</text>", pose.pose_id)),
+                "{}",
+                pose.pose_id
+            );
+        }
+        // One before and one after dot per validation pose.
+        let dots = |color: &str| {
+            svg.matches(&format!("r=\"{DOT_RADIUS}\" fill=\"{color}\""))
+                .count()
+        };
+        assert_eq!((dots(BEFORE_COLOR), dots(AFTER_COLOR)), (30, 30));
+        for title in [
+            "per pose",
+            "histogram",
+            "per axis",
+            "residual field",
+            "magnified",
+        ] {
+            assert!(svg.contains(title), "{title}");
+        }
+        for chart in [
+            pose_errors_svg,
+            histogram_svg,
+            axis_errors_svg,
+            residual_field_svg,
+        ] {
+            check_balanced(&chart(&report), false).unwrap();
+        }
+    }
+
+    #[test]
+    fn hostile_serial_and_pose_ids_are_escaped() {
+        let mut report = sample_report();
+        report.serial = "<script>alert('x')</script>".into();
+        report.per_pose.last_mut().unwrap().pose_id = "a&b<\"c\">".into();
+        let svg = render_svg(&report);
+        assert!(!svg.contains("<script"));
+        assert!(svg.contains("&lt;script&gt;alert(&#39;x&#39;)&lt;/script&gt;"));
+        assert!(svg.contains("a&amp;b&lt;&quot;c&quot;&gt;"));
+        check_balanced(&svg, false).unwrap();
+    }
+
+    #[test]
+    fn tracker_session_gets_a_note_instead_of_the_field() {
+        let svg = render_svg(&sample_tracker_report());
+        check_balanced(&svg, false).unwrap();
+        assert!(svg.contains("No camera in this session (instrument: tracker)"));
+        assert!(!svg.contains("magnified"));
+    }
+
+    #[test]
+    fn empty_and_non_finite_reports_render_without_panicking() {
+        let mut empty = sample_tracker_report();
+        empty.per_pose.clear();
+        empty.before = Default::default();
+        empty.after = Default::default();
+        let svg = render_svg(&empty);
+        check_balanced(&svg, false).unwrap();
+        assert!(svg.contains("no poses in this report") && !svg.contains("NaN"));
+
+        let mut broken = sample_report();
+        broken.per_pose[40].before_mm = f64::NAN;
+        broken.per_pose[41].after_mm = f64::INFINITY;
+        broken.after.three_d = ErrorStats {
+            mean_mm: f64::NAN,
+            ..Default::default()
+        };
+        broken.residual_field[0].dx_px = f64::NAN;
+        if let Some(camera) = broken.camera.as_mut() {
+            camera.image_width = 0;
+        }
+        let svg = render_svg(&broken);
+        check_balanced(&svg, false).unwrap();
+        assert!(!svg.contains("NaN") && !svg.contains("inf"));
+        check_balanced(&crate::report::render_html(&broken), true).unwrap();
+        assert!(!crate::report::render_table(&broken).is_empty());
+    }
+}
