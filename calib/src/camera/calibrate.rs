@@ -12,7 +12,10 @@ use super::observations::{validate_views, Correspondences, ImageSize, ViewObserv
 use super::pose::{estimate_pose, planar_pose_guess, PoseEstimate};
 use super::refine::StationDistance;
 use super::refine_loop::{refine, RefineInput, Refinement};
-use super::sequence::{paper_sequence, PaperCalibration, PaperOptions, PlanarView};
+use super::sequence::{
+    paper_sequence, PaperCalibration, PaperOptions, PlanarView, CENTRE_STEP_MIN_PX_START,
+    SCALE_STEP_MIN_START,
+};
 use super::tsai::board_angle_deg;
 
 /// Fewest images a calibration accepts (issue 4).
@@ -151,7 +154,20 @@ pub fn calibrate(
                 .collect()
         })
         .collect();
-    let paper = paper_sequence(&planar, image_size, &options.paper)?;
+    // In refined mode the searches only start the joint LM: a coarser
+    // resolution is enough and saves most of their time.
+    let paper_options = match options.mode {
+        CalibrationMode::Paper => options.paper,
+        CalibrationMode::Refined => PaperOptions {
+            centre_tolerance_px: options
+                .paper
+                .centre_tolerance_px
+                .max(CENTRE_STEP_MIN_PX_START),
+            scale_tolerance: options.paper.scale_tolerance.max(SCALE_STEP_MIN_START),
+            ..options.paper
+        },
+    };
+    let paper = paper_sequence(&planar, image_size, &paper_options)?;
     check_focal_determined_paper(&paper)?;
     let pairs: Vec<Vec<(Point3<f64>, Point2<f64>)>> = views.iter().map(|v| v.pairs()).collect();
     let start = options.fixed_intrinsics.unwrap_or(paper.intrinsics);
