@@ -54,6 +54,14 @@ pub trait LeastSquaresProblem {
         let jacobian = self.jacobian(x)?;
         Some(NormalEquations::from_jacobian(&jacobian, r))
     }
+
+    /// Solve `A d = g` for the (column-scaled, damped, positive-definite)
+    /// normal matrix `A` using the problem's structure (a Schur complement
+    /// over block-diagonal pose blocks, say); `None` (the default, or when
+    /// the structured solve fails) falls back to dense Cholesky.
+    fn solve_normal(&self, _a: &DMatrix<f64>, _g: &DVector<f64>) -> Option<DVector<f64>> {
+        None
+    }
 }
 
 /// The Gauss–Newton normal equations `J^T J dx = -J^T r`.
@@ -316,11 +324,14 @@ pub fn solve<P: LeastSquaresProblem + ?Sized>(
             for j in 0..n {
                 damped[(j, j)] += mu;
             }
-            let Some(chol) = damped.cholesky() else {
+            let solved = problem
+                .solve_normal(&damped, &g)
+                .or_else(|| damped.cholesky().map(|c| c.solve(&g)));
+            let Some(solution) = solved else {
                 mu = (mu * 10.0).max(1e-12);
                 continue;
             };
-            let step_s = -chol.solve(&g);
+            let step_s = -solution;
             let step = step_s.component_div(&scale);
             let candidate = &x + &step;
             let new_r = problem
