@@ -174,6 +174,45 @@ impl LeastSquaresProblem for JointProblem<'_> {
         Some(r)
     }
 
+    /// Schur complement: eliminate each view's 6x6 pose block, solve the
+    /// small intrinsics system, back-substitute (reference rows couple
+    /// poses, so they fall back to the dense solve).
+    fn solve_normal(&self, a: &DMatrix<f64>, g: &DVector<f64>) -> Option<DVector<f64>> {
+        if !self.references.is_empty() {
+            return None;
+        }
+        let ni = self.block.len();
+        let mut schur = a.view((0, 0), (ni, ni)).into_owned();
+        let mut rhs = g.rows(0, ni).into_owned();
+        let mut inverses = Vec::with_capacity(self.views.len());
+        for v in 0..self.views.len() {
+            let base = ni + POSE_PARAMS * v;
+            let app: SMatrix<f64, POSE_PARAMS, POSE_PARAMS> = a
+                .fixed_view::<POSE_PARAMS, POSE_PARAMS>(base, base)
+                .into_owned();
+            let app_inv = app.cholesky()?.inverse();
+            let aip = a.view((0, base), (ni, POSE_PARAMS));
+            let w = aip * app_inv;
+            schur -= &w * aip.transpose();
+            rhs -= &w * g.fixed_rows::<POSE_PARAMS>(base);
+            inverses.push(app_inv);
+        }
+        let di = if ni > 0 {
+            schur.cholesky()?.solve(&rhs)
+        } else {
+            DVector::zeros(0)
+        };
+        let mut d = DVector::zeros(g.len());
+        d.rows_mut(0, ni).copy_from(&di);
+        for (v, app_inv) in inverses.iter().enumerate() {
+            let base = ni + POSE_PARAMS * v;
+            let api = a.view((base, 0), (POSE_PARAMS, ni));
+            let dp = app_inv * (g.fixed_rows::<POSE_PARAMS>(base) - api * &di);
+            d.fixed_rows_mut::<POSE_PARAMS>(base).copy_from(&dp);
+        }
+        Some(d)
+    }
+
     /// Assembled point by point from the analytic projection Jacobian,
     /// never forming the dense (mostly zero) Jacobian.
     fn normal_equations(&self, x: &DVector<f64>, r: &DVector<f64>) -> Option<NormalEquations> {
