@@ -1,5 +1,21 @@
 //! robocal: the calibration service. The numerics live in the `robocal-calib`
 //! crate (`calib/`), which knows nothing of HTTP, databases or jobs.
+//!
+//! Data flows one way: an upload lands in [`api`], is validated into the
+//! [`schema`] types, and stored through [`store`]; a job row is claimed by
+//! [`jobs`], which loads the inputs, calls [`pipeline::run`] on a blocking
+//! thread, and stores the outcome.
 pub use robocal_calib as calib;
 
+pub mod api;
+pub mod config;
+pub mod dataset;
+pub mod domain;
+pub mod jobs;
+pub mod metrics;
+pub mod pipeline;
 pub mod report;
+pub mod robot_model;
+pub mod schema;
+pub mod server;
+pub mod store;

@@ -78,10 +78,11 @@ fn summary(preset: &str, all: &[robocal_calib::sim::experiment::ExperimentResult
     let oracle = mean(&|r| r.oracle.norm.mean_mm);
     let joint = mean(&|r| r.joint.norm.mean_mm);
     println!(
-        "SUMMARY {preset} ({} campaigns, mean of per-campaign mean 3-D val error, mm): before {:.4} | oracle {:.4} | two-step plain {:.4} ({:.2}x oracle) | two-step weighted {:.4} ({:.2}x) | paper mode {:.4} ({:.2}x) | joint {:.4} ({:.2}x oracle) | improvement {:.1}x | compensated {:.4} | joint val max {:.4} | campaigns with all params within 3 sigma {}/{} | identify {:.3} s, joint refine {:.3} s",
+        "SUMMARY {preset} ({} campaigns, mean of per-campaign mean 3-D val error, mm): before {:.4} | oracle {:.4} (known-intrinsics oracle {:.4}) | two-step plain {:.4} ({:.2}x oracle) | two-step weighted {:.4} ({:.2}x) | paper mode {:.4} ({:.2}x) | joint {:.4} ({:.2}x oracle) | improvement {:.1}x | compensated {:.4} | joint val max {:.4} | campaigns with all params within 3 sigma {}/{} | identify {:.3} s, joint refine {:.3} s",
         all.len(),
         mean(&|r| r.before.norm.mean_mm),
         oracle,
+        mean(&|r| r.oracle_known_intrinsics.norm.mean_mm),
         mean(&|r| r.two_step_plain.norm.mean_mm),
         mean(&|r| r.two_step_plain.norm.mean_mm) / oracle,
         mean(&|r| r.two_step_weighted.norm.mean_mm),

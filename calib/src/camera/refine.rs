@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 use super::model::Intrinsics;
 use super::projection_jacobian::{projection_jacobian, INTRINSIC_PARAMS};
 use crate::geometry::{pose_from_vector, pose_to_vector};
-use crate::solver::{LeastSquaresProblem, NormalEquations, FINITE_DIFFERENCE_STEP};
+use crate::solver::{LeastSquaresProblem, FINITE_DIFFERENCE_STEP};
 
 /// Pose parameters per view.
 pub const POSE_PARAMS: usize = 6;
@@ -215,7 +215,11 @@ impl LeastSquaresProblem for JointProblem<'_> {
 
     /// Assembled point by point from the analytic projection Jacobian,
     /// never forming the dense (mostly zero) Jacobian.
-    fn normal_equations(&self, x: &DVector<f64>, r: &DVector<f64>) -> Option<NormalEquations> {
+    fn normal_equations(
+        &self,
+        x: &DVector<f64>,
+        r: &DVector<f64>,
+    ) -> Option<(DMatrix<f64>, DVector<f64>)> {
         let n = x.len();
         let ni = self.block.len();
         let offsets = self.row_offsets();
@@ -263,7 +267,7 @@ impl LeastSquaresProblem for JointProblem<'_> {
                 g += row.transpose() * r[base + k];
             }
         }
-        Some(NormalEquations { jtj: a, jtr: g })
+        Some((a, g))
     }
 
     /// Analytic image rows ([`projection_jacobian`]): intrinsics touch

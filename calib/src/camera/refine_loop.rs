@@ -13,7 +13,7 @@ use super::error::CameraError;
 use super::model::Intrinsics;
 use super::observations::{Correspondences, MIN_DOTS_PER_VIEW};
 use super::refine::{IntrinsicsBlock, JointProblem};
-use crate::solver::{solve, LmOptions, LmReport};
+use crate::solver::{solve, LeastSquaresProblem, LmOptions, LmReport};
 
 /// Median absolute residual to standard deviation for a Gaussian.
 const MAD_TO_SIGMA: f64 = 1.4826;
@@ -259,12 +259,13 @@ pub fn refine(input: &RefineInput) -> Result<Refinement, CameraError> {
 }
 
 fn intrinsics_std_dev(
-    _problem: &JointProblem,
+    problem: &JointProblem,
     report: &LmReport,
     n_intr: usize,
     intr: &Intrinsics,
 ) -> Option<IntrinsicsStdDev> {
-    let inv = report.normal_matrix.clone().cholesky()?.inverse();
+    let (a, _) = problem.normal_equations(&report.x, &report.residuals)?;
+    let inv = a.cholesky()?.inverse();
     let var = report.residual_variance();
     let sd = |i: usize| {
         if i < n_intr {

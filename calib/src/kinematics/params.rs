@@ -98,6 +98,18 @@ pub struct Param {
     pub name: String,
 }
 
+/// One identified parameter for reports (api.md "parameter set": values
+/// plus standard deviations, and what was held fixed).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ParamEstimate {
+    pub name: String,
+    /// Identified correction to the reference (mm or rad, see `unit`).
+    pub correction: f64,
+    pub std_dev: f64,
+    pub fixed: bool,
+    pub unit: String,
+}
+
 /// A robot chain with its world and tool transforms: everything the
 /// identification estimates (method.md §5).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -224,6 +236,27 @@ impl ParamLayout {
         }
     }
 
+    /// Per-parameter report rows from a correction, its standard deviations
+    /// and the names held fixed.
+    pub fn estimates(
+        &self,
+        correction: &DVector<f64>,
+        std_devs: &DVector<f64>,
+        fixed: &[String],
+    ) -> Vec<ParamEstimate> {
+        self.params
+            .iter()
+            .enumerate()
+            .map(|(i, p)| ParamEstimate {
+                name: p.name.clone(),
+                correction: correction[i],
+                std_dev: std_devs[i],
+                fixed: fixed.contains(&p.name),
+                unit: if self.is_angle(i) { "rad" } else { "mm" }.into(),
+            })
+            .collect()
+    }
+
     /// The model `reference + x` (see the module doc). `x` must have
     /// [`Self::len`] entries.
     pub fn apply(&self, reference: &CalibratedModel, x: &DVector<f64>) -> CalibratedModel {
@@ -316,6 +349,8 @@ mod tests {
         let x = DVector::from_fn(36, |i, _| 1e-3 * (i as f64 - 17.0));
         let moved = layout.apply(&reference, &x);
         let back = layout.difference(&moved, &reference);
-        assert!((back - x).amax() < 1e-9);
+        assert!((&back - &x).amax() < 1e-9);
+        let rows = layout.estimates(&x, &x.map(f64::abs), &["d_1".to_string()]);
+        assert!(rows[2].fixed && !rows[1].fixed && rows[0].unit == "rad" && rows[1].unit == "mm");
     }
 }

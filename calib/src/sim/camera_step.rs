@@ -21,6 +21,9 @@ pub struct CameraStepPrecision {
     /// Marginal covariance of each camera pose (intrinsics uncertainty
     /// included), in the [`crate::geometry::pose_error`] form.
     pub poses: Vec<Matrix6<f64>>,
+    /// Covariance of each pose were the intrinsics known exactly (a PnP
+    /// with the true camera).
+    pub poses_known_intrinsics: Vec<Matrix6<f64>>,
 }
 
 /// Schur-complement evaluation of the bundle's covariance: with per-pose
@@ -60,8 +63,10 @@ pub fn camera_step_precision(
             (a_inv + g * s_inv_fixed * g.transpose()) * var
         })
         .collect();
+    let poses_known_intrinsics = blocks.iter().map(|(a_inv, _)| a_inv * var).collect();
     Some(CameraStepPrecision {
         intrinsics: s_inv * var,
         poses,
+        poses_known_intrinsics,
     })
 }

@@ -50,6 +50,8 @@ pub enum ExperimentError {
 pub struct ExperimentResult {
     pub before: AccuracyStats,
     pub oracle: AccuracyStats,
+    /// The stricter floor with known intrinsics (see [`Prepared`]).
+    pub oracle_known_intrinsics: AccuracyStats,
     pub two_step_plain: AccuracyStats,
     pub two_step_weighted: AccuracyStats,
     pub paper: AccuracyStats,
@@ -124,6 +126,9 @@ pub struct Prepared {
     pub camera_step: Intrinsics,
     /// True camera poses plus independent camera-step-level noise.
     pub oracle: Vec<Measurement>,
+    /// True camera poses plus the noise of a PnP with the true intrinsics
+    /// (a stricter floor no method without known intrinsics can reach).
+    pub oracle_known_intrinsics: Vec<Measurement>,
     /// Per-image PnP with the camera step's intrinsics, no covariance.
     pub plain: Vec<Measurement>,
     /// The same poses with the camera step's marginal covariance.
@@ -154,8 +159,23 @@ pub fn prepare(spec: &CampaignSpec) -> Result<Prepared, ExperimentError> {
         camera_step_precision(&truth_cam, &bundle, sigma).ok_or(ExperimentError::Degenerate)?;
     let cam_step = camera_step_intrinsics(&truth_cam, &precision.intrinsics, &mut rng);
     let (mut oracle, mut plain, mut weighted, mut images) = (vec![], vec![], vec![], vec![]);
-    for (p, cov) in cal_poses.iter().zip(&precision.poses) {
+    let mut strict_rng = StdRng::seed_from_u64(spec.seed ^ 0x5a5a);
+    let mut oracle_known_intrinsics = vec![];
+    for ((p, cov), strict) in cal_poses
+        .iter()
+        .zip(&precision.poses)
+        .zip(&precision.poses_known_intrinsics)
+    {
         let cov = *cov;
+        let ls = Cholesky::new(*strict).map(|c| c.l()).unwrap_or_default();
+        let zs = Vector6::from_fn(|_, _| StandardNormal.sample(&mut strict_rng));
+        oracle_known_intrinsics.push(Measurement {
+            joints_rad: p.joints_rad.clone(),
+            observed: Observed::Pose {
+                world_to_tool: perturb_left(&p.target_to_camera, &(ls * zs)),
+                covariance: Some(*strict),
+            },
+        });
         let obs = p.observations(&board);
         let l = Cholesky::new(cov).map(|c| c.l()).unwrap_or_default();
         let z = Vector6::from_fn(|_, _| StandardNormal.sample(&mut rng));
@@ -193,6 +213,7 @@ pub fn prepare(spec: &CampaignSpec) -> Result<Prepared, ExperimentError> {
         campaign,
         camera_step: cam_step,
         oracle,
+        oracle_known_intrinsics,
         plain,
         weighted,
         images,
@@ -205,6 +226,7 @@ pub fn run_experiment(spec: &CampaignSpec) -> Result<ExperimentResult, Experimen
         campaign,
         camera_step: cam_step,
         oracle,
+        oracle_known_intrinsics,
         plain,
         weighted,
         images,
@@ -223,6 +245,7 @@ pub fn run_experiment(spec: &CampaignSpec) -> Result<ExperimentResult, Experimen
         Ok(validate(m, &val)?.0)
     };
     let oracle_id = run(&oracle, IdentifyMode::Weighted)?;
+    let strict_id = run(&oracle_known_intrinsics, IdentifyMode::Weighted)?;
     let plain_id = run(&plain, IdentifyMode::Weighted)?;
     let paper_id = run(&plain, IdentifyMode::Paper)?;
     let t0 = Instant::now();
@@ -284,6 +307,7 @@ pub fn run_experiment(spec: &CampaignSpec) -> Result<ExperimentResult, Experimen
     Ok(ExperimentResult {
         before: stats(&weighted_id.before)?,
         oracle: stats(&oracle_id.model)?,
+        oracle_known_intrinsics: stats(&strict_id.model)?,
         two_step_plain: stats(&plain_id.model)?,
         two_step_weighted: stats(&weighted_id.model)?,
         paper: stats(&paper_id.model)?,

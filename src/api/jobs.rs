@@ -1,0 +1,140 @@
+//! Calibration jobs: `POST /v1/sessions/{id}/calibrations`, `/v1/jobs/{id}`.
+
+use axum::extract::{Path, State};
+use axum::http::{header, StatusCode};
+use axum::response::{IntoResponse, Response};
+use axum::Json;
+use serde::Serialize;
+use serde_json::Value;
+use utoipa::ToSchema;
+use utoipa_axum::router::OpenApiRouter;
+use utoipa_axum::routes;
+
+use super::error::{ApiError, ApiResult, Problem};
+use super::extract::OptionalJson;
+use super::sessions::find_session;
+use super::AppState;
+use crate::domain::{JobRecord, JobState};
+use crate::jobs::queue::enqueue_calibration;
+use crate::schema::job::CalibrationOptions;
+
+pub fn router() -> OpenApiRouter<AppState> {
+    OpenApiRouter::new()
+        .routes(routes!(start_calibration))
+        .routes(routes!(get_job, cancel_job))
+}
+
+#[derive(Debug, Serialize, ToSchema)]
+pub struct JobOut {
+    pub id: String,
+    pub kind: String,
+    pub session_id: String,
+    pub serial: String,
+    #[schema(value_type = String, example = "queued")]
+    pub state: JobState,
+    pub stage: Option<String>,
+    /// 0..1 over the whole job.
+    pub progress: f64,
+    pub attempts: i64,
+    pub max_attempts: i64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+    /// `{"serial","version"}` when a parameter set was stored, and a `summary`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[schema(value_type = Option<Object>)]
+    pub result: Option<Value>,
+    #[schema(value_type = Object)]
+    pub options: Value,
+    pub created_at: String,
+    pub started_at: Option<String>,
+    pub finished_at: Option<String>,
+}
+
+impl From<JobRecord> for JobOut {
+    fn from(j: JobRecord) -> JobOut {
+        JobOut {
+            id: j.id,
+            kind: j.kind,
+            session_id: j.session_id,
+            serial: j.serial,
+            state: j.state,
+            stage: j.stage,
+            progress: j.progress,
+            attempts: j.attempts,
+            max_attempts: j.max_attempts,
+            error: j.error,
+            result: j.result,
+            options: j.options,
+            created_at: j.created_at,
+            started_at: j.started_at,
+            finished_at: j.finished_at,
+        }
+    }
+}
+
+#[derive(Debug, Serialize, ToSchema)]
+pub struct JobAccepted {
+    pub job_id: String,
+    #[serde(flatten)]
+    pub job: JobOut,
+}
+
+/// Queue a calibration of the session. Answers 429 with `Retry-After` when
+/// the queue is full (nothing is written then).
+#[utoipa::path(post, path = "/v1/sessions/{id}/calibrations", tag = "jobs",
+    params(("id" = String, Path, description = "Session id")),
+    request_body(content = CalibrationOptions, content_type = "application/json", description = "All fields optional; an empty body takes the defaults"),
+    responses((status = 202, body = JobAccepted, headers(("Location" = String, description = "/v1/jobs/{job_id}"))),
+              (status = 404, body = Problem, content_type = "application/problem+json"),
+              (status = 429, body = Problem, content_type = "application/problem+json")))]
+async fn start_calibration(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+    OptionalJson(options): OptionalJson<CalibrationOptions>,
+) -> ApiResult<Response> {
+    options.check()?;
+    let session = find_session(&state, &id).await?;
+    let job = enqueue_calibration(&state.store, &state.policy, &session, &options).await?;
+    state.wake.notify_one();
+    let location = format!("/v1/jobs/{}", job.id);
+    Ok((
+        StatusCode::ACCEPTED,
+        [(header::LOCATION, location)],
+        Json(JobAccepted {
+            job_id: job.id.clone(),
+            job: job.into(),
+        }),
+    )
+        .into_response())
+}
+
+/// A job's state, stage, progress and result.
+#[utoipa::path(get, path = "/v1/jobs/{id}", tag = "jobs",
+    params(("id" = String, Path, description = "Job id")),
+    responses((status = 200, body = JobOut), (status = 404, body = Problem, content_type = "application/problem+json")))]
+async fn get_job(State(state): State<AppState>, Path(id): Path<String>) -> ApiResult<Json<JobOut>> {
+    let job = state
+        .store
+        .get_job(&id)
+        .await?
+        .ok_or_else(|| ApiError::not_found("job", &id))?;
+    Ok(Json(job.into()))
+}
+
+/// Cancel a queued or running job (409 when it has already finished).
+#[utoipa::path(delete, path = "/v1/jobs/{id}", tag = "jobs",
+    params(("id" = String, Path, description = "Job id")),
+    responses((status = 200, body = JobOut),
+              (status = 404, body = Problem, content_type = "application/problem+json"),
+              (status = 409, body = Problem, content_type = "application/problem+json")))]
+async fn cancel_job(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+) -> ApiResult<Json<JobOut>> {
+    let job = state
+        .store
+        .cancel_job(&id)
+        .await?
+        .ok_or_else(|| ApiError::not_found("job", &id))?;
+    Ok(Json(job.into()))
+}

@@ -1,0 +1,285 @@
+//! Poses of a session: `POST /v1/sessions/{id}/poses` (multipart with an
+//! image, or JSON with image points or a tracker measurement) and reads.
+
+use axum::extract::{FromRequest, Multipart, Path, Request, State};
+use axum::http::{header, StatusCode};
+use axum::response::{IntoResponse, Response};
+use axum::Json;
+use serde::Serialize;
+use serde_json::{json, Value};
+use utoipa::ToSchema;
+use utoipa_axum::router::OpenApiRouter;
+use utoipa_axum::routes;
+
+use super::error::{ApiError, ApiResult, Problem};
+use super::extract::{is_json, parse_json, read_limited, Paging};
+use super::sessions::find_session;
+use super::upload::{ingest_image, read_field_limited, robot_joint_count, session_spec};
+use super::AppState;
+use crate::domain::{ImageMeta, NewPose, PoseRecord};
+use crate::schema::session::{check_joints, Instrument, PoseJsonBody, PoseSet};
+use crate::schema::{Checker, PoseDoc};
+
+/// Largest text part of a multipart pose (`joints_deg`, `set`).
+const MAX_TEXT_PART: u64 = 64 * 1024;
+
+pub fn router() -> OpenApiRouter<AppState> {
+    OpenApiRouter::new()
+        .routes(routes!(add_pose, list_poses))
+        .routes(routes!(get_pose))
+        .routes(routes!(get_pose_image))
+}
+
+#[derive(Debug, Serialize, ToSchema)]
+pub struct PoseOut {
+    pub id: String,
+    pub session_id: String,
+    pub joints_deg: Vec<f64>,
+    pub set: PoseSet,
+    /// `image`, `image_points` or `measured`.
+    pub source: String,
+    /// Number of image points (uploaded, or detected once detection ran).
+    pub detected_points: usize,
+    #[schema(value_type = Vec<Object>)]
+    pub points: Vec<Value>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub image: Option<ImageMeta>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub measured_position_mm: Option<[f64; 3]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub measured_pose: Option<PoseDoc>,
+    pub created_at: String,
+}
+
+#[derive(Debug, Serialize, ToSchema)]
+pub struct PoseList {
+    pub items: Vec<PoseOut>,
+    pub next_cursor: Option<String>,
+}
+
+impl From<PoseRecord> for PoseOut {
+    fn from(p: PoseRecord) -> PoseOut {
+        let points = p.points.as_array().cloned().unwrap_or_default();
+        let measured = p.measured.unwrap_or(Value::Null);
+        let source = if p.image.is_some() {
+            "image"
+        } else if measured.is_null() {
+            "image_points"
+        } else {
+            "measured"
+        };
+        PoseOut {
+            id: p.id,
+            session_id: p.session_id,
+            joints_deg: p.joints_deg,
+            set: PoseSet::parse(&p.set).unwrap_or_default(),
+            source: source.into(),
+            detected_points: points.len(),
+            points,
+            image: p.image,
+            measured_position_mm: serde_json::from_value(measured["measured_position_mm"].clone())
+                .ok()
+                .flatten(),
+            measured_pose: serde_json::from_value(measured["measured_pose"].clone())
+                .ok()
+                .flatten(),
+            created_at: p.created_at,
+        }
+    }
+}
+
+/// Add one pose: `multipart/form-data` (parts `joints_deg`, `set`, `image`)
+/// or JSON with `image_points` (camera) or `measured_position_mm` (tracker).
+#[utoipa::path(post, path = "/v1/sessions/{id}/poses", tag = "poses",
+    params(("id" = String, Path, description = "Session id")),
+    request_body(content(
+        (PoseJsonBody = "application/json"),
+        (Object = "multipart/form-data"),
+    )),
+    responses((status = 201, body = PoseOut),
+              (status = 404, body = Problem, content_type = "application/problem+json"),
+              (status = 413, body = Problem, content_type = "application/problem+json"),
+              (status = 422, body = Problem, content_type = "application/problem+json")))]
+async fn add_pose(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+    req: Request,
+) -> ApiResult<(StatusCode, Json<PoseOut>)> {
+    let session = find_session(&state, &id).await?;
+    let spec = session_spec(&session)?;
+    let joint_count = robot_joint_count(&state, &session.serial).await?;
+    let content_type = req
+        .headers()
+        .get(header::CONTENT_TYPE)
+        .and_then(|v| v.to_str().ok())
+        .unwrap_or("")
+        .to_string();
+    let pose = if content_type.starts_with("multipart/form-data") {
+        if spec.instrument != Instrument::Camera {
+            return Err(ApiError::invalid(
+                "image",
+                "a tracker session takes JSON measurements",
+            ));
+        }
+        let multipart = Multipart::from_request(req, &state)
+            .await
+            .map_err(|e| ApiError::malformed("multipart", e.body_text()))?;
+        multipart_pose(
+            &state,
+            multipart,
+            spec.camera.as_ref().map(|c| (c.width, c.height)),
+            joint_count,
+        )
+        .await?
+    } else if is_json(Some(&content_type)) {
+        let bytes = read_limited(req, state.config.max_json_bytes, "max_json_bytes").await?;
+        let body: PoseJsonBody = parse_json(&bytes)?;
+        body.check(spec.instrument, spec.camera.as_ref(), joint_count)?;
+        json_pose(body)
+    } else {
+        return Err(ApiError::unsupported_media(
+            "send multipart/form-data (with an image) or application/json",
+        ));
+    };
+    let mut stored = state.store.add_poses(&session.id, &[pose]).await?;
+    let record = stored
+        .pop()
+        .ok_or_else(|| ApiError::internal("pose not stored"))?;
+    Ok((StatusCode::CREATED, Json(record.into())))
+}
+
+fn json_pose(body: PoseJsonBody) -> NewPose {
+    let measured = body
+        .measured_position_mm
+        .map(|p| json!({ "measured_position_mm": p, "measured_pose": body.measured_pose }));
+    NewPose {
+        joints_deg: body.joints_deg,
+        set: body.set.as_str().to_string(),
+        image: None,
+        points: serde_json::to_value(body.image_points.unwrap_or_default()).unwrap_or(json!([])),
+        measured,
+    }
+}
+
+async fn multipart_pose(
+    state: &AppState,
+    mut multipart: Multipart,
+    camera_size: Option<(u32, u32)>,
+    joint_count: usize,
+) -> ApiResult<NewPose> {
+    let malformed = |e: axum::extract::multipart::MultipartError| {
+        ApiError::malformed("multipart", e.body_text())
+    };
+    let (mut joints, mut set, mut image) = (None, PoseSet::Cal, None);
+    while let Some(mut field) = multipart.next_field().await.map_err(malformed)? {
+        let name = field.name().unwrap_or("").to_string();
+        match name.as_str() {
+            "joints_deg" => {
+                let bytes = read_field_limited(&mut field, MAX_TEXT_PART, "max_json_bytes").await?;
+                let parsed: Vec<f64> = serde_json::from_slice(&bytes).map_err(|e| {
+                    ApiError::invalid("joints_deg", format!("a JSON array of numbers: {e}"))
+                })?;
+                joints = Some(parsed);
+            }
+            "set" => {
+                let bytes = read_field_limited(&mut field, MAX_TEXT_PART, "max_json_bytes").await?;
+                let text = String::from_utf8_lossy(&bytes);
+                set = PoseSet::parse(text.trim().trim_matches('"'))
+                    .ok_or_else(|| ApiError::invalid("set", "\"cal\" or \"val\""))?;
+            }
+            "image" => {
+                let limit = state.config.max_image_bytes;
+                image = Some(read_field_limited(&mut field, limit, "max_image_bytes").await?);
+            }
+            other => {
+                return Err(ApiError::invalid(
+                    other.to_string(),
+                    "unknown part (expected joints_deg, set, image)",
+                ))
+            }
+        }
+    }
+    let joints = joints.ok_or_else(|| ApiError::invalid("joints_deg", "required part"))?;
+    let image = image.ok_or_else(|| ApiError::invalid("image", "required part (PNG or JPEG)"))?;
+    let mut c = Checker::default();
+    check_joints(&mut c, "joints_deg", &joints, joint_count);
+    c.finish()?;
+    let meta = ingest_image(state, image, camera_size, "image").await?;
+    Ok(NewPose {
+        joints_deg: joints,
+        set: set.as_str().to_string(),
+        image: Some(meta),
+        points: json!([]),
+        measured: None,
+    })
+}
+
+/// A session's poses, in upload order.
+#[utoipa::path(get, path = "/v1/sessions/{id}/poses", tag = "poses",
+    params(("id" = String, Path, description = "Session id"),
+           ("limit" = Option<i64>, Query, description = "Page size, 1 to 1000"),
+           ("cursor" = Option<String>, Query, description = "next_cursor of the previous page")),
+    responses((status = 200, body = PoseList), (status = 404, body = Problem, content_type = "application/problem+json")))]
+async fn list_poses(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+    paging: Paging,
+) -> ApiResult<Json<PoseList>> {
+    find_session(&state, &id).await?;
+    let page = state
+        .store
+        .list_poses(&id, paging.limit, paging.cursor.as_deref())
+        .await?;
+    Ok(Json(PoseList {
+        items: page.items.into_iter().map(PoseOut::from).collect(),
+        next_cursor: page.next_cursor,
+    }))
+}
+
+async fn find_pose(state: &AppState, id: &str, pose_id: &str) -> ApiResult<PoseRecord> {
+    find_session(state, id).await?;
+    state
+        .store
+        .get_pose(id, pose_id)
+        .await?
+        .ok_or_else(|| ApiError::not_found("pose", pose_id))
+}
+
+/// One pose with its image points.
+#[utoipa::path(get, path = "/v1/sessions/{id}/poses/{pose_id}", tag = "poses",
+    params(("id" = String, Path, description = "Session id"), ("pose_id" = String, Path, description = "Pose id")),
+    responses((status = 200, body = PoseOut), (status = 404, body = Problem, content_type = "application/problem+json")))]
+async fn get_pose(
+    State(state): State<AppState>,
+    Path((id, pose_id)): Path<(String, String)>,
+) -> ApiResult<Json<PoseOut>> {
+    Ok(Json(find_pose(&state, &id, &pose_id).await?.into()))
+}
+
+/// The pose's image, byte for byte as uploaded.
+#[utoipa::path(get, path = "/v1/sessions/{id}/poses/{pose_id}/image", tag = "poses",
+    params(("id" = String, Path, description = "Session id"), ("pose_id" = String, Path, description = "Pose id")),
+    responses((status = 200, description = "PNG or JPEG bytes", content_type = "application/octet-stream"),
+              (status = 404, body = Problem, content_type = "application/problem+json")))]
+async fn get_pose_image(
+    State(state): State<AppState>,
+    Path((id, pose_id)): Path<(String, String)>,
+) -> ApiResult<Response> {
+    let pose = find_pose(&state, &id, &pose_id).await?;
+    let meta = pose
+        .image
+        .ok_or_else(|| ApiError::not_found("image of pose", &pose_id))?;
+    let bytes = state
+        .store
+        .get_blob(&meta.sha256)
+        .await?
+        .ok_or_else(|| ApiError::internal(format!("blob {} missing", meta.sha256)))?;
+    Ok((
+        [
+            (header::CONTENT_TYPE, meta.content_type),
+            (header::ETAG, format!("\"{}\"", meta.sha256)),
+        ],
+        bytes,
+    )
+        .into_response())
+}

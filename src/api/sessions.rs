@@ -1,0 +1,123 @@
+//! Measurement sessions: `/v1/robots/{serial}/sessions`, `/v1/sessions/{id}`.
+
+use axum::extract::{Path, State};
+use axum::http::StatusCode;
+use axum::Json;
+use serde::Serialize;
+use utoipa::ToSchema;
+use utoipa_axum::router::OpenApiRouter;
+use utoipa_axum::routes;
+
+use super::error::{ApiError, ApiResult, Problem};
+use super::extract::{ApiJson, Paging};
+use super::AppState;
+use crate::domain::SessionRecord;
+use crate::schema::session::SessionBody;
+
+pub fn router() -> OpenApiRouter<AppState> {
+    OpenApiRouter::new()
+        .routes(routes!(create_session, list_sessions))
+        .routes(routes!(get_session))
+}
+
+#[derive(Debug, Serialize, ToSchema)]
+pub struct SessionOut {
+    pub id: String,
+    pub serial: String,
+    pub pose_count: i64,
+    pub created_at: String,
+    #[serde(flatten)]
+    pub spec: SessionBody,
+}
+
+#[derive(Debug, Serialize, ToSchema)]
+pub struct SessionList {
+    pub items: Vec<SessionOut>,
+    pub next_cursor: Option<String>,
+}
+
+impl TryFrom<SessionRecord> for SessionOut {
+    type Error = ApiError;
+    fn try_from(s: SessionRecord) -> ApiResult<SessionOut> {
+        Ok(SessionOut {
+            spec: serde_json::from_value(s.spec).map_err(ApiError::internal)?,
+            id: s.id,
+            serial: s.serial,
+            pose_count: s.pose_count,
+            created_at: s.created_at,
+        })
+    }
+}
+
+/// Loads a session or answers 404.
+pub async fn find_session(state: &AppState, id: &str) -> ApiResult<SessionRecord> {
+    state
+        .store
+        .get_session(id)
+        .await?
+        .ok_or_else(|| ApiError::not_found("session", id))
+}
+
+/// Open a measurement session for a robot.
+#[utoipa::path(post, path = "/v1/robots/{serial}/sessions", tag = "sessions",
+    params(("serial" = String, Path, description = "Robot serial number")),
+    request_body = SessionBody,
+    responses((status = 201, body = SessionOut),
+              (status = 404, body = Problem, content_type = "application/problem+json"),
+              (status = 422, body = Problem, content_type = "application/problem+json")))]
+async fn create_session(
+    State(state): State<AppState>,
+    Path(serial): Path<String>,
+    ApiJson(body): ApiJson<SessionBody>,
+) -> ApiResult<(StatusCode, Json<SessionOut>)> {
+    body.check()?;
+    let spec = serde_json::to_value(&body).map_err(ApiError::internal)?;
+    let session = state
+        .store
+        .create_session(&serial, body.instrument.as_str(), &spec)
+        .await
+        .map_err(|e| match e {
+            crate::store::StoreError::NotFound(_) => ApiError::not_found("robot", &serial),
+            e => e.into(),
+        })?;
+    Ok((StatusCode::CREATED, Json(session.try_into()?)))
+}
+
+/// A robot's sessions, oldest first.
+#[utoipa::path(get, path = "/v1/robots/{serial}/sessions", tag = "sessions",
+    params(("serial" = String, Path, description = "Robot serial number"),
+           ("limit" = Option<i64>, Query, description = "Page size, 1 to 1000"),
+           ("cursor" = Option<String>, Query, description = "next_cursor of the previous page")),
+    responses((status = 200, body = SessionList), (status = 404, body = Problem, content_type = "application/problem+json")))]
+async fn list_sessions(
+    State(state): State<AppState>,
+    Path(serial): Path<String>,
+    paging: Paging,
+) -> ApiResult<Json<SessionList>> {
+    if state.store.get_robot(&serial).await?.is_none() {
+        return Err(ApiError::not_found("robot", &serial));
+    }
+    let page = state
+        .store
+        .list_sessions(&serial, paging.limit, paging.cursor.as_deref())
+        .await?;
+    Ok(Json(SessionList {
+        items: page
+            .items
+            .into_iter()
+            .map(SessionOut::try_from)
+            .collect::<ApiResult<_>>()?,
+        next_cursor: page.next_cursor,
+    }))
+}
+
+/// One session.
+#[utoipa::path(get, path = "/v1/sessions/{id}", tag = "sessions",
+    params(("id" = String, Path, description = "Session id")),
+    responses((status = 200, body = SessionOut), (status = 404, body = Problem, content_type = "application/problem+json")))]
+async fn get_session(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+) -> ApiResult<Json<SessionOut>> {
+    Ok(Json(find_session(&state, &id).await?.try_into()?))
+}

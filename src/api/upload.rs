@@ -1,0 +1,244 @@
+//! Uploads: image ingestion shared by the pose routes, and the streamed
+//! dataset archive `POST /v1/sessions/{id}/dataset`. Bodies are streamed to
+//! a temporary file (never whole in memory) under the configured limits;
+//! images are decoded off the async runtime before they are stored.
+
+use axum::extract::multipart::Field;
+use axum::extract::{Path, Request, State};
+use axum::http::{header, StatusCode};
+use axum::Json;
+use futures_util::StreamExt;
+use serde::Serialize;
+use sha2::{Digest, Sha256};
+use tokio::io::AsyncWriteExt;
+use utoipa::ToSchema;
+use utoipa_axum::router::OpenApiRouter;
+use utoipa_axum::routes;
+
+use super::error::{ApiError, ApiResult, Problem};
+use super::extract::content_length;
+use super::sessions::find_session;
+use super::AppState;
+use crate::dataset::{DatasetError, DatasetLimits, DatasetReader};
+use crate::domain::{ImageMeta, NewPose, SessionRecord};
+use crate::schema::session::{check_joints, Instrument, SessionBody};
+use crate::schema::Checker;
+
+pub fn router() -> OpenApiRouter<AppState> {
+    OpenApiRouter::new().routes(routes!(upload_dataset))
+}
+
+#[derive(Debug, Serialize, ToSchema)]
+pub struct DatasetOut {
+    pub session_id: String,
+    pub poses_created: usize,
+    pub pose_ids: Vec<String>,
+}
+
+pub fn session_spec(session: &SessionRecord) -> ApiResult<SessionBody> {
+    serde_json::from_value(session.spec.clone()).map_err(ApiError::internal)
+}
+
+pub async fn robot_joint_count(state: &AppState, serial: &str) -> ApiResult<usize> {
+    let robot = state
+        .store
+        .get_robot(serial)
+        .await?
+        .ok_or_else(|| ApiError::not_found("robot", serial))?;
+    Ok(robot.kinematics["joints"]
+        .as_array()
+        .map(Vec::len)
+        .unwrap_or(0))
+}
+
+/// Reads a multipart field, refusing more than `limit` bytes.
+pub async fn read_field_limited(
+    field: &mut Field<'_>,
+    limit: u64,
+    limit_name: &'static str,
+) -> ApiResult<Vec<u8>> {
+    let mut buf = Vec::new();
+    while let Some(chunk) = field
+        .chunk()
+        .await
+        .map_err(|e| ApiError::malformed("multipart", e.body_text()))?
+    {
+        if (buf.len() + chunk.len()) as u64 > limit {
+            return Err(ApiError::too_large(limit_name, limit));
+        }
+        buf.extend_from_slice(&chunk);
+    }
+    Ok(buf)
+}
+
+/// Checks an image off the runtime (decodable PNG/JPEG of the camera's size)
+/// and stores it; returns its metadata once it is durable.
+pub async fn ingest_image(
+    state: &AppState,
+    bytes: Vec<u8>,
+    camera_size: Option<(u32, u32)>,
+    field: &str,
+) -> ApiResult<ImageMeta> {
+    let (meta, bytes) = tokio::task::spawn_blocking(move || {
+        check_and_hash(&bytes, camera_size).map(|meta| (meta, bytes))
+    })
+    .await
+    .map_err(ApiError::internal)?
+    .map_err(|message| ApiError::invalid(field, message))?;
+    state.store.put_blob(&meta, &bytes).await?;
+    Ok(meta)
+}
+
+fn check_and_hash(bytes: &[u8], camera_size: Option<(u32, u32)>) -> Result<ImageMeta, String> {
+    let (width, height) = crate::pipeline::check_image(bytes, camera_size)?;
+    let content_type = match image::guess_format(bytes) {
+        Ok(image::ImageFormat::Jpeg) => "image/jpeg",
+        _ => "image/png",
+    };
+    Ok(ImageMeta {
+        sha256: hex::encode(Sha256::digest(bytes)),
+        size_bytes: bytes.len() as i64,
+        content_type: content_type.into(),
+        width,
+        height,
+    })
+}
+
+impl From<DatasetError> for ApiError {
+    fn from(e: DatasetError) -> ApiError {
+        match e {
+            DatasetError::Malformed { field, message } => ApiError::malformed(field, message),
+            DatasetError::Invalid(errors) => ApiError::validation(errors),
+            DatasetError::TooLarge { limit, bytes } => ApiError::too_large(limit, bytes),
+        }
+    }
+}
+
+/// Upload a whole campaign: a zip with `poses.json`
+/// (`[{"joints_deg","image","set"}]`) and the images it names. All poses are
+/// stored in one transaction, or none.
+#[utoipa::path(post, path = "/v1/sessions/{id}/dataset", tag = "poses",
+    params(("id" = String, Path, description = "Session id")),
+    request_body(content = Vec<u8>, content_type = "application/zip"),
+    responses((status = 201, body = DatasetOut),
+              (status = 400, body = Problem, content_type = "application/problem+json"),
+              (status = 404, body = Problem, content_type = "application/problem+json"),
+              (status = 413, body = Problem, content_type = "application/problem+json"),
+              (status = 422, body = Problem, content_type = "application/problem+json")))]
+async fn upload_dataset(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+    req: Request,
+) -> ApiResult<(StatusCode, Json<DatasetOut>)> {
+    let session = find_session(&state, &id).await?;
+    let spec = session_spec(&session)?;
+    if spec.instrument != Instrument::Camera {
+        return Err(ApiError::invalid(
+            "instrument",
+            "datasets of images need a camera session",
+        ));
+    }
+    let joint_count = robot_joint_count(&state, &session.serial).await?;
+    let content_type = req
+        .headers()
+        .get(header::CONTENT_TYPE)
+        .and_then(|v| v.to_str().ok())
+        .unwrap_or("");
+    if !matches!(
+        content_type,
+        "application/zip" | "application/x-zip-compressed" | "application/octet-stream"
+    ) {
+        return Err(ApiError::unsupported_media(
+            "send the archive as Content-Type: application/zip",
+        ));
+    }
+    let archive = spool_to_file(&state, req).await?;
+    let limits = DatasetLimits {
+        max_image_bytes: state.config.max_image_bytes,
+        max_total_bytes: state.config.max_archive_bytes,
+    };
+    let path = archive.path().to_path_buf();
+    let mut reader = tokio::task::spawn_blocking(move || DatasetReader::open(&path, limits))
+        .await
+        .map_err(ApiError::internal)??;
+    let mut c = Checker::default();
+    if reader.manifest.is_empty() {
+        c.fail("poses.json", "holds no poses");
+    }
+    for (i, p) in reader.manifest.iter().enumerate() {
+        check_joints(
+            &mut c,
+            &format!("poses.json[{i}].joints_deg"),
+            &p.joints_deg,
+            joint_count,
+        );
+    }
+    c.finish()?;
+    let camera_size = spec.camera.as_ref().map(|k| (k.width, k.height));
+    let mut poses = Vec::with_capacity(reader.manifest.len());
+    for i in 0..reader.manifest.len() {
+        let doc = reader.manifest[i].clone();
+        let field = format!("poses.json[{i}].image");
+        let (back, result) = tokio::task::spawn_blocking(move || {
+            let result = reader
+                .read_image(&doc.image)
+                .map_err(ApiError::from)
+                .and_then(|bytes| {
+                    check_and_hash(&bytes, camera_size)
+                        .map(|meta| (meta, bytes))
+                        .map_err(|m| ApiError::invalid(field, m))
+                });
+            (reader, result)
+        })
+        .await
+        .map_err(ApiError::internal)?;
+        reader = back;
+        let (meta, bytes) = result?;
+        state.store.put_blob(&meta, &bytes).await?;
+        poses.push(NewPose {
+            joints_deg: reader.manifest[i].joints_deg.clone(),
+            set: reader.manifest[i].set.as_str().to_string(),
+            image: Some(meta),
+            points: serde_json::json!([]),
+            measured: None,
+        });
+    }
+    let stored = state.store.add_poses(&session.id, &poses).await?;
+    drop(archive);
+    Ok((
+        StatusCode::CREATED,
+        Json(DatasetOut {
+            session_id: session.id,
+            poses_created: stored.len(),
+            pose_ids: stored.into_iter().map(|p| p.id).collect(),
+        }),
+    ))
+}
+
+/// Streams the request body into a temporary file, stopping at `max_archive_bytes`.
+async fn spool_to_file(state: &AppState, req: Request) -> ApiResult<tempfile::NamedTempFile> {
+    let limit = state.config.max_archive_bytes;
+    if content_length(req.headers()).is_some_and(|n| n > limit) {
+        return Err(ApiError::too_large("max_archive_bytes", limit));
+    }
+    let dir = state.config.upload_dir();
+    let temp = tempfile::Builder::new()
+        .prefix("robocal-upload-")
+        .tempfile_in(&dir)
+        .map_err(|e| ApiError::internal(format!("temp file in {}: {e}", dir.display())))?;
+    let std_file = temp.reopen().map_err(ApiError::internal)?;
+    let mut file = tokio::io::BufWriter::new(tokio::fs::File::from_std(std_file));
+    let mut stream = req.into_body().into_data_stream();
+    let mut written: u64 = 0;
+    while let Some(chunk) = stream.next().await {
+        let chunk =
+            chunk.map_err(|e| ApiError::malformed("body", format!("reading upload: {e}")))?;
+        written += chunk.len() as u64;
+        if written > limit {
+            return Err(ApiError::too_large("max_archive_bytes", limit));
+        }
+        file.write_all(&chunk).await.map_err(ApiError::internal)?;
+    }
+    file.flush().await.map_err(ApiError::internal)?;
+    Ok(temp)
+}

@@ -1,0 +1,145 @@
+//! Server configuration: flags and environment, validated once at start.
+
+use std::net::SocketAddr;
+use std::path::PathBuf;
+use std::time::Duration;
+
+use clap::{Args, ValueEnum};
+
+const MIB: u64 = 1024 * 1024;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum LogFormat {
+    Text,
+    Json,
+}
+
+#[derive(Debug, Clone, Args)]
+pub struct ServeConfig {
+    /// Address to listen on. Anonymous access is allowed only on a loopback address.
+    #[arg(long, env = "ROBOCAL_BIND", default_value = "127.0.0.1:8080")]
+    pub bind: SocketAddr,
+
+    /// Database URL (`sqlite://path.db`); the file is created and migrated at start.
+    #[arg(long, env = "DATABASE_URL", default_value = "sqlite://robocal.db")]
+    pub database_url: String,
+
+    /// Worker threads running calibration jobs (default: number of CPUs).
+    #[arg(long, env = "ROBOCAL_WORKERS")]
+    pub workers: Option<usize>,
+
+    /// Attempts of a job before it is failed (a killed worker counts as an attempt).
+    #[arg(long, env = "ROBOCAL_MAX_ATTEMPTS", default_value_t = 3)]
+    pub max_attempts: i64,
+
+    /// Queued jobs accepted before `POST .../calibrations` answers 429.
+    #[arg(long, env = "ROBOCAL_MAX_QUEUED", default_value_t = 64)]
+    pub max_queued: i64,
+
+    /// Job lease length in seconds; a worker renews it while working.
+    #[arg(long, env = "ROBOCAL_LEASE_SECS", default_value_t = 30)]
+    pub lease_secs: u64,
+
+    /// How often an idle worker looks for jobs, in milliseconds.
+    #[arg(long, env = "ROBOCAL_POLL_MS", default_value_t = 500)]
+    pub poll_ms: u64,
+
+    /// Largest accepted image, bytes (per image, also inside archives).
+    #[arg(long, env = "ROBOCAL_MAX_IMAGE_BYTES", default_value_t = 64 * MIB)]
+    pub max_image_bytes: u64,
+
+    /// Largest accepted dataset archive, bytes (compressed upload and unpacked total).
+    #[arg(long, env = "ROBOCAL_MAX_ARCHIVE_BYTES", default_value_t = 2048 * MIB)]
+    pub max_archive_bytes: u64,
+
+    /// Largest accepted JSON request body, bytes.
+    #[arg(long, env = "ROBOCAL_MAX_JSON_BYTES", default_value_t = 8 * MIB)]
+    pub max_json_bytes: u64,
+
+    /// Directory for streamed uploads being checked (default: the system temp dir).
+    #[arg(long, env = "ROBOCAL_UPLOAD_DIR")]
+    pub upload_dir: Option<PathBuf>,
+
+    /// Seconds a SIGTERM waits for running jobs before releasing them to the queue.
+    #[arg(long, env = "ROBOCAL_SHUTDOWN_GRACE_SECS", default_value_t = 20)]
+    pub shutdown_grace_secs: u64,
+
+    /// Log format.
+    #[arg(long, env = "ROBOCAL_LOG_FORMAT", value_enum, default_value = "text")]
+    pub log_format: LogFormat,
+
+    /// Test hook: the validation stage sleeps this long per pose (0 = off).
+    #[arg(
+        long,
+        env = "ROBOCAL_TEST_STAGE_DELAY_MS",
+        default_value_t = 0,
+        hide = true
+    )]
+    pub test_stage_delay_ms: u64,
+}
+
+impl ServeConfig {
+    /// Defaults as the CLI would give them, for embedding and tests.
+    pub fn for_database(database_url: &str) -> ServeConfig {
+        use clap::Parser;
+        #[derive(Parser)]
+        struct Wrapper {
+            #[command(flatten)]
+            config: ServeConfig,
+        }
+        let mut config = Wrapper::parse_from(["robocal"]).config;
+        config.database_url = database_url.to_string();
+        config
+    }
+
+    pub fn validate(&self) -> Result<(), String> {
+        let positive = [
+            ("max_attempts", self.max_attempts),
+            ("max_queued", self.max_queued),
+            ("lease_secs", self.lease_secs as i64),
+            ("poll_ms", self.poll_ms as i64),
+            (
+                "max_image_bytes",
+                self.max_image_bytes.min(i64::MAX as u64) as i64,
+            ),
+            (
+                "max_archive_bytes",
+                self.max_archive_bytes.min(i64::MAX as u64) as i64,
+            ),
+            (
+                "max_json_bytes",
+                self.max_json_bytes.min(i64::MAX as u64) as i64,
+            ),
+        ];
+        for (name, value) in positive {
+            if value < 1 {
+                return Err(format!("--{} must be at least 1", name.replace('_', "-")));
+            }
+        }
+        if self.workers == Some(0) {
+            return Err("--workers must be at least 1".into());
+        }
+        Ok(())
+    }
+
+    pub fn worker_count(&self) -> usize {
+        self.workers.unwrap_or_else(|| {
+            std::thread::available_parallelism()
+                .map(|n| n.get())
+                .unwrap_or(1)
+        })
+    }
+
+    pub fn lease(&self) -> Duration {
+        Duration::from_secs(self.lease_secs)
+    }
+
+    pub fn upload_dir(&self) -> PathBuf {
+        self.upload_dir.clone().unwrap_or_else(std::env::temp_dir)
+    }
+
+    /// Anonymous requests are possible only when nobody else can reach the socket.
+    pub fn is_loopback(&self) -> bool {
+        self.bind.ip().is_loopback()
+    }
+}

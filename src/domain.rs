@@ -1,0 +1,269 @@
+//! Plain records shared by the store, the job workers and the HTTP layer.
+//! JSON documents (kinematics, session spec, points, results) travel as
+//! `serde_json::Value`: their typed form and validation live in `api/`
+//! (contract shapes) and `pipeline` (numerics), the store only keeps them.
+
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+
+/// A robot as stored: the kinematics document is the *resolved* joint table
+/// (conventions chosen, presets expanded).
+#[derive(Debug, Clone)]
+pub struct RobotRecord {
+    pub serial: String,
+    pub model: String,
+    pub preset: Option<String>,
+    pub kinematics: Value,
+    pub created_at: String,
+    pub updated_at: String,
+}
+
+#[derive(Debug, Clone)]
+pub struct SessionRecord {
+    pub id: String,
+    pub serial: String,
+    pub instrument: String,
+    /// The validated session body (target, camera, guesses).
+    pub spec: Value,
+    pub pose_count: i64,
+    pub created_at: String,
+}
+
+/// Metadata of a stored image; the bytes live in the content-addressed blob store.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq, utoipa::ToSchema)]
+pub struct ImageMeta {
+    pub sha256: String,
+    pub size_bytes: i64,
+    pub content_type: String,
+    pub width: u32,
+    pub height: u32,
+}
+
+#[derive(Debug, Clone)]
+pub struct PoseRecord {
+    pub id: String,
+    pub session_id: String,
+    pub joints_deg: Vec<f64>,
+    pub set: String,
+    pub image: Option<ImageMeta>,
+    /// `[{"row","col","x","y",...}]`: uploaded or detected image points.
+    pub points: Value,
+    /// `{"measured_position_mm":[..],"measured_pose":{..}?}` for tracker poses.
+    pub measured: Option<Value>,
+    pub created_at: String,
+}
+
+/// A pose to insert; its image blob must already be stored (`put_blob`).
+#[derive(Debug, Clone)]
+pub struct NewPose {
+    pub joints_deg: Vec<f64>,
+    pub set: String,
+    pub image: Option<ImageMeta>,
+    pub points: Value,
+    pub measured: Option<Value>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum JobState {
+    Queued,
+    Running,
+    Succeeded,
+    Failed,
+    Cancelled,
+}
+
+impl JobState {
+    pub const ALL: [JobState; 5] = [
+        JobState::Queued,
+        JobState::Running,
+        JobState::Succeeded,
+        JobState::Failed,
+        JobState::Cancelled,
+    ];
+
+    pub fn as_str(self) -> &'static str {
+        match self {
+            JobState::Queued => "queued",
+            JobState::Running => "running",
+            JobState::Succeeded => "succeeded",
+            JobState::Failed => "failed",
+            JobState::Cancelled => "cancelled",
+        }
+    }
+
+    pub fn parse(s: &str) -> Option<JobState> {
+        JobState::ALL.into_iter().find(|st| st.as_str() == s)
+    }
+
+    pub fn is_terminal(self) -> bool {
+        matches!(
+            self,
+            JobState::Succeeded | JobState::Failed | JobState::Cancelled
+        )
+    }
+}
+
+#[derive(Debug, Clone)]
+pub struct JobRecord {
+    pub id: String,
+    pub kind: String,
+    pub session_id: String,
+    pub serial: String,
+    pub options: Value,
+    pub state: JobState,
+    pub stage: Option<String>,
+    pub progress: f64,
+    pub attempts: i64,
+    pub max_attempts: i64,
+    pub error: Option<String>,
+    pub result: Option<Value>,
+    pub created_at: String,
+    pub started_at: Option<String>,
+    pub finished_at: Option<String>,
+}
+
+#[derive(Debug, Clone)]
+pub struct NewJob {
+    pub kind: String,
+    pub session_id: String,
+    pub serial: String,
+    pub options: Value,
+    pub max_attempts: i64,
+}
+
+/// A job a worker holds a lease on.
+#[derive(Debug, Clone)]
+pub struct ClaimedJob {
+    pub id: String,
+    pub session_id: String,
+    pub serial: String,
+    pub options: Value,
+    pub attempt: i64,
+}
+
+/// What a lease renewal found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LeaseStatus {
+    Held,
+    /// Cancelled by a client: stop working, write nothing.
+    Cancelled,
+    /// The lease was lost (expired and reclaimed): stop, write nothing.
+    Lost,
+}
+
+/// A finished job's outcome, written in one transaction with its results.
+#[derive(Debug, Clone)]
+pub enum JobOutcome {
+    Succeeded {
+        /// When the pipeline identified parameters: stored as the next version.
+        parameter_set: Option<NewParameterSet>,
+        /// Extra result document (e.g. the validation summary).
+        summary: Value,
+    },
+    /// Failed for good (bad input): no retry.
+    Failed { error: String },
+    /// Failed for a reason a retry may fix: requeued while attempts remain.
+    Retry { error: String },
+}
+
+#[derive(Debug, Clone)]
+pub struct NewParameterSet {
+    pub parameters: Value,
+    pub report: Value,
+}
+
+#[derive(Debug, Clone)]
+pub struct ParameterSetRecord {
+    pub serial: String,
+    pub version: i64,
+    pub job_id: Option<String>,
+    pub parameters: Value,
+    pub created_at: String,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Scope {
+    Read,
+    Write,
+    Admin,
+}
+
+impl Scope {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Scope::Read => "read",
+            Scope::Write => "write",
+            Scope::Admin => "admin",
+        }
+    }
+    pub fn parse(s: &str) -> Option<Scope> {
+        match s {
+            "read" => Some(Scope::Read),
+            "write" => Some(Scope::Write),
+            "admin" => Some(Scope::Admin),
+            _ => None,
+        }
+    }
+}
+
+#[derive(Debug, Clone)]
+pub struct TokenRecord {
+    pub id: String,
+    pub name: String,
+    pub scope: Scope,
+    pub created_at: String,
+}
+
+/// A response kept for `Idempotency-Key` replay.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct StoredResponse {
+    pub status: u16,
+    pub headers: Vec<(String, String)>,
+    pub body: Vec<u8>,
+}
+
+/// State of an idempotency key when a request first looks at it.
+#[derive(Debug, Clone)]
+pub enum IdempotencyClaim {
+    /// First use: the caller runs the request and then stores the response.
+    Fresh,
+    /// Another request with this key is running.
+    InFlight,
+    /// Done before: replay this.
+    Replay(StoredResponse),
+}
+
+/// Identifies the owner and target of an idempotency key.
+#[derive(Debug, Clone)]
+pub struct IdempotencyScope {
+    pub principal: String,
+    pub method: String,
+    pub path: String,
+    pub key: String,
+}
+
+/// A page of a listing, ordered by key; `next_cursor` is the last key when more may follow.
+#[derive(Debug, Clone)]
+pub struct Page<T> {
+    pub items: Vec<T>,
+    pub next_cursor: Option<String>,
+}
+
+/// RFC 3339 UTC timestamp with milliseconds, the form every `*_at` field uses.
+pub fn now_rfc3339() -> String {
+    humantime::format_rfc3339_millis(std::time::SystemTime::now()).to_string()
+}
+
+pub fn now_unix_ms() -> i64 {
+    std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_millis() as i64)
+        .unwrap_or(0)
+}
+
+/// New time-ordered identifier (UUIDv7), so listing by id is listing by age.
+pub fn new_id() -> String {
+    uuid::Uuid::now_v7().to_string()
+}

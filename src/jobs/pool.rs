@@ -1,0 +1,226 @@
+//! A bounded pool of workers. Each worker claims one job at a time, runs the
+//! CPU-heavy pipeline on a blocking thread (so the API stays responsive while
+//! every worker is busy) and, meanwhile, renews its lease and publishes
+//! progress every heartbeat. On shutdown workers stop claiming, give a
+//! running job `grace` to finish, then cancel it and release it to the queue.
+
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::Duration;
+
+use tokio::sync::{watch, Notify};
+use tokio::task::JoinHandle;
+use tokio::time::Instant;
+
+use super::load::{load_input, LoadError};
+use super::queue::{claim_next, Lease, QueuePolicy};
+use crate::domain::{JobOutcome, LeaseStatus};
+use crate::pipeline::{self, PipelineError, Stage};
+use crate::store::DynStore;
+
+#[derive(Debug, Clone)]
+pub struct PoolConfig {
+    pub workers: usize,
+    pub policy: QueuePolicy,
+    /// Idle poll interval (a local enqueue wakes a worker at once).
+    pub poll: Duration,
+    pub grace: Duration,
+    pub test_stage_delay: Duration,
+}
+
+pub struct WorkerPool {
+    handles: Vec<JoinHandle<()>>,
+    /// Workers whose loop is running (for `/readyz`).
+    pub alive: Arc<AtomicUsize>,
+}
+
+/// Identifies this process's workers in the jobs table.
+fn process_tag() -> String {
+    format!("{}-{}", std::process::id(), &crate::domain::new_id()[24..])
+}
+
+impl WorkerPool {
+    pub fn start(
+        store: DynStore,
+        config: PoolConfig,
+        wake: Arc<Notify>,
+        shutdown: watch::Receiver<bool>,
+    ) -> WorkerPool {
+        let alive = Arc::new(AtomicUsize::new(0));
+        let tag = process_tag();
+        let handles = (0..config.workers)
+            .map(|i| {
+                let worker = Worker {
+                    id: format!("{tag}-w{i}"),
+                    store: store.clone(),
+                    config: config.clone(),
+                    wake: wake.clone(),
+                    shutdown: shutdown.clone(),
+                };
+                let alive = alive.clone();
+                alive.fetch_add(1, Ordering::SeqCst);
+                tokio::spawn(async move {
+                    worker.run().await;
+                    alive.fetch_sub(1, Ordering::SeqCst);
+                })
+            })
+            .collect();
+        WorkerPool { handles, alive }
+    }
+
+    /// Waits for every worker to stop (after shutdown was signalled).
+    pub async fn join(self) {
+        for h in self.handles {
+            let _ = h.await;
+        }
+    }
+}
+
+struct Worker {
+    id: String,
+    store: DynStore,
+    config: PoolConfig,
+    wake: Arc<Notify>,
+    shutdown: watch::Receiver<bool>,
+}
+
+impl Worker {
+    async fn run(mut self) {
+        tracing::debug!(worker = %self.id, "worker started");
+        while !*self.shutdown.borrow() {
+            match claim_next(&self.store, &self.config.policy, &self.id).await {
+                Ok(Some(lease)) => self.run_job(lease).await,
+                Ok(None) => {
+                    tokio::select! {
+                        _ = tokio::time::sleep(self.config.poll) => {}
+                        _ = self.wake.notified() => {}
+                        changed = self.shutdown.changed() => {
+                            if changed.is_err() {
+                                break; // the server is gone
+                            }
+                        }
+                    }
+                }
+                Err(e) => {
+                    tracing::error!(worker = %self.id, error = %e, "claiming a job failed");
+                    tokio::time::sleep(self.config.poll).await;
+                }
+            }
+        }
+        tracing::debug!(worker = %self.id, "worker stopped");
+    }
+
+    async fn run_job(&mut self, lease: Lease) {
+        let job_id = lease.job.id.clone();
+        let span = tracing::info_span!("job", job_id = %job_id, attempt = lease.job.attempt);
+        let _enter = span.enter();
+        tracing::info!("job claimed");
+        drop(_enter);
+        let input = match load_input(&self.store, &lease.job, self.config.test_stage_delay).await {
+            Ok(input) => input,
+            Err(LoadError::Gone(error)) => {
+                self.finish(&lease, JobOutcome::Failed { error }).await;
+                return;
+            }
+            Err(LoadError::Store(e)) => {
+                let error = format!("loading inputs: {e}");
+                self.finish(&lease, JobOutcome::Retry { error }).await;
+                return;
+            }
+        };
+        let progress = Arc::new(Mutex::new((Stage::Validate.as_str(), 0.0_f64)));
+        let cancel = Arc::new(AtomicBool::new(false));
+        let mut task = {
+            let (progress, cancel) = (progress.clone(), cancel.clone());
+            tokio::task::spawn_blocking(move || {
+                let report = |stage: Stage, _message: &str, fraction: f64| {
+                    if let Ok(mut p) = progress.lock() {
+                        *p = (stage.as_str(), fraction.clamp(0.0, 1.0));
+                    }
+                };
+                pipeline::run(&input, &report, &cancel)
+            })
+        };
+        let mut ticker = tokio::time::interval(self.config.policy.heartbeat());
+        let mut stopped: Option<LeaseStatus> = None;
+        let mut deadline: Option<Instant> = None;
+        let mut releasing = false;
+        let result = loop {
+            tokio::select! {
+                res = &mut task => break res,
+                _ = ticker.tick() => {
+                    let (stage, fraction) = *progress.lock().unwrap_or_else(|e| e.into_inner());
+                    match lease.renew(stage, fraction).await {
+                        Ok(LeaseStatus::Held) => {}
+                        Ok(status) => {
+                            stopped = Some(status);
+                            cancel.store(true, Ordering::SeqCst);
+                        }
+                        Err(e) => tracing::warn!(error = %e, "lease renewal failed"),
+                    }
+                }
+                changed = self.shutdown.changed(), if deadline.is_none() => {
+                    if changed.is_err() || *self.shutdown.borrow() {
+                        deadline = Some(Instant::now() + self.config.grace);
+                    }
+                }
+            }
+            if deadline.is_some_and(|d| Instant::now() >= d) && !releasing {
+                releasing = true;
+                cancel.store(true, Ordering::SeqCst);
+            }
+        };
+        if let Some(status) = stopped {
+            tracing::info!(?status, "job stopped: lease no longer held");
+            return;
+        }
+        let outcome = match result {
+            Ok(Ok(out)) => JobOutcome::Succeeded {
+                parameter_set: out.parameter_set,
+                summary: out.summary,
+            },
+            Ok(Err(PipelineError::Cancelled)) if releasing => {
+                tracing::info!("shutdown: job released to the queue");
+                if let Err(e) = lease.release().await {
+                    tracing::error!(error = %e, "releasing job failed; its lease will expire");
+                }
+                return;
+            }
+            Ok(Err(PipelineError::Cancelled)) => return,
+            Ok(Err(e)) => JobOutcome::Failed {
+                error: e.to_string(),
+            },
+            Err(join) => JobOutcome::Retry {
+                error: format!("pipeline crashed: {}", panic_message(join)),
+            },
+        };
+        self.finish(&lease, outcome).await;
+    }
+
+    async fn finish(&self, lease: &Lease, outcome: JobOutcome) {
+        match &outcome {
+            JobOutcome::Succeeded { .. } => tracing::info!(job_id = %lease.job.id, "job succeeded"),
+            JobOutcome::Failed { error } | JobOutcome::Retry { error } => {
+                tracing::warn!(job_id = %lease.job.id, %error, "job failed")
+            }
+        }
+        match lease.finish(&outcome).await {
+            Ok(LeaseStatus::Held) => {}
+            Ok(status) => tracing::info!(job_id = %lease.job.id, ?status, "outcome not recorded"),
+            Err(e) => {
+                tracing::error!(job_id = %lease.job.id, error = %e, "recording outcome failed")
+            }
+        }
+    }
+}
+
+fn panic_message(join: tokio::task::JoinError) -> String {
+    match join.try_into_panic() {
+        Ok(payload) => payload
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "panic".into()),
+        Err(e) => e.to_string(),
+    }
+}

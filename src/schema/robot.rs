@@ -1,0 +1,178 @@
+//! Robot documents: the joint table (DH or Hayati per joint) or a preset.
+
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+use super::{Checker, FieldError, MAX_ANGLE_DEG, MAX_LENGTH_MM};
+
+/// Most joints a robot may have.
+pub const MAX_JOINTS: usize = 12;
+/// Longest serial number.
+pub const MAX_SERIAL_LEN: usize = 64;
+/// Longest model name.
+pub const MAX_MODEL_LEN: usize = 200;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum JointType {
+    Revolute,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Convention {
+    Dh,
+    Hayati,
+}
+
+fn default_min_deg() -> f64 {
+    -180.0
+}
+fn default_max_deg() -> f64 {
+    180.0
+}
+
+/// One joint and the link after it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct JointDoc {
+    #[serde(rename = "type", default = "revolute")]
+    pub joint_type: JointType,
+    /// `dh` or `hayati`; absent: chosen by the service (Hayati for parallel axes).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub convention: Option<Convention>,
+    pub a_mm: f64,
+    pub alpha_deg: f64,
+    #[serde(default)]
+    pub d_mm: f64,
+    #[serde(default)]
+    pub theta_offset_deg: f64,
+    #[serde(default)]
+    pub beta_deg: f64,
+    #[serde(default = "default_min_deg")]
+    pub min_deg: f64,
+    #[serde(default = "default_max_deg")]
+    pub max_deg: f64,
+}
+
+fn revolute() -> JointType {
+    JointType::Revolute
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct KinematicsDoc {
+    pub joints: Vec<JointDoc>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Preset {
+    Irb2400,
+    Puma560,
+}
+
+impl Preset {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Preset::Irb2400 => "irb2400",
+            Preset::Puma560 => "puma560",
+        }
+    }
+}
+
+/// `PUT /v1/robots/{serial}` body: a joint table or a preset name.
+#[derive(Debug, Clone, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RobotBody {
+    pub model: String,
+    #[serde(default)]
+    pub kinematics: Option<KinematicsDoc>,
+    #[serde(default)]
+    pub preset: Option<Preset>,
+}
+
+pub fn check_serial(serial: &str) -> Result<(), Vec<FieldError>> {
+    let ok = !serial.is_empty()
+        && serial.len() <= MAX_SERIAL_LEN
+        && serial
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'));
+    if ok {
+        Ok(())
+    } else {
+        Err(vec![FieldError::new(
+            "serial",
+            format!("1 to {MAX_SERIAL_LEN} characters of A-Z a-z 0-9 - _ ."),
+        )])
+    }
+}
+
+impl RobotBody {
+    /// Checks the body and returns the resolved joint table (preset expanded,
+    /// every joint's convention chosen).
+    pub fn resolve(&self) -> Result<KinematicsDoc, Vec<FieldError>> {
+        let mut c = Checker::default();
+        if self.model.trim().is_empty() || self.model.len() > MAX_MODEL_LEN {
+            c.fail("model", format!("must be 1 to {MAX_MODEL_LEN} characters"));
+        }
+        let doc = match (&self.kinematics, self.preset) {
+            (Some(_), Some(_)) => {
+                c.fail("preset", "give either kinematics or preset, not both");
+                None
+            }
+            (None, None) => {
+                c.fail("kinematics", "required (or give a preset)");
+                None
+            }
+            (Some(k), None) => Some(k.clone()),
+            (None, Some(p)) => Some(crate::robot_model::preset_doc(p)),
+        };
+        if let Some(doc) = &doc {
+            doc.check(&mut c);
+        }
+        c.finish()?;
+        Ok(doc
+            .map(|d| d.resolved())
+            .unwrap_or(KinematicsDoc { joints: vec![] }))
+    }
+}
+
+impl KinematicsDoc {
+    pub fn check(&self, c: &mut Checker) {
+        let n = self.joints.len();
+        if n == 0 || n > MAX_JOINTS {
+            c.fail(
+                "kinematics.joints",
+                format!("must hold 1 to {MAX_JOINTS} joints"),
+            );
+        }
+        for (i, j) in self.joints.iter().enumerate() {
+            let f = |name: &str| format!("kinematics.joints[{i}].{name}");
+            c.bounded(f("a_mm"), j.a_mm, MAX_LENGTH_MM, "mm");
+            c.bounded(f("d_mm"), j.d_mm, MAX_LENGTH_MM, "mm");
+            c.bounded(f("alpha_deg"), j.alpha_deg, MAX_ANGLE_DEG, "deg");
+            c.bounded(
+                f("theta_offset_deg"),
+                j.theta_offset_deg,
+                MAX_ANGLE_DEG,
+                "deg",
+            );
+            c.bounded(f("beta_deg"), j.beta_deg, MAX_ANGLE_DEG, "deg");
+            c.bounded(f("min_deg"), j.min_deg, MAX_ANGLE_DEG, "deg");
+            c.bounded(f("max_deg"), j.max_deg, MAX_ANGLE_DEG, "deg");
+            if j.min_deg >= j.max_deg {
+                c.fail(f("max_deg"), "must be greater than min_deg");
+            }
+            if j.convention == Some(Convention::Dh) && j.beta_deg != 0.0 {
+                c.fail(f("beta_deg"), "only a hayati joint has beta");
+            }
+        }
+    }
+
+    /// Every joint with its convention set, as the numerics will use it
+    /// (the core's `choose_conventions`: Hayati between parallel axes).
+    pub fn resolved(self) -> KinematicsDoc {
+        crate::robot_model::model_to_doc(&crate::robot_model::doc_to_model(&self))
+    }
+}

@@ -1,0 +1,276 @@
+//! Measurement session and pose documents.
+
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+use super::{Checker, FieldError, PoseDoc, MAX_ANGLE_DEG, MAX_LENGTH_MM};
+
+/// Most dots per board side.
+pub const MAX_GRID_SIDE: u32 = 1000;
+/// Largest image side, pixels.
+pub const MAX_IMAGE_SIDE: u32 = 20_000;
+/// Most image points per pose.
+pub const MAX_POINTS_PER_POSE: usize = 100_000;
+/// Largest pixel pitch, micrometres.
+pub const MAX_PIXEL_UM: f64 = 100.0;
+/// Longest focal length, millimetres.
+pub const MAX_FOCAL_MM: f64 = 1000.0;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Instrument {
+    #[default]
+    Camera,
+    Tracker,
+}
+
+impl Instrument {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Instrument::Camera => "camera",
+            Instrument::Tracker => "tracker",
+        }
+    }
+}
+
+/// The dot-grid board.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct TargetDoc {
+    pub rows: u32,
+    pub cols: u32,
+    pub pitch_mm: f64,
+    pub dot_diameter_mm: f64,
+    pub origin_marker_diameter_mm: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CameraDoc {
+    pub width: u32,
+    pub height: u32,
+    pub pixel_size_um: f64,
+    pub nominal_focal_mm: f64,
+}
+
+/// `POST /v1/robots/{serial}/sessions` body.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SessionBody {
+    #[serde(default)]
+    pub instrument: Instrument,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub target: Option<TargetDoc>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub camera: Option<CameraDoc>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub flange_to_camera_guess: Option<PoseDoc>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub camera_calibration_id: Option<String>,
+}
+
+impl SessionBody {
+    pub fn check(&self) -> Result<(), Vec<FieldError>> {
+        let mut c = Checker::default();
+        if self.instrument == Instrument::Camera {
+            match &self.target {
+                None => c.fail("target", "required for a camera session"),
+                Some(t) => {
+                    for (name, v) in [("target.rows", t.rows), ("target.cols", t.cols)] {
+                        if !(2..=MAX_GRID_SIDE).contains(&v) {
+                            c.fail(name, format!("must be 2 to {MAX_GRID_SIDE}"));
+                        }
+                    }
+                    c.positive("target.pitch_mm", t.pitch_mm, MAX_LENGTH_MM, "mm");
+                    c.positive(
+                        "target.dot_diameter_mm",
+                        t.dot_diameter_mm,
+                        t.pitch_mm.abs(),
+                        "mm",
+                    );
+                    c.positive(
+                        "target.origin_marker_diameter_mm",
+                        t.origin_marker_diameter_mm,
+                        MAX_LENGTH_MM,
+                        "mm",
+                    );
+                }
+            }
+            match &self.camera {
+                None => c.fail("camera", "required for a camera session"),
+                Some(k) => {
+                    for (name, v) in [("camera.width", k.width), ("camera.height", k.height)] {
+                        if !(1..=MAX_IMAGE_SIDE).contains(&v) {
+                            c.fail(name, format!("must be 1 to {MAX_IMAGE_SIDE} pixels"));
+                        }
+                    }
+                    c.positive("camera.pixel_size_um", k.pixel_size_um, MAX_PIXEL_UM, "um");
+                    c.positive(
+                        "camera.nominal_focal_mm",
+                        k.nominal_focal_mm,
+                        MAX_FOCAL_MM,
+                        "mm",
+                    );
+                }
+            }
+        }
+        if let Some(p) = &self.flange_to_camera_guess {
+            p.check(&mut c, "flange_to_camera_guess");
+        }
+        if let Some(id) = &self.camera_calibration_id {
+            if id.is_empty() || id.len() > 100 {
+                c.fail("camera_calibration_id", "must be 1 to 100 characters");
+            }
+        }
+        c.finish()
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum PoseSet {
+    #[default]
+    Cal,
+    Val,
+}
+
+impl PoseSet {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            PoseSet::Cal => "cal",
+            PoseSet::Val => "val",
+        }
+    }
+    pub fn parse(s: &str) -> Option<PoseSet> {
+        match s {
+            "cal" => Some(PoseSet::Cal),
+            "val" => Some(PoseSet::Val),
+            _ => None,
+        }
+    }
+}
+
+/// A dot's board index and its image position in pixels.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ImagePointDoc {
+    pub row: u32,
+    pub col: u32,
+    pub x: f64,
+    pub y: f64,
+}
+
+/// `POST /v1/sessions/{id}/poses` JSON body.
+#[derive(Debug, Clone, PartialEq, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PoseJsonBody {
+    pub joints_deg: Vec<f64>,
+    #[serde(default)]
+    pub set: PoseSet,
+    #[serde(default)]
+    pub image_points: Option<Vec<ImagePointDoc>>,
+    #[serde(default)]
+    pub measured_position_mm: Option<[f64; 3]>,
+    #[serde(default)]
+    pub measured_pose: Option<PoseDoc>,
+}
+
+/// Checks a joint vector against the robot's joint count.
+pub fn check_joints(c: &mut Checker, field: &str, joints_deg: &[f64], joint_count: usize) {
+    if joints_deg.len() != joint_count {
+        c.fail(
+            field,
+            format!(
+                "the robot has {joint_count} joints, got {} values",
+                joints_deg.len()
+            ),
+        );
+    }
+    for (i, v) in joints_deg.iter().enumerate() {
+        c.bounded(format!("{field}[{i}]"), *v, MAX_ANGLE_DEG, "deg");
+    }
+}
+
+impl PoseJsonBody {
+    pub fn check(
+        &self,
+        instrument: Instrument,
+        camera: Option<&CameraDoc>,
+        joint_count: usize,
+    ) -> Result<(), Vec<FieldError>> {
+        let mut c = Checker::default();
+        check_joints(&mut c, "joints_deg", &self.joints_deg, joint_count);
+        match instrument {
+            Instrument::Camera => {
+                if self.measured_position_mm.is_some() || self.measured_pose.is_some() {
+                    c.fail(
+                        "measured_position_mm",
+                        "a camera session takes image_points",
+                    );
+                }
+                match &self.image_points {
+                    None => c.fail("image_points", "required (or upload an image as multipart)"),
+                    Some(points) => check_points(&mut c, points, camera),
+                }
+            }
+            Instrument::Tracker => {
+                if self.image_points.is_some() {
+                    c.fail(
+                        "image_points",
+                        "a tracker session takes measured_position_mm",
+                    );
+                }
+                match &self.measured_position_mm {
+                    None => c.fail("measured_position_mm", "required for a tracker session"),
+                    Some(p) => {
+                        for (i, v) in p.iter().enumerate() {
+                            c.bounded(
+                                format!("measured_position_mm[{i}]"),
+                                *v,
+                                MAX_LENGTH_MM,
+                                "mm",
+                            );
+                        }
+                    }
+                }
+                if let Some(p) = &self.measured_pose {
+                    p.check(&mut c, "measured_pose");
+                }
+            }
+        }
+        c.finish()
+    }
+}
+
+fn check_points(c: &mut Checker, points: &[ImagePointDoc], camera: Option<&CameraDoc>) {
+    if points.is_empty() || points.len() > MAX_POINTS_PER_POSE {
+        c.fail(
+            "image_points",
+            format!("must hold 1 to {MAX_POINTS_PER_POSE} points"),
+        );
+    }
+    let (w, h) = camera
+        .map(|k| (k.width as f64, k.height as f64))
+        .unwrap_or((f64::MAX, f64::MAX));
+    for (i, p) in points.iter().enumerate() {
+        if !p.x.is_finite() || p.x < 0.0 || p.x > w {
+            c.fail(format!("image_points[{i}].x"), "must lie inside the image");
+        }
+        if !p.y.is_finite() || p.y < 0.0 || p.y > h {
+            c.fail(format!("image_points[{i}].y"), "must lie inside the image");
+        }
+        if c.errors.len() > 20 {
+            return;
+        }
+    }
+}
+
+/// One entry of a dataset archive's `poses.json`.
+#[derive(Debug, Clone, PartialEq, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct DatasetPoseDoc {
+    pub joints_deg: Vec<f64>,
+    pub image: String,
+    #[serde(default)]
+    pub set: PoseSet,
+}

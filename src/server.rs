@@ -1,0 +1,152 @@
+//! Starting and stopping the service: store, workers, HTTP listener.
+
+use std::net::SocketAddr;
+use std::sync::Arc;
+use std::time::Duration;
+
+use tokio::sync::{watch, Notify};
+use tokio::task::JoinHandle;
+
+use crate::api::{self, AppState, QUEUE_FULL_RETRY_AFTER_SECS};
+use crate::config::ServeConfig;
+use crate::jobs::pool::{PoolConfig, WorkerPool};
+use crate::jobs::queue::QueuePolicy;
+use crate::metrics::Metrics;
+use crate::store::{self, StoreError};
+
+#[derive(Debug, thiserror::Error)]
+pub enum StartError {
+    #[error("configuration: {0}")]
+    Config(String),
+    #[error("database: {0}")]
+    Store(#[from] StoreError),
+    #[error("{0}")]
+    Refused(String),
+    #[error("cannot listen on {addr}: {source}")]
+    Bind {
+        addr: SocketAddr,
+        source: std::io::Error,
+    },
+}
+
+/// A started server; drop-safe, but call [`RunningServer::shutdown`] to stop cleanly.
+pub struct RunningServer {
+    pub addr: SocketAddr,
+    shutdown: watch::Sender<bool>,
+    handle: JoinHandle<()>,
+}
+
+pub async fn start(config: ServeConfig) -> Result<RunningServer, StartError> {
+    config.validate().map_err(StartError::Config)?;
+    let store = store::connect(&config.database_url).await?;
+    let tokens = store.count_tokens().await?;
+    if tokens == 0 {
+        if !config.is_loopback() {
+            return Err(StartError::Refused(format!(
+                "refusing to listen on {} without tokens: anonymous access is allowed only on a \
+                 loopback address. Create one with `robocal token create --scope admin` or bind 127.0.0.1",
+                config.bind
+            )));
+        }
+        tracing::warn!(bind = %config.bind, "no tokens configured: accepting anonymous requests (loopback bind only)");
+    } else {
+        tracing::info!(tokens, "bearer tokens required");
+    }
+    let listener = tokio::net::TcpListener::bind(config.bind)
+        .await
+        .map_err(|source| StartError::Bind {
+            addr: config.bind,
+            source,
+        })?;
+    let addr = listener.local_addr().map_err(|source| StartError::Bind {
+        addr: config.bind,
+        source,
+    })?;
+    let policy = QueuePolicy {
+        lease: config.lease(),
+        max_attempts: config.max_attempts,
+        max_queued: config.max_queued,
+        retry_after_secs: QUEUE_FULL_RETRY_AFTER_SECS,
+    };
+    let (shutdown_tx, shutdown_rx) = watch::channel(false);
+    let wake = Arc::new(Notify::new());
+    let pool = WorkerPool::start(
+        store.clone(),
+        PoolConfig {
+            workers: config.worker_count(),
+            policy,
+            poll: Duration::from_millis(config.poll_ms),
+            grace: Duration::from_secs(config.shutdown_grace_secs),
+            test_stage_delay: Duration::from_millis(config.test_stage_delay_ms),
+        },
+        wake.clone(),
+        shutdown_rx.clone(),
+    );
+    tracing::info!(%addr, backend = store.backend(), workers = config.worker_count(), "robocal listening");
+    let state = AppState {
+        store,
+        config: Arc::new(config),
+        policy,
+        metrics: Arc::new(Metrics::default()),
+        wake,
+        workers_alive: pool.alive.clone(),
+    };
+    let app = api::app(state);
+    let mut rx = shutdown_rx;
+    let handle = tokio::spawn(async move {
+        let serve = axum::serve(listener, app).with_graceful_shutdown(async move {
+            let _ = rx.wait_for(|stop| *stop).await;
+        });
+        if let Err(e) = serve.await {
+            tracing::error!(error = %e, "HTTP server failed");
+        }
+        pool.join().await;
+        tracing::info!("robocal stopped");
+    });
+    Ok(RunningServer {
+        addr,
+        shutdown: shutdown_tx,
+        handle,
+    })
+}
+
+impl RunningServer {
+    /// Stops claiming jobs and accepting requests, lets running jobs finish
+    /// (or releases them after the grace period), then returns.
+    pub async fn shutdown(self) {
+        let _ = self.shutdown.send(true);
+        let _ = self.handle.await;
+    }
+}
+
+/// Runs until SIGTERM or Ctrl-C, then shuts down cleanly.
+pub async fn run(config: ServeConfig) -> Result<(), StartError> {
+    let server = start(config).await?;
+    println!("robocal listening on http://{}", server.addr);
+    wait_for_signal().await;
+    tracing::info!("shutdown signal: no new jobs are claimed; running jobs finish or are released");
+    server.shutdown().await;
+    Ok(())
+}
+
+async fn wait_for_signal() {
+    #[cfg(unix)]
+    {
+        use tokio::signal::unix::{signal, SignalKind};
+        match signal(SignalKind::terminate()) {
+            Ok(mut term) => {
+                tokio::select! {
+                    _ = term.recv() => {}
+                    _ = tokio::signal::ctrl_c() => {}
+                }
+            }
+            Err(_) => {
+                let _ = tokio::signal::ctrl_c().await;
+            }
+        }
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = tokio::signal::ctrl_c().await;
+    }
+}

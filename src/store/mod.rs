@@ -1,0 +1,197 @@
+//! Storage: one repository trait object, [`Store`], used by the HTTP handlers
+//! and the job workers. Every SQL statement lives in a backend module
+//! (`sqlite/`; a `postgres/` backend implements the same traits), so adding a
+//! backend touches nothing outside `store/` and `migrations/<backend>/`.
+//!
+//! The trait is split by area ([`RobotStore`], [`SessionStore`], [`JobStore`],
+//! [`ResultStore`], [`AuthStore`]) so that each backend file stays small;
+//! [`Store`] is their sum and is what the rest of the program holds
+//! (`Arc<dyn Store>`).
+
+use std::sync::Arc;
+
+use async_trait::async_trait;
+use serde_json::Value;
+
+use crate::domain::*;
+
+pub mod sqlite;
+
+#[derive(Debug, thiserror::Error)]
+pub enum StoreError {
+    /// The referenced parent row (robot, session) does not exist.
+    #[error("{0} not found")]
+    NotFound(&'static str),
+    /// The write conflicts with the current state (e.g. cancelling a finished job).
+    #[error("conflict: {0}")]
+    Conflict(String),
+    /// The queue holds `--max-queued` jobs already.
+    #[error("queue full")]
+    QueueFull,
+    /// The database failed (connection, I/O, constraint we did not expect).
+    #[error("database error: {0}")]
+    Backend(String),
+}
+
+pub type StoreResult<T> = Result<T, StoreError>;
+
+#[async_trait]
+pub trait RobotStore: Send + Sync {
+    /// Create or replace; returns `true` when the robot was created.
+    async fn put_robot(&self, robot: &RobotRecord) -> StoreResult<bool>;
+    async fn get_robot(&self, serial: &str) -> StoreResult<Option<RobotRecord>>;
+    async fn list_robots(&self, limit: i64, after: Option<&str>) -> StoreResult<Page<RobotRecord>>;
+    /// Deletes the robot with its sessions, poses and jobs; `false` if absent.
+    async fn delete_robot(&self, serial: &str) -> StoreResult<bool>;
+}
+
+#[async_trait]
+pub trait SessionStore: Send + Sync {
+    /// `NotFound("robot")` when the serial is unknown.
+    async fn create_session(
+        &self,
+        serial: &str,
+        instrument: &str,
+        spec: &Value,
+    ) -> StoreResult<SessionRecord>;
+    async fn get_session(&self, id: &str) -> StoreResult<Option<SessionRecord>>;
+    async fn list_sessions(
+        &self,
+        serial: &str,
+        limit: i64,
+        after: Option<&str>,
+    ) -> StoreResult<Page<SessionRecord>>;
+    /// Stores image bytes under their sha256 (idempotent); durable on return.
+    async fn put_blob(&self, meta: &ImageMeta, data: &[u8]) -> StoreResult<()>;
+    async fn get_blob(&self, sha256: &str) -> StoreResult<Option<Vec<u8>>>;
+    /// Inserts all poses in one transaction (all or none), in order.
+    async fn add_poses(&self, session_id: &str, poses: &[NewPose]) -> StoreResult<Vec<PoseRecord>>;
+    async fn get_pose(&self, session_id: &str, pose_id: &str) -> StoreResult<Option<PoseRecord>>;
+    async fn list_poses(
+        &self,
+        session_id: &str,
+        limit: i64,
+        after: Option<&str>,
+    ) -> StoreResult<Page<PoseRecord>>;
+}
+
+#[async_trait]
+pub trait JobStore: Send + Sync {
+    /// Inserts a queued job unless `max_queued` jobs are queued already
+    /// (`QueueFull`), atomically.
+    async fn enqueue_job(&self, job: &NewJob, max_queued: i64) -> StoreResult<JobRecord>;
+    async fn get_job(&self, id: &str) -> StoreResult<Option<JobRecord>>;
+    /// Queued or running -> cancelled. `Conflict` when already finished.
+    async fn cancel_job(&self, id: &str) -> StoreResult<Option<JobRecord>>;
+    /// Fails running jobs whose lease expired and that have no attempt left.
+    async fn fail_exhausted_jobs(&self, now_ms: i64) -> StoreResult<u64>;
+    /// Atomically takes the oldest queued job, or a running one whose lease
+    /// expired, with a lease until `lease_until_ms`; counts an attempt.
+    async fn claim_job(
+        &self,
+        worker_id: &str,
+        now_ms: i64,
+        lease_until_ms: i64,
+    ) -> StoreResult<Option<ClaimedJob>>;
+    /// Extends the lease and records progress, if the worker still holds it.
+    async fn renew_lease(
+        &self,
+        job_id: &str,
+        worker_id: &str,
+        lease_until_ms: i64,
+        stage: &str,
+        progress: f64,
+    ) -> StoreResult<LeaseStatus>;
+    /// Records the outcome (and its parameter set) if the worker still holds the lease.
+    async fn finish_job(
+        &self,
+        job_id: &str,
+        worker_id: &str,
+        outcome: &JobOutcome,
+    ) -> StoreResult<LeaseStatus>;
+    /// Gives a running job back to the queue without counting the attempt (shutdown).
+    async fn release_job(&self, job_id: &str, worker_id: &str) -> StoreResult<()>;
+    /// Number of jobs per state (for metrics).
+    async fn job_counts(&self) -> StoreResult<Vec<(JobState, i64)>>;
+}
+
+#[async_trait]
+pub trait ResultStore: Send + Sync {
+    /// Stores a parameter set and its report as the serial's next version.
+    async fn insert_parameter_set(
+        &self,
+        serial: &str,
+        job_id: Option<&str>,
+        set: &NewParameterSet,
+    ) -> StoreResult<i64>;
+    /// Newest first.
+    async fn list_parameter_sets(
+        &self,
+        serial: &str,
+        limit: i64,
+        before_version: Option<i64>,
+    ) -> StoreResult<Page<ParameterSetRecord>>;
+    /// `version = None` means the latest.
+    async fn get_parameter_set(
+        &self,
+        serial: &str,
+        version: Option<i64>,
+    ) -> StoreResult<Option<ParameterSetRecord>>;
+    async fn get_report(&self, serial: &str, version: i64) -> StoreResult<Option<Value>>;
+}
+
+#[async_trait]
+pub trait AuthStore: Send + Sync {
+    async fn create_token(
+        &self,
+        name: &str,
+        token_hash: &str,
+        scope: Scope,
+    ) -> StoreResult<TokenRecord>;
+    async fn find_token(&self, token_hash: &str) -> StoreResult<Option<TokenRecord>>;
+    async fn list_tokens(&self) -> StoreResult<Vec<TokenRecord>>;
+    async fn count_tokens(&self) -> StoreResult<i64>;
+    /// Registers a key as in flight, or reports it running / done before.
+    async fn claim_idempotency(&self, scope: &IdempotencyScope) -> StoreResult<IdempotencyClaim>;
+    async fn complete_idempotency(
+        &self,
+        scope: &IdempotencyScope,
+        response: &StoredResponse,
+    ) -> StoreResult<()>;
+    /// Forgets a pending key (the request failed before producing a storable response).
+    async fn abandon_idempotency(&self, scope: &IdempotencyScope) -> StoreResult<()>;
+}
+
+#[async_trait]
+pub trait Store: RobotStore + SessionStore + JobStore + ResultStore + AuthStore {
+    /// Readiness probe: the database answers.
+    async fn ping(&self) -> StoreResult<()>;
+    /// Backend name for logs ("sqlite", "postgres").
+    fn backend(&self) -> &'static str;
+}
+
+pub type DynStore = Arc<dyn Store>;
+
+/// Opens the store named by a database URL and runs its migrations.
+pub async fn connect(database_url: &str) -> StoreResult<DynStore> {
+    if database_url.starts_with("sqlite:") {
+        let store = sqlite::SqliteStore::connect(database_url).await?;
+        Ok(Arc::new(store))
+    } else {
+        Err(StoreError::Backend(format!(
+            "unsupported database URL scheme in {database_url:?} (supported: sqlite:)"
+        )))
+    }
+}
+
+impl From<sqlx::Error> for StoreError {
+    fn from(e: sqlx::Error) -> Self {
+        StoreError::Backend(e.to_string())
+    }
+}
+
+impl From<serde_json::Error> for StoreError {
+    fn from(e: serde_json::Error) -> Self {
+        StoreError::Backend(format!("stored JSON unreadable: {e}"))
+    }
+}

@@ -1,0 +1,112 @@
+//! SQLite backend (the default, single-node deployment). Runtime-checked
+//! `sqlx` queries; WAL journal with `synchronous = FULL`, so a write is on disk
+//! when the call returns. Writers that read before they write open their
+//! transaction with `BEGIN IMMEDIATE` so two writers never deadlock on a lock
+//! upgrade.
+
+use std::borrow::Cow;
+use std::str::FromStr;
+use std::time::Duration;
+
+use async_trait::async_trait;
+use futures_util::future::BoxFuture;
+use sqlx::error::BoxDynError;
+use sqlx::migrate::{Migration, MigrationSource, MigrationType, Migrator};
+use sqlx::sqlite::{
+    SqliteConnectOptions, SqliteJournalMode, SqlitePool, SqlitePoolOptions, SqliteSynchronous,
+};
+
+use super::{Store, StoreError, StoreResult};
+
+mod auth;
+mod jobs;
+mod results;
+mod robots;
+mod sessions;
+
+/// Migrations compiled into the binary, so a deployed binary needs no files.
+const MIGRATIONS: &[(i64, &str, &str)] = &[(
+    1,
+    "init",
+    include_str!("../../../migrations/sqlite/0001_init.sql"),
+)];
+
+/// How long a statement waits for a competing writer before giving up.
+const BUSY_TIMEOUT: Duration = Duration::from_secs(10);
+/// Connections in the pool (SQLite serialises writers anyway).
+const MAX_CONNECTIONS: u32 = 8;
+
+pub struct SqliteStore {
+    pool: SqlitePool,
+}
+
+impl SqliteStore {
+    pub async fn connect(url: &str) -> StoreResult<Self> {
+        let options = SqliteConnectOptions::from_str(url)?
+            .create_if_missing(true)
+            .journal_mode(SqliteJournalMode::Wal)
+            .synchronous(SqliteSynchronous::Full)
+            .foreign_keys(true)
+            .busy_timeout(BUSY_TIMEOUT);
+        let pool = SqlitePoolOptions::new()
+            .max_connections(MAX_CONNECTIONS)
+            .connect_with(options)
+            .await?;
+        let migrator = Migrator::new(Embedded)
+            .await
+            .map_err(|e| StoreError::Backend(format!("migrations: {e}")))?;
+        migrator
+            .run(&pool)
+            .await
+            .map_err(|e| StoreError::Backend(format!("migrations failed: {e}")))?;
+        Ok(SqliteStore { pool })
+    }
+
+    async fn begin_immediate(&self) -> StoreResult<sqlx::Transaction<'static, sqlx::Sqlite>> {
+        Ok(self.pool.begin_with("BEGIN IMMEDIATE").await?)
+    }
+}
+
+/// The migrations compiled into the binary, as a `sqlx` migration source.
+#[derive(Debug)]
+struct Embedded;
+
+impl<'s> MigrationSource<'s> for Embedded {
+    fn resolve(self) -> BoxFuture<'s, Result<Vec<Migration>, BoxDynError>> {
+        Box::pin(async {
+            Ok(MIGRATIONS
+                .iter()
+                .map(|(version, name, sql)| {
+                    Migration::new(
+                        *version,
+                        Cow::Borrowed(*name),
+                        MigrationType::Simple,
+                        Cow::Borrowed(*sql),
+                        false,
+                    )
+                })
+                .collect())
+        })
+    }
+}
+
+/// Parses a JSON column.
+fn json(text: &str) -> StoreResult<serde_json::Value> {
+    Ok(serde_json::from_str(text)?)
+}
+
+fn opt_json(text: Option<String>) -> StoreResult<Option<serde_json::Value>> {
+    text.map(|t| json(&t)).transpose()
+}
+
+#[async_trait]
+impl Store for SqliteStore {
+    async fn ping(&self) -> StoreResult<()> {
+        sqlx::query("SELECT 1").execute(&self.pool).await?;
+        Ok(())
+    }
+
+    fn backend(&self) -> &'static str {
+        "sqlite"
+    }
+}

@@ -1,0 +1,164 @@
+//! The real binary, killed and restarted on the same database.
+
+use std::time::Duration;
+
+use reqwest::multipart::Form;
+use serde_json::Value;
+
+use crate::support::*;
+
+const WAIT: Duration = Duration::from_secs(30);
+
+async fn setup(base: &str, c: &reqwest::Client, png_bytes: Vec<u8>) -> (String, String) {
+    let r = c
+        .put(format!("{base}/v1/robots/K1"))
+        .json(&robot_body())
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(r.status(), 201);
+    let s: Value = c
+        .post(format!("{base}/v1/robots/K1/sessions"))
+        .json(&session_body())
+        .send()
+        .await
+        .unwrap()
+        .json()
+        .await
+        .unwrap();
+    let session = s["id"].as_str().unwrap().to_string();
+    for i in 0..4 {
+        let set = if i < 3 { "cal" } else { "val" };
+        let r = c
+            .post(format!("{base}/v1/sessions/{session}/poses"))
+            .json(&point_pose(i, set))
+            .send()
+            .await
+            .unwrap();
+        assert_eq!(r.status(), 201);
+    }
+    let form = Form::new()
+        .text("joints_deg", "[1,2,3,4,5,6]")
+        .part("image", image_part(png_bytes, "k.png"));
+    let pose: Value = c
+        .post(format!("{base}/v1/sessions/{session}/poses"))
+        .multipart(form)
+        .send()
+        .await
+        .unwrap()
+        .json()
+        .await
+        .unwrap();
+    (session, pose["id"].as_str().unwrap().to_string())
+}
+
+#[tokio::test]
+async fn job_survives_kill_9_and_uploads_are_byte_identical_after_restart() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = fresh_database(&dir);
+    let args = [
+        "--database-url",
+        &db,
+        "--bind",
+        "127.0.0.1:0",
+        "--workers",
+        "1",
+        "--lease-secs",
+        "1",
+        "--poll-ms",
+        "50",
+    ];
+    let c = reqwest::Client::new();
+    let mut first = spawn_binary(&args, &[("ROBOCAL_TEST_STAGE_DELAY_MS", "1500")]);
+    let image = png(CAMERA_W, CAMERA_H, 42);
+    let (session, pose) = setup(&first.base, &c, image.clone()).await;
+    let r = c
+        .post(format!("{}/v1/sessions/{session}/calibrations", first.base))
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(r.status(), 202);
+    let job = r.json::<Value>().await.unwrap()["job_id"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    let running = wait_job_at(&c, &first.base, &job, WAIT, |v| {
+        v["state"] == "running" && v["progress"].as_f64().unwrap() > 0.0
+    })
+    .await;
+    assert_eq!(running["attempts"], 1);
+
+    first.child.kill().unwrap(); // SIGKILL: no cleanup at all
+    first.child.wait().unwrap();
+
+    let mut second = spawn_binary(&args, &[("ROBOCAL_TEST_STAGE_DELAY_MS", "10")]);
+    let done = wait_job_at(&c, &second.base, &job, WAIT, is_finished).await;
+    assert_eq!(done["state"], "succeeded", "{done}");
+    assert_eq!(done["attempts"], 2, "reclaimed after the lease expired");
+    let bytes = c
+        .get(format!(
+            "{}/v1/sessions/{session}/poses/{pose}/image",
+            second.base
+        ))
+        .send()
+        .await
+        .unwrap()
+        .bytes()
+        .await
+        .unwrap();
+    assert_eq!(sha256_hex(&bytes), sha256_hex(&image));
+    second.child.kill().unwrap();
+    second.child.wait().unwrap();
+}
+
+#[tokio::test]
+async fn sigterm_releases_the_running_job_and_exits_cleanly() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = fresh_database(&dir);
+    let args = [
+        "--database-url",
+        &db,
+        "--bind",
+        "127.0.0.1:0",
+        "--workers",
+        "1",
+        "--lease-secs",
+        "30",
+        "--poll-ms",
+        "50",
+        "--shutdown-grace-secs",
+        "0",
+    ];
+    let c = reqwest::Client::new();
+    let mut first = spawn_binary(&args, &[("ROBOCAL_TEST_STAGE_DELAY_MS", "3000")]);
+    let (session, _) = setup(&first.base, &c, png(CAMERA_W, CAMERA_H, 1)).await;
+    let r = c
+        .post(format!("{}/v1/sessions/{session}/calibrations", first.base))
+        .send()
+        .await
+        .unwrap();
+    let job = r.json::<Value>().await.unwrap()["job_id"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    wait_job_at(&c, &first.base, &job, WAIT, |v| v["state"] == "running").await;
+    let pid = first.child.id().to_string();
+    assert!(std::process::Command::new("kill")
+        .args(["-TERM", &pid])
+        .status()
+        .unwrap()
+        .success());
+    let status = first.child.wait().unwrap();
+    assert!(status.success(), "clean exit on SIGTERM: {status:?}");
+
+    // Released, not abandoned: the next process runs it at once (no 30 s lease wait).
+    let mut second = spawn_binary(&args, &[("ROBOCAL_TEST_STAGE_DELAY_MS", "10")]);
+    let done = wait_job_at(&c, &second.base, &job, Duration::from_secs(10), is_finished).await;
+    assert_eq!(done["state"], "succeeded", "{done}");
+    assert_eq!(
+        done["attempts"], 1,
+        "a released job's attempt is not counted"
+    );
+    second.child.kill().unwrap();
+    second.child.wait().unwrap();
+}

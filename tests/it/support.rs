@@ -1,0 +1,294 @@
+//! Test harness: `spawn_app()` starts the real server in-process on port 0
+//! with a fresh database; `spawn_binary()` runs the real `robocal` binary
+//! (for kill -9 / SIGTERM tests). The backend is a parameter
+//! (`ROBOCAL_TEST_BACKEND`, default `sqlite`) so the same tests run on
+//! every store backend.
+
+use std::io::{BufRead, BufReader, Write};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+use robocal::config::ServeConfig;
+use robocal::server::{start, RunningServer};
+use serde_json::{json, Value};
+use sha2::{Digest, Sha256};
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Backend {
+    Sqlite,
+}
+
+pub fn backend() -> Backend {
+    match std::env::var("ROBOCAL_TEST_BACKEND").as_deref() {
+        Ok("sqlite") | Err(_) => Backend::Sqlite,
+        Ok(other) => panic!("unknown ROBOCAL_TEST_BACKEND {other:?}"),
+    }
+}
+
+/// A fresh, empty database for one test, on the selected backend.
+pub fn fresh_database(dir: &tempfile::TempDir) -> String {
+    match backend() {
+        Backend::Sqlite => format!("sqlite://{}/robocal.db", dir.path().display()),
+    }
+}
+
+pub struct TestApp {
+    pub base: String,
+    pub client: reqwest::Client,
+    pub database_url: String,
+    server: Option<RunningServer>,
+    _dir: tempfile::TempDir,
+}
+
+pub fn test_config(database_url: &str, dir: &tempfile::TempDir) -> ServeConfig {
+    let mut config = ServeConfig::for_database(database_url);
+    config.bind = "127.0.0.1:0".parse().unwrap();
+    config.workers = Some(2);
+    config.poll_ms = 50;
+    config.lease_secs = 2;
+    config.shutdown_grace_secs = 5;
+    config.upload_dir = Some(dir.path().to_path_buf());
+    config
+}
+
+pub async fn spawn_app() -> TestApp {
+    spawn_app_with(|_| {}).await
+}
+
+pub async fn spawn_app_with(tweak: impl FnOnce(&mut ServeConfig)) -> TestApp {
+    let dir = tempfile::tempdir().unwrap();
+    let database_url = fresh_database(&dir);
+    let mut config = test_config(&database_url, &dir);
+    tweak(&mut config);
+    let server = start(config).await.expect("server starts");
+    let addr = server.addr;
+    TestApp {
+        base: format!("http://{addr}"),
+        client: reqwest::Client::new(),
+        database_url,
+        server: Some(server),
+        _dir: dir,
+    }
+}
+
+impl TestApp {
+    pub fn url(&self, path: &str) -> String {
+        format!("{}{}", self.base, path)
+    }
+
+    pub async fn get(&self, path: &str) -> reqwest::Response {
+        self.client.get(self.url(path)).send().await.unwrap()
+    }
+
+    pub async fn put_json(&self, path: &str, body: &Value) -> reqwest::Response {
+        self.client
+            .put(self.url(path))
+            .json(body)
+            .send()
+            .await
+            .unwrap()
+    }
+
+    pub async fn post_json(&self, path: &str, body: &Value) -> reqwest::Response {
+        self.client
+            .post(self.url(path))
+            .json(body)
+            .send()
+            .await
+            .unwrap()
+    }
+
+    /// Stops the server cleanly; the returned directory keeps the database.
+    pub async fn shutdown(mut self) -> tempfile::TempDir {
+        if let Some(s) = self.server.take() {
+            s.shutdown().await;
+        }
+        self._dir
+    }
+
+    /// A robot `serial` with the 6-joint test table, and a camera session.
+    pub async fn robot_and_session(&self, serial: &str) -> String {
+        let r = self
+            .put_json(&format!("/v1/robots/{serial}"), &robot_body())
+            .await;
+        assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
+        let r = self
+            .post_json(&format!("/v1/robots/{serial}/sessions"), &session_body())
+            .await;
+        assert_eq!(r.status(), 201);
+        r.json::<Value>().await.unwrap()["id"]
+            .as_str()
+            .unwrap()
+            .to_string()
+    }
+
+    /// Adds `cal` calibration and `val` validation poses with image points.
+    pub async fn add_point_poses(&self, session: &str, cal: usize, val: usize) {
+        for i in 0..cal + val {
+            let set = if i < cal { "cal" } else { "val" };
+            let r = self
+                .post_json(
+                    &format!("/v1/sessions/{session}/poses"),
+                    &point_pose(i, set),
+                )
+                .await;
+            assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
+        }
+    }
+
+    /// Polls a job until `done(job)` or the timeout.
+    pub async fn wait_job(
+        &self,
+        job: &str,
+        timeout: Duration,
+        done: impl Fn(&Value) -> bool,
+    ) -> Value {
+        wait_job_at(&self.client, &self.base, job, timeout, done).await
+    }
+}
+
+pub async fn wait_job_at(
+    client: &reqwest::Client,
+    base: &str,
+    job: &str,
+    timeout: Duration,
+    done: impl Fn(&Value) -> bool,
+) -> Value {
+    let start = Instant::now();
+    loop {
+        let v: Value = client
+            .get(format!("{base}/v1/jobs/{job}"))
+            .send()
+            .await
+            .unwrap()
+            .json()
+            .await
+            .unwrap();
+        if done(&v) {
+            return v;
+        }
+        assert!(
+            start.elapsed() < timeout,
+            "job did not get there in time: {v}"
+        );
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
+}
+
+pub fn is_finished(v: &Value) -> bool {
+    matches!(
+        v["state"].as_str(),
+        Some("succeeded" | "failed" | "cancelled")
+    )
+}
+
+pub fn robot_body() -> Value {
+    // A six-joint arm given joint by joint (IRB-2400-like proportions).
+    let joints: Vec<Value> = [
+        (100.0, -90.0, 615.0),
+        (705.0, 0.0, 0.0),
+        (135.0, -90.0, 0.0),
+        (0.0, 90.0, 755.0),
+        (0.0, -90.0, 0.0),
+        (0.0, 0.0, 85.0),
+    ]
+    .iter()
+    .map(|(a, alpha, d)| json!({"type":"revolute","a_mm":a,"alpha_deg":alpha,"d_mm":d,"theta_offset_deg":0.0,"min_deg":-170.0,"max_deg":170.0}))
+    .collect();
+    json!({"model": "Test arm", "kinematics": {"joints": joints}})
+}
+
+pub const CAMERA_W: u32 = 64;
+pub const CAMERA_H: u32 = 48;
+
+pub fn session_body() -> Value {
+    json!({
+        "instrument": "camera",
+        "target": {"rows": 7, "cols": 9, "pitch_mm": 20.0, "dot_diameter_mm": 8.0, "origin_marker_diameter_mm": 12.0},
+        "camera": {"width": CAMERA_W, "height": CAMERA_H, "pixel_size_um": 5.5, "nominal_focal_mm": 8.0}
+    })
+}
+
+pub fn point_pose(i: usize, set: &str) -> Value {
+    let q = i as f64;
+    json!({
+        "joints_deg": [q, -10.0 + q, 20.0, 0.0, 30.0 - q, 5.0],
+        "set": set,
+        "image_points": [{"row":0,"col":0,"x":10.5,"y":12.25},{"row":0,"col":1,"x":20.0,"y":12.0},{"row":1,"col":0,"x":10.0,"y":22.0}]
+    })
+}
+
+/// A small valid PNG whose pixels depend on `seed` (so each is a distinct blob).
+pub fn png(width: u32, height: u32, seed: u8) -> Vec<u8> {
+    let img = image::RgbImage::from_fn(width, height, |x, y| {
+        image::Rgb([
+            (x as u8).wrapping_mul(3) ^ seed,
+            (y as u8).wrapping_add(seed),
+            seed,
+        ])
+    });
+    let mut out = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut out, image::ImageFormat::Png).unwrap();
+    out.into_inner()
+}
+
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    hex::encode(Sha256::digest(bytes))
+}
+
+/// A zip archive of `(name, bytes)` entries, deflated.
+pub fn zip_bytes(entries: &[(&str, &[u8])]) -> Vec<u8> {
+    let mut w = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+    let options = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Deflated);
+    for (name, bytes) in entries {
+        w.start_file(*name, options).unwrap();
+        w.write_all(bytes).unwrap();
+    }
+    w.finish().unwrap().into_inner()
+}
+
+pub fn image_part(bytes: Vec<u8>, name: &str) -> reqwest::multipart::Part {
+    reqwest::multipart::Part::bytes(bytes)
+        .file_name(name.to_string())
+        .mime_str("image/png")
+        .unwrap()
+}
+
+/// The real binary, started on port 0; its address is read from stdout.
+pub struct BinaryServer {
+    pub child: Child,
+    pub base: String,
+}
+
+pub fn spawn_binary(args: &[&str], envs: &[(&str, &str)]) -> BinaryServer {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_robocal"));
+    cmd.arg("serve").args(args);
+    cmd.env("RUST_LOG", "warn");
+    for (k, v) in envs {
+        cmd.env(k, v);
+    }
+    let mut child = cmd
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("robocal binary starts");
+    let stdout = child.stdout.take().unwrap();
+    let mut line = String::new();
+    BufReader::new(stdout).read_line(&mut line).unwrap();
+    let addr = line
+        .trim()
+        .strip_prefix("robocal listening on ")
+        .unwrap_or_else(|| panic!("unexpected first line {line:?}"))
+        .to_string();
+    BinaryServer { child, base: addr }
+}
+
+/// Runs `robocal <args>` to completion.
+pub fn run_binary(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_robocal"))
+        .args(args)
+        .env("RUST_LOG", "warn")
+        .output()
+        .unwrap()
+}
