@@ -20,7 +20,8 @@ pub struct ServeConfig {
     #[arg(long, env = "ROBOCAL_BIND", default_value = "127.0.0.1:8080")]
     pub bind: SocketAddr,
 
-    /// Database URL (`sqlite://path.db`); the file is created and migrated at start.
+    /// Database URL: `sqlite://path.db` (the file is created) or `postgres://user@host/db`
+    /// (a fleet of replicas sharing one database); migrated at start.
     #[arg(long, env = "DATABASE_URL", default_value = "sqlite://robocal.db")]
     pub database_url: String,
 
@@ -76,6 +77,12 @@ pub struct ServeConfig {
         hide = true
     )]
     pub test_stage_delay_ms: u64,
+
+    /// Test hook: a succeeded job whose pipeline identified no parameter set
+    /// stores a marker set (naming the job) as the serial's next version, so
+    /// the fleet tests can check versions and exactly-once completion.
+    #[arg(long, env = "ROBOCAL_TEST_PARAMETER_SETS", hide = true)]
+    pub test_parameter_sets: bool,
 }
 
 impl ServeConfig {

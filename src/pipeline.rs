@@ -17,6 +17,11 @@ use serde_json::json;
 
 use robocal_calib::kinematics::RobotModel;
 
+mod camera_stage;
+mod identify_stage;
+mod measure;
+pub mod results;
+
 use crate::domain::NewParameterSet;
 use crate::schema::job::{CalibrationOptions, Validation};
 use crate::schema::robot::KinematicsDoc;
@@ -57,6 +62,7 @@ impl Stage {
 #[derive(Debug, Clone)]
 pub struct Input {
     pub serial: String,
+    pub session_id: String,
     /// The robot's nominal model, as the numerics take it (radians).
     pub robot: RobotModel,
     /// The same joint table as stored and served (degrees, conventions explicit).
@@ -112,19 +118,146 @@ fn describe(errors: &[FieldError]) -> String {
         .join("; ")
 }
 
-/// Runs the calibration job. `progress(stage, message, fraction)` is called
-/// with `fraction` in `[0, 1]` for the whole job.
+/// Fraction of the whole job at which each stage starts (progress bars).
+const STAGE_START: [(Stage, f64); 6] = [
+    (Stage::Validate, 0.0),
+    (Stage::Detect, 0.05),
+    (Stage::CalibrateCamera, 0.55),
+    (Stage::MeasurePoses, 0.7),
+    (Stage::Identify, 0.75),
+    (Stage::Report, 0.97),
+];
+
+fn stage_span(stage: Stage) -> (f64, f64) {
+    let i = STAGE_START.iter().position(|(s, _)| *s == stage).unwrap_or(0);
+    let end = STAGE_START.get(i + 1).map_or(1.0, |(_, f)| *f);
+    (STAGE_START[i].1, end)
+}
+
+/// Runs the calibration job: validate, detect, calibrate the camera,
+/// measure the poses, identify, report. `progress(stage, message,
+/// fraction)` is called with `fraction` in `[0, 1]` for the whole job.
 pub fn run(
     input: &Input,
     progress: &dyn Fn(Stage, &str, f64),
     cancel: &AtomicBool,
 ) -> Result<Output, PipelineError> {
-    let summary = validate(input, progress, cancel)?;
-    progress(Stage::Validate, "inputs valid", 1.0);
+    let within = |stage: Stage, message: &str, fraction: f64| {
+        let (lo, hi) = stage_span(stage);
+        progress(stage, message, lo + (hi - lo) * fraction.clamp(0.0, 1.0));
+    };
+    let check_cancel = || {
+        if cancel.load(Ordering::Relaxed) {
+            Err(PipelineError::Cancelled)
+        } else {
+            Ok(())
+        }
+    };
+    validate(input, &within, cancel)?;
+    within(Stage::Validate, "inputs valid", 1.0);
+    let (measured, camera) = match input.session.instrument {
+        Instrument::Camera => {
+            let (target, camera_doc) = match (&input.session.target, &input.session.camera) {
+                (Some(t), Some(c)) => (t, c),
+                _ => {
+                    return Err(PipelineError::Invalid(vec![FieldError::new(
+                        "session",
+                        "a camera session needs target and camera",
+                    )]))
+                }
+            };
+            let measured = measure::measure(
+                &input.poses,
+                target,
+                &|message, fraction| within(Stage::Detect, message, fraction),
+                cancel,
+            )?;
+            check_cancel()?;
+            within(Stage::CalibrateCamera, "Tsai start and joint refinement", 0.0);
+            let step = camera_stage::calibrate_camera(
+                &input.poses,
+                &measured,
+                target,
+                camera_doc,
+                input.options.refine_intrinsics,
+            )?;
+            (Some(measured), Some(step))
+        }
+        Instrument::Tracker => (None, None),
+    };
+    check_cancel()?;
+    within(Stage::MeasurePoses, "camera poses measured", 1.0);
+    let usable: Vec<usize> = (0..input.poses.len())
+        .filter(|&i| camera.as_ref().is_none_or(|c| c.view_pose.contains(&i)))
+        .collect();
+    let kind = input.options.measurement.unwrap_or(match input.session.instrument {
+        Instrument::Camera => crate::schema::job::Measurement::Pose,
+        Instrument::Tracker => crate::schema::job::Measurement::Position,
+    });
+    let guess = match &input.session.flange_to_camera_guess {
+        Some(p) => pose_of(p),
+        None => robocal_calib::geometry::Pose::identity(),
+    };
+    within(Stage::Identify, "kinematic identification", 0.0);
+    let identified = identify_stage::identify_robot(
+        &input.robot,
+        &input.poses,
+        camera.as_ref(),
+        guess,
+        kind,
+        input.options.validation,
+        input.options.joint_refinement,
+        &usable,
+    )?;
+    check_cancel()?;
+    within(Stage::Report, "building the report", 0.0);
+    let mut notes = Vec::new();
+    if let Some(m) = &measured {
+        if !m.failures.is_empty() {
+            notes.push(format!(
+                "{} of {} images were not used (see detection failures).",
+                m.failures.len(),
+                m.points.len()
+            ));
+        }
+    }
+    let context = results::Context {
+        serial: &input.serial,
+        session_id: &input.session_id,
+        instrument: if camera.is_some() {
+            robocal_calib::kinematics::Instrument::Camera
+        } else {
+            robocal_calib::kinematics::Instrument::Tracker
+        },
+        measurement: match kind {
+            crate::schema::job::Measurement::Pose => "pose",
+            crate::schema::job::Measurement::Position => "position",
+        },
+        poses: &input.poses,
+        measured: measured.as_ref(),
+        camera: camera.as_ref(),
+        notes,
+    };
+    let set = results::parameter_set(&context, &identified);
+    let report = results::report(&context, &identified, &set);
+    within(Stage::Report, "done", 1.0);
     Ok(Output {
-        parameter_set: None,
-        summary,
+        parameter_set: Some(NewParameterSet {
+            parameters: set.to_json(),
+            report: serde_json::to_value(&report).unwrap_or_default(),
+        }),
+        summary: results::summary(&identified),
     })
+}
+
+/// A contract pose (the exact matrix when given).
+fn pose_of(doc: &PoseDoc) -> robocal_calib::geometry::Pose {
+    doc.matrix
+        .and_then(|m| robocal_calib::geometry::pose_from_matrix_rows(&m).ok())
+        .or_else(|| {
+            robocal_calib::geometry::pose_from_xyz_rpy_deg(doc.translation_mm, doc.rotation_deg).ok()
+        })
+        .unwrap_or_else(robocal_calib::geometry::Pose::identity)
 }
 
 /// The validation stage; returns a summary of what was checked.

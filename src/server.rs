@@ -70,6 +70,8 @@ pub async fn start(config: ServeConfig) -> Result<RunningServer, StartError> {
     };
     let (shutdown_tx, shutdown_rx) = watch::channel(false);
     let wake = Arc::new(Notify::new());
+    // Cross-process wake-ups (PostgreSQL LISTEN/NOTIFY); polling stays as the fallback.
+    let listening = store.watch_jobs(wake.clone(), shutdown_rx.clone());
     let pool = WorkerPool::start(
         store.clone(),
         PoolConfig {
@@ -78,11 +80,12 @@ pub async fn start(config: ServeConfig) -> Result<RunningServer, StartError> {
             poll: Duration::from_millis(config.poll_ms),
             grace: Duration::from_secs(config.shutdown_grace_secs),
             test_stage_delay: Duration::from_millis(config.test_stage_delay_ms),
+            test_parameter_sets: config.test_parameter_sets,
         },
         wake.clone(),
         shutdown_rx.clone(),
     );
-    tracing::info!(%addr, backend = store.backend(), workers = config.worker_count(), "robocal listening");
+    tracing::info!(%addr, backend = store.backend(), workers = config.worker_count(), job_events = listening, "robocal listening");
     let state = AppState {
         store,
         config: Arc::new(config),

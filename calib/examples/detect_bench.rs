@@ -11,7 +11,9 @@ use image::DynamicImage;
 use rand::{rngs::StdRng, SeedableRng};
 use robocal_calib::sim::render::{render_target, RenderOptions};
 use robocal_calib::sim::views::{random_view, reference_camera, ViewRanges};
-use robocal_calib::vision::{detect_dynamic, TargetSpec};
+use robocal_calib::vision::{
+    decode_image, detect, detect_dynamic, DecodeLimits, GrayImage, TargetSpec,
+};
 
 const WIDTH: usize = 1280;
 const HEIGHT: usize = 1024;
@@ -34,12 +36,79 @@ fn thread_cpu_ns() -> Option<u64> {
     s.split_whitespace().next()?.parse().ok()
 }
 
+/// PNG bytes of an 8-bit grey image.
+fn png(img: &image::GrayImage) -> Vec<u8> {
+    let mut out = Vec::new();
+    DynamicImage::ImageLuma8(img.clone())
+        .write_to(&mut std::io::Cursor::new(&mut out), image::ImageFormat::Png)
+        .expect("encode png");
+    out
+}
+
+/// CRC-32 of a PNG chunk (type + data).
+fn crc32(bytes: &[u8]) -> u32 {
+    let mut c = 0xFFFF_FFFFu32;
+    for &b in bytes {
+        c ^= b as u32;
+        for _ in 0..8 {
+            c = if c & 1 != 0 {
+                0xEDB8_8320 ^ (c >> 1)
+            } else {
+                c >> 1
+            };
+        }
+    }
+    !c
+}
+
+/// Bad inputs: each must give an error, quickly (decode + detect timed).
+fn bad_images(target: &TargetSpec) {
+    let (w, h) = (WIDTH as u32, HEIGHT as u32);
+    let noise = image::GrayImage::from_fn(w, h, |x, y| {
+        image::Luma([((x.wrapping_mul(2_654_435_761) ^ y.wrapping_mul(40_503)) >> 7) as u8])
+    });
+    let good = png(&image::GrayImage::from_pixel(w, h, image::Luma([128])));
+    let mut huge = good[..33].to_vec(); // signature + IHDR claiming 30000 x 30000
+    huge[16..20].copy_from_slice(&30000u32.to_be_bytes());
+    huge[20..24].copy_from_slice(&30000u32.to_be_bytes());
+    let crc = crc32(&huge[12..29]);
+    huge[29..33].copy_from_slice(&crc.to_be_bytes());
+    huge.extend_from_slice(&good[33..]); // the rest of a valid stream
+    let cases: Vec<(&str, Vec<u8>)> = vec![
+        ("empty", Vec::new()),
+        ("1x1", png(&image::GrayImage::new(1, 1))),
+        ("all black", png(&image::GrayImage::new(w, h))),
+        (
+            "all white",
+            png(&image::GrayImage::from_pixel(w, h, image::Luma([255]))),
+        ),
+        ("noise", png(&noise)),
+        ("30000x30000 header", huge),
+        ("truncated", good[..good.len() / 2].to_vec()),
+    ];
+    println!("bad images (decode + detect):");
+    for (name, bytes) in cases {
+        let start = Instant::now();
+        let result = decode_image(&bytes, &DecodeLimits::default())
+            .and_then(|g: GrayImage| detect(&g, target));
+        let ms = start.elapsed().as_secs_f64() * 1e3;
+        match result {
+            Err(e) => println!("  {name}: {ms:.1} ms, error: {e}"),
+            Ok(_) => println!("  {name}: {ms:.1} ms, UNEXPECTED SUCCESS"),
+        }
+    }
+}
+
 fn main() {
     let views: usize = arg("--views", 500);
     let seed: u64 = arg("--seed", 2026);
     let opencv = std::env::args().any(|a| a == "--opencv");
     let camera = reference_camera();
     let target = TargetSpec::robocal_9x9();
+    if std::env::args().any(|a| a == "--bad") {
+        bad_images(&target);
+        return;
+    }
     let opts = RenderOptions::default();
     let mut rng = StdRng::seed_from_u64(seed);
     let dir = std::env::temp_dir().join(format!("robocal_detect_bench_{seed}"));

@@ -120,7 +120,7 @@ pub fn axis_chart(report: &Report, width: f64, height: f64) -> Svg {
         ("|x|", &b.x, &a.x),
         ("|y|", &b.y, &a.y),
         ("|z|", &b.z, &a.z),
-        ("3-D", &b.three_d, &a.three_d),
+        ("3-D", &b.norm, &a.norm),
     ];
     let values: Vec<f64> = groups
         .iter()
@@ -184,8 +184,8 @@ pub fn axis_chart(report: &Report, width: f64, height: f64) -> Svg {
         let y = area.bottom() + TICK_LENGTH + FONT_SIZE + 3.0;
         svg.text(centre, y, "middle", FONT_SIZE, TEXT_COLOR, name);
     }
-    let factor = if a.three_d.mean_mm > 0.0 {
-        b.three_d.mean_mm / a.three_d.mean_mm
+    let factor = if a.norm.mean_mm > 0.0 {
+        b.norm.mean_mm / a.norm.mean_mm
     } else {
         f64::NAN
     };

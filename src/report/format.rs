@@ -107,7 +107,7 @@ pub const STAT_ROWS: [(&str, StatGetter); 5] = [
 
 /// Before/after mean ratio ("how many times smaller the error became").
 pub fn improvement_factor(report: &Report) -> Option<f64> {
-    let (before, after) = (report.before.three_d.mean_mm, report.after.three_d.mean_mm);
+    let (before, after) = (report.before.norm.mean_mm, report.after.norm.mean_mm);
     (before.is_finite() && after.is_finite() && after > 0.0).then(|| before / after)
 }
 
@@ -133,9 +133,9 @@ pub fn before_fit(report: &Report) -> &'static str {
 pub fn headline(report: &Report) -> String {
     format!(
         "mean 3-D error at {} validation poses: {} mm before → {} mm after ({} smaller)",
-        report.after.three_d.n,
-        mm(report.before.three_d.mean_mm),
-        mm(report.after.three_d.mean_mm),
+        report.after.norm.n,
+        mm(report.before.norm.mean_mm),
+        mm(report.after.norm.mean_mm),
         improvement_text(report)
     )
 }

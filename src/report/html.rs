@@ -138,7 +138,7 @@ fn header(page: &mut String, report: &Report) {
         escape_xml(&report.job_id),
         escape_xml(&report.session_id)
     );
-    let (b, a) = (&report.before.three_d, &report.after.three_d);
+    let (b, a) = (&report.before.norm, &report.after.norm);
     let _ = writeln!(
         page,
         "<div class=\"verdict\"><div class=\"label\">Mean 3-D error at {} validation poses</div>\

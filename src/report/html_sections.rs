@@ -21,7 +21,7 @@ fn ratio(before: f64, after: f64) -> String {
 }
 
 pub fn stats_table(page: &mut String, report: &Report) {
-    let (b, a) = (&report.before.three_d, &report.after.three_d);
+    let (b, a) = (&report.before.norm, &report.after.norm);
     page.push_str(
         "<table class=\"data\"><caption class=\"muted\">3-D position error [mm]</caption>\
          <tr><th></th><th class=\"num before\">before</th><th class=\"num after\">after</th><th class=\"num\">ratio</th></tr>\n",
@@ -54,7 +54,7 @@ pub fn axis_table(page: &mut String, report: &Report) {
         ("x", &b.x, &a.x),
         ("y", &b.y, &a.y),
         ("z", &b.z, &a.z),
-        ("3-D", &b.three_d, &a.three_d),
+        ("3-D", &b.norm, &a.norm),
     ] {
         let _ = writeln!(
             page,

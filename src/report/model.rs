@@ -4,27 +4,10 @@
 
 use serde::{Deserialize, Serialize};
 
-/// Statistics of a set of error magnitudes (method.md §7).
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
-pub struct ErrorStats {
-    pub n: usize,
-    pub mean_mm: f64,
-    pub median_mm: f64,
-    pub std_mm: f64,
-    pub max_mm: f64,
-    pub rms_mm: f64,
-}
-
-/// 3-D error statistics plus the same of the absolute error per axis
-/// (in the world = target or instrument frame).
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
-pub struct AccuracySummary {
-    #[serde(flatten)]
-    pub three_d: ErrorStats,
-    pub x: ErrorStats,
-    pub y: ErrorStats,
-    pub z: ErrorStats,
-}
+/// Error statistics (method.md §7): the numerics' own types, so the
+/// report carries exactly what the identification computed. `AccuracySummary`
+/// is the 3-D statistics (flattened) plus the same per axis.
+pub use robocal_calib::stats::{AccuracyStats as AccuracySummary, ErrorStats};
 
 /// One camera view's fit.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -310,7 +310,7 @@ fn summary(errors: impl Iterator<Item = [f64; 3]>) -> AccuracySummary {
     let errors: Vec<[f64; 3]> = errors.collect();
     let axis = |i: usize| stats(errors.iter().map(|e| e[i].abs()).collect());
     AccuracySummary {
-        three_d: stats(errors.iter().map(|e| norm(*e)).collect()),
+        norm: stats(errors.iter().map(|e| norm(*e)).collect()),
         x: axis(0),
         y: axis(1),
         z: axis(2),
@@ -356,7 +356,7 @@ mod tests {
             .all(|p| (1.0..3.0).contains(&p.before_mm) && (0.05..0.15).contains(&p.after_mm)));
         assert_eq!(a.camera.as_ref().unwrap().views.len(), 60);
         assert!(a.residual_field.len() > 3000);
-        assert_eq!(a.after.three_d.n, VALIDATION_POSES);
-        assert!(a.before.three_d.max_mm >= a.before.three_d.median_mm);
+        assert_eq!(a.after.norm.n, VALIDATION_POSES);
+        assert!(a.before.norm.max_mm >= a.before.norm.median_mm);
     }
 }

@@ -221,7 +221,7 @@ fn pose_chart(report: &Report, width: f64, height: f64) -> Svg {
         return svg;
     }
     // The means are drawn too, so the axis covers them.
-    let means = [report.before.three_d.mean_mm, report.after.three_d.mean_mm];
+    let means = [report.before.norm.mean_mm, report.after.norm.mean_mm];
     let values: Vec<f64> = poses
         .iter()
         .flat_map(|p| [p.before_mm, p.after_mm])
@@ -260,8 +260,8 @@ fn pose_chart(report: &Report, width: f64, height: f64) -> Svg {
         }
     }
     let stats = [
-        (report.before.three_d.mean_mm, BEFORE_COLOR),
-        (report.after.three_d.mean_mm, AFTER_COLOR),
+        (report.before.norm.mean_mm, BEFORE_COLOR),
+        (report.after.norm.mean_mm, AFTER_COLOR),
     ];
     for (mean, color) in stats {
         if mean.is_finite() && mean > 0.0 {
@@ -376,7 +376,7 @@ mod tests {
         let mut broken = sample_report();
         broken.per_pose[40].before_mm = f64::NAN;
         broken.per_pose[41].after_mm = f64::INFINITY;
-        broken.after.three_d = ErrorStats {
+        broken.after.norm = ErrorStats {
             mean_mm: f64::NAN,
             ..Default::default()
         };

@@ -122,7 +122,7 @@ pub fn render_table(report: &Report) -> String {
         ("after", Right),
         ("ratio", Right),
     ]);
-    let (b, a) = (&report.before.three_d, &report.after.three_d);
+    let (b, a) = (&report.before.norm, &report.after.norm);
     t.row(vec![
         "poses".into(),
         b.n.to_string(),
@@ -153,7 +153,7 @@ pub fn render_table(report: &Report) -> String {
         ("x", &b.x, &a.x),
         ("y", &b.y, &a.y),
         ("z", &b.z, &a.z),
-        ("3-D", &b.three_d, &a.three_d),
+        ("3-D", &b.norm, &a.norm),
     ] {
         let cells = [before.mean_mm, before.max_mm, after.mean_mm, after.max_mm].map(mm);
         let mut row = vec![name.to_string()];
@@ -373,11 +373,11 @@ mod tests {
             .lines()
             .filter(|l| l.trim_start().starts_with('p') && l.contains("val"))
             .collect();
-        assert_eq!(rows.len(), report.after.three_d.n);
+        assert_eq!(rows.len(), report.after.norm.n);
         assert!(rows
             .iter()
             .all(|r| r.chars().count() == rows[0].chars().count()));
-        assert!(text.contains(&format!("{} mm before", mm(report.before.three_d.mean_mm))));
+        assert!(text.contains(&format!("{} mm before", mm(report.before.norm.mean_mm))));
     }
 
     #[test]

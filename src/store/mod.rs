@@ -12,9 +12,11 @@ use std::sync::Arc;
 
 use async_trait::async_trait;
 use serde_json::Value;
+use tokio::sync::{watch, Notify};
 
 use crate::domain::*;
 
+pub mod postgres;
 pub mod sqlite;
 
 #[derive(Debug, thiserror::Error)]
@@ -168,18 +170,29 @@ pub trait Store: RobotStore + SessionStore + JobStore + ResultStore + AuthStore 
     async fn ping(&self) -> StoreResult<()>;
     /// Backend name for logs ("sqlite", "postgres").
     fn backend(&self) -> &'static str;
+    /// Wakes `wake` (one idle worker) whenever another process makes a job
+    /// claimable, until `shutdown`. Returns `false` when the backend has no
+    /// such events (SQLite: one process, whose own enqueues wake it); workers
+    /// poll in any case, as the fallback.
+    fn watch_jobs(&self, _wake: Arc<Notify>, _shutdown: watch::Receiver<bool>) -> bool {
+        false
+    }
 }
 
 pub type DynStore = Arc<dyn Store>;
 
-/// Opens the store named by a database URL and runs its migrations.
+/// Opens the store named by a database URL and runs its migrations:
+/// `sqlite://path.db` (one node) or `postgres://user@host/db` (a fleet).
 pub async fn connect(database_url: &str) -> StoreResult<DynStore> {
     if database_url.starts_with("sqlite:") {
         let store = sqlite::SqliteStore::connect(database_url).await?;
         Ok(Arc::new(store))
+    } else if database_url.starts_with("postgres:") || database_url.starts_with("postgresql:") {
+        let store = postgres::PgStore::connect(database_url).await?;
+        Ok(Arc::new(store))
     } else {
         Err(StoreError::Backend(format!(
-            "unsupported database URL scheme in {database_url:?} (supported: sqlite:)"
+            "unsupported database URL scheme in {database_url:?} (supported: sqlite:, postgres:)"
         )))
     }
 }

@@ -121,7 +121,8 @@ async fn token_scopes_are_enforced() {
 #[tokio::test]
 async fn non_loopback_bind_without_tokens_is_refused() {
     let dir = tempfile::tempdir().unwrap();
-    let mut config = test_config(&fresh_database(&dir), &dir);
+    let db = fresh_database(&dir);
+    let mut config = test_config(&db, &dir);
     config.bind = "0.0.0.0:0".parse().unwrap();
     match start(config).await {
         Err(StartError::Refused(message)) => assert!(message.contains("loopback"), "{message}"),

@@ -67,7 +67,7 @@ async fn job_with_too_few_poses_fails_naming_the_problem() {
 
 #[tokio::test]
 async fn running_job_reports_progress_and_can_be_cancelled() {
-    let app = spawn_app_with(|c| c.test_stage_delay_ms = 300).await;
+    let app = spawn_app_with(|c| c.test_stage_delay_ms = 500).await;
     let session = app.robot_and_session("J3").await;
     app.add_point_poses(&session, 5, 1).await;
     let job = start_job(&app, &session, None)
@@ -198,7 +198,8 @@ async fn shutdown_releases_running_job_without_counting_the_attempt() {
 #[tokio::test]
 async fn queue_reclaims_expired_leases_until_max_attempts() {
     let dir = tempfile::tempdir().unwrap();
-    let s = store::connect(&fresh_database(&dir)).await.unwrap();
+    let db = fresh_database(&dir);
+    let s = store::connect(&db).await.unwrap();
     let app_like = robocal::domain::RobotRecord {
         serial: "X".into(),
         model: "m".into(),

@@ -1,12 +1,15 @@
 //! One integration-test binary: the real server over HTTP, module per area.
 
-mod auth;
-mod hostile;
-mod idempotency;
-mod jobs;
-mod openapi;
-mod ops;
-mod poses;
-mod restart;
-mod robots;
-mod support;
+pub(crate) mod auth;
+pub(crate) mod hostile;
+pub(crate) mod hostile_uploads;
+pub(crate) mod idempotency;
+pub(crate) mod jobs;
+pub(crate) mod openapi;
+pub(crate) mod ops;
+pub(crate) mod poses;
+pub(crate) mod restart;
+pub(crate) mod robots;
+pub(crate) mod store_ops;
+pub(crate) mod support;
+pub(crate) mod test_db;

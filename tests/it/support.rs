@@ -1,8 +1,8 @@
 //! Test harness: `spawn_app()` starts the real server in-process on port 0
 //! with a fresh database; `spawn_binary()` runs the real `robocal` binary
-//! (for kill -9 / SIGTERM tests). The backend is a parameter
-//! (`ROBOCAL_TEST_BACKEND`, default `sqlite`) so the same tests run on
-//! every store backend.
+//! (for kill -9 / SIGTERM tests). The backend is fixed per test binary:
+//! `tests/it` runs every test on SQLite, `tests/pg` compiles the same modules
+//! again for PostgreSQL (see `test_db.rs` for the per-test databases).
 
 use std::io::{BufRead, BufReader, Write};
 use std::process::{Child, Command, Stdio};
@@ -13,22 +13,29 @@ use robocal::server::{start, RunningServer};
 use serde_json::{json, Value};
 use sha2::{Digest, Sha256};
 
+pub use super::test_db::TestDb;
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Backend {
     Sqlite,
+    Postgres,
 }
 
+/// The backend of this test binary: `pg` is the PostgreSQL suite.
 pub fn backend() -> Backend {
-    match std::env::var("ROBOCAL_TEST_BACKEND").as_deref() {
-        Ok("sqlite") | Err(_) => Backend::Sqlite,
-        Ok(other) => panic!("unknown ROBOCAL_TEST_BACKEND {other:?}"),
+    if env!("CARGO_CRATE_NAME") == "pg" {
+        Backend::Postgres
+    } else {
+        Backend::Sqlite
     }
 }
 
-/// A fresh, empty database for one test, on the selected backend.
-pub fn fresh_database(dir: &tempfile::TempDir) -> String {
+/// A fresh, empty database for one test, on the selected backend. Keep the
+/// guard for the whole test: the PostgreSQL database is dropped with it.
+pub fn fresh_database(dir: &tempfile::TempDir) -> TestDb {
     match backend() {
-        Backend::Sqlite => format!("sqlite://{}/robocal.db", dir.path().display()),
+        Backend::Sqlite => TestDb::sqlite(dir),
+        Backend::Postgres => TestDb::postgres(),
     }
 }
 
@@ -38,6 +45,7 @@ pub struct TestApp {
     pub database_url: String,
     server: Option<RunningServer>,
     _dir: tempfile::TempDir,
+    _db: TestDb,
 }
 
 pub fn test_config(database_url: &str, dir: &tempfile::TempDir) -> ServeConfig {
@@ -57,7 +65,8 @@ pub async fn spawn_app() -> TestApp {
 
 pub async fn spawn_app_with(tweak: impl FnOnce(&mut ServeConfig)) -> TestApp {
     let dir = tempfile::tempdir().unwrap();
-    let database_url = fresh_database(&dir);
+    let db = fresh_database(&dir);
+    let database_url = db.to_string();
     let mut config = test_config(&database_url, &dir);
     tweak(&mut config);
     let server = start(config).await.expect("server starts");
@@ -68,6 +77,7 @@ pub async fn spawn_app_with(tweak: impl FnOnce(&mut ServeConfig)) -> TestApp {
         database_url,
         server: Some(server),
         _dir: dir,
+        _db: db,
     }
 }
 
@@ -98,12 +108,13 @@ impl TestApp {
             .unwrap()
     }
 
-    /// Stops the server cleanly; the returned directory keeps the database.
-    pub async fn shutdown(mut self) -> tempfile::TempDir {
+    /// Stops the server cleanly; the returned directory and database guard
+    /// keep the database (SQLite file, PostgreSQL database) while held.
+    pub async fn shutdown(mut self) -> (tempfile::TempDir, TestDb) {
         if let Some(s) = self.server.take() {
             s.shutdown().await;
         }
-        self._dir
+        (self._dir, self._db)
     }
 
     /// A robot `serial` with the 6-joint test table, and a camera session.

@@ -129,9 +129,8 @@ pub fn find_blobs(img: &GrayImage, threshold: &LocalThreshold, min_area: f64) ->
     }
     let mut acc: Vec<Acc> = vec![Acc::default(); runs.len()];
     let mut roots: Vec<u32> = Vec::new();
-    for i in 0..runs.len() {
+    for (i, &(x0, x1, y)) in runs.iter().enumerate() {
         let r = find(&mut parent, i as u32) as usize;
-        let (x0, x1, y) = runs[i];
         let (x0, x1, y) = (x0 as usize, x1 as usize, y as usize);
         let n = (x1 - x0) as f64;
         let sx = n * (x0 + x1 - 1) as f64 * 0.5;

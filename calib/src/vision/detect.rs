@@ -352,6 +352,15 @@ fn explain_failure(
             min_area_px: SMALL_DOT_AREA_PX,
         };
     }
+    let shape_matches =
+        (ni, nj) == (target.rows, target.cols) || (nj, ni) == (target.rows, target.cols);
+    if shape_matches {
+        return DetectError::NoBoard(format!(
+            "only {} of {} dots found: the lattice has holes (occlusion, glare, or a dot clipped by the image border)",
+            best.nodes.len(),
+            n_dots
+        ));
+    }
     if runs_off_image(best, centres, img.width, img.height) {
         return DetectError::BoardPartlyOutside {
             found_rows: ni,

@@ -330,3 +330,27 @@ fn tiny_or_blurred_dots_are_named_as_such() {
     let view = render_target(&cam, &near, &t, W, H, &opts, &mut rng).unwrap();
     assert!(detect(&view.image, &t).is_err());
 }
+
+#[test]
+fn partial_second_board_beside_the_board_is_ignored() {
+    let t = TargetSpec::robocal_9x9();
+    let cam = reference_camera();
+    let tilt = UnitQuaternion::from_euler_angles(0.15, -0.1, 0.1);
+    let mut rng = StdRng::seed_from_u64(6);
+    let opts = RenderOptions::default();
+    let left = Isometry3::from_parts(Translation3::new(-230.0, -100.0, 900.0), tilt);
+    let right = Isometry3::from_parts(Translation3::new(150.0, -120.0, 850.0), tilt);
+    let mut a = render_target(&cam, &left, &t, W, H, &opts, &mut rng).unwrap();
+    let b = render_target(&cam, &right, &t, W, H, &opts, &mut rng).unwrap();
+    assert!(a.truth.iter().all(|d| d.visible && d.x < 650.0));
+    assert!(b.truth.iter().any(|d| !d.visible) && b.truth.iter().any(|d| d.visible));
+    // The second board, cut by the image border, fills the right part.
+    for y in 0..H {
+        for x in 720..W {
+            a.image.data[y * W + x] = b.image.data[y * W + x];
+        }
+    }
+    let det = detect(&a.image, &t).unwrap();
+    let e = errors(&det, &a.truth);
+    assert!(e.iter().all(|&v| v < 0.1));
+}

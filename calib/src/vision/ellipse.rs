@@ -26,8 +26,11 @@ const EDGE_MAX_RADIUS: f64 = 1.5;
 pub const MIN_EDGE_POINTS: usize = 12;
 /// Smallest accepted interior-to-background contrast, grey levels.
 pub const MIN_CONTRAST_GREY: f32 = 12.0;
-/// Largest accepted RMS distance of edge points from the fitted ellipse, px.
+/// Largest accepted RMS distance of edge points from the fitted ellipse:
+/// this many pixels, or this fraction of the semi-minor axis for large dots
+/// (real edges of big dots carry print, paper and interlace texture).
 pub const MAX_FIT_RESIDUAL_PX: f64 = 0.6;
+pub const MAX_FIT_RESIDUAL_FRACTION: f64 = 0.03;
 /// Number of fit passes (each re-centres the edge annulus on the last fit).
 const FIT_PASSES: usize = 2;
 
@@ -202,7 +205,7 @@ pub fn refine_dot(img: &GrayImage, blob: &Blob) -> Result<RefinedDot, Rejection>
         fit = Some(residual);
     }
     let residual = fit.ok_or(Rejection::NotAnEllipse)?;
-    if residual > MAX_FIT_RESIDUAL_PX {
+    if residual > MAX_FIT_RESIDUAL_PX.max(MAX_FIT_RESIDUAL_FRACTION * ell.semi_minor_px) {
         return Err(Rejection::PoorFit);
     }
     Ok(RefinedDot {

@@ -33,6 +33,9 @@ const MIGRATIONS: &[(i64, &str, &str)] = &[(
 
 /// How long a statement waits for a competing writer before giving up.
 const BUSY_TIMEOUT: Duration = Duration::from_secs(10);
+/// Migration attempts after a lost race with another starting process.
+const MIGRATION_RETRIES: u32 = 5;
+const MIGRATION_RETRY_WAIT: Duration = Duration::from_millis(200);
 /// Connections in the pool (SQLite serialises writers anyway).
 const MAX_CONNECTIONS: u32 = 8;
 
@@ -55,10 +58,21 @@ impl SqliteStore {
         let migrator = Migrator::new(Embedded)
             .await
             .map_err(|e| StoreError::Backend(format!("migrations: {e}")))?;
-        migrator
-            .run(&pool)
-            .await
-            .map_err(|e| StoreError::Backend(format!("migrations failed: {e}")))?;
+        // sqlx takes no lock on SQLite: a second process starting at the same
+        // moment can lose the race to apply a migration ("table ... already
+        // exists"). Its retry then finds the migration applied and goes on.
+        let mut attempt = 0;
+        loop {
+            match migrator.run(&pool).await {
+                Ok(()) => break,
+                Err(e) if attempt < MIGRATION_RETRIES => {
+                    tracing::debug!(error = %e, "migration raced another process; retrying");
+                    attempt += 1;
+                    tokio::time::sleep(MIGRATION_RETRY_WAIT).await;
+                }
+                Err(e) => return Err(StoreError::Backend(format!("migrations failed: {e}"))),
+            }
+        }
         Ok(SqliteStore { pool })
     }
 

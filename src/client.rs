@@ -1,0 +1,179 @@
+//! The CLI's HTTP client: a thin typed layer over the REST contract
+//! (api.md) for `robocal upload`, `calibrate` and `report`. Problem+json
+//! answers become [`ClientError::Problem`] with the server's own words.
+
+use std::path::Path;
+use std::time::Duration;
+
+use serde_json::Value;
+
+use crate::report::Report;
+
+#[derive(Debug, thiserror::Error)]
+pub enum ClientError {
+    #[error("cannot reach the server: {0}")]
+    Transport(#[from] reqwest::Error),
+    #[error("{status}: {title}{}", detail_suffix(.detail, .fields))]
+    Problem {
+        status: u16,
+        title: String,
+        detail: String,
+        fields: Vec<String>,
+    },
+    #[error("{0}")]
+    Local(String),
+}
+
+fn detail_suffix(detail: &str, fields: &[String]) -> String {
+    let mut out = String::new();
+    if !detail.is_empty() {
+        out.push_str(" — ");
+        out.push_str(detail);
+    }
+    for field in fields {
+        out.push_str("\n  ");
+        out.push_str(field);
+    }
+    out
+}
+
+/// How long one request may take; uploads of whole campaigns get longer.
+const REQUEST_TIMEOUT: Duration = Duration::from_secs(60);
+const UPLOAD_TIMEOUT: Duration = Duration::from_secs(3600);
+
+pub struct Client {
+    http: reqwest::Client,
+    base: String,
+    token: Option<String>,
+}
+
+impl Client {
+    pub fn new(base_url: &str, token: Option<String>) -> Result<Self, ClientError> {
+        let http = reqwest::Client::builder()
+            .timeout(REQUEST_TIMEOUT)
+            .build()?;
+        Ok(Self {
+            http,
+            base: base_url.trim_end_matches('/').to_string(),
+            token,
+        })
+    }
+
+    fn request(&self, method: reqwest::Method, path: &str) -> reqwest::RequestBuilder {
+        let builder = self.http.request(method, format!("{}{}", self.base, path));
+        match &self.token {
+            Some(token) => builder.bearer_auth(token),
+            None => builder,
+        }
+    }
+
+    async fn send(&self, builder: reqwest::RequestBuilder) -> Result<Value, ClientError> {
+        let response = builder.send().await?;
+        let status = response.status();
+        let body: Value = response.json().await.unwrap_or(Value::Null);
+        if status.is_success() {
+            return Ok(body);
+        }
+        let text = |key: &str| body.get(key).and_then(Value::as_str).unwrap_or("").to_string();
+        let fields = body
+            .get("errors")
+            .and_then(Value::as_array)
+            .map(|errors| {
+                errors
+                    .iter()
+                    .map(|e| {
+                        format!(
+                            "{}: {}",
+                            e.get("field").and_then(Value::as_str).unwrap_or("?"),
+                            e.get("message").and_then(Value::as_str).unwrap_or("")
+                        )
+                    })
+                    .collect()
+            })
+            .unwrap_or_default();
+        Err(ClientError::Problem {
+            status: status.as_u16(),
+            title: text("title"),
+            detail: text("detail"),
+            fields,
+        })
+    }
+
+    pub async fn put_robot(&self, serial: &str, body: &Value) -> Result<Value, ClientError> {
+        self.send(self.request(reqwest::Method::PUT, &format!("/v1/robots/{serial}")).json(body))
+            .await
+    }
+
+    pub async fn create_session(&self, serial: &str, body: &Value) -> Result<String, ClientError> {
+        let created = self
+            .send(
+                self.request(reqwest::Method::POST, &format!("/v1/robots/{serial}/sessions"))
+                    .json(body),
+            )
+            .await?;
+        id_of(&created, "id")
+    }
+
+    /// Streams a zip archive from disk (never whole in memory).
+    pub async fn upload_dataset(&self, session_id: &str, zip: &Path) -> Result<Value, ClientError> {
+        let file = tokio::fs::File::open(zip)
+            .await
+            .map_err(|e| ClientError::Local(format!("{}: {e}", zip.display())))?;
+        let length = file
+            .metadata()
+            .await
+            .map_err(|e| ClientError::Local(e.to_string()))?
+            .len();
+        let body = reqwest::Body::wrap_stream(tokio_util::io::ReaderStream::new(file));
+        self.send(
+            self.request(reqwest::Method::POST, &format!("/v1/sessions/{session_id}/dataset"))
+                .header(reqwest::header::CONTENT_TYPE, "application/zip")
+                .header(reqwest::header::CONTENT_LENGTH, length)
+                .timeout(UPLOAD_TIMEOUT)
+                .body(body),
+        )
+        .await
+    }
+
+    pub async fn start_calibration(
+        &self,
+        session_id: &str,
+        options: &Value,
+    ) -> Result<String, ClientError> {
+        let accepted = self
+            .send(
+                self.request(
+                    reqwest::Method::POST,
+                    &format!("/v1/sessions/{session_id}/calibrations"),
+                )
+                .json(options),
+            )
+            .await?;
+        id_of(&accepted, "job_id")
+    }
+
+    pub async fn job(&self, job_id: &str) -> Result<Value, ClientError> {
+        self.send(self.request(reqwest::Method::GET, &format!("/v1/jobs/{job_id}")))
+            .await
+    }
+
+    /// `version = None` asks for the latest.
+    pub async fn report(&self, serial: &str, version: Option<i64>) -> Result<Report, ClientError> {
+        let version = version.map_or("latest".to_string(), |v| v.to_string());
+        let body = self
+            .send(self.request(
+                reqwest::Method::GET,
+                &format!("/v1/robots/{serial}/parameter-sets/{version}/report"),
+            ))
+            .await?;
+        serde_json::from_value(body)
+            .map_err(|e| ClientError::Local(format!("unexpected report shape: {e}")))
+    }
+}
+
+fn id_of(body: &Value, key: &str) -> Result<String, ClientError> {
+    body.get(key)
+        .and_then(Value::as_str)
+        .map(str::to_string)
+        .ok_or_else(|| ClientError::Local(format!("the server's answer has no `{key}`")))
+}

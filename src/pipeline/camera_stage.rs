@@ -1,0 +1,179 @@
+//! Stage "calibrate_camera": intrinsics and every image's camera pose from
+//! the detected dots (method.md §2–4; refined mode by default, the paper's
+//! Tsai sequence when `refine_intrinsics` is false).
+
+use nalgebra::{Point2, Point3};
+use robocal_calib::camera::calibrate::{calibrate, CalibrationMode, CalibrationOptions};
+use robocal_calib::camera::observations::{DotObservation, ImageSize, ViewObservations};
+use robocal_calib::camera::{CameraCalibration, Intrinsics};
+use robocal_calib::camera::pose::PoseEstimate;
+
+use super::measure::{GridPoint, Measured};
+use super::{PipelineError, PoseInput, Stage};
+use crate::report::{CameraReport, CameraStd, ViewReport};
+use crate::schema::session::{CameraDoc, TargetDoc};
+
+/// The camera step's outcome, per pose where the pose had a usable image.
+pub struct CameraStep {
+    pub calibration: CameraCalibration,
+    /// Index into the session's poses of each calibrated view.
+    pub view_pose: Vec<usize>,
+    /// Per view, `(board point mm, bias-corrected pixel)`.
+    pub observations: Vec<Vec<(Point3<f64>, Point2<f64>)>>,
+}
+
+impl CameraStep {
+    pub fn intrinsics(&self) -> Intrinsics {
+        self.calibration.intrinsics
+    }
+
+    /// The camera pose measured at `pose` (index into the session's poses).
+    pub fn pose_estimate(&self, pose: usize) -> Option<&PoseEstimate> {
+        let view = self.view_pose.iter().position(|&p| p == pose)?;
+        Some(&self.calibration.views[view].pose)
+    }
+
+    pub fn observations_of(&self, pose: usize) -> Option<&[(Point3<f64>, Point2<f64>)]> {
+        let view = self.view_pose.iter().position(|&p| p == pose)?;
+        Some(&self.observations[view])
+    }
+}
+
+fn is_marker(target: &TargetDoc, p: &GridPoint) -> bool {
+    // The larger origin dot's centroid bias differs from the others'; the
+    // bias correction models one diameter, so the marker is left out.
+    target.origin_marker_diameter_mm > target.dot_diameter_mm && p.row == 0 && p.col == 0
+}
+
+fn view_of(points: &[GridPoint], target: &TargetDoc, size: ImageSize) -> ViewObservations {
+    ViewObservations {
+        image_size: size,
+        dots: points
+            .iter()
+            .filter(|p| !is_marker(target, p))
+            .map(|p| DotObservation {
+                row: p.row,
+                col: p.col,
+                target_mm: Point3::new(p.col as f64 * target.pitch_mm, p.row as f64 * target.pitch_mm, 0.0),
+                pixel: Point2::new(p.x, p.y),
+            })
+            .collect(),
+    }
+}
+
+pub fn calibrate_camera(
+    poses: &[PoseInput],
+    measured: &Measured,
+    target: &TargetDoc,
+    camera: &CameraDoc,
+    refine_intrinsics: bool,
+) -> Result<CameraStep, PipelineError> {
+    let size = ImageSize {
+        width: camera.width,
+        height: camera.height,
+    };
+    let (mut views, mut view_pose) = (Vec::new(), Vec::new());
+    for (i, points) in measured.points.iter().enumerate() {
+        if let Some(points) = points {
+            views.push(view_of(points, target, size));
+            view_pose.push(i);
+        }
+    }
+    let options = CalibrationOptions {
+        mode: if refine_intrinsics {
+            CalibrationMode::Refined
+        } else {
+            CalibrationMode::Paper
+        },
+        dot_diameter_mm: Some(target.dot_diameter_mm),
+        ..CalibrationOptions::default()
+    };
+    let calibration = calibrate(&views, &options).map_err(|e| PipelineError::Numerical {
+        stage: Stage::CalibrateCamera.as_str(),
+        message: describe_camera_error(&e.to_string(), &view_pose, poses),
+    })?;
+    let observations = views
+        .iter()
+        .zip(&calibration.views)
+        .map(|(view, fit)| {
+            view.dots
+                .iter()
+                .zip(&fit.corrected_pixels)
+                .map(|(d, px)| (d.target_mm, *px))
+                .collect()
+        })
+        .collect();
+    Ok(CameraStep {
+        calibration,
+        view_pose,
+        observations,
+    })
+}
+
+/// Camera errors name views by index; a cell engineer needs the pose id.
+fn describe_camera_error(message: &str, view_pose: &[usize], poses: &[PoseInput]) -> String {
+    let names: Vec<String> = view_pose.iter().map(|&i| poses[i].id.clone()).collect();
+    let mut out = message.to_string();
+    for (view, name) in names.iter().enumerate().rev() {
+        out = out.replace(&format!("view {view}"), &format!("pose {name}"));
+        out = out.replace(&format!("image {view}"), &format!("pose {name}"));
+    }
+    format!("{out} (check the images of the named poses, or add views at 20-45 degrees to the board)")
+}
+
+/// The report's camera section; `final_intrinsics` may come from the joint
+/// refinement.
+pub fn camera_report(
+    step: &CameraStep,
+    final_intrinsics: &Intrinsics,
+    std: Option<CameraStd>,
+    poses: &[PoseInput],
+) -> CameraReport {
+    let c = &step.calibration;
+    let views = c
+        .views
+        .iter()
+        .zip(&step.view_pose)
+        .map(|(v, &pose)| ViewReport {
+            pose_id: poses[pose].id.clone(),
+            rms_px: v.rms_px,
+            board_angle_deg: v.board_angle_deg,
+            warning: (v.board_angle_deg
+                < robocal_calib::camera::calibrate::WARN_BOARD_ANGLE_DEG)
+                .then(|| {
+                    "board-to-image angle under 20 degrees: focal length poorly conditioned"
+                        .to_string()
+                }),
+        })
+        .collect();
+    let i = final_intrinsics;
+    CameraReport {
+        mode: if c.paper_mode { "paper" } else { "refined" }.to_string(),
+        image_width: c.image_size.width,
+        image_height: c.image_size.height,
+        fx: i.fx,
+        fy: i.fy,
+        cx: i.cx,
+        cy: i.cy,
+        k1: i.k1,
+        k2: i.k2,
+        p1: i.p1,
+        p2: i.p2,
+        k3: i.k3,
+        std: std.or_else(|| {
+            c.std_dev.map(|s| CameraStd {
+                fx: s.fx,
+                fy: s.fy,
+                cx: s.cx,
+                cy: s.cy,
+                k1: s.k1,
+                k2: s.k2,
+                p1: s.p1,
+                p2: s.p2,
+            })
+        }),
+        reprojection_rms_px: c.rms_px,
+        outliers_dropped: c.outliers.len(),
+        views,
+    }
+}

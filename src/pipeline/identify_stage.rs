@@ -1,0 +1,192 @@
+//! Stages "measure_poses" and "identify": the measured camera (or tracker)
+//! poses, the kinematic identification (method.md §5–6) and, for camera
+//! sessions, the joint refinement on the raw image points; then the
+//! before/after accuracy at the validation poses (method.md §7).
+
+use nalgebra::{Matrix3, Vector3};
+use robocal_calib::camera::{estimate_pose, Intrinsics};
+use robocal_calib::kinematics::identify::{
+    holdout_split, identify, validate, Identification, IdentifyMode, Measurement, Observed,
+};
+use robocal_calib::kinematics::initial::initial_world_to_base;
+use robocal_calib::kinematics::joint_refine::{joint_refine, ImagePose};
+use robocal_calib::kinematics::{CalibratedModel, Instrument, RobotModel};
+use robocal_calib::stats::AccuracyStats;
+
+use super::camera_stage::CameraStep;
+use super::{PipelineError, PoseInput, Stage};
+use crate::schema::job::{Measurement as MeasurementKind, Validation};
+use crate::schema::session::PoseSet;
+
+/// Assumed tracker position standard deviation when none is given (mm):
+/// a laser tracker's typical few-hundredths at robot range.
+const TRACKER_SIGMA_MM: f64 = 0.02;
+
+/// The identified model and the numbers the report needs.
+pub struct Identified {
+    pub identification: Identification,
+    /// The final model (joint refinement when it ran, else the pose-level fit).
+    pub model: CalibratedModel,
+    /// Refined intrinsics and their standard deviations, when the joint
+    /// refinement ran.
+    pub refined_intrinsics: Option<(Intrinsics, [f64; 8], f64)>,
+    /// Indices (into the session's poses) of the calibration and validation poses.
+    pub cal: Vec<usize>,
+    pub val: Vec<usize>,
+    pub before: AccuracyStats,
+    pub after: AccuracyStats,
+    /// Per validation pose: position error before and after (mm, world frame).
+    pub val_errors: Vec<(usize, Vector3<f64>, Vector3<f64>)>,
+}
+
+fn numerical(stage: Stage, message: impl std::fmt::Display) -> PipelineError {
+    PipelineError::Numerical {
+        stage: stage.as_str(),
+        message: message.to_string(),
+    }
+}
+
+/// The calibration and validation split (indices into `usable`).
+fn split(poses: &[PoseInput], usable: &[usize], validation: Validation) -> (Vec<usize>, Vec<usize>) {
+    match validation {
+        Validation::Holdout(h) => {
+            let (cal, val) = holdout_split(usable.len(), h.holdout_fraction);
+            (
+                cal.into_iter().map(|i| usable[i]).collect(),
+                val.into_iter().map(|i| usable[i]).collect(),
+            )
+        }
+        Validation::Named(_) => usable
+            .iter()
+            .partition(|&&i| poses[i].set == PoseSet::Cal),
+    }
+}
+
+/// One pose's measurement: the camera pose from the camera step, or the
+/// tracker's position.
+fn measurement_of(
+    pose: &PoseInput,
+    index: usize,
+    camera: Option<&CameraStep>,
+    intrinsics: Option<&Intrinsics>,
+    kind: MeasurementKind,
+) -> Option<Measurement> {
+    let joints_rad = pose.joints_deg.iter().map(|d| d.to_radians()).collect();
+    let observed = match camera {
+        Some(step) => {
+            let estimate = match intrinsics {
+                // Validation poses are re-measured with the final intrinsics.
+                Some(intr) => estimate_pose(intr, step.observations_of(index)?, None).ok()?,
+                None => step.pose_estimate(index)?.clone(),
+            };
+            match kind {
+                MeasurementKind::Pose => Observed::Pose {
+                    world_to_tool: estimate.target_to_camera,
+                    covariance: Some(estimate.covariance_6x6),
+                },
+                MeasurementKind::Position => Observed::Position {
+                    position_mm: estimate.target_to_camera.translation.vector,
+                    covariance: Some(estimate.covariance_6x6.fixed_view::<3, 3>(0, 0).into_owned()),
+                },
+            }
+        }
+        None => Observed::Position {
+            position_mm: Vector3::from(pose.measured_position_mm?),
+            covariance: Some(Matrix3::identity() * TRACKER_SIGMA_MM.powi(2)),
+        },
+    };
+    Some(Measurement { joints_rad, observed })
+}
+
+/// Identification, joint refinement and validation.
+#[allow(clippy::too_many_arguments)]
+pub fn identify_robot(
+    robot: &RobotModel,
+    poses: &[PoseInput],
+    camera: Option<&CameraStep>,
+    flange_to_tool_guess: nalgebra::Isometry3<f64>,
+    kind: MeasurementKind,
+    validation: Validation,
+    joint_refinement: bool,
+    usable: &[usize],
+) -> Result<Identified, PipelineError> {
+    let instrument = if camera.is_some() {
+        Instrument::Camera
+    } else {
+        Instrument::Tracker
+    };
+    let (cal, val) = split(poses, usable, validation);
+    let cal_data: Vec<Measurement> = cal
+        .iter()
+        .filter_map(|&i| measurement_of(&poses[i], i, camera, None, kind))
+        .collect();
+    let mut start = CalibratedModel {
+        robot: robot.clone(),
+        world_to_base: nalgebra::Isometry3::identity(),
+        flange_to_tool: flange_to_tool_guess,
+    };
+    start.world_to_base =
+        initial_world_to_base(&start, &cal_data).map_err(|e| numerical(Stage::Identify, e))?;
+    let identification = identify(&start, instrument, &cal_data, IdentifyMode::Weighted)
+        .map_err(|e| numerical(Stage::Identify, e))?;
+    let mut model = identification.model.clone();
+    let mut refined_intrinsics = None;
+    if let (Some(step), true) = (camera, joint_refinement && kind == MeasurementKind::Pose) {
+        let images: Vec<ImagePose> = cal
+            .iter()
+            .filter_map(|&i| {
+                Some(ImagePose {
+                    joints_rad: poses[i].joints_deg.iter().map(|d| d.to_radians()).collect(),
+                    observations: step.observations_of(i)?.to_vec(),
+                })
+            })
+            .collect();
+        let sigma_px = step.calibration.rms_px.max(1e-3);
+        let joint = joint_refine(
+            &identification.model,
+            &step.intrinsics(),
+            &images,
+            &identification.identifiability.free,
+            sigma_px,
+        )
+        .map_err(|e| numerical(Stage::Identify, e))?;
+        model = joint.model.clone();
+        refined_intrinsics = Some((joint.intrinsics, joint.intrinsics_std, joint.reprojection_rms_px));
+    }
+    // Validation: every val pose measured with the final intrinsics.
+    let final_intrinsics = refined_intrinsics
+        .as_ref()
+        .map(|r| r.0)
+        .or_else(|| camera.map(|c| c.intrinsics()));
+    let (mut val_index, mut val_data) = (Vec::new(), Vec::new());
+    for &i in &val {
+        if let Some(m) = measurement_of(&poses[i], i, camera, final_intrinsics.as_ref(), kind) {
+            val_index.push(i);
+            val_data.push(m);
+        }
+    }
+    if val_data.is_empty() {
+        return Err(numerical(
+            Stage::Identify,
+            "no validation pose could be measured: upload poses with set \"val\" or use {\"validation\":{\"holdout_fraction\":0.3}}",
+        ));
+    }
+    let (before, before_errors) =
+        validate(&identification.before, &val_data).map_err(|e| numerical(Stage::Identify, e))?;
+    let (after, after_errors) = validate(&model, &val_data).map_err(|e| numerical(Stage::Identify, e))?;
+    let val_errors = val_index
+        .iter()
+        .zip(before_errors.iter().zip(&after_errors))
+        .map(|(&i, (b, a))| (i, *b, *a))
+        .collect();
+    Ok(Identified {
+        identification,
+        model,
+        refined_intrinsics,
+        cal,
+        val: val_index,
+        before,
+        after,
+        val_errors,
+    })
+}

@@ -1,0 +1,266 @@
+//! Stage "report": the parameter set (what `forward` and `compensate`
+//! evaluate) and the accuracy report (api.md "Results"), from the stages'
+//! outcomes.
+
+use robocal_calib::geometry::{pose_to_matrix_rows, Pose, PoseXyzRpy};
+use robocal_calib::kinematics::{CalibratedModel, Instrument, ParamKind, ParamLayout};
+use serde::{Deserialize, Serialize};
+use serde_json::json;
+
+use super::camera_stage::{camera_report, CameraStep};
+use super::identify_stage::Identified;
+use super::measure::Measured;
+use super::PoseInput;
+use crate::report::{
+    CameraStd, DetectionReport, IdentifiabilityReport, ParameterReport, PoseReport, Report,
+    ResidualSample,
+};
+use crate::robot_model::model_to_doc;
+use crate::schema::robot::KinematicsDoc;
+
+/// Most residual arrows kept in a report (the plot averages them anyway).
+const MAX_RESIDUAL_SAMPLES: usize = 6000;
+
+/// A pose in the contract's form plus its exact matrix.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct PoseOut {
+    pub translation_mm: [f64; 3],
+    pub rotation_deg: [f64; 3],
+    pub matrix: [[f64; 4]; 4],
+}
+
+impl PoseOut {
+    pub fn new(pose: &Pose) -> Self {
+        let form = PoseXyzRpy::from_pose(pose);
+        Self {
+            translation_mm: form.translation_mm,
+            rotation_deg: form.rotation_deg,
+            matrix: pose_to_matrix_rows(pose),
+        }
+    }
+}
+
+/// The stored parameter set (api.md: identified kinematics, frames,
+/// intrinsics, what was held fixed).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct ParameterSetDoc {
+    pub instrument: String,
+    pub session_id: String,
+    pub kinematics: KinematicsDoc,
+    /// `target_to_base` (camera) or `instrument_to_base` (tracker).
+    pub world_to_base: PoseOut,
+    /// `flange_to_camera` (camera) or `flange_to_tool` (tracker).
+    pub flange_to_tool: PoseOut,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub camera: Option<robocal_calib::camera::Intrinsics>,
+    pub fixed: Vec<String>,
+    pub parameters: Vec<ParameterReport>,
+}
+
+impl ParameterSetDoc {
+    /// The calibrated model back from its stored form.
+    pub fn model(&self) -> Result<CalibratedModel, String> {
+        let from = |p: &PoseOut| {
+            robocal_calib::geometry::pose_from_matrix_rows(&p.matrix).map_err(|e| e.to_string())
+        };
+        Ok(CalibratedModel {
+            robot: crate::robot_model::doc_to_model(&self.kinematics),
+            world_to_base: from(&self.world_to_base)?,
+            flange_to_tool: from(&self.flange_to_tool)?,
+        })
+    }
+
+    /// The JSON served by `GET .../parameter-sets/{version}`, with the
+    /// contract's frame names.
+    pub fn to_json(&self) -> serde_json::Value {
+        let (base, tool) = if self.instrument == "tracker" {
+            ("instrument_to_base", "flange_to_tool")
+        } else {
+            ("target_to_base", "flange_to_camera")
+        };
+        let mut v = serde_json::to_value(self).unwrap_or_default();
+        if let Some(obj) = v.as_object_mut() {
+            if let Some(b) = obj.remove("world_to_base") {
+                obj.insert(base.into(), b);
+            }
+            if let Some(t) = obj.remove("flange_to_tool") {
+                obj.insert(tool.into(), t);
+            }
+        }
+        v
+    }
+}
+
+fn display_value(layout: &ParamLayout, i: usize, value: f64) -> (f64, String) {
+    if layout.is_angle(i) {
+        (value.to_degrees(), "deg".into())
+    } else {
+        (value, "mm".into())
+    }
+}
+
+/// Nominal (the "before" model) against identified values, per parameter.
+fn parameter_rows(id: &Identified) -> Vec<ParameterReport> {
+    let layout = &id.identification.layout;
+    let correction = layout.difference(&id.model, &id.identification.before);
+    let std = &id.identification.std_devs;
+    let fixed = &id.identification.identifiability.fixed;
+    layout
+        .params
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let nominal = match (p.kind, p.joint) {
+                (ParamKind::JointOffset, Some(j)) => id.identification.before.robot.joints[j].theta_offset_rad,
+                (ParamKind::Length, Some(j)) => id.identification.before.robot.joints[j].a_mm,
+                (ParamKind::Offset, Some(j)) => id.identification.before.robot.joints[j].d_mm,
+                (ParamKind::Tilt, Some(j)) => id.identification.before.robot.joints[j].beta_rad,
+                (ParamKind::Twist, Some(j)) => id.identification.before.robot.joints[j].alpha_rad,
+                _ => 0.0,
+            };
+            let (nominal_out, unit) = display_value(layout, i, nominal);
+            let (identified_out, _) = display_value(layout, i, nominal + correction[i]);
+            let (std_out, _) = display_value(layout, i, std[i]);
+            ParameterReport {
+                name: p.name.clone(),
+                unit,
+                nominal: nominal_out,
+                identified: identified_out,
+                std: std_out,
+                fixed: fixed.contains(&p.name),
+            }
+        })
+        .collect()
+}
+
+pub struct Context<'a> {
+    pub serial: &'a str,
+    pub session_id: &'a str,
+    pub instrument: Instrument,
+    pub measurement: &'a str,
+    pub poses: &'a [PoseInput],
+    pub measured: Option<&'a Measured>,
+    pub camera: Option<&'a CameraStep>,
+    pub notes: Vec<String>,
+}
+
+pub fn parameter_set(ctx: &Context, id: &Identified) -> ParameterSetDoc {
+    let rows = parameter_rows(id);
+    ParameterSetDoc {
+        instrument: if ctx.instrument == Instrument::Camera { "camera" } else { "tracker" }.into(),
+        session_id: ctx.session_id.to_string(),
+        kinematics: model_to_doc(&id.model.robot),
+        world_to_base: PoseOut::new(&id.model.world_to_base),
+        flange_to_tool: PoseOut::new(&id.model.flange_to_tool),
+        camera: id
+            .refined_intrinsics
+            .as_ref()
+            .map(|r| r.0)
+            .or_else(|| ctx.camera.map(|c| c.intrinsics())),
+        fixed: id.identification.identifiability.fixed.clone(),
+        parameters: rows,
+    }
+}
+
+fn residual_field(step: &CameraStep) -> Vec<ResidualSample> {
+    let intr = step.calibration.intrinsics;
+    let mut out = Vec::new();
+    for (view, obs) in step.calibration.views.iter().zip(&step.observations) {
+        for (p, px) in obs {
+            if let Some(pred) = intr.project(&(view.camera_to_target * p)) {
+                out.push(ResidualSample {
+                    x_px: px.x,
+                    y_px: px.y,
+                    dx_px: px.x - pred.x,
+                    dy_px: px.y - pred.y,
+                });
+            }
+        }
+    }
+    let stride = out.len().div_ceil(MAX_RESIDUAL_SAMPLES).max(1);
+    out.into_iter().step_by(stride).collect()
+}
+
+pub fn report(ctx: &Context, id: &Identified, set: &ParameterSetDoc) -> Report {
+    let camera = ctx.camera.map(|step| {
+        let std = id.refined_intrinsics.as_ref().map(|(_, s, _)| CameraStd {
+            fx: s[0],
+            fy: s[1],
+            cx: s[2],
+            cy: s[3],
+            k1: s[4],
+            k2: s[5],
+            p1: s[6],
+            p2: s[7],
+        });
+        let intr = set.camera.unwrap_or(step.intrinsics());
+        camera_report(step, &intr, std, ctx.poses)
+    });
+    let detection = ctx.measured.map(|m| DetectionReport {
+        images: m.points.len(),
+        images_detected: m.points.iter().filter(|p| p.is_some()).count(),
+        dots_per_image: m.points.iter().flatten().map(Vec::len).max().unwrap_or(0),
+        failures: m.failures.clone(),
+    });
+    let per_view_rms = |i: usize| {
+        let step = ctx.camera?;
+        let view = step.view_pose.iter().position(|&p| p == i)?;
+        Some(step.calibration.views[view].rms_px)
+    };
+    let per_pose = id
+        .val_errors
+        .iter()
+        .map(|(i, before, after)| PoseReport {
+            pose_id: ctx.poses[*i].id.clone(),
+            set: "val".into(),
+            joints_deg: ctx.poses[*i].joints_deg.clone(),
+            before_error_mm: [before.x, before.y, before.z],
+            after_error_mm: [after.x, after.y, after.z],
+            before_mm: before.norm(),
+            after_mm: after.norm(),
+            reprojection_rms_px: per_view_rms(*i),
+        })
+        .collect();
+    let ident = &id.identification.identifiability;
+    let mut notes = ctx.notes.clone();
+    if !ident.weak.is_empty() {
+        notes.push(format!(
+            "The poses did not determine {}: held at nominal. Add poses that move these joints more widely to identify them.",
+            ident.weak.join(", ")
+        ));
+    }
+    Report {
+        serial: ctx.serial.to_string(),
+        version: 0,
+        job_id: String::new(),
+        session_id: ctx.session_id.to_string(),
+        created_at: String::new(),
+        instrument: set.instrument.clone(),
+        measurement: ctx.measurement.to_string(),
+        camera,
+        detection,
+        before: id.before,
+        after: id.after,
+        per_pose,
+        parameters: set.parameters.clone(),
+        identifiability: IdentifiabilityReport {
+            parameters: id.identification.layout.len(),
+            rank: ident.rank,
+            condition_number: ident.condition_number,
+            observability_index: ident.observability_index,
+            fixed: ident.fixed.clone(),
+        },
+        residual_field: ctx.camera.map(residual_field).unwrap_or_default(),
+        notes,
+    }
+}
+
+/// The summary stored as the job's result document.
+pub fn summary(id: &Identified) -> serde_json::Value {
+    json!({
+        "calibration_poses": id.cal.len(),
+        "validation_poses": id.val.len(),
+        "before_mean_mm": id.before.norm.mean_mm,
+        "after_mean_mm": id.after.norm.mean_mm,
+    })
+}

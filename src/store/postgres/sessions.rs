@@ -1,0 +1,219 @@
+use async_trait::async_trait;
+use serde_json::Value;
+use sqlx::postgres::PgRow;
+use sqlx::Row;
+
+use super::robots::page_cursor;
+use super::{is_foreign_key_violation, json, opt_json, PgStore};
+use crate::domain::{new_id, now_rfc3339, ImageMeta, NewPose, Page, PoseRecord, SessionRecord};
+use crate::store::{SessionStore, StoreError, StoreResult};
+
+const SESSION_COLUMNS: &str = "s.id, s.serial, s.instrument, s.spec, s.created_at,
+    (SELECT count(*) FROM poses p WHERE p.session_id = s.id) AS pose_count";
+const POSE_COLUMNS: &str =
+    "id, session_id, joints_deg, pose_set, image_meta, points, measured, created_at";
+
+fn session(row: &PgRow) -> StoreResult<SessionRecord> {
+    Ok(SessionRecord {
+        id: row.get("id"),
+        serial: row.get("serial"),
+        instrument: row.get("instrument"),
+        spec: json(row.get::<&str, _>("spec"))?,
+        pose_count: row.get("pose_count"),
+        created_at: row.get("created_at"),
+    })
+}
+
+fn pose(row: &PgRow) -> StoreResult<PoseRecord> {
+    let image: Option<ImageMeta> = row
+        .get::<Option<&str>, _>("image_meta")
+        .map(serde_json::from_str)
+        .transpose()?;
+    Ok(PoseRecord {
+        id: row.get("id"),
+        session_id: row.get("session_id"),
+        joints_deg: serde_json::from_str(row.get::<&str, _>("joints_deg"))?,
+        set: row.get("pose_set"),
+        image,
+        points: json(row.get::<&str, _>("points"))?,
+        measured: opt_json(row.get("measured"))?,
+        created_at: row.get("created_at"),
+    })
+}
+
+#[async_trait]
+impl SessionStore for PgStore {
+    async fn create_session(
+        &self,
+        serial: &str,
+        instrument: &str,
+        spec: &Value,
+    ) -> StoreResult<SessionRecord> {
+        let id = new_id();
+        let created_at = now_rfc3339();
+        let done = sqlx::query(
+            "INSERT INTO sessions (id, serial, instrument, spec, created_at)
+             SELECT $1, serial, $2, $3, $4 FROM robots WHERE serial = $5",
+        )
+        .bind(&id)
+        .bind(instrument)
+        .bind(spec.to_string())
+        .bind(&created_at)
+        .bind(serial)
+        .execute(&self.pool)
+        .await;
+        match done {
+            Ok(done) if done.rows_affected() == 0 => return Err(StoreError::NotFound("robot")),
+            Ok(_) => {}
+            // The robot was deleted between the SELECT and the insert's FK check.
+            Err(e) if is_foreign_key_violation(&e) => return Err(StoreError::NotFound("robot")),
+            Err(e) => return Err(e.into()),
+        }
+        Ok(SessionRecord {
+            id,
+            serial: serial.to_string(),
+            instrument: instrument.to_string(),
+            spec: spec.clone(),
+            pose_count: 0,
+            created_at,
+        })
+    }
+
+    async fn get_session(&self, id: &str) -> StoreResult<Option<SessionRecord>> {
+        let row = sqlx::query(&format!(
+            "SELECT {SESSION_COLUMNS} FROM sessions s WHERE s.id = $1"
+        ))
+        .bind(id)
+        .fetch_optional(&self.pool)
+        .await?;
+        row.as_ref().map(session).transpose()
+    }
+
+    async fn list_sessions(
+        &self,
+        serial: &str,
+        limit: i64,
+        after: Option<&str>,
+    ) -> StoreResult<Page<SessionRecord>> {
+        let rows = sqlx::query(&format!(
+            "SELECT {SESSION_COLUMNS} FROM sessions s WHERE s.serial = $1 AND s.id > $2
+             ORDER BY s.id LIMIT $3"
+        ))
+        .bind(serial)
+        .bind(after.unwrap_or(""))
+        .bind(limit)
+        .fetch_all(&self.pool)
+        .await?;
+        let items = rows.iter().map(session).collect::<StoreResult<Vec<_>>>()?;
+        let next_cursor = page_cursor(&items, limit, |s| s.id.clone());
+        Ok(Page { items, next_cursor })
+    }
+
+    async fn put_blob(&self, meta: &ImageMeta, data: &[u8]) -> StoreResult<()> {
+        // Two replicas storing the same image: the second waits for the
+        // first's commit on the primary key, then does nothing.
+        sqlx::query(
+            "INSERT INTO blobs (sha256, size_bytes, content_type, data, created_at)
+             VALUES ($1, $2, $3, $4, $5) ON CONFLICT (sha256) DO NOTHING",
+        )
+        .bind(&meta.sha256)
+        .bind(meta.size_bytes)
+        .bind(&meta.content_type)
+        .bind(data)
+        .bind(now_rfc3339())
+        .execute(&self.pool)
+        .await?;
+        Ok(())
+    }
+
+    async fn get_blob(&self, sha256: &str) -> StoreResult<Option<Vec<u8>>> {
+        Ok(
+            sqlx::query_scalar("SELECT data FROM blobs WHERE sha256 = $1")
+                .bind(sha256)
+                .fetch_optional(&self.pool)
+                .await?,
+        )
+    }
+
+    async fn add_poses(&self, session_id: &str, poses: &[NewPose]) -> StoreResult<Vec<PoseRecord>> {
+        let mut tx = self.pool.begin().await?;
+        // Locks the session row (key share) so it cannot be deleted midway.
+        let exists: Option<i32> =
+            sqlx::query_scalar("SELECT 1 FROM sessions WHERE id = $1 FOR KEY SHARE")
+                .bind(session_id)
+                .fetch_optional(&mut *tx)
+                .await?;
+        if exists.is_none() {
+            return Err(StoreError::NotFound("session"));
+        }
+        let mut out = Vec::with_capacity(poses.len());
+        for p in poses {
+            let record = PoseRecord {
+                id: new_id(),
+                session_id: session_id.to_string(),
+                joints_deg: p.joints_deg.clone(),
+                set: p.set.clone(),
+                image: p.image.clone(),
+                points: p.points.clone(),
+                measured: p.measured.clone(),
+                created_at: now_rfc3339(),
+            };
+            sqlx::query(
+                "INSERT INTO poses (id, session_id, joints_deg, pose_set, image_sha256,
+                   image_meta, points, measured, created_at)
+                 VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9)",
+            )
+            .bind(&record.id)
+            .bind(session_id)
+            .bind(serde_json::to_string(&record.joints_deg)?)
+            .bind(&record.set)
+            .bind(record.image.as_ref().map(|i| i.sha256.clone()))
+            .bind(
+                record
+                    .image
+                    .as_ref()
+                    .map(serde_json::to_string)
+                    .transpose()?,
+            )
+            .bind(record.points.to_string())
+            .bind(record.measured.as_ref().map(|m| m.to_string()))
+            .bind(&record.created_at)
+            .execute(&mut *tx)
+            .await?;
+            out.push(record);
+        }
+        tx.commit().await?;
+        Ok(out)
+    }
+
+    async fn get_pose(&self, session_id: &str, pose_id: &str) -> StoreResult<Option<PoseRecord>> {
+        let row = sqlx::query(&format!(
+            "SELECT {POSE_COLUMNS} FROM poses WHERE session_id = $1 AND id = $2"
+        ))
+        .bind(session_id)
+        .bind(pose_id)
+        .fetch_optional(&self.pool)
+        .await?;
+        row.as_ref().map(pose).transpose()
+    }
+
+    async fn list_poses(
+        &self,
+        session_id: &str,
+        limit: i64,
+        after: Option<&str>,
+    ) -> StoreResult<Page<PoseRecord>> {
+        let rows = sqlx::query(&format!(
+            "SELECT {POSE_COLUMNS} FROM poses WHERE session_id = $1 AND id > $2
+             ORDER BY id LIMIT $3"
+        ))
+        .bind(session_id)
+        .bind(after.unwrap_or(""))
+        .bind(limit)
+        .fetch_all(&self.pool)
+        .await?;
+        let items = rows.iter().map(pose).collect::<StoreResult<Vec<_>>>()?;
+        let next_cursor = page_cursor(&items, limit, |p| p.id.clone());
+        Ok(Page { items, next_cursor })
+    }
+}

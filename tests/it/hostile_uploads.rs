@@ -1,0 +1,205 @@
+//! Hostile uploads: multipart poses and zip datasets (truncated, not images,
+//! oversized, zip-slip, zip bomb), each a 4xx naming the problem.
+
+use reqwest::multipart::{Form, Part};
+use reqwest::Method;
+use serde_json::{json, Value};
+
+use crate::hostile::{hostile_app, run_cases, Case, MAX_ARCHIVE, MAX_IMAGE};
+use crate::support::*;
+
+#[tokio::test]
+async fn hostile_uploads_get_4xx_and_server_keeps_serving() {
+    let app = hostile_app().await;
+    let s = app.robot_and_session("H1").await;
+    let c = &app.client;
+    let poses = app.url(&format!("/v1/sessions/{s}/poses"));
+    let dataset = app.url(&format!("/v1/sessions/{s}/dataset"));
+    let raw = |m: Method, url: &str, ct: &str, body: Vec<u8>| {
+        c.request(m, url).header("content-type", ct).body(body)
+    };
+    let zip_post = |bytes: Vec<u8>| raw(Method::POST, &dataset, "application/zip", bytes);
+    let good_png = png(CAMERA_W, CAMERA_H, 1);
+    let multipart = |form: Form| c.post(&poses).multipart(form);
+    let img = |b: Vec<u8>| {
+        Part::bytes(b)
+            .file_name("x.png")
+            .mime_str("image/png")
+            .unwrap()
+    };
+    let manifest = br#"[{"joints_deg":[0,0,0,0,0,0],"image":"a.png"}]"#;
+    // 30 MB of zeros deflate to ~30 kB: stopped after MAX_IMAGE bytes are unpacked.
+    let bomb = zip_bytes(&[("poses.json", manifest), ("a.png", &vec![0u8; 30_000_000])]);
+    let mut truncated = b"--XyZ\r\nContent-Disposition: form-data; name=\"joints_deg\"\r\n\r\n[0,0,0,0,0,0]\r\n--XyZ\r\nContent-Disposition: form-data; name=\"image\"; filename=\"a.png\"\r\n\r\n".to_vec();
+    truncated.extend_from_slice(&good_png[..good_png.len() / 2]);
+    let cases = vec![
+        Case {
+            name: "wrong joint count",
+            request: c.post(&poses).json(
+                &json!({"joints_deg": [1, 2], "image_points": [{"row":0,"col":0,"x":1,"y":1}]}),
+            ),
+            status: 422,
+            field: Some("joints_deg"),
+        },
+        Case {
+            name: "joints not an array",
+            request: c
+                .post(&poses)
+                .json(&json!({"joints_deg": "1,2,3", "image_points": []})),
+            status: 422,
+            field: Some("joints_deg"),
+        },
+        Case {
+            name: "point outside image",
+            request: c.post(&poses).json(&{
+                let mut p = point_pose(0, "cal");
+                p["image_points"][0]["x"] = json!(1e9);
+                p
+            }),
+            status: 422,
+            field: Some("image_points[0].x"),
+        },
+        Case {
+            name: "bad pose set",
+            request: c.post(&poses).json(&{
+                let mut p = point_pose(0, "cal");
+                p["set"] = json!("test");
+                p
+            }),
+            status: 422,
+            field: Some("set"),
+        },
+        Case {
+            name: "truncated multipart",
+            request: raw(
+                Method::POST,
+                &poses,
+                "multipart/form-data; boundary=XyZ",
+                truncated,
+            ),
+            status: 400,
+            field: Some("multipart"),
+        },
+        Case {
+            name: "non-image called .png",
+            request: multipart(
+                Form::new()
+                    .text("joints_deg", "[0,0,0,0,0,0]")
+                    .part("image", img(b"GIF89a not really an image at all".to_vec())),
+            ),
+            status: 422,
+            field: Some("image"),
+        },
+        Case {
+            name: "corrupt PNG",
+            request: multipart(
+                Form::new()
+                    .text("joints_deg", "[0,0,0,0,0,0]")
+                    .part("image", img(good_png[..good_png.len() - 30].to_vec())),
+            ),
+            status: 422,
+            field: Some("image"),
+        },
+        Case {
+            name: "image of the wrong size",
+            request: multipart(
+                Form::new()
+                    .text("joints_deg", "[0,0,0,0,0,0]")
+                    .part("image", img(png(10, 10, 0))),
+            ),
+            status: 422,
+            field: Some("image"),
+        },
+        Case {
+            name: "oversized image",
+            request: multipart(
+                Form::new()
+                    .text("joints_deg", "[0,0,0,0,0,0]")
+                    .part("image", img(vec![0u8; MAX_IMAGE as usize + 1])),
+            ),
+            status: 413,
+            field: Some("max_image_bytes"),
+        },
+        Case {
+            name: "multipart without image",
+            request: multipart(Form::new().text("joints_deg", "[0,0,0,0,0,0]")),
+            status: 422,
+            field: Some("image"),
+        },
+        Case {
+            name: "joints part not JSON",
+            request: multipart(
+                Form::new()
+                    .text("joints_deg", "zero")
+                    .part("image", img(good_png.clone())),
+            ),
+            status: 422,
+            field: Some("joints_deg"),
+        },
+        Case {
+            name: "not a zip",
+            request: zip_post(b"PK\x03\x04 this is not a zip".to_vec()),
+            status: 400,
+            field: Some("archive"),
+        },
+        Case {
+            name: "zip slip",
+            request: zip_post(zip_bytes(&[
+                ("poses.json", manifest),
+                ("../../etc/passwd", b"x"),
+            ])),
+            status: 422,
+            field: Some("archive/../../etc/passwd"),
+        },
+        Case {
+            name: "absolute path in zip",
+            request: zip_post(zip_bytes(&[("poses.json", manifest), ("/abs.png", b"x")])),
+            status: 422,
+            field: Some("archive//abs.png"),
+        },
+        Case {
+            name: "zip bomb",
+            request: zip_post(bomb),
+            status: 413,
+            field: Some("max_image_bytes"),
+        },
+        Case {
+            name: "archive too large",
+            request: zip_post(vec![0u8; MAX_ARCHIVE as usize + 1]),
+            status: 413,
+            field: Some("max_archive_bytes"),
+        },
+        Case {
+            name: "zip without poses.json",
+            request: zip_post(zip_bytes(&[("a.png", &good_png)])),
+            status: 422,
+            field: Some("archive/poses.json"),
+        },
+        Case {
+            name: "manifest names a missing image",
+            request: zip_post(zip_bytes(&[("poses.json", manifest)])),
+            status: 422,
+            field: Some("archive/a.png"),
+        },
+        Case {
+            name: "manifest not JSON",
+            request: zip_post(zip_bytes(&[("poses.json", b"[{")])),
+            status: 400,
+            field: Some("poses.json"),
+        },
+        Case {
+            name: "dataset as JSON",
+            request: c.post(&dataset).json(&json!({})),
+            status: 415,
+            field: None,
+        },
+    ];
+    run_cases(&app, cases).await;
+    let session: Value = app
+        .get(&format!("/v1/sessions/{s}"))
+        .await
+        .json()
+        .await
+        .unwrap();
+    assert_eq!(session["pose_count"], 0, "nothing hostile was stored");
+}
