@@ -8,11 +8,14 @@ use serde::{Deserialize, Serialize};
 
 use super::error::CameraError;
 use super::model::Intrinsics;
-use super::observations::{validate_views, ImageSize, ViewObservations};
+use super::observations::{validate_views, Correspondences, ImageSize, ViewObservations};
 use super::pose::{estimate_pose, planar_pose_guess, PoseEstimate};
 use super::refine::StationDistance;
 use super::refine_loop::{refine, RefineInput, Refinement};
-use super::sequence::{paper_sequence, PaperCalibration, PaperOptions, PlanarView};
+use super::sequence::{
+    paper_sequence, PaperCalibration, PaperOptions, PlanarView, CENTRE_STEP_MIN_PX_START,
+    SCALE_STEP_MIN_START,
+};
 use super::tsai::board_angle_deg;
 
 /// Fewest images a calibration accepts (issue 4).
@@ -151,7 +154,20 @@ pub fn calibrate(
                 .collect()
         })
         .collect();
-    let paper = paper_sequence(&planar, image_size, &options.paper)?;
+    // In refined mode the searches only start the joint LM: a coarser
+    // resolution is enough and saves most of their time.
+    let paper_options = match options.mode {
+        CalibrationMode::Paper => options.paper,
+        CalibrationMode::Refined => PaperOptions {
+            centre_tolerance_px: options
+                .paper
+                .centre_tolerance_px
+                .max(CENTRE_STEP_MIN_PX_START),
+            scale_tolerance: options.paper.scale_tolerance.max(SCALE_STEP_MIN_START),
+            ..options.paper
+        },
+    };
+    let paper = paper_sequence(&planar, image_size, &paper_options)?;
     check_focal_determined_paper(&paper)?;
     let pairs: Vec<Vec<(Point3<f64>, Point2<f64>)>> = views.iter().map(|v| v.pairs()).collect();
     let start = options.fixed_intrinsics.unwrap_or(paper.intrinsics);
@@ -176,7 +192,7 @@ pub fn calibrate(
     };
     if let Some(r) = &refinement {
         if let Some(sd) = r.std_dev {
-            if !(sd.fx <= FOCAL_UNDETERMINED_REL * r.intrinsics.fx) {
+            if sd.fx.is_nan() || sd.fx > FOCAL_UNDETERMINED_REL * r.intrinsics.fx {
                 return Err(CameraError::AllFrontoParallel {
                     max_angle_deg: max_board_angle_deg(&r.camera_to_target),
                 });
@@ -221,7 +237,7 @@ fn check_options(n_views: usize, options: &CalibrationOptions) -> Result<(), Cam
             });
         }
     }
-    if !(options.outlier_sigmas > 0.0) {
+    if options.outlier_sigmas.is_nan() || options.outlier_sigmas <= 0.0 {
         return Err(CameraError::InvalidOption {
             field: "outlier_sigmas",
             reason: "must be positive".into(),
@@ -262,11 +278,10 @@ fn finish(
     let mut reports = Vec::with_capacity(views.len());
     let (mut sum_sq, mut count) = (0.0, 0usize);
     for (v, obs) in pairs.iter().enumerate() {
-        let (used, corrected): (Vec<(Point3<f64>, Point2<f64>)>, Vec<Point2<f64>>) =
-            match &refinement {
-                Some(r) => (r.used_observations(v), r.corrected[v].clone()),
-                None => (obs.clone(), obs.iter().map(|(_, p)| *p).collect()),
-            };
+        let (used, corrected): (Correspondences, Vec<Point2<f64>>) = match &refinement {
+            Some(r) => (r.used_observations(v), r.corrected[v].clone()),
+            None => (obs.clone(), obs.iter().map(|(_, p)| *p).collect()),
+        };
         let guess = refinement.as_ref().map(|r| r.camera_to_target[v]);
         let pose = estimate_pose(&intrinsics, &used, guess.as_ref()).map_err(|e| match e {
             CameraError::DegenerateView { reason, .. } => {

@@ -12,6 +12,7 @@ pub mod refine_loop;
 pub mod sequence;
 pub mod tsai;
 pub mod willson;
+pub mod willson_fit;
 
 pub use calibrate::{
     calibrate, CalibrationMode, CalibrationOptions, CameraCalibration, IntrinsicsStdDev,

@@ -15,6 +15,9 @@ const COLLINEAR_RATIO: f64 = 1e-6;
 /// |z| of a board point above this (mm) means the target is not planar.
 const PLANAR_TOLERANCE_MM: f64 = 1e-9;
 
+/// `(target point mm, pixel)` pairs of one image.
+pub type Correspondences = Vec<(Point3<f64>, Point2<f64>)>;
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub struct ImageSize {
     pub width: u32,

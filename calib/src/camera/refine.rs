@@ -329,47 +329,6 @@ impl JointProblem<'_> {
         jac
     }
 
-    /// `(J^T J, J^T r)` using the block structure: the rows of view `v`
-    /// touch only the intrinsics and pose `v`; reference rows are dense.
-    pub fn block_normal_equations(
-        &self,
-        jac: &DMatrix<f64>,
-        r: &DVector<f64>,
-    ) -> (DMatrix<f64>, DVector<f64>) {
-        let n = jac.ncols();
-        let ni = self.block.len();
-        let offsets = self.row_offsets();
-        let mut a = DMatrix::zeros(n, n);
-        let mut g = DVector::zeros(n);
-        for v in 0..self.views.len() {
-            let (o, rows) = (offsets[v], offsets[v + 1] - offsets[v]);
-            let p = ni + POSE_PARAMS * v;
-            let jp = jac.view((o, p), (rows, POSE_PARAMS));
-            let rv = r.rows(o, rows);
-            a.view_mut((p, p), (POSE_PARAMS, POSE_PARAMS))
-                .copy_from(&jp.tr_mul(&jp));
-            g.rows_mut(p, POSE_PARAMS).copy_from(&jp.tr_mul(&rv));
-            if ni > 0 {
-                let ji = jac.view((o, 0), (rows, ni));
-                let mut aii = a.view_mut((0, 0), (ni, ni));
-                aii += ji.tr_mul(&ji);
-                let aip = ji.tr_mul(&jp);
-                a.view_mut((0, p), (ni, POSE_PARAMS)).copy_from(&aip);
-                a.view_mut((p, 0), (POSE_PARAMS, ni))
-                    .copy_from(&aip.transpose());
-                let mut gi = g.rows_mut(0, ni);
-                gi += ji.tr_mul(&rv);
-            }
-        }
-        let base = offsets[self.views.len()];
-        for k in 0..self.references.len() {
-            let row = jac.row(base + k);
-            a += row.transpose() * row;
-            g += row.transpose() * r[base + k];
-        }
-        (a, g)
-    }
-
     fn ref_at(&self, x: &DVector<f64>, k: usize) -> f64 {
         let rf = &self.references[k];
         self.reference_residual(&self.pose(x, rf.view_a), &self.pose(x, rf.view_b), rf)

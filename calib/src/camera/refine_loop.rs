@@ -11,9 +11,9 @@ use super::bias::centre_bias;
 use super::calibrate::{CalibrationOptions, IntrinsicsStdDev};
 use super::error::CameraError;
 use super::model::Intrinsics;
-use super::observations::MIN_DOTS_PER_VIEW;
+use super::observations::{Correspondences, MIN_DOTS_PER_VIEW};
 use super::refine::{IntrinsicsBlock, JointProblem};
-use crate::solver::{solve, LmOptions, LmReport};
+use crate::solver::{solve, LeastSquaresProblem, LmOptions, LmReport};
 
 /// Median absolute residual to standard deviation for a Gaussian.
 const MAD_TO_SIGMA: f64 = 1.4826;
@@ -88,7 +88,7 @@ pub fn refine(input: &RefineInput) -> Result<Refinement, CameraError> {
     };
     let mut bias_iterations = 0;
     let max_rounds = options.max_bias_iterations.max(1) + EXTRA_OUTLIER_ROUNDS;
-    let mut last: Option<(LmReport, Vec<Vec<(Point3<f64>, Point2<f64>)>>)> = None;
+    let mut last: Option<(LmReport, Vec<Correspondences>)> = None;
     for _ in 0..max_rounds {
         let used: Vec<Vec<(Point3<f64>, Point2<f64>)>> = views
             .iter()
@@ -264,7 +264,7 @@ fn intrinsics_std_dev(
     n_intr: usize,
     intr: &Intrinsics,
 ) -> Option<IntrinsicsStdDev> {
-    let (a, _) = problem.block_normal_equations(&report.jacobian, &report.residuals);
+    let (a, _) = problem.normal_equations(&report.x, &report.residuals)?;
     let inv = a.cholesky()?.inverse();
     let var = report.residual_variance();
     let sd = |i: usize| {

@@ -15,11 +15,14 @@ use super::tsai::{
 
 /// First pattern-search step for the centre, as a fraction of the shorter image side.
 const CENTRE_STEP_FRACTION: f64 = 0.02;
-/// Stop the centre search below this step (px).
-const CENTRE_STEP_MIN_PX: f64 = 1e-3;
+/// Stop the centre search below this step (px) in paper mode.
+pub const CENTRE_STEP_MIN_PX: f64 = 1e-3;
+/// ... and when it only starts the refinement, which finds the centre itself.
+pub const CENTRE_STEP_MIN_PX_START: f64 = 0.05;
 /// First and last pattern-search steps of the scale ratio.
 const SCALE_STEP: f64 = 0.01;
-const SCALE_STEP_MIN: f64 = 1e-6;
+pub const SCALE_STEP_MIN: f64 = 1e-6;
+pub const SCALE_STEP_MIN_START: f64 = 1e-4;
 /// Plausible range of `m` (pixel aspect).
 const SCALE_RATIO_RANGE: (f64, f64) = (0.5, 2.0);
 /// Views whose board is closer than this to fronto-parallel do not enter
@@ -36,6 +39,9 @@ pub struct PaperOptions {
     /// Start of the centre search; the image's middle if `None`.
     pub initial_centre: Option<[f64; 2]>,
     pub initial_scale_ratio: f64,
+    /// Search resolution of the centre (px) and of `m`.
+    pub centre_tolerance_px: f64,
+    pub scale_tolerance: f64,
 }
 
 impl Default for PaperOptions {
@@ -46,6 +52,8 @@ impl Default for PaperOptions {
             search_scale_ratio: true,
             initial_centre: None,
             initial_scale_ratio: 1.0,
+            centre_tolerance_px: CENTRE_STEP_MIN_PX,
+            scale_tolerance: SCALE_STEP_MIN,
         }
     }
 }
@@ -100,7 +108,11 @@ fn search(
         side * CENTRE_STEP_FRACTION,
         SCALE_STEP,
     ];
-    let min_steps = [CENTRE_STEP_MIN_PX, CENTRE_STEP_MIN_PX, SCALE_STEP_MIN];
+    let min_steps = [
+        options.centre_tolerance_px,
+        options.centre_tolerance_px,
+        options.scale_tolerance,
+    ];
     let free = [
         options.search_centre,
         options.search_centre,
