@@ -74,7 +74,12 @@ impl Client {
         if status.is_success() {
             return Ok(body);
         }
-        let text = |key: &str| body.get(key).and_then(Value::as_str).unwrap_or("").to_string();
+        let text = |key: &str| {
+            body.get(key)
+                .and_then(Value::as_str)
+                .unwrap_or("")
+                .to_string()
+        };
         let fields = body
             .get("errors")
             .and_then(Value::as_array)
@@ -100,15 +105,21 @@ impl Client {
     }
 
     pub async fn put_robot(&self, serial: &str, body: &Value) -> Result<Value, ClientError> {
-        self.send(self.request(reqwest::Method::PUT, &format!("/v1/robots/{serial}")).json(body))
-            .await
+        self.send(
+            self.request(reqwest::Method::PUT, &format!("/v1/robots/{serial}"))
+                .json(body),
+        )
+        .await
     }
 
     pub async fn create_session(&self, serial: &str, body: &Value) -> Result<String, ClientError> {
         let created = self
             .send(
-                self.request(reqwest::Method::POST, &format!("/v1/robots/{serial}/sessions"))
-                    .json(body),
+                self.request(
+                    reqwest::Method::POST,
+                    &format!("/v1/robots/{serial}/sessions"),
+                )
+                .json(body),
             )
             .await?;
         id_of(&created, "id")
@@ -126,11 +137,14 @@ impl Client {
             .len();
         let body = reqwest::Body::wrap_stream(tokio_util::io::ReaderStream::new(file));
         self.send(
-            self.request(reqwest::Method::POST, &format!("/v1/sessions/{session_id}/dataset"))
-                .header(reqwest::header::CONTENT_TYPE, "application/zip")
-                .header(reqwest::header::CONTENT_LENGTH, length)
-                .timeout(UPLOAD_TIMEOUT)
-                .body(body),
+            self.request(
+                reqwest::Method::POST,
+                &format!("/v1/sessions/{session_id}/dataset"),
+            )
+            .header(reqwest::header::CONTENT_TYPE, "application/zip")
+            .header(reqwest::header::CONTENT_LENGTH, length)
+            .timeout(UPLOAD_TIMEOUT)
+            .body(body),
         )
         .await
     }

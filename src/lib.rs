@@ -8,6 +8,8 @@
 pub use robocal_calib as calib;
 
 pub mod api;
+pub mod campaign;
+pub mod cli;
 pub mod client;
 pub mod config;
 pub mod dataset;

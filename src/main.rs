@@ -22,6 +22,72 @@ enum Command {
     Token(TokenCommand),
     /// Print the OpenAPI document (JSON).
     Openapi,
+    /// Simulate a campaign (robot with perturbed kinematics, flange camera,
+    /// rendered images and the truth) into a directory.
+    Simulate {
+        #[arg(long, value_parser = ["irb2400", "puma560"], default_value = "irb2400")]
+        robot: String,
+        #[arg(long, default_value_t = 60)]
+        cal: usize,
+        #[arg(long, default_value_t = 30)]
+        val: usize,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        dir: std::path::PathBuf,
+    },
+    /// Create the robot and a session, and upload a campaign directory.
+    Upload {
+        #[arg(long)]
+        serial: String,
+        dir: std::path::PathBuf,
+        #[command(flatten)]
+        server: ServerArgs,
+    },
+    /// Start a calibration job for a session.
+    Calibrate {
+        #[arg(long)]
+        serial: String,
+        #[arg(long)]
+        session: String,
+        /// Show progress until the job ends.
+        #[arg(long)]
+        wait: bool,
+        #[command(flatten)]
+        server: ServerArgs,
+    },
+    /// Print a parameter set's accuracy report as a table.
+    Report {
+        #[arg(long)]
+        serial: String,
+        /// Version number (default: the latest).
+        #[arg(long)]
+        version: Option<i64>,
+        #[command(flatten)]
+        server: ServerArgs,
+    },
+    /// Run the whole pipeline on a campaign directory without a server.
+    CalibrateLocal {
+        dir: std::path::PathBuf,
+        /// Also write the printable report here.
+        #[arg(long)]
+        html: Option<std::path::PathBuf>,
+    },
+}
+
+#[derive(clap::Args)]
+struct ServerArgs {
+    /// The service's base URL.
+    #[arg(long, env = "ROBOCAL_URL", default_value = "http://127.0.0.1:8080")]
+    url: String,
+    /// Bearer token, when the server has tokens.
+    #[arg(long, env = "ROBOCAL_TOKEN")]
+    token: Option<String>,
+}
+
+impl ServerArgs {
+    fn client(&self) -> Result<robocal::client::Client, String> {
+        robocal::client::Client::new(&self.url, self.token.clone()).map_err(|e| e.to_string())
+    }
 }
 
 #[derive(Subcommand)]
@@ -73,6 +139,58 @@ async fn main() -> ExitCode {
             println!("{}", robocal::api::openapi_json());
             Ok(())
         }
+        Command::Simulate {
+            robot,
+            cal,
+            val,
+            seed,
+            dir,
+        } => robocal::campaign::simulate(&robot, &dir, cal, val, seed)
+            .map(|()| eprintln!("campaign written to {}", dir.display())),
+        Command::Upload {
+            serial,
+            dir,
+            server,
+        } => match server.client() {
+            Ok(client) => robocal::cli::upload(&client, &serial, &dir)
+                .await
+                .map(|id| println!("{id}"))
+                .map_err(|e| e.to_string()),
+            Err(e) => Err(e),
+        },
+        Command::Calibrate {
+            serial: _,
+            session,
+            wait,
+            server,
+        } => match server.client() {
+            Ok(client) => robocal::cli::calibrate(&client, &session, wait)
+                .await
+                .map(|job| println!("{job}"))
+                .map_err(|e| e.to_string()),
+            Err(e) => Err(e),
+        },
+        Command::Report {
+            serial,
+            version,
+            server,
+        } => match server.client() {
+            Ok(client) => client
+                .report(&serial, version)
+                .await
+                .map(|r| print!("{}", robocal::report::render_table(&r)))
+                .map_err(|e| e.to_string()),
+            Err(e) => Err(e),
+        },
+        Command::CalibrateLocal { dir, html } => robocal::campaign::calibrate_local(&dir, "local")
+            .and_then(|report| {
+                print!("{}", robocal::report::render_table(&report));
+                match html {
+                    Some(path) => std::fs::write(&path, robocal::report::render_html(&report))
+                        .map_err(|e| format!("{}: {e}", path.display())),
+                    None => Ok(()),
+                }
+            }),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

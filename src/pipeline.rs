@@ -129,7 +129,10 @@ const STAGE_START: [(Stage, f64); 6] = [
 ];
 
 fn stage_span(stage: Stage) -> (f64, f64) {
-    let i = STAGE_START.iter().position(|(s, _)| *s == stage).unwrap_or(0);
+    let i = STAGE_START
+        .iter()
+        .position(|(s, _)| *s == stage)
+        .unwrap_or(0);
     let end = STAGE_START.get(i + 1).map_or(1.0, |(_, f)| *f);
     (STAGE_START[i].1, end)
 }
@@ -173,7 +176,11 @@ pub fn run(
                 cancel,
             )?;
             check_cancel()?;
-            within(Stage::CalibrateCamera, "Tsai start and joint refinement", 0.0);
+            within(
+                Stage::CalibrateCamera,
+                "Tsai start and joint refinement",
+                0.0,
+            );
             let step = camera_stage::calibrate_camera(
                 &input.poses,
                 &measured,
@@ -190,10 +197,13 @@ pub fn run(
     let usable: Vec<usize> = (0..input.poses.len())
         .filter(|&i| camera.as_ref().is_none_or(|c| c.view_pose.contains(&i)))
         .collect();
-    let kind = input.options.measurement.unwrap_or(match input.session.instrument {
-        Instrument::Camera => crate::schema::job::Measurement::Pose,
-        Instrument::Tracker => crate::schema::job::Measurement::Position,
-    });
+    let kind = input
+        .options
+        .measurement
+        .unwrap_or(match input.session.instrument {
+            Instrument::Camera => crate::schema::job::Measurement::Pose,
+            Instrument::Tracker => crate::schema::job::Measurement::Position,
+        });
     let guess = match &input.session.flange_to_camera_guess {
         Some(p) => pose_of(p),
         None => robocal_calib::geometry::Pose::identity(),
@@ -255,7 +265,8 @@ fn pose_of(doc: &PoseDoc) -> robocal_calib::geometry::Pose {
     doc.matrix
         .and_then(|m| robocal_calib::geometry::pose_from_matrix_rows(&m).ok())
         .or_else(|| {
-            robocal_calib::geometry::pose_from_xyz_rpy_deg(doc.translation_mm, doc.rotation_deg).ok()
+            robocal_calib::geometry::pose_from_xyz_rpy_deg(doc.translation_mm, doc.rotation_deg)
+                .ok()
         })
         .unwrap_or_else(robocal_calib::geometry::Pose::identity)
 }

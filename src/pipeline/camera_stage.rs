@@ -5,8 +5,8 @@
 use nalgebra::{Point2, Point3};
 use robocal_calib::camera::calibrate::{calibrate, CalibrationMode, CalibrationOptions};
 use robocal_calib::camera::observations::{DotObservation, ImageSize, ViewObservations};
-use robocal_calib::camera::{CameraCalibration, Intrinsics};
 use robocal_calib::camera::pose::PoseEstimate;
+use robocal_calib::camera::{CameraCalibration, Intrinsics};
 
 use super::measure::{GridPoint, Measured};
 use super::{PipelineError, PoseInput, Stage};
@@ -54,7 +54,11 @@ fn view_of(points: &[GridPoint], target: &TargetDoc, size: ImageSize) -> ViewObs
             .map(|p| DotObservation {
                 row: p.row,
                 col: p.col,
-                target_mm: Point3::new(p.col as f64 * target.pitch_mm, p.row as f64 * target.pitch_mm, 0.0),
+                target_mm: Point3::new(
+                    p.col as f64 * target.pitch_mm,
+                    p.row as f64 * target.pitch_mm,
+                    0.0,
+                ),
                 pixel: Point2::new(p.x, p.y),
             })
             .collect(),
@@ -118,7 +122,9 @@ fn describe_camera_error(message: &str, view_pose: &[usize], poses: &[PoseInput]
         out = out.replace(&format!("view {view}"), &format!("pose {name}"));
         out = out.replace(&format!("image {view}"), &format!("pose {name}"));
     }
-    format!("{out} (check the images of the named poses, or add views at 20-45 degrees to the board)")
+    format!(
+        "{out} (check the images of the named poses, or add views at 20-45 degrees to the board)"
+    )
 }
 
 /// The report's camera section; `final_intrinsics` may come from the joint
@@ -138,8 +144,7 @@ pub fn camera_report(
             pose_id: poses[pose].id.clone(),
             rms_px: v.rms_px,
             board_angle_deg: v.board_angle_deg,
-            warning: (v.board_angle_deg
-                < robocal_calib::camera::calibrate::WARN_BOARD_ANGLE_DEG)
+            warning: (v.board_angle_deg < robocal_calib::camera::calibrate::WARN_BOARD_ANGLE_DEG)
                 .then(|| {
                     "board-to-image angle under 20 degrees: focal length poorly conditioned"
                         .to_string()

@@ -47,7 +47,11 @@ fn numerical(stage: Stage, message: impl std::fmt::Display) -> PipelineError {
 }
 
 /// The calibration and validation split (indices into `usable`).
-fn split(poses: &[PoseInput], usable: &[usize], validation: Validation) -> (Vec<usize>, Vec<usize>) {
+fn split(
+    poses: &[PoseInput],
+    usable: &[usize],
+    validation: Validation,
+) -> (Vec<usize>, Vec<usize>) {
     match validation {
         Validation::Holdout(h) => {
             let (cal, val) = holdout_split(usable.len(), h.holdout_fraction);
@@ -56,9 +60,7 @@ fn split(poses: &[PoseInput], usable: &[usize], validation: Validation) -> (Vec<
                 val.into_iter().map(|i| usable[i]).collect(),
             )
         }
-        Validation::Named(_) => usable
-            .iter()
-            .partition(|&&i| poses[i].set == PoseSet::Cal),
+        Validation::Named(_) => usable.iter().partition(|&&i| poses[i].set == PoseSet::Cal),
     }
 }
 
@@ -77,7 +79,7 @@ fn measurement_of(
             let estimate = match intrinsics {
                 // Validation poses are re-measured with the final intrinsics.
                 Some(intr) => estimate_pose(intr, step.observations_of(index)?, None).ok()?,
-                None => step.pose_estimate(index)?.clone(),
+                None => *step.pose_estimate(index)?,
             };
             match kind {
                 MeasurementKind::Pose => Observed::Pose {
@@ -86,7 +88,12 @@ fn measurement_of(
                 },
                 MeasurementKind::Position => Observed::Position {
                     position_mm: estimate.target_to_camera.translation.vector,
-                    covariance: Some(estimate.covariance_6x6.fixed_view::<3, 3>(0, 0).into_owned()),
+                    covariance: Some(
+                        estimate
+                            .covariance_6x6
+                            .fixed_view::<3, 3>(0, 0)
+                            .into_owned(),
+                    ),
                 },
             }
         }
@@ -95,7 +102,10 @@ fn measurement_of(
             covariance: Some(Matrix3::identity() * TRACKER_SIGMA_MM.powi(2)),
         },
     };
-    Some(Measurement { joints_rad, observed })
+    Some(Measurement {
+        joints_rad,
+        observed,
+    })
 }
 
 /// Identification, joint refinement and validation.
@@ -151,7 +161,11 @@ pub fn identify_robot(
         )
         .map_err(|e| numerical(Stage::Identify, e))?;
         model = joint.model.clone();
-        refined_intrinsics = Some((joint.intrinsics, joint.intrinsics_std, joint.reprojection_rms_px));
+        refined_intrinsics = Some((
+            joint.intrinsics,
+            joint.intrinsics_std,
+            joint.reprojection_rms_px,
+        ));
     }
     // Validation: every val pose measured with the final intrinsics.
     let final_intrinsics = refined_intrinsics
@@ -173,7 +187,8 @@ pub fn identify_robot(
     }
     let (before, before_errors) =
         validate(&identification.before, &val_data).map_err(|e| numerical(Stage::Identify, e))?;
-    let (after, after_errors) = validate(&model, &val_data).map_err(|e| numerical(Stage::Identify, e))?;
+    let (after, after_errors) =
+        validate(&model, &val_data).map_err(|e| numerical(Stage::Identify, e))?;
     let val_errors = val_index
         .iter()
         .zip(before_errors.iter().zip(&after_errors))

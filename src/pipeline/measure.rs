@@ -48,7 +48,10 @@ pub fn target_spec(doc: &TargetDoc) -> TargetSpec {
     }
 }
 
-fn detect_one(bytes: &[u8], target: &TargetSpec) -> Result<Vec<GridPoint>, String> {
+/// One image's dots, or why there are none.
+type DetectOutcome = Result<Vec<GridPoint>, String>;
+
+fn detect_one(bytes: &[u8], target: &TargetSpec) -> DetectOutcome {
     let image = vision::decode_image(bytes, &DecodeLimits::default()).map_err(|e| e.to_string())?;
     let options = DetectOptions {
         correct_perspective_bias: false,
@@ -91,7 +94,7 @@ pub fn measure(
         stage: Stage::Detect.as_str(),
         message: e.to_string(),
     })?;
-    let results: Vec<Mutex<Option<Result<Vec<GridPoint>, String>>>> =
+    let results: Vec<Mutex<Option<DetectOutcome>>> =
         poses.iter().map(|_| Mutex::new(None)).collect();
     let next = AtomicUsize::new(0);
     let done = AtomicUsize::new(0);

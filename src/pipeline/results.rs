@@ -111,7 +111,9 @@ fn parameter_rows(id: &Identified) -> Vec<ParameterReport> {
         .enumerate()
         .map(|(i, p)| {
             let nominal = match (p.kind, p.joint) {
-                (ParamKind::JointOffset, Some(j)) => id.identification.before.robot.joints[j].theta_offset_rad,
+                (ParamKind::JointOffset, Some(j)) => {
+                    id.identification.before.robot.joints[j].theta_offset_rad
+                }
                 (ParamKind::Length, Some(j)) => id.identification.before.robot.joints[j].a_mm,
                 (ParamKind::Offset, Some(j)) => id.identification.before.robot.joints[j].d_mm,
                 (ParamKind::Tilt, Some(j)) => id.identification.before.robot.joints[j].beta_rad,
@@ -147,7 +149,12 @@ pub struct Context<'a> {
 pub fn parameter_set(ctx: &Context, id: &Identified) -> ParameterSetDoc {
     let rows = parameter_rows(id);
     ParameterSetDoc {
-        instrument: if ctx.instrument == Instrument::Camera { "camera" } else { "tracker" }.into(),
+        instrument: if ctx.instrument == Instrument::Camera {
+            "camera"
+        } else {
+            "tracker"
+        }
+        .into(),
         session_id: ctx.session_id.to_string(),
         kinematics: model_to_doc(&id.model.robot),
         world_to_base: PoseOut::new(&id.model.world_to_base),

@@ -1,0 +1,212 @@
+//! Campaign directories: what `robocal simulate` writes, what `robocal
+//! upload` zips and what `robocal calibrate-local` calibrates without a
+//! server. Layout: `campaign.json` (robot and session documents),
+//! `poses.json` (`[{"joints_deg","image","set"}]`, the dataset upload's
+//! index), `images/`, and for simulated campaigns `truth.json`.
+
+use std::path::Path;
+use std::sync::atomic::AtomicBool;
+
+use rand::{rngs::StdRng, SeedableRng};
+use robocal_calib::camera::Intrinsics;
+use robocal_calib::sim::campaign::{simulate_campaign, CampaignSpec};
+use robocal_calib::sim::campaign_io::{image_name, PoseEntry, PoseSet as SimPoseSet};
+use robocal_calib::sim::render::{render_target, RenderOptions};
+use robocal_calib::vision::TargetSpec;
+use serde::{Deserialize, Serialize};
+use serde_json::json;
+
+use crate::pipeline::{self, Input, PoseInput};
+use crate::report::Report;
+use crate::schema::job::CalibrationOptions;
+use crate::schema::robot::RobotBody;
+use crate::schema::session::{PoseSet, SessionBody};
+
+/// The board every simulated campaign uses: 9x9 dots of 8 mm on a 25 mm
+/// pitch with a 12 mm origin marker (issue 3).
+pub fn simulated_target() -> TargetSpec {
+    TargetSpec::robocal_9x9()
+}
+
+/// A simulated camera per preset: the IRB-2400 campaign uses a modern
+/// 1280x1024 sensor (`fy/fx` = 1), the PUMA-560 one a camera like the
+/// paper's, 752x582 with `fy/fx` = 0.9825 (issue 6).
+fn simulated_camera(preset: &str) -> (Intrinsics, (u32, u32), f64) {
+    match preset {
+        "puma560" => (
+            Intrinsics {
+                fx: 1100.0,
+                fy: 1100.0 * 0.9825,
+                cx: 377.5,
+                cy: 289.0,
+                k1: -0.12,
+                k2: 0.08,
+                p1: 3e-4,
+                p2: -2e-4,
+                k3: 0.0,
+            },
+            (752, 582),
+            8.6,
+        ),
+        _ => (
+            Intrinsics {
+                fx: 2100.0,
+                fy: 2100.0,
+                cx: 641.0,
+                cy: 511.0,
+                k1: -0.09,
+                k2: 0.07,
+                p1: 2e-4,
+                p2: -1e-4,
+                k3: 0.0,
+            },
+            (1280, 1024),
+            5.3,
+        ),
+    }
+}
+
+/// `campaign.json`.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct CampaignFile {
+    /// The `PUT /v1/robots/{serial}` body.
+    pub robot: serde_json::Value,
+    /// The `POST /v1/robots/{serial}/sessions` body.
+    pub session: SessionBody,
+}
+
+/// Simulates a campaign of `preset` and writes it to `out`.
+pub fn simulate(preset: &str, out: &Path, cal: usize, val: usize, seed: u64) -> Result<(), String> {
+    let mut spec = CampaignSpec::standard(preset, seed).map_err(|e| e.to_string())?;
+    let (intrinsics, (width, height), pixel_um) = simulated_camera(preset);
+    spec.intrinsics = intrinsics;
+    spec.image_size = (width, height);
+    spec.cal_poses = cal;
+    spec.val_poses = val;
+    let campaign = simulate_campaign(&spec).map_err(|e| e.to_string())?;
+    std::fs::create_dir_all(out.join("images")).map_err(|e| e.to_string())?;
+    let target = simulated_target();
+    let options = RenderOptions::default();
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let errors: Vec<String> = std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..threads)
+            .map(|t| {
+                let (campaign, target, options) = (&campaign, &target, &options);
+                scope.spawn(move || {
+                    let mut rng = StdRng::seed_from_u64(seed ^ (t as u64 + 1) * 0x9e37_79b9);
+                    let mut errors = Vec::new();
+                    for (i, pose) in campaign.poses.iter().enumerate().skip(t).step_by(threads) {
+                        let camera_to_target = pose.target_to_camera.inverse();
+                        let rendered = render_target(
+                            &campaign.truth.intrinsics,
+                            &camera_to_target,
+                            target,
+                            width as usize,
+                            height as usize,
+                            options,
+                            &mut rng,
+                        );
+                        let saved = rendered.map_err(|e| e.to_string()).and_then(|view| {
+                            view.image
+                                .to_luma8()
+                                .save(out.join(image_name(i)))
+                                .map_err(|e| e.to_string())
+                        });
+                        if let Err(e) = saved {
+                            errors.push(format!("pose {}: {e}", i + 1));
+                        }
+                    }
+                    errors
+                })
+            })
+            .collect();
+        handles
+            .into_iter()
+            .flat_map(|h| h.join().unwrap_or_default())
+            .collect()
+    });
+    if let Some(e) = errors.first() {
+        return Err(e.clone());
+    }
+    let file = CampaignFile {
+        robot: json!({"model": preset.to_uppercase(), "preset": preset}),
+        session: serde_json::from_value(json!({
+            "instrument": "camera",
+            "target": {
+                "rows": target.rows, "cols": target.cols, "pitch_mm": target.pitch_mm,
+                "dot_diameter_mm": target.dot_diameter_mm,
+                "origin_marker_diameter_mm": target.origin_marker_diameter_mm,
+            },
+            "camera": {
+                "width": width, "height": height, "pixel_size_um": pixel_um,
+                "nominal_focal_mm": intrinsics.fx * pixel_um / 1000.0,
+            },
+            "flange_to_camera_guess": {
+                "translation_mm": robocal_calib::geometry::PoseXyzRpy::from_pose(&spec.flange_to_camera_guess).translation_mm,
+                "rotation_deg": robocal_calib::geometry::PoseXyzRpy::from_pose(&spec.flange_to_camera_guess).rotation_deg,
+            },
+        }))
+        .map_err(|e| e.to_string())?,
+    };
+    write_json(&out.join("campaign.json"), &file)?;
+    write_json(&out.join("poses.json"), &campaign.pose_entries())?;
+    write_json(&out.join("truth.json"), &campaign.full_truth())
+}
+
+fn write_json(path: &Path, value: &impl Serialize) -> Result<(), String> {
+    let text = serde_json::to_string_pretty(value).map_err(|e| e.to_string())?;
+    std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+fn read_json<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// Reads `campaign.json` and `poses.json` of a campaign directory.
+pub fn read(dir: &Path) -> Result<(CampaignFile, Vec<PoseEntry>), String> {
+    Ok((
+        read_json(&dir.join("campaign.json"))?,
+        read_json(&dir.join("poses.json"))?,
+    ))
+}
+
+/// Runs the whole pipeline on a campaign directory, without a server.
+pub fn calibrate_local(dir: &Path, serial: &str) -> Result<Report, String> {
+    let (file, entries) = read(dir)?;
+    let body: RobotBody = serde_json::from_value(file.robot.clone()).map_err(|e| e.to_string())?;
+    let kinematics = body.resolve().map_err(|e| format!("{e:?}"))?;
+    let mut poses = Vec::with_capacity(entries.len());
+    for (i, entry) in entries.iter().enumerate() {
+        let image =
+            std::fs::read(dir.join(&entry.image)).map_err(|e| format!("{}: {e}", entry.image))?;
+        poses.push(PoseInput {
+            id: format!("p{:03}", i + 1),
+            joints_deg: entry.joints_deg.clone(),
+            set: match entry.set {
+                SimPoseSet::Cal => PoseSet::Cal,
+                SimPoseSet::Val => PoseSet::Val,
+            },
+            image: Some(image),
+            image_points: Vec::new(),
+            measured_position_mm: None,
+            measured_pose: None,
+        });
+    }
+    let input = Input {
+        serial: serial.to_string(),
+        session_id: "local".into(),
+        robot: crate::robot_model::doc_to_model(&kinematics),
+        kinematics,
+        session: file.session,
+        poses,
+        options: CalibrationOptions::default(),
+        test_stage_delay: std::time::Duration::ZERO,
+    };
+    let output =
+        pipeline::run(&input, &|_, _, _| {}, &AtomicBool::new(false)).map_err(|e| e.to_string())?;
+    let set = output
+        .parameter_set
+        .ok_or("the pipeline produced no parameter set")?;
+    serde_json::from_value(set.report).map_err(|e| e.to_string())
+}
