@@ -209,6 +209,8 @@ fn start_replicas(url: &str, n: usize, poll_ms: u64) -> Vec<Replica> {
                     "100000",
                     "--shutdown-grace-secs",
                     "5",
+                    // A queue benchmark: jobs validate their inputs only.
+                    "--test-validate-only",
                 ])
                 .env("RUST_LOG", "warn")
                 .stdout(Stdio::piped())

@@ -202,6 +202,7 @@ pub fn calibrate_local(dir: &Path, serial: &str) -> Result<Report, String> {
         poses,
         options: CalibrationOptions::default(),
         test_stage_delay: std::time::Duration::ZERO,
+        validate_only: false,
     };
     let output =
         pipeline::run(&input, &|_, _, _| {}, &AtomicBool::new(false)).map_err(|e| e.to_string())?;

@@ -83,6 +83,12 @@ pub struct ServeConfig {
     /// the fleet tests can check versions and exactly-once completion.
     #[arg(long, env = "ROBOCAL_TEST_PARAMETER_SETS", hide = true)]
     pub test_parameter_sets: bool,
+
+    /// Test hook: calibration jobs stop after the input-validation stage, so
+    /// queue, lease and restart tests run on tiny synthetic sessions; the
+    /// end-to-end tests run the real stages.
+    #[arg(long, env = "ROBOCAL_TEST_VALIDATE_ONLY", hide = true)]
+    pub test_validate_only: bool,
 }
 
 impl ServeConfig {

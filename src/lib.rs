@@ -14,6 +14,7 @@ pub mod client;
 pub mod config;
 pub mod dataset;
 pub mod domain;
+pub mod evaluate;
 pub mod jobs;
 pub mod metrics;
 pub mod pipeline;

@@ -72,6 +72,8 @@ pub struct Input {
     pub options: CalibrationOptions,
     /// Test hook (`ROBOCAL_TEST_STAGE_DELAY_MS`): sleep per pose in validation.
     pub test_stage_delay: Duration,
+    /// Test hook (`ROBOCAL_TEST_VALIDATE_ONLY`): stop after validation.
+    pub validate_only: bool,
 }
 
 #[derive(Debug, Clone)]
@@ -156,8 +158,14 @@ pub fn run(
             Ok(())
         }
     };
-    validate(input, &within, cancel)?;
+    let checked = validate(input, &within, cancel)?;
     within(Stage::Validate, "inputs valid", 1.0);
+    if input.validate_only {
+        return Ok(Output {
+            parameter_set: None,
+            summary: checked,
+        });
+    }
     let (measured, camera) = match input.session.instrument {
         Instrument::Camera => {
             let (target, camera_doc) = match (&input.session.target, &input.session.camera) {

@@ -81,6 +81,7 @@ pub async fn start(config: ServeConfig) -> Result<RunningServer, StartError> {
             grace: Duration::from_secs(config.shutdown_grace_secs),
             test_stage_delay: Duration::from_millis(config.test_stage_delay_ms),
             test_parameter_sets: config.test_parameter_sets,
+            test_validate_only: config.test_validate_only,
         },
         wake.clone(),
         shutdown_rx.clone(),

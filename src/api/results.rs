@@ -8,16 +8,26 @@ use utoipa::ToSchema;
 use utoipa_axum::router::OpenApiRouter;
 use utoipa_axum::routes;
 
+use axum::http::header;
+use axum::response::Html;
+use robocal_calib::kinematics::CalibratedModel;
+
 use super::error::{ApiError, ApiResult, Problem};
-use super::extract::Paging;
+use super::extract::{ApiJson, Paging};
 use super::AppState;
 use crate::domain::ParameterSetRecord;
+use crate::evaluate;
+use crate::report::{render_html, render_svg, Report};
 
 pub fn router() -> OpenApiRouter<AppState> {
     OpenApiRouter::new()
         .routes(routes!(list_parameter_sets))
         .routes(routes!(get_parameter_set))
         .routes(routes!(get_report))
+        .routes(routes!(get_report_svg))
+        .routes(routes!(get_report_html))
+        .routes(routes!(forward))
+        .routes(routes!(compensate))
 }
 
 /// An identified parameter set: the stored document plus its identity.
@@ -127,11 +137,98 @@ async fn get_report(
     State(state): State<AppState>,
     Path((serial, version)): Path<(String, String)>,
 ) -> ApiResult<Json<Value>> {
-    let set = find(&state, &serial, &version).await?;
-    let report = state
+    Ok(Json(report_json(&state, &serial, &version).await?))
+}
+
+/// The stored report with the parameter set's identity filled in (the
+/// pipeline cannot know its version number or date).
+async fn report_json(state: &AppState, serial: &str, version: &str) -> ApiResult<Value> {
+    let set = find(state, serial, version).await?;
+    let mut report = state
         .store
-        .get_report(&serial, set.version)
+        .get_report(serial, set.version)
         .await?
         .ok_or_else(|| ApiError::not_found("report", &format!("{serial}/{version}")))?;
-    Ok(Json(report))
+    if let Some(obj) = report.as_object_mut() {
+        obj.insert("serial".into(), Value::from(set.serial));
+        obj.insert("version".into(), Value::from(set.version));
+        obj.insert("job_id".into(), Value::from(set.job_id.unwrap_or_default()));
+        obj.insert("created_at".into(), Value::from(set.created_at));
+    }
+    Ok(report)
+}
+
+async fn typed_report(state: &AppState, serial: &str, version: &str) -> ApiResult<Report> {
+    serde_json::from_value(report_json(state, serial, version).await?)
+        .map_err(|_| ApiError::conflict("this parameter set has no accuracy report to draw"))
+}
+
+/// The report drawn as one SVG sheet.
+#[utoipa::path(get, path = "/v1/robots/{serial}/parameter-sets/{version}/report.svg", tag = "results",
+    params(("serial" = String, Path, description = "Robot serial number"),
+           ("version" = String, Path, description = "Version number or `latest`")),
+    responses((status = 200, content_type = "image/svg+xml", body = String), (status = 404, body = Problem, content_type = "application/problem+json")))]
+async fn get_report_svg(
+    State(state): State<AppState>,
+    Path((serial, version)): Path<(String, String)>,
+) -> ApiResult<([(header::HeaderName, &'static str); 1], String)> {
+    let report = typed_report(&state, &serial, &version).await?;
+    Ok((
+        [(header::CONTENT_TYPE, "image/svg+xml")],
+        render_svg(&report),
+    ))
+}
+
+/// The report as a self-contained printable page.
+#[utoipa::path(get, path = "/v1/robots/{serial}/parameter-sets/{version}/report.html", tag = "results",
+    params(("serial" = String, Path, description = "Robot serial number"),
+           ("version" = String, Path, description = "Version number or `latest`")),
+    responses((status = 200, content_type = "text/html", body = String), (status = 404, body = Problem, content_type = "application/problem+json")))]
+async fn get_report_html(
+    State(state): State<AppState>,
+    Path((serial, version)): Path<(String, String)>,
+) -> ApiResult<Html<String>> {
+    let report = typed_report(&state, &serial, &version).await?;
+    Ok(Html(render_html(&report)))
+}
+
+async fn model(state: &AppState, serial: &str, version: &str) -> ApiResult<CalibratedModel> {
+    let set = find(state, serial, version).await?;
+    evaluate::model_of(&set.parameters)
+        .map_err(|_| ApiError::conflict("this parameter set holds no calibrated model"))
+}
+
+/// Forward kinematics of the calibrated model.
+#[utoipa::path(post, path = "/v1/robots/{serial}/parameter-sets/{version}/forward", tag = "results",
+    params(("serial" = String, Path, description = "Robot serial number"),
+           ("version" = String, Path, description = "Version number or `latest`")),
+    request_body = evaluate::ForwardRequest,
+    responses((status = 200, body = evaluate::ForwardResponse), (status = 422, body = Problem, content_type = "application/problem+json")))]
+async fn forward(
+    State(state): State<AppState>,
+    Path((serial, version)): Path<(String, String)>,
+    ApiJson(body): ApiJson<evaluate::ForwardRequest>,
+) -> ApiResult<Json<evaluate::ForwardResponse>> {
+    let model = model(&state, &serial, &version).await?;
+    Ok(Json(
+        evaluate::forward(&model, &body).map_err(ApiError::validation)?,
+    ))
+}
+
+/// Joints that put the tool on each target according to the calibrated model.
+#[utoipa::path(post, path = "/v1/robots/{serial}/parameter-sets/{version}/compensate", tag = "results",
+    params(("serial" = String, Path, description = "Robot serial number"),
+           ("version" = String, Path, description = "Version number or `latest`")),
+    request_body = evaluate::CompensateRequest,
+    responses((status = 200, body = evaluate::CompensateResponse), (status = 422, body = Problem, content_type = "application/problem+json")))]
+async fn compensate(
+    State(state): State<AppState>,
+    Path((serial, version)): Path<(String, String)>,
+    ApiJson(body): ApiJson<evaluate::CompensateRequest>,
+) -> ApiResult<Json<evaluate::CompensateResponse>> {
+    let model = model(&state, &serial, &version).await?;
+    let answer = tokio::task::spawn_blocking(move || evaluate::compensate(&model, &body))
+        .await
+        .map_err(ApiError::internal)?;
+    Ok(Json(answer.map_err(ApiError::validation)?))
 }

@@ -87,5 +87,6 @@ pub async fn load_input(
         poses,
         options,
         test_stage_delay,
+        validate_only: false,
     })
 }

@@ -28,6 +28,8 @@ pub struct PoolConfig {
     pub test_stage_delay: Duration,
     /// Test hook (`--test-parameter-sets`): see [`mark_test_parameter_set`].
     pub test_parameter_sets: bool,
+    /// Test hook (`--test-validate-only`): jobs run the validation stage only.
+    pub test_validate_only: bool,
 }
 
 pub struct WorkerPool {
@@ -119,7 +121,10 @@ impl Worker {
         tracing::info!("job claimed");
         drop(_enter);
         let input = match load_input(&self.store, &lease.job, self.config.test_stage_delay).await {
-            Ok(input) => input,
+            Ok(mut input) => {
+                input.validate_only = self.config.test_validate_only;
+                input
+            }
             Err(LoadError::Gone(error)) => {
                 self.finish(&lease, JobOutcome::Failed { error }).await;
                 return;

@@ -1,6 +1,7 @@
 //! One integration-test binary: the real server over HTTP, module per area.
 
 pub(crate) mod auth;
+pub(crate) mod e2e;
 pub(crate) mod hostile;
 pub(crate) mod hostile_uploads;
 pub(crate) mod idempotency;

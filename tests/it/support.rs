@@ -56,6 +56,9 @@ pub fn test_config(database_url: &str, dir: &tempfile::TempDir) -> ServeConfig {
     config.lease_secs = 2;
     config.shutdown_grace_secs = 5;
     config.upload_dir = Some(dir.path().to_path_buf());
+    // Queue and API tests use tiny synthetic sessions; `e2e` turns the
+    // numerical stages back on.
+    config.test_validate_only = true;
     config
 }
 
@@ -276,6 +279,7 @@ pub fn spawn_binary(args: &[&str], envs: &[(&str, &str)]) -> BinaryServer {
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_robocal"));
     cmd.arg("serve").args(args);
     cmd.env("RUST_LOG", "warn");
+    cmd.env("ROBOCAL_TEST_VALIDATE_ONLY", "1");
     for (k, v) in envs {
         cmd.env(k, v);
     }

@@ -72,6 +72,7 @@ fn start_replicas(n: usize, db: &str, workers: &str, stage_delay_ms: &str) -> Ve
                 .env("RUST_LOG", "warn")
                 .env("ROBOCAL_TEST_STAGE_DELAY_MS", stage_delay_ms)
                 .env("ROBOCAL_TEST_PARAMETER_SETS", "true")
+                .env("ROBOCAL_TEST_VALIDATE_ONLY", "true")
                 .stdout(Stdio::piped())
                 .stderr(Stdio::null())
                 .spawn()

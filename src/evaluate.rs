@@ -1,0 +1,197 @@
+//! What off-line programming asks of a parameter set (api.md "Results"):
+//! forward kinematics and compensated joints (method.md §8), evaluated on
+//! the stored calibrated model.
+
+use robocal_calib::geometry::Pose;
+use robocal_calib::kinematics::ik::{default_seeds, inverse_kinematics};
+use robocal_calib::kinematics::CalibratedModel;
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+use utoipa::ToSchema;
+
+use crate::pipeline::results::{ParameterSetDoc, PoseOut};
+use crate::schema::{Checker, FieldError, PoseDoc};
+
+/// Most rows of one `forward` or `compensate` request.
+pub const MAX_ROWS: usize = 10_000;
+
+#[derive(Debug, Clone, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ForwardRequest {
+    pub joints_deg: Vec<Vec<f64>>,
+    /// A tool in the flange frame (api.md: relative to the calibrated hand–eye).
+    #[serde(default)]
+    pub tool: Option<PoseDoc>,
+}
+
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct ForwardPose {
+    #[schema(value_type = Object)]
+    pub flange_in_base: PoseOut,
+    /// The camera (or, for tracker sets, the tool point) in the world frame.
+    #[schema(value_type = Object)]
+    pub camera_in_target: PoseOut,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[schema(value_type = Option<Object>)]
+    pub tool_in_target: Option<PoseOut>,
+}
+
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct ForwardResponse {
+    pub poses: Vec<ForwardPose>,
+}
+
+/// One seed for all targets, or one per target.
+#[derive(Debug, Clone, Deserialize, ToSchema)]
+#[serde(untagged)]
+pub enum Seeds {
+    One(Vec<f64>),
+    PerTarget(Vec<Vec<f64>>),
+}
+
+#[derive(Debug, Clone, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CompensateRequest {
+    pub targets: Vec<PoseDoc>,
+    #[serde(default)]
+    pub tool: Option<PoseDoc>,
+    #[serde(default)]
+    pub seed_joints_deg: Option<Seeds>,
+}
+
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct CompensateResponse {
+    pub joints_deg: Vec<Vec<f64>>,
+    pub residual_mm: Vec<f64>,
+}
+
+/// The calibrated model of a stored parameter set.
+pub fn model_of(parameters: &Value) -> Result<CalibratedModel, String> {
+    let mut v = parameters.clone();
+    if let Some(obj) = v.as_object_mut() {
+        for (from, to) in [
+            ("target_to_base", "world_to_base"),
+            ("instrument_to_base", "world_to_base"),
+            ("flange_to_camera", "flange_to_tool"),
+        ] {
+            if let Some(x) = obj.remove(from) {
+                obj.insert(to.into(), x);
+            }
+        }
+    }
+    let doc: ParameterSetDoc =
+        serde_json::from_value(v).map_err(|e| format!("stored parameter set unreadable: {e}"))?;
+    doc.model()
+}
+
+fn pose_of(doc: &PoseDoc, field: &str, c: &mut Checker) -> Option<Pose> {
+    doc.check(c, field);
+    let pose = match doc.matrix {
+        Some(m) => robocal_calib::geometry::pose_from_matrix_rows(&m),
+        None => {
+            robocal_calib::geometry::pose_from_xyz_rpy_deg(doc.translation_mm, doc.rotation_deg)
+        }
+    };
+    match pose {
+        Ok(p) => Some(p),
+        Err(e) => {
+            c.fail(format!("{field}.matrix"), e.to_string());
+            None
+        }
+    }
+}
+
+fn check_joints(row: &[f64], dof: usize, field: &str, c: &mut Checker) {
+    if row.len() != dof {
+        c.fail(
+            field,
+            format!("{} values for a {dof}-joint robot", row.len()),
+        );
+    } else if row.iter().any(|v| !v.is_finite() || v.abs() > 3600.0) {
+        c.fail(field, "joint angles must be finite degrees within +-3600");
+    }
+}
+
+pub fn forward(
+    model: &CalibratedModel,
+    req: &ForwardRequest,
+) -> Result<ForwardResponse, Vec<FieldError>> {
+    let mut c = Checker::default();
+    if req.joints_deg.is_empty() || req.joints_deg.len() > MAX_ROWS {
+        c.fail("joints_deg", format!("1 to {MAX_ROWS} rows"));
+    }
+    for (i, row) in req.joints_deg.iter().enumerate() {
+        check_joints(row, model.robot.dof(), &format!("joints_deg[{i}]"), &mut c);
+    }
+    let tool = req.tool.as_ref().and_then(|t| pose_of(t, "tool", &mut c));
+    c.finish()?;
+    let mut poses = Vec::with_capacity(req.joints_deg.len());
+    for (i, row) in req.joints_deg.iter().enumerate() {
+        let q: Vec<f64> = row.iter().map(|d| d.to_radians()).collect();
+        let flange = model
+            .robot
+            .base_to_flange(&q)
+            .map_err(|e| vec![FieldError::new(format!("joints_deg[{i}]"), e.to_string())])?;
+        let world_flange = model.world_to_base * flange;
+        poses.push(ForwardPose {
+            flange_in_base: PoseOut::new(&flange),
+            camera_in_target: PoseOut::new(&(world_flange * model.flange_to_tool)),
+            tool_in_target: tool.map(|t| PoseOut::new(&(world_flange * t))),
+        });
+    }
+    Ok(ForwardResponse { poses })
+}
+
+pub fn compensate(
+    model: &CalibratedModel,
+    req: &CompensateRequest,
+) -> Result<CompensateResponse, Vec<FieldError>> {
+    let mut c = Checker::default();
+    if req.targets.is_empty() || req.targets.len() > MAX_ROWS {
+        c.fail("targets", format!("1 to {MAX_ROWS} targets"));
+    }
+    let targets: Vec<Option<Pose>> = req
+        .targets
+        .iter()
+        .enumerate()
+        .map(|(i, t)| pose_of(t, &format!("targets[{i}]"), &mut c))
+        .collect();
+    let tool = req.tool.as_ref().and_then(|t| pose_of(t, "tool", &mut c));
+    let dof = model.robot.dof();
+    match &req.seed_joints_deg {
+        Some(Seeds::One(seed)) => check_joints(seed, dof, "seed_joints_deg", &mut c),
+        Some(Seeds::PerTarget(rows)) => {
+            if rows.len() != req.targets.len() {
+                c.fail(
+                    "seed_joints_deg",
+                    "one seed for all targets, or exactly one per target",
+                );
+            }
+            for (i, row) in rows.iter().enumerate() {
+                check_joints(row, dof, &format!("seed_joints_deg[{i}]"), &mut c);
+            }
+        }
+        None => {}
+    }
+    c.finish()?;
+    let tool_model = tool.map_or_else(|| model.clone(), |t| model.with_tool(t));
+    let rad = |row: &Vec<f64>| row.iter().map(|d| d.to_radians()).collect::<Vec<f64>>();
+    let defaults = default_seeds(&tool_model);
+    let (mut joints_deg, mut residual_mm) = (Vec::new(), Vec::new());
+    for (i, target) in targets.iter().enumerate() {
+        let target = target.expect("checked above");
+        let seeds = match &req.seed_joints_deg {
+            Some(Seeds::One(seed)) => vec![rad(seed)],
+            Some(Seeds::PerTarget(rows)) => vec![rad(&rows[i])],
+            None => defaults.clone(),
+        };
+        let solution = inverse_kinematics(&tool_model, &target, &seeds)
+            .map_err(|e| vec![FieldError::new(format!("targets[{i}]"), e.to_string())])?;
+        joints_deg.push(solution.joints_rad.iter().map(|r| r.to_degrees()).collect());
+        residual_mm.push(solution.residual_mm);
+    }
+    Ok(CompensateResponse {
+        joints_deg,
+        residual_mm,
+    })
+}
