@@ -22,6 +22,9 @@ use crate::schema::job::CalibrationOptions;
 use crate::schema::robot::RobotBody;
 use crate::schema::session::{PoseSet, SessionBody};
 
+/// Spreads per-pose noise seeds apart (the golden-ratio constant).
+const NOISE_SEED_STRIDE: u64 = 0x9e37_79b9_7f4a_7c15;
+
 /// The board every simulated campaign uses: 9x9 dots of 8 mm on a 25 mm
 /// pitch with a 12 mm origin marker (issue 3).
 pub fn simulated_target() -> TargetSpec {
@@ -93,9 +96,12 @@ pub fn simulate(preset: &str, out: &Path, cal: usize, val: usize, seed: u64) -> 
             .map(|t| {
                 let (campaign, target, options) = (&campaign, &target, &options);
                 scope.spawn(move || {
-                    let mut rng = StdRng::seed_from_u64(seed ^ (t as u64 + 1) * 0x9e37_79b9);
                     let mut errors = Vec::new();
                     for (i, pose) in campaign.poses.iter().enumerate().skip(t).step_by(threads) {
+                        // Per-pose noise streams: the images do not depend on the thread count.
+                        let mut rng = StdRng::seed_from_u64(
+                            seed ^ (i as u64 + 1).wrapping_mul(NOISE_SEED_STRIDE),
+                        );
                         let camera_to_target = pose.target_to_camera.inverse();
                         let rendered = render_target(
                             &campaign.truth.intrinsics,
