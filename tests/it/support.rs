@@ -279,7 +279,7 @@ pub fn spawn_binary(args: &[&str], envs: &[(&str, &str)]) -> BinaryServer {
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_robocal"));
     cmd.arg("serve").args(args);
     cmd.env("RUST_LOG", "warn");
-    cmd.env("ROBOCAL_TEST_VALIDATE_ONLY", "1");
+    cmd.env("ROBOCAL_TEST_VALIDATE_ONLY", "true");
     for (k, v) in envs {
         cmd.env(k, v);
     }
