@@ -241,7 +241,7 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSetDoc) -> Report {
         version: 0,
         job_id: String::new(),
         session_id: ctx.session_id.to_string(),
-        created_at: String::new(),
+        created_at: crate::domain::now_rfc3339(),
         instrument: set.instrument.clone(),
         measurement: ctx.measurement.to_string(),
         camera,

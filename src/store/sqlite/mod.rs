@@ -51,10 +51,25 @@ impl SqliteStore {
             .synchronous(SqliteSynchronous::Full)
             .foreign_keys(true)
             .busy_timeout(BUSY_TIMEOUT);
-        let pool = SqlitePoolOptions::new()
-            .max_connections(MAX_CONNECTIONS)
-            .connect_with(options)
-            .await?;
+        // Switching a new file to WAL takes an exclusive lock that does not
+        // wait on `busy_timeout`: processes opening one new file at the same
+        // moment retry instead of failing with "database is locked".
+        let mut attempt = 0;
+        let pool = loop {
+            match SqlitePoolOptions::new()
+                .max_connections(MAX_CONNECTIONS)
+                .connect_with(options.clone())
+                .await
+            {
+                Ok(pool) => break pool,
+                Err(e) if attempt < MIGRATION_RETRIES => {
+                    tracing::debug!(error = %e, "opening the database raced another process; retrying");
+                    attempt += 1;
+                    tokio::time::sleep(MIGRATION_RETRY_WAIT).await;
+                }
+                Err(e) => return Err(e.into()),
+            }
+        };
         let migrator = Migrator::new(Embedded)
             .await
             .map_err(|e| StoreError::Backend(format!("migrations: {e}")))?;
