@@ -195,3 +195,63 @@ pub fn compensate(
         residual_mm,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use robocal_calib::kinematics::presets;
+    use serde_json::json;
+
+    fn model() -> CalibratedModel {
+        CalibratedModel {
+            robot: presets::irb2400(),
+            world_to_base: Pose::identity(),
+            flange_to_tool: Pose::identity(),
+        }
+    }
+
+    fn fields(errors: Vec<FieldError>) -> Vec<String> {
+        errors.into_iter().map(|e| e.field).collect()
+    }
+
+    #[test]
+    fn forward_names_bad_rows() {
+        let req: ForwardRequest =
+            serde_json::from_value(json!({"joints_deg": [[0, 0, 0, 0, 0, 0], [1, 2, 3]]})).unwrap();
+        assert_eq!(
+            fields(forward(&model(), &req).unwrap_err()),
+            ["joints_deg[1]"]
+        );
+        let ok: ForwardRequest =
+            serde_json::from_value(json!({"joints_deg": [[0, 0, 0, 0, 0, 0]]})).unwrap();
+        let answer = forward(&model(), &ok).unwrap();
+        // The IRB-2400 flange at zero joints (presets.rs doc): reach 940, height 1455.
+        assert!((answer.poses[0].flange_in_base.translation_mm[0] - 940.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn compensate_reaches_a_reachable_target_and_names_an_unreachable_one() {
+        let m = model();
+        let q = [0.2, 0.3, -0.2, 0.4, 0.5, -0.3];
+        let target = m.world_to_tool(&q).unwrap();
+        let doc = json!({"translation_mm": [0, 0, 0], "rotation_deg": [0, 0, 0],
+                         "matrix": robocal_calib::geometry::pose_to_matrix_rows(&target)});
+        let req: CompensateRequest = serde_json::from_value(json!({
+            "targets": [doc], "seed_joints_deg": [10, 15, -10, 20, 25, -15]}))
+        .unwrap();
+        let answer = compensate(&m, &req).unwrap();
+        assert!(answer.residual_mm[0] < 1e-6, "{:?}", answer.residual_mm);
+        let far: CompensateRequest = serde_json::from_value(json!({
+            "targets": [{"translation_mm": [5000, 0, 0], "rotation_deg": [0, 0, 0]}]}))
+        .unwrap();
+        assert_eq!(fields(compensate(&m, &far).unwrap_err()), ["targets[0]"]);
+        let seeds: CompensateRequest = serde_json::from_value(json!({
+            "targets": [{"translation_mm": [900, 0, 1000], "rotation_deg": [0, 0, 0]}],
+            "seed_joints_deg": [[0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0]]}))
+        .unwrap();
+        assert_eq!(
+            fields(compensate(&m, &seeds).unwrap_err()),
+            ["seed_joints_deg"]
+        );
+    }
+}
