@@ -48,7 +48,10 @@ pub async fn upload(client: &Client, serial: &str, dir: &Path) -> Result<String,
     let answer = client.upload_dataset(&id, archive.path()).await?;
     eprintln!(
         "uploaded {} poses to session {id}",
-        answer.get("poses_created").and_then(Value::as_u64).unwrap_or(0)
+        answer
+            .get("poses_created")
+            .and_then(Value::as_u64)
+            .unwrap_or(0)
     );
     Ok(id)
 }

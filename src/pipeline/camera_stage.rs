@@ -151,32 +151,12 @@ pub fn camera_report(
                 }),
         })
         .collect();
-    let i = final_intrinsics;
     CameraReport {
         mode: if c.paper_mode { "paper" } else { "refined" }.to_string(),
         image_width: c.image_size.width,
         image_height: c.image_size.height,
-        fx: i.fx,
-        fy: i.fy,
-        cx: i.cx,
-        cy: i.cy,
-        k1: i.k1,
-        k2: i.k2,
-        p1: i.p1,
-        p2: i.p2,
-        k3: i.k3,
-        std: std.or_else(|| {
-            c.std_dev.map(|s| CameraStd {
-                fx: s.fx,
-                fy: s.fy,
-                cx: s.cx,
-                cy: s.cy,
-                k1: s.k1,
-                k2: s.k2,
-                p1: s.p1,
-                p2: s.p2,
-            })
-        }),
+        intrinsics: *final_intrinsics,
+        std: std.or(c.std_dev),
         reprojection_rms_px: c.rms_px,
         outliers_dropped: c.outliers.len(),
         views,

@@ -199,6 +199,7 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSetDoc) -> Report {
             k2: s[5],
             p1: s[6],
             p2: s[7],
+            ..CameraStd::default()
         });
         let intr = set.camera.unwrap_or(step.intrinsics());
         camera_report(step, &intr, std, ctx.poses)

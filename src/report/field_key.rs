@@ -27,7 +27,7 @@ pub struct FieldKey<'a> {
 }
 
 pub fn principal_point(svg: &mut Svg, camera: &CameraReport, xs: &Scale, ys: &Scale) {
-    let (x, y) = (xs.map(camera.cx), ys.map(camera.cy));
+    let (x, y) = (xs.map(camera.intrinsics.cx), ys.map(camera.intrinsics.cy));
     svg.line(x - MARKER_HALF, y, x + MARKER_HALF, y, AFTER_COLOR, 1.5);
     svg.line(x, y - MARKER_HALF, x, y + MARKER_HALF, AFTER_COLOR, 1.5);
 }

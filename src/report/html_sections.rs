@@ -71,18 +71,18 @@ pub fn axis_table(page: &mut String, report: &Report) {
 }
 
 pub fn intrinsics_table(page: &mut String, camera: &CameraReport) {
-    let std = camera.std.clone();
+    let std = camera.std;
     let s = |f: fn(&super::model::CameraStd) -> f64| std.as_ref().map(f).unwrap_or(f64::NAN);
     let rows = [
-        ("f<sub>x</sub>", camera.fx, s(|d| d.fx), "px"),
-        ("f<sub>y</sub>", camera.fy, s(|d| d.fy), "px"),
-        ("c<sub>x</sub>", camera.cx, s(|d| d.cx), "px"),
-        ("c<sub>y</sub>", camera.cy, s(|d| d.cy), "px"),
-        ("k<sub>1</sub>", camera.k1, s(|d| d.k1), ""),
-        ("k<sub>2</sub>", camera.k2, s(|d| d.k2), ""),
-        ("p<sub>1</sub>", camera.p1, s(|d| d.p1), ""),
-        ("p<sub>2</sub>", camera.p2, s(|d| d.p2), ""),
-        ("k<sub>3</sub>", camera.k3, f64::NAN, ""),
+        ("f<sub>x</sub>", camera.intrinsics.fx, s(|d| d.fx), "px"),
+        ("f<sub>y</sub>", camera.intrinsics.fy, s(|d| d.fy), "px"),
+        ("c<sub>x</sub>", camera.intrinsics.cx, s(|d| d.cx), "px"),
+        ("c<sub>y</sub>", camera.intrinsics.cy, s(|d| d.cy), "px"),
+        ("k<sub>1</sub>", camera.intrinsics.k1, s(|d| d.k1), ""),
+        ("k<sub>2</sub>", camera.intrinsics.k2, s(|d| d.k2), ""),
+        ("p<sub>1</sub>", camera.intrinsics.p1, s(|d| d.p1), ""),
+        ("p<sub>2</sub>", camera.intrinsics.p2, s(|d| d.p2), ""),
+        ("k<sub>3</sub>", camera.intrinsics.k3, f64::NAN, ""),
     ];
     let _ = writeln!(
         page,

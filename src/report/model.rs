@@ -26,16 +26,10 @@ pub struct CameraReport {
     pub mode: String,
     pub image_width: u32,
     pub image_height: u32,
-    pub fx: f64,
-    pub fy: f64,
-    pub cx: f64,
-    pub cy: f64,
-    pub k1: f64,
-    pub k2: f64,
-    pub p1: f64,
-    pub p2: f64,
-    pub k3: f64,
-    /// Standard deviations in the same order and units, when estimated.
+    /// `fx, fy, cx, cy, k1, k2, p1, p2, k3`, flattened into the report.
+    #[serde(flatten)]
+    pub intrinsics: Intrinsics,
+    /// Standard deviations in the same units, when estimated.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub std: Option<CameraStd>,
     pub reprojection_rms_px: f64,
@@ -43,17 +37,10 @@ pub struct CameraReport {
     pub views: Vec<ViewReport>,
 }
 
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
-pub struct CameraStd {
-    pub fx: f64,
-    pub fy: f64,
-    pub cx: f64,
-    pub cy: f64,
-    pub k1: f64,
-    pub k2: f64,
-    pub p1: f64,
-    pub p2: f64,
-}
+/// The calibrated intrinsics.
+pub use robocal_calib::camera::Intrinsics;
+/// The camera step's (or joint refinement's) intrinsics uncertainty.
+pub use robocal_calib::camera::IntrinsicsStdDev as CameraStd;
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct DetectionFailure {

@@ -196,7 +196,7 @@ fn camera(out: &mut String, report: &Report) {
             c.image_height
         ),
     );
-    let std = c.std.clone().unwrap_or_default();
+    let std = c.std.unwrap_or_default();
     let has_std = c.std.is_some();
     let mut t = TextTable::new(&[
         ("", Left),
@@ -205,15 +205,15 @@ fn camera(out: &mut String, report: &Report) {
         ("unit", Left),
     ]);
     let rows = [
-        ("fx", c.fx, std.fx, "px"),
-        ("fy", c.fy, std.fy, "px"),
-        ("cx", c.cx, std.cx, "px"),
-        ("cy", c.cy, std.cy, "px"),
-        ("k1", c.k1, std.k1, ""),
-        ("k2", c.k2, std.k2, ""),
-        ("p1", c.p1, std.p1, ""),
-        ("p2", c.p2, std.p2, ""),
-        ("k3", c.k3, f64::NAN, ""),
+        ("fx", c.intrinsics.fx, std.fx, "px"),
+        ("fy", c.intrinsics.fy, std.fy, "px"),
+        ("cx", c.intrinsics.cx, std.cx, "px"),
+        ("cy", c.intrinsics.cy, std.cy, "px"),
+        ("k1", c.intrinsics.k1, std.k1, ""),
+        ("k2", c.intrinsics.k2, std.k2, ""),
+        ("p1", c.intrinsics.p1, std.p1, ""),
+        ("p2", c.intrinsics.p2, std.p2, ""),
+        ("k3", c.intrinsics.k3, f64::NAN, ""),
     ];
     for (name, value, sd, unit) in rows {
         let sd = if has_std { sd } else { f64::NAN };
