@@ -17,6 +17,7 @@ use tokio::sync::{watch, Notify};
 use crate::domain::*;
 
 pub mod postgres;
+mod rows;
 pub mod sqlite;
 
 #[derive(Debug, thiserror::Error)]

@@ -12,6 +12,7 @@
 //! - a trigger `NOTIFY`s `robocal_jobs` when a job becomes claimable, and
 //!   [`listen`] wakes this replica's idle workers on it.
 
+use crate::store::rows::{json, opt_json};
 use std::borrow::Cow;
 use std::str::FromStr;
 use std::sync::Arc;
@@ -94,15 +95,6 @@ fn migrator() -> Migrator {
         migrations: Cow::Owned(migrations),
         ..Migrator::DEFAULT
     }
-}
-
-/// Parses a JSON column.
-fn json(text: &str) -> StoreResult<serde_json::Value> {
-    Ok(serde_json::from_str(text)?)
-}
-
-fn opt_json(text: Option<String>) -> StoreResult<Option<serde_json::Value>> {
-    text.map(|t| json(&t)).transpose()
 }
 
 /// True when `e` is a foreign-key violation (a parent deleted concurrently).

@@ -1,45 +1,16 @@
 use async_trait::async_trait;
 use serde_json::Value;
-use sqlx::postgres::PgRow;
-use sqlx::Row;
 
 use super::robots::page_cursor;
-use super::{is_foreign_key_violation, json, opt_json, PgStore};
+use super::{is_foreign_key_violation, PgStore};
 use crate::domain::{new_id, now_rfc3339, ImageMeta, NewPose, Page, PoseRecord, SessionRecord};
+use crate::store::rows::{pose, session};
 use crate::store::{SessionStore, StoreError, StoreResult};
 
 const SESSION_COLUMNS: &str = "s.id, s.serial, s.instrument, s.spec, s.created_at,
     (SELECT count(*) FROM poses p WHERE p.session_id = s.id) AS pose_count";
 const POSE_COLUMNS: &str =
     "id, session_id, joints_deg, pose_set, image_meta, points, measured, created_at";
-
-fn session(row: &PgRow) -> StoreResult<SessionRecord> {
-    Ok(SessionRecord {
-        id: row.get("id"),
-        serial: row.get("serial"),
-        instrument: row.get("instrument"),
-        spec: json(row.get::<&str, _>("spec"))?,
-        pose_count: row.get("pose_count"),
-        created_at: row.get("created_at"),
-    })
-}
-
-fn pose(row: &PgRow) -> StoreResult<PoseRecord> {
-    let image: Option<ImageMeta> = row
-        .get::<Option<&str>, _>("image_meta")
-        .map(serde_json::from_str)
-        .transpose()?;
-    Ok(PoseRecord {
-        id: row.get("id"),
-        session_id: row.get("session_id"),
-        joints_deg: serde_json::from_str(row.get::<&str, _>("joints_deg"))?,
-        set: row.get("pose_set"),
-        image,
-        points: json(row.get::<&str, _>("points"))?,
-        measured: opt_json(row.get("measured"))?,
-        created_at: row.get("created_at"),
-    })
-}
 
 #[async_trait]
 impl SessionStore for PgStore {

@@ -4,6 +4,7 @@
 //! transaction with `BEGIN IMMEDIATE` so two writers never deadlock on a lock
 //! upgrade.
 
+use crate::store::rows::{json, opt_json};
 use std::borrow::Cow;
 use std::str::FromStr;
 use std::time::Duration;
@@ -117,15 +118,6 @@ impl<'s> MigrationSource<'s> for Embedded {
                 .collect())
         })
     }
-}
-
-/// Parses a JSON column.
-fn json(text: &str) -> StoreResult<serde_json::Value> {
-    Ok(serde_json::from_str(text)?)
-}
-
-fn opt_json(text: Option<String>) -> StoreResult<Option<serde_json::Value>> {
-    text.map(|t| json(&t)).transpose()
 }
 
 #[async_trait]
