@@ -1,5 +1,4 @@
 use async_trait::async_trait;
-use sqlx::postgres::PgRow;
 use sqlx::Row;
 
 use super::PgStore;
@@ -7,23 +6,13 @@ use crate::domain::{
     new_id, now_rfc3339, now_unix_ms, IdempotencyClaim, IdempotencyScope, Scope, StoredResponse,
     TokenRecord,
 };
-use crate::store::{AuthStore, StoreError, StoreResult};
+use crate::store::rows::token;
+use crate::store::{AuthStore, StoreResult};
 
 /// Stored responses are kept this long, then a key may be used afresh.
 const IDEMPOTENCY_TTL_MS: i64 = 24 * 3600 * 1000;
 /// A pending key older than this belongs to a request that died: reusable.
 const PENDING_STALE_MS: i64 = 10 * 60 * 1000;
-
-fn token(row: &PgRow) -> StoreResult<TokenRecord> {
-    let scope: String = row.get("scope");
-    Ok(TokenRecord {
-        id: row.get("id"),
-        name: row.get("name"),
-        scope: Scope::parse(&scope)
-            .ok_or_else(|| StoreError::Backend(format!("unknown scope {scope:?}")))?,
-        created_at: row.get("created_at"),
-    })
-}
 
 #[async_trait]
 impl AuthStore for PgStore {

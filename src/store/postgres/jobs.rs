@@ -1,13 +1,13 @@
 use async_trait::async_trait;
 use serde_json::json;
-use sqlx::postgres::PgRow;
 use sqlx::Row;
 
 use super::results::insert_parameter_set_tx;
-use super::{json, opt_json, PgStore};
+use super::{json, PgStore};
 use crate::domain::{
     new_id, now_rfc3339, ClaimedJob, JobOutcome, JobRecord, JobState, LeaseStatus, NewJob,
 };
+use crate::store::rows::job;
 use crate::store::{JobStore, StoreError, StoreResult};
 
 const COLUMNS: &str = "id, kind, session_id, serial, options, state, stage, progress, attempts,
@@ -16,28 +16,6 @@ const COLUMNS: &str = "id, kind, session_id, serial, options, state, stage, prog
 /// Advisory lock key serialising enqueues (the `--max-queued` bound is a
 /// count-then-insert, which READ COMMITTED alone would let replicas overrun).
 const ENQUEUE_LOCK: i64 = 0x726f_626f_6361_6c01; // "robocal" + 1
-
-fn job(row: &PgRow) -> StoreResult<JobRecord> {
-    let state: String = row.get("state");
-    Ok(JobRecord {
-        id: row.get("id"),
-        kind: row.get("kind"),
-        session_id: row.get("session_id"),
-        serial: row.get("serial"),
-        options: json(row.get::<&str, _>("options"))?,
-        state: JobState::parse(&state)
-            .ok_or_else(|| StoreError::Backend(format!("unknown job state {state:?}")))?,
-        stage: row.get("stage"),
-        progress: row.get("progress"),
-        attempts: row.get("attempts"),
-        max_attempts: row.get("max_attempts"),
-        error: row.get("error"),
-        result: opt_json(row.get("result"))?,
-        created_at: row.get("created_at"),
-        started_at: row.get("started_at"),
-        finished_at: row.get("finished_at"),
-    })
-}
 
 #[async_trait]
 impl JobStore for PgStore {

@@ -12,7 +12,7 @@
 //! - a trigger `NOTIFY`s `robocal_jobs` when a job becomes claimable, and
 //!   [`listen`] wakes this replica's idle workers on it.
 
-use crate::store::rows::{json, opt_json};
+use crate::store::rows::json;
 use std::borrow::Cow;
 use std::str::FromStr;
 use std::sync::Arc;

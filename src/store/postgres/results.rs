@@ -1,21 +1,11 @@
 use async_trait::async_trait;
 use serde_json::Value;
-use sqlx::postgres::PgRow;
-use sqlx::{Postgres, Row, Transaction};
+use sqlx::{Postgres, Transaction};
 
 use super::{json, PgStore};
 use crate::domain::{now_rfc3339, NewParameterSet, Page, ParameterSetRecord};
+use crate::store::rows::parameter_set;
 use crate::store::{ResultStore, StoreResult};
-
-fn parameter_set(row: &PgRow) -> StoreResult<ParameterSetRecord> {
-    Ok(ParameterSetRecord {
-        serial: row.get("serial"),
-        version: row.get("version"),
-        job_id: row.get("job_id"),
-        parameters: json(row.get::<&str, _>("parameters"))?,
-        created_at: row.get("created_at"),
-    })
-}
 
 /// Inserts the serial's next version inside the caller's transaction.
 ///

@@ -1,23 +1,11 @@
 use async_trait::async_trait;
-use sqlx::postgres::PgRow;
-use sqlx::Row;
 
-use super::{json, PgStore};
+use super::PgStore;
 use crate::domain::{Page, RobotRecord};
+use crate::store::rows::robot;
 use crate::store::{RobotStore, StoreResult};
 
 const COLUMNS: &str = "serial, model, preset, kinematics, created_at, updated_at";
-
-fn robot(row: &PgRow) -> StoreResult<RobotRecord> {
-    Ok(RobotRecord {
-        serial: row.get("serial"),
-        model: row.get("model"),
-        preset: row.get("preset"),
-        kinematics: json(row.get::<&str, _>("kinematics"))?,
-        created_at: row.get("created_at"),
-        updated_at: row.get("updated_at"),
-    })
-}
 
 #[async_trait]
 impl RobotStore for PgStore {

@@ -1,39 +1,17 @@
 use async_trait::async_trait;
 use serde_json::json;
-use sqlx::sqlite::SqliteRow;
 use sqlx::Row;
 
 use super::results::insert_parameter_set_tx;
-use super::{json, opt_json, SqliteStore};
+use super::{json, SqliteStore};
 use crate::domain::{
     new_id, now_rfc3339, ClaimedJob, JobOutcome, JobRecord, JobState, LeaseStatus, NewJob,
 };
+use crate::store::rows::job;
 use crate::store::{JobStore, StoreError, StoreResult};
 
 const COLUMNS: &str = "id, kind, session_id, serial, options, state, stage, progress, attempts,
     max_attempts, error, result, created_at, started_at, finished_at";
-
-fn job(row: &SqliteRow) -> StoreResult<JobRecord> {
-    let state: String = row.get("state");
-    Ok(JobRecord {
-        id: row.get("id"),
-        kind: row.get("kind"),
-        session_id: row.get("session_id"),
-        serial: row.get("serial"),
-        options: json(row.get::<&str, _>("options"))?,
-        state: JobState::parse(&state)
-            .ok_or_else(|| StoreError::Backend(format!("unknown job state {state:?}")))?,
-        stage: row.get("stage"),
-        progress: row.get("progress"),
-        attempts: row.get("attempts"),
-        max_attempts: row.get("max_attempts"),
-        error: row.get("error"),
-        result: opt_json(row.get("result"))?,
-        created_at: row.get("created_at"),
-        started_at: row.get("started_at"),
-        finished_at: row.get("finished_at"),
-    })
-}
 
 #[async_trait]
 impl JobStore for SqliteStore {

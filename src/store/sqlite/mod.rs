@@ -4,7 +4,7 @@
 //! transaction with `BEGIN IMMEDIATE` so two writers never deadlock on a lock
 //! upgrade.
 
-use crate::store::rows::{json, opt_json};
+use crate::store::rows::json;
 use std::borrow::Cow;
 use std::str::FromStr;
 use std::time::Duration;

@@ -1,21 +1,11 @@
 use async_trait::async_trait;
 use serde_json::Value;
-use sqlx::sqlite::SqliteRow;
-use sqlx::{Row, Sqlite, Transaction};
+use sqlx::{Sqlite, Transaction};
 
 use super::{json, SqliteStore};
 use crate::domain::{now_rfc3339, NewParameterSet, Page, ParameterSetRecord};
+use crate::store::rows::parameter_set;
 use crate::store::{ResultStore, StoreResult};
-
-fn parameter_set(row: &SqliteRow) -> StoreResult<ParameterSetRecord> {
-    Ok(ParameterSetRecord {
-        serial: row.get("serial"),
-        version: row.get("version"),
-        job_id: row.get("job_id"),
-        parameters: json(row.get::<&str, _>("parameters"))?,
-        created_at: row.get("created_at"),
-    })
-}
 
 /// Inserts the serial's next version inside the caller's (immediate) transaction.
 pub(super) async fn insert_parameter_set_tx(
