@@ -37,7 +37,7 @@ fn main() {
                 Ok(r) => {
                     all.push(r.clone());
                     println!(
-                    "{preset} seed {s}: before {b:.4} oracle {o:.4} two-step plain {tp:.4} weighted {tw:.4} paper {pa:.4} joint {j:.4} | joint/oracle {ratio:.3} improvement {imp:.1}x worst {w:.2} sigma ({wn}) comp {c:.4} ik {ik:.1e} rms {rms:.3}px cond {cond:.1} O1 {o1:.3e} t_id {ti:.3}s t_joint {tj:.3}s it {it:?} fixed {fixed:?}",
+                    "{preset} seed {s}: before {b:.4} oracle {o:.4} two-step plain {tp:.4} weighted {tw:.4} paper {pa:.4} joint {j:.4} | joint/oracle {ratio:.3} improvement {imp:.1}x worst {w:.2} sigma ({wn}) z rms {zr:.2} joint noise est {jn:.2e} deg comp {c:.4} ik {ik:.1e} rms {rms:.3}px cond {cond:.1} O1 {o1:.3e} t_id {ti:.3}s t_joint {tj:.3}s it {it:?} fixed {fixed:?}",
                     it = r.joint_iterations,
                     s = seed + 1,
                     b = r.before.norm.mean_mm,
@@ -50,6 +50,8 @@ fn main() {
                     imp = r.before.norm.mean_mm / r.joint.norm.mean_mm,
                     w = r.worst_sigma_ratio.0,
                     wn = r.worst_sigma_ratio.1,
+                    jn = r.estimated_joint_sigma_rad.to_degrees(),
+                    zr = r.sigma_ratio_rms,
                     c = r.compensated.norm.mean_mm,
                     ik = r.max_ik_residual_mm,
                     rms = r.reprojection_rms_px,
@@ -78,7 +80,7 @@ fn summary(preset: &str, all: &[robocal_calib::sim::experiment::ExperimentResult
     let oracle = mean(&|r| r.oracle.norm.mean_mm);
     let joint = mean(&|r| r.joint.norm.mean_mm);
     println!(
-        "SUMMARY {preset} ({} campaigns, mean of per-campaign mean 3-D val error, mm): before {:.4} | oracle {:.4} (known-intrinsics oracle {:.4}) | two-step plain {:.4} ({:.2}x oracle) | two-step weighted {:.4} ({:.2}x) | paper mode {:.4} ({:.2}x) | joint {:.4} ({:.2}x oracle) | improvement {:.1}x | compensated {:.4} | joint val max {:.4} | campaigns with all params within 3 sigma {}/{} | identify {:.3} s, joint refine {:.3} s",
+        "SUMMARY {preset} ({} campaigns, mean of per-campaign mean 3-D val error, mm): before {:.4} | oracle {:.4} (known-intrinsics oracle {:.4}) | two-step plain {:.4} ({:.2}x oracle) | two-step weighted {:.4} ({:.2}x) | paper mode {:.4} ({:.2}x) | joint {:.4} ({:.2}x oracle) | improvement {:.1}x | compensated {:.4} | joint val max {:.4} | campaigns with all params within 3 sigma {}/{} (z rms {:.3}, joint noise est {:.3e} deg) | identify {:.3} s, joint refine {:.3} s",
         all.len(),
         mean(&|r| r.before.norm.mean_mm),
         oracle,
@@ -96,6 +98,8 @@ fn summary(preset: &str, all: &[robocal_calib::sim::experiment::ExperimentResult
         mean(&|r| r.joint.norm.max_mm),
         all.iter().filter(|r| r.worst_sigma_ratio.0 <= 3.0).count(),
         all.len(),
+        (mean(&|r| r.sigma_ratio_rms.powi(2))).sqrt(),
+        mean(&|r| r.estimated_joint_sigma_rad.to_degrees()),
         mean(&|r| r.identify_seconds),
         mean(&|r| r.joint_refine_seconds),
     );

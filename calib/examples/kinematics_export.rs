@@ -9,9 +9,9 @@ use std::time::Instant;
 use nalgebra::DMatrix;
 use robocal_calib::geometry::pose_to_matrix_rows;
 use robocal_calib::kinematics::identify::{
-    fit_parameters, identify, validate, IdentifyMode, Observed,
+    fit_parameters, identify, validate, IdentifyMode, JointNoise, Observed,
 };
-use robocal_calib::kinematics::joint_refine::joint_refine;
+use robocal_calib::kinematics::joint_refine::{joint_refine, ImageNoise};
 use robocal_calib::kinematics::Instrument;
 use robocal_calib::sim::campaign::CampaignSpec;
 use robocal_calib::sim::experiment::{prepare, start_model};
@@ -43,7 +43,7 @@ fn main() {
                 &start,
                 Instrument::Camera,
                 &p.weighted,
-                IdentifyMode::Weighted,
+                IdentifyMode::Weighted.into(),
             )
             .unwrap(),
         )
@@ -57,7 +57,7 @@ fn main() {
             Instrument::Camera,
             &p.weighted,
             &free,
-            IdentifyMode::Weighted,
+            IdentifyMode::Weighted.into(),
         )
         .unwrap();
         fit_cost = r.cost;
@@ -70,7 +70,10 @@ fn main() {
                 &p.camera_step,
                 &p.images,
                 &free,
-                spec.pixel_sigma_px,
+                ImageNoise {
+                    sigma_px: spec.pixel_sigma_px,
+                    joint: JointNoise::Estimate,
+                },
             )
             .unwrap(),
         )

@@ -6,6 +6,7 @@
 //! (`p_a = a_to_b * p_b`), lengths are millimetres, angles radians inside the
 //! numerics unless a name says `_deg`.
 
+pub mod arrow;
 pub mod camera;
 pub mod geometry;
 pub mod kinematics;

@@ -185,6 +185,24 @@ pub fn covariance_from_jacobian(jacobian: &DMatrix<f64>, variance: f64) -> DMatr
     cov
 }
 
+/// `variance * (J^T J)^+` from the normal matrix `J^T J` itself, for
+/// problems that assemble it without the dense Jacobian: the symmetric
+/// eigendecomposition with the same cut-off as [`covariance_from_jacobian`]
+/// (eigenvalues are squared singular values).
+pub fn covariance_from_normal(normal: &DMatrix<f64>, variance: f64) -> DMatrix<f64> {
+    let n = normal.ncols();
+    let eigen = normal.clone().symmetric_eigen();
+    let l_max = eigen.eigenvalues.max();
+    let mut cov = DMatrix::zeros(n, n);
+    for (k, &l) in eigen.eigenvalues.iter().enumerate() {
+        if l > COVARIANCE_RCOND * COVARIANCE_RCOND * l_max && l > 0.0 {
+            let v = eigen.eigenvectors.column(k);
+            cov += (v * v.transpose()) * (variance / l);
+        }
+    }
+    cov
+}
+
 /// Central-difference Jacobian of `f` at `x`.
 pub fn finite_difference_jacobian(
     f: impl Fn(&DVector<f64>) -> Option<DVector<f64>>,

@@ -94,10 +94,16 @@ fn ur5_grid_calibration_matches_a_plain_geometric_fit() {
         &reference,
         Instrument::Tracker,
         &grid,
-        IdentifyMode::Weighted,
+        IdentifyMode::Weighted.into(),
     )
     .unwrap();
-    let paper = identify(&reference, Instrument::Tracker, &grid, IdentifyMode::Paper).unwrap();
+    let paper = identify(
+        &reference,
+        Instrument::Tracker,
+        &grid,
+        IdentifyMode::Paper.into(),
+    )
+    .unwrap();
     let raw: Vec<Vector3<f64>> = load_ur5_differences("3D_UR5_uncalibrated_random_cleaned.csv");
     let raw = robocal_calib::stats::AccuracyStats::from_errors(&raw);
     let (before, _) = validate(&id.before, &test).unwrap();
@@ -124,7 +130,13 @@ fn ur5_grid_calibration_matches_a_plain_geometric_fit() {
 fn ur10_series_b_calibration_validated_on_c_and_d() {
     let b = load_ur10("Series_B", "measurements_joint_configurations.csv");
     let reference = start(presets::ur10(), UR10_TOOL_GUESS_MM, &b);
-    let id = identify(&reference, Instrument::Tracker, &b, IdentifyMode::Weighted).unwrap();
+    let id = identify(
+        &reference,
+        Instrument::Tracker,
+        &b,
+        IdentifyMode::Weighted.into(),
+    )
+    .unwrap();
     let layout = ParamLayout::new(&reference.robot, Instrument::Tracker);
     let base_only = frame_indices(&layout, false);
     for (series, file) in [
@@ -138,7 +150,7 @@ fn ur10_series_b_calibration_validated_on_c_and_d() {
                 Instrument::Tracker,
                 &val,
                 &base_only,
-                IdentifyMode::Weighted,
+                IdentifyMode::Weighted.into(),
             )
             .unwrap();
             validate(&m, &val).unwrap().0

@@ -6,10 +6,11 @@
 use nalgebra::{Matrix3, Vector3};
 use robocal_calib::camera::{estimate_pose, Intrinsics};
 use robocal_calib::kinematics::identify::{
-    holdout_split, identify, validate, Identification, IdentifyMode, Measurement, Observed,
+    holdout_split, identify, validate, Identification, IdentifyMode, IdentifyOptions, JointNoise,
+    Measurement, Observed,
 };
 use robocal_calib::kinematics::initial::initial_world_to_base;
-use robocal_calib::kinematics::joint_refine::{joint_refine, ImagePose};
+use robocal_calib::kinematics::joint_refine::{joint_refine, ImageNoise, ImagePose};
 use robocal_calib::kinematics::{CalibratedModel, Instrument, RobotModel};
 use robocal_calib::stats::AccuracyStats;
 
@@ -137,7 +138,18 @@ pub fn identify_robot(
     };
     start.world_to_base =
         initial_world_to_base(&start, &cal_data).map_err(|e| numerical(Stage::Identify, e))?;
-    let identification = identify(&start, instrument, &cal_data, IdentifyMode::Weighted)
+    // Camera poses carry the camera step's covariance, so the joint noise
+    // can be estimated from the scatter beyond it; a tracker's assumed
+    // sigma cannot separate the two.
+    let joint_noise = match instrument {
+        Instrument::Camera => JointNoise::Estimate,
+        Instrument::Tracker => JointNoise::default(),
+    };
+    let options = IdentifyOptions {
+        mode: IdentifyMode::Weighted,
+        joint_noise,
+    };
+    let identification = identify(&start, instrument, &cal_data, options)
         .map_err(|e| numerical(Stage::Identify, e))?;
     let mut model = identification.model.clone();
     let mut refined_intrinsics = None;
@@ -157,7 +169,10 @@ pub fn identify_robot(
             &step.intrinsics(),
             &images,
             &identification.identifiability.free,
-            sigma_px,
+            ImageNoise {
+                sigma_px,
+                joint: joint_noise,
+            },
         )
         .map_err(|e| numerical(Stage::Identify, e))?;
         model = joint.model.clone();

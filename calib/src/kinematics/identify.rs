@@ -16,8 +16,9 @@ use serde::{Deserialize, Serialize};
 
 use super::identifiability::{analyse, IdentifiabilityError, IdentifiabilityReport};
 use super::jacobian::tool_pose_jacobian;
-use super::model::{KinematicsError, RobotModel};
+use super::model::KinematicsError;
 use super::params::{CalibratedModel, Instrument, ParamKind, ParamLayout};
+use super::weights::{estimate_joint_sigma, PoseCovariances};
 use crate::geometry::{pose_error, Pose};
 use crate::solver::{solve, LeastSquaresProblem, LmOptions, SolverError, Termination};
 use crate::stats::AccuracyStats;
@@ -70,6 +71,53 @@ pub enum IdentifyMode {
     Weighted,
 }
 
+/// Noise of the recorded joint angles (encoders, repeatability).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum JointNoise {
+    /// The same standard deviation (rad) on every joint; 0 ignores it.
+    Known { sigma_rad: f64 },
+    /// Estimated from the residuals ([`estimate_joint_sigma`]): only
+    /// meaningful when the measurement covariances are calibrated (camera
+    /// poses from the camera step).
+    Estimate,
+}
+
+impl Default for JointNoise {
+    fn default() -> Self {
+        Self::Known { sigma_rad: 0.0 }
+    }
+}
+
+/// How to identify: the solver variant and the joint noise.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct IdentifyOptions {
+    pub mode: IdentifyMode,
+    pub joint_noise: JointNoise,
+}
+
+impl From<IdentifyMode> for IdentifyOptions {
+    fn from(mode: IdentifyMode) -> Self {
+        Self {
+            mode,
+            joint_noise: JointNoise::default(),
+        }
+    }
+}
+
+impl IdentifyOptions {
+    /// The joint noise to start from: the known value, or none.
+    fn initial_joint_sigma_rad(&self) -> f64 {
+        match self.joint_noise {
+            JointNoise::Known { sigma_rad } => sigma_rad.abs(),
+            JointNoise::Estimate => 0.0,
+        }
+    }
+}
+
+/// Rounds of (fit, re-estimate the joint noise) with [`JointNoise::Estimate`].
+const JOINT_NOISE_ROUNDS: usize = 2;
+
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum IdentifyError {
     #[error("no calibration poses")]
@@ -107,6 +155,8 @@ pub struct Identification {
     pub identifiability: IdentifiabilityReport,
     /// RMS of the (weighted) calibration residual.
     pub residual_rms: f64,
+    /// Joint noise used in the weights (rad): given or estimated.
+    pub joint_sigma_rad: f64,
     pub iterations: usize,
     pub termination: Termination,
 }
@@ -122,11 +172,7 @@ struct PoseFit<'a> {
 
 impl PoseFit<'_> {
     fn full(&self, x: &DVector<f64>) -> DVector<f64> {
-        let mut full = DVector::zeros(self.layout.len());
-        for (k, &i) in self.free.iter().enumerate() {
-            full[i] = x[k];
-        }
-        full
+        full_vector(self.layout, self.free, x)
     }
 
     fn rows(&self) -> usize {
@@ -184,60 +230,6 @@ impl LeastSquaresProblem for PoseFit<'_> {
     }
 }
 
-/// Check the measurements and build each pose's whitening matrix `W`
-/// (`W^T W = Sigma^-1`); identity in paper mode.
-fn whitening(
-    instrument: Instrument,
-    robot: &RobotModel,
-    data: &[Measurement],
-    mode: IdentifyMode,
-) -> Result<Vec<DMatrix<f64>>, IdentifyError> {
-    let rows = instrument.rows();
-    data.iter()
-        .enumerate()
-        .map(|(pose, m)| {
-            robot
-                .base_to_flange(&m.joints_rad)
-                .map_err(|source| IdentifyError::Pose { pose, source })?;
-            let cov: DMatrix<f64> = match (&m.observed, instrument) {
-                (Observed::Pose { covariance, .. }, Instrument::Camera) => match covariance {
-                    Some(c) => DMatrix::from_column_slice(6, 6, c.as_slice()),
-                    None => default_covariance(6),
-                },
-                (Observed::Pose { .. }, Instrument::Tracker) => default_covariance(3),
-                (Observed::Position { covariance, .. }, Instrument::Tracker) => match covariance {
-                    Some(c) => DMatrix::from_column_slice(3, 3, c.as_slice()),
-                    None => default_covariance(3),
-                },
-                (Observed::Position { .. }, Instrument::Camera) => {
-                    return Err(IdentifyError::WrongMeasurement {
-                        pose,
-                        instrument,
-                        expected: "full-pose",
-                    })
-                }
-            };
-            if mode == IdentifyMode::Paper {
-                return Ok(DMatrix::identity(rows, rows));
-            }
-            let chol = cov
-                .cholesky()
-                .ok_or(IdentifyError::BadCovariance { pose })?;
-            chol.l()
-                .try_inverse()
-                .ok_or(IdentifyError::BadCovariance { pose })
-        })
-        .collect()
-}
-
-fn default_covariance(rows: usize) -> DMatrix<f64> {
-    DMatrix::from_fn(rows, rows, |i, j| match (i == j, i < 3) {
-        (false, _) => 0.0,
-        (true, true) => DEFAULT_POSITION_SIGMA_MM.powi(2),
-        (true, false) => DEFAULT_ROTATION_SIGMA_RAD.powi(2),
-    })
-}
-
 fn options(mode: IdentifyMode) -> LmOptions {
     match mode {
         IdentifyMode::Paper => LmOptions::paper(),
@@ -246,19 +238,21 @@ fn options(mode: IdentifyMode) -> LmOptions {
 }
 
 /// Fit only the parameters selected by `which` (layout indices) of
-/// `reference` to `data`; returns the fitted model and the solver's report.
+/// `reference` to `data` (joint noise as given, never estimated); returns
+/// the fitted model and the solver's report.
 pub fn fit_parameters(
     reference: &CalibratedModel,
     instrument: Instrument,
     data: &[Measurement],
     which: &[usize],
-    mode: IdentifyMode,
+    options: IdentifyOptions,
 ) -> Result<(CalibratedModel, crate::solver::LmReport), IdentifyError> {
     if data.is_empty() {
         return Err(IdentifyError::NoPoses);
     }
     let layout = ParamLayout::new(&reference.robot, instrument);
-    let w = whitening(instrument, &reference.robot, data, mode)?;
+    let w = PoseCovariances::new(&layout, reference, data)?
+        .whitening(options.initial_joint_sigma_rad(), options.mode)?;
     let problem = PoseFit {
         layout: &layout,
         reference,
@@ -266,7 +260,11 @@ pub fn fit_parameters(
         data,
         whitening: &w,
     };
-    let report = solve(&problem, DVector::zeros(which.len()), &options(mode))?;
+    let report = solve(
+        &problem,
+        DVector::zeros(which.len()),
+        &self::options(options.mode),
+    )?;
     let model = layout.apply(reference, &problem.full(&report.x));
     Ok((model, report))
 }
@@ -288,17 +286,24 @@ pub fn identify(
     reference: &CalibratedModel,
     instrument: Instrument,
     cal: &[Measurement],
-    mode: IdentifyMode,
+    options: IdentifyOptions,
 ) -> Result<Identification, IdentifyError> {
     let layout = ParamLayout::new(&reference.robot, instrument);
+    let mut joint_sigma_rad = options.initial_joint_sigma_rad();
     let (before, _) = fit_parameters(
         reference,
         instrument,
         cal,
         &frame_indices(&layout, true),
-        IdentifyMode::Weighted,
+        IdentifyOptions {
+            mode: IdentifyMode::Weighted,
+            joint_noise: JointNoise::Known {
+                sigma_rad: joint_sigma_rad,
+            },
+        },
     )?;
-    let w = whitening(instrument, &reference.robot, cal, mode)?;
+    let covariances = PoseCovariances::new(&layout, &before, cal)?;
+    let mut w = covariances.whitening(joint_sigma_rad, options.mode)?;
     let all: Vec<usize> = (0..layout.len()).collect();
     let probe = PoseFit {
         layout: &layout,
@@ -312,17 +317,37 @@ pub fn identify(
         .ok_or(IdentifyError::NoPoses)?;
     let identifiability = analyse(&layout, &before, &jac_all)?;
     let free = identifiability.free.clone();
-    let problem = PoseFit {
-        free: &free,
-        ..probe
+    let fit = |w: &[DMatrix<f64>], x0: DVector<f64>| {
+        let problem = PoseFit {
+            layout: &layout,
+            reference: &before,
+            free: &free,
+            data: cal,
+            whitening: w,
+        };
+        solve(&problem, x0, &self::options(options.mode))
     };
-    let report = solve(&problem, DVector::zeros(free.len()), &options(mode))?;
-    let correction = problem.full(&report.x);
+    let mut report = fit(&w, DVector::zeros(free.len()))?;
+    let estimate =
+        options.joint_noise == JointNoise::Estimate && options.mode != IdentifyMode::Paper;
+    for _ in 0..if estimate { JOINT_NOISE_ROUNDS } else { 0 } {
+        let model = layout.apply(&before, &full_vector(&layout, &free, &report.x));
+        let residuals = unweighted_residuals(&layout, &model, cal)?;
+        let dof = residuals.len() * instrument.rows() - free.len();
+        joint_sigma_rad =
+            estimate_joint_sigma(&covariances, &residuals, dof).ok_or(IdentifyError::NoPoses)?;
+        w = covariances.whitening(joint_sigma_rad, options.mode)?;
+        report = fit(&w, report.x.clone())?;
+    }
+    let correction = full_vector(&layout, &free, &report.x);
     let model = layout.apply(&before, &correction);
     // Covariance from the Jacobian at the solution itself (x = 0 around it).
     let at_solution = PoseFit {
+        layout: &layout,
         reference: &model,
-        ..problem
+        free: &free,
+        data: cal,
+        whitening: &w,
     };
     let jac = at_solution
         .jacobian(&DVector::zeros(free.len()))
@@ -340,10 +365,42 @@ pub fn identify(
         std_devs,
         identifiability,
         residual_rms: (report.cost / report.residuals.len() as f64).sqrt(),
+        joint_sigma_rad,
         iterations: report.iterations,
         termination: report.termination,
         layout,
     })
+}
+
+/// The layout-length vector with `x` at the `free` indices, zero elsewhere.
+fn full_vector(layout: &ParamLayout, free: &[usize], x: &DVector<f64>) -> DVector<f64> {
+    let mut full = DVector::zeros(layout.len());
+    for (k, &i) in free.iter().enumerate() {
+        full[i] = x[k];
+    }
+    full
+}
+
+/// Measured minus predicted tool pose (or position) of `model` at every
+/// pose, unweighted, as `rows x 1` columns.
+fn unweighted_residuals(
+    layout: &ParamLayout,
+    model: &CalibratedModel,
+    data: &[Measurement],
+) -> Result<Vec<DMatrix<f64>>, IdentifyError> {
+    let rows = layout.instrument.rows();
+    let identity = vec![DMatrix::identity(rows, rows); data.len()];
+    let probe = PoseFit {
+        layout,
+        reference: model,
+        free: &[],
+        data,
+        whitening: &identity,
+    };
+    let (r, _) = probe.evaluate(model, false).ok_or(IdentifyError::NoPoses)?;
+    Ok((0..data.len())
+        .map(|k| DMatrix::from_column_slice(rows, 1, r.rows(k * rows, rows).as_slice()))
+        .collect())
 }
 
 /// Position errors (measured minus predicted tool position, world frame)

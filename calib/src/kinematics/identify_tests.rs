@@ -64,7 +64,7 @@ fn noise_free_campaigns_are_recovered_exactly_in_both_modes() {
     for instrument in [Instrument::Camera, Instrument::Tracker] {
         let (_, start, data) = setup(instrument);
         for mode in [IdentifyMode::Weighted, IdentifyMode::Paper] {
-            let id = identify(&start, instrument, &data, mode).unwrap();
+            let id = identify(&start, instrument, &data, mode.into()).unwrap();
             let (before, _) = validate(&id.before, &data).unwrap();
             let (after, _) = validate(&id.model, &data).unwrap();
             assert!(
@@ -94,13 +94,23 @@ fn noise_free_campaigns_are_recovered_exactly_in_both_modes() {
 fn bad_input_is_an_error_value() {
     let (_, start, mut data) = setup(Instrument::Camera);
     assert!(matches!(
-        identify(&start, Instrument::Camera, &[], IdentifyMode::Weighted),
+        identify(
+            &start,
+            Instrument::Camera,
+            &[],
+            IdentifyMode::Weighted.into()
+        ),
         Err(IdentifyError::NoPoses)
     ));
     let good = data.clone();
     data[3].joints_rad.pop();
     assert!(matches!(
-        identify(&start, Instrument::Camera, &data, IdentifyMode::Weighted),
+        identify(
+            &start,
+            Instrument::Camera,
+            &data,
+            IdentifyMode::Weighted.into()
+        ),
         Err(IdentifyError::Pose { pose: 3, .. })
     ));
     let mut data = good.clone();
@@ -109,7 +119,12 @@ fn bad_input_is_an_error_value() {
         covariance: None,
     };
     assert!(matches!(
-        identify(&start, Instrument::Camera, &data, IdentifyMode::Weighted),
+        identify(
+            &start,
+            Instrument::Camera,
+            &data,
+            IdentifyMode::Weighted.into()
+        ),
         Err(IdentifyError::WrongMeasurement { pose: 5, .. })
     ));
     let mut data = good;
@@ -117,7 +132,12 @@ fn bad_input_is_an_error_value() {
         *covariance = Some(-Matrix6::identity());
     }
     assert!(matches!(
-        identify(&start, Instrument::Camera, &data, IdentifyMode::Weighted),
+        identify(
+            &start,
+            Instrument::Camera,
+            &data,
+            IdentifyMode::Weighted.into()
+        ),
         Err(IdentifyError::BadCovariance { pose: 2 })
     ));
 }

@@ -6,19 +6,31 @@
 //! approximate covariance.
 //!
 //! Residual per dot: `(project(camera_to_target * P) - observed) / sigma_px`,
-//! with `target_to_camera = target_to_base * base_to_flange(q) *
+//! with `target_to_camera = target_to_base * base_to_flange(q + e) *
 //! flange_to_camera`. The Jacobian is analytic: the projection's derivative
 //! with respect to the camera pose ([`project_with_jacobians`]) times the
 //! identification Jacobian ([`tool_pose_jacobian`]), plus the intrinsics'.
+//!
+//! Joint noise: the recorded joints `q` of a pose are off by an unknown
+//! `e ~ N(0, sigma_q^2)` that moves every dot of that image together, so the
+//! dots of one image are correlated. Each pose gets its own joint
+//! correction `e` as a nuisance unknown with the prior residual
+//! `e / sigma_q` (errors in variables): for the linearised problem this is
+//! exactly the weighting by the marginal covariance `sigma_px^2 I +
+//! J_e sigma_q^2 J_e^T`, without ever forming it. The normal equations are
+//! assembled per pose from 6x6 sums over its dots, so the corrections cost
+//! little.
 
 use nalgebra::{DMatrix, DVector, Point2, Point3};
 
-use super::identify::IdentifyError;
-use super::jacobian::tool_pose_jacobian;
+use super::identify::{IdentifyError, JointNoise};
+use super::image_fit::{ImageFit, INTRINSICS};
 use super::params::{CalibratedModel, Instrument, ParamLayout};
-use super::projection::{apply_intrinsics, project_with_jacobians, INTRINSIC_NAMES};
+use crate::arrow::invert_arrow;
 use crate::camera::model::Intrinsics;
-use crate::solver::{covariance_from_jacobian, solve, LeastSquaresProblem, LmOptions, Termination};
+use crate::solver::{
+    covariance_from_normal, solve, LeastSquaresProblem, LmOptions, LmReport, Termination,
+};
 
 /// One pose of a camera campaign: recorded joints and the detected dots.
 #[derive(Debug, Clone, PartialEq)]
@@ -26,6 +38,26 @@ pub struct ImagePose {
     pub joints_rad: Vec<f64>,
     /// `(dot centre in the target frame mm, observed pixel)`.
     pub observations: Vec<(Point3<f64>, Point2<f64>)>,
+}
+
+/// The noise the joint refinement weighs the data with.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ImageNoise {
+    /// Dot-centre noise per image axis (px); re-estimated with the joint
+    /// noise when that is estimated.
+    pub sigma_px: f64,
+    /// Noise of every recorded joint angle.
+    pub joint: JointNoise,
+}
+
+impl ImageNoise {
+    /// The joint noise in use (rad); 0 while it is still to be estimated.
+    pub(super) fn joint_sigma_rad(&self) -> f64 {
+        match self.joint {
+            JointNoise::Known { sigma_rad } => sigma_rad.abs(),
+            JointNoise::Estimate => 0.0,
+        }
+    }
 }
 
 #[derive(Debug, Clone)]
@@ -38,89 +70,41 @@ pub struct JointRefinement {
     /// Standard deviations of [`INTRINSIC_NAMES`].
     pub intrinsics_std: [f64; 8],
     pub reprojection_rms_px: f64,
+    /// Dot noise (px) and joint noise (rad) the final fit was weighted
+    /// with: as given, or estimated.
+    pub sigma_px: f64,
+    pub joint_sigma_rad: f64,
+    /// Estimated joint corrections per pose (rad), empty without joint noise.
+    pub joint_corrections_rad: Vec<Vec<f64>>,
     pub iterations: usize,
     pub termination: Termination,
 }
 
-struct ImageFit<'a> {
-    layout: &'a ParamLayout,
-    reference: &'a CalibratedModel,
-    intrinsics: &'a Intrinsics,
-    free: &'a [usize],
-    poses: &'a [ImagePose],
-    sigma_px: f64,
-}
-
-impl ImageFit<'_> {
-    fn unpack(&self, x: &DVector<f64>) -> (CalibratedModel, Intrinsics) {
-        let mut full = DVector::zeros(self.layout.len());
-        for (k, &i) in self.free.iter().enumerate() {
-            full[i] = x[k];
-        }
-        let cam = apply_intrinsics(self.intrinsics, &x.as_slice()[self.free.len()..]);
-        (self.layout.apply(self.reference, &full), cam)
-    }
-
-    fn rows(&self) -> usize {
-        2 * self
-            .poses
-            .iter()
-            .map(|p| p.observations.len())
-            .sum::<usize>()
-    }
-
-    fn params(&self) -> usize {
-        self.free.len() + INTRINSIC_NAMES.len()
-    }
-}
-
-impl LeastSquaresProblem for ImageFit<'_> {
-    fn residuals(&self, x: &DVector<f64>) -> Option<DVector<f64>> {
-        let (model, cam) = self.unpack(x);
-        let mut r = DVector::zeros(self.rows());
-        let mut row = 0;
-        for pose in self.poses {
-            let inv = model.world_to_tool(&pose.joints_rad).ok()?.inverse();
-            for (p, uv) in &pose.observations {
-                let pred = cam.project(&(inv * p))?;
-                r[row] = (pred.x - uv.x) / self.sigma_px;
-                r[row + 1] = (pred.y - uv.y) / self.sigma_px;
-                row += 2;
-            }
-        }
-        Some(r)
-    }
-
-    fn jacobian(&self, x: &DVector<f64>) -> Option<DMatrix<f64>> {
-        let (model, cam) = self.unpack(x);
-        let nf = self.free.len();
-        let mut jac = DMatrix::zeros(self.rows(), self.params());
-        let mut row = 0;
-        for pose in self.poses {
-            let (t2c, jt) = tool_pose_jacobian(self.layout, &model, &pose.joints_rad).ok()?;
-            let jt_free = DMatrix::from_fn(6, nf, |r, c| jt[(r, self.free[c])]);
-            for (p, _) in &pose.observations {
-                let (_, jp, jc) = project_with_jacobians(&cam, &t2c, p)?;
-                let kin = DMatrix::from_column_slice(2, 6, jp.as_slice()) * &jt_free;
-                jac.view_mut((row, 0), (2, nf)).copy_from(&kin);
-                jac.view_mut((row, nf), (2, 8)).copy_from(&jc);
-                row += 2;
-            }
-        }
-        jac /= self.sigma_px;
-        Some(jac)
-    }
-}
+/// Starting joint noise (rad, about 0.0006 deg) when it is estimated.
+const JOINT_SIGMA_START_RAD: f64 = 1e-5;
+/// Below this the joint noise is negligible (rad).
+const JOINT_SIGMA_FLOOR_RAD: f64 = 1e-9;
+/// Variance-component rounds at most, and their convergence tolerance on
+/// the variance factors.
+const VARIANCE_ROUNDS: usize = 8;
+const VARIANCE_TOLERANCE: f64 = 0.02;
+/// Largest change of `ln sigma_q` in one round (a factor of 10).
+const MAX_LOG_STEP: f64 = std::f64::consts::LN_10;
 
 /// Refine `start` (usually the pose-level identification) and `intrinsics`
 /// (the camera step's) on the image points. `free` are the layout indices
-/// identified (the identifiability analysis's), `sigma_px` the dot noise.
+/// identified (the identifiability analysis's); `noise` weighs the data.
+///
+/// With [`JointNoise::Estimate`] the dot noise and the joint noise are
+/// estimated with the fit (Förstner's variance-component estimation, two
+/// groups): each group's variance is scaled by its weighted residual sum
+/// over its redundancy `r_k = n_k - tr(N^-1 N_k)` until both factors are 1.
 pub fn joint_refine(
     start: &CalibratedModel,
     intrinsics: &Intrinsics,
     poses: &[ImagePose],
     free: &[usize],
-    sigma_px: f64,
+    noise: ImageNoise,
 ) -> Result<JointRefinement, IdentifyError> {
     if poses.is_empty() {
         return Err(IdentifyError::NoPoses);
@@ -132,106 +116,186 @@ pub fn joint_refine(
             .map_err(|source| IdentifyError::Pose { pose, source })?;
     }
     let layout = ParamLayout::new(&start.robot, Instrument::Camera);
-    let problem = ImageFit {
-        layout: &layout,
-        reference: start,
-        intrinsics,
-        free,
-        poses,
-        sigma_px: if sigma_px > 0.0 { sigma_px } else { 1.0 },
+    let estimate = noise.joint == JointNoise::Estimate;
+    let mut sigma_px = if noise.sigma_px > 0.0 {
+        noise.sigma_px
+    } else {
+        1.0
     };
-    let report = solve(
-        &problem,
-        DVector::zeros(problem.params()),
-        &LmOptions::default(),
-    )?;
-    let (model, cam) = problem.unpack(&report.x);
-    let at = ImageFit {
-        reference: &model,
-        intrinsics: &cam,
-        ..problem
+    let mut joint_sigma_rad = match noise.joint {
+        JointNoise::Known { sigma_rad } => sigma_rad.abs(),
+        JointNoise::Estimate => JOINT_SIGMA_START_RAD,
     };
-    let zero = DVector::zeros(at.params());
-    let jac = at.jacobian(&zero).ok_or(IdentifyError::NoPoses)?;
-    let cov = covariance_from_jacobian(&jac, report.residual_variance());
-    let mut std_devs = DVector::zeros(layout.len());
-    for (k, &i) in free.iter().enumerate() {
-        std_devs[i] = cov[(k, k)].max(0.0).sqrt();
+    let kinematic = free.len() + INTRINSICS;
+    let mut x0: Option<DVector<f64>> = None;
+    let mut previous: Option<(f64, f64)> = None;
+    let mut round = 0;
+    loop {
+        round += 1;
+        let problem = ImageFit {
+            layout: &layout,
+            reference: start,
+            intrinsics,
+            free,
+            poses,
+            noise: ImageNoise {
+                sigma_px,
+                joint: JointNoise::Known {
+                    sigma_rad: joint_sigma_rad,
+                },
+            },
+        };
+        let n = problem.params();
+        let x_start = match x0.take() {
+            Some(x) if x.len() == n => x,
+            Some(x) => DVector::from_fn(n, |i, _| if i < kinematic { x[i] } else { 0.0 }),
+            None => DVector::zeros(n),
+        };
+        let report = solve(&problem, x_start, &LmOptions::default())?;
+        let solution = Solution::at(&problem, &report)?;
+        let done = !estimate || round >= VARIANCE_ROUNDS || joint_sigma_rad == 0.0;
+        let (lambda_px, lambda_q) = solution.variance_factors(&problem, &report);
+        let converged = (lambda_px - 1.0).abs() < VARIANCE_TOLERANCE
+            && (joint_sigma_rad == 0.0 || (lambda_q - 1.0).abs() < VARIANCE_TOLERANCE);
+        if done || converged {
+            return Ok(solution.into_refinement(&problem, &report, layout.clone()));
+        }
+        sigma_px *= lambda_px.sqrt();
+        // Förstner's update `sigma^2 *= lambda` converges linearly (slowly
+        // when the corrections are poorly redundant); a secant on
+        // `log lambda_q(log sigma_q) = 0` instead.
+        let log_sigma = joint_sigma_rad.ln();
+        let log_lambda = lambda_q.max(f64::MIN_POSITIVE).ln();
+        let step = match previous.replace((log_sigma, log_lambda)) {
+            Some((s0, l0)) if (log_lambda - l0).abs() > f64::EPSILON => {
+                -log_lambda * (log_sigma - s0) / (log_lambda - l0)
+            }
+            // First round: `sigma_q *= lambda_q`, which lands close when
+            // the start is far off (the factor falls with sigma_q^-2 there).
+            _ => log_lambda,
+        };
+        joint_sigma_rad = (log_sigma + step.clamp(-MAX_LOG_STEP, MAX_LOG_STEP)).exp();
+        if joint_sigma_rad < JOINT_SIGMA_FLOOR_RAD {
+            joint_sigma_rad = 0.0;
+        }
+        x0 = Some(report.x);
     }
-    let intrinsics_std =
-        std::array::from_fn(|k| cov[(free.len() + k, free.len() + k)].max(0.0).sqrt());
-    let rms = (report.cost / report.residuals.len() as f64).sqrt() * at.sigma_px;
-    Ok(JointRefinement {
-        model,
-        intrinsics: cam,
-        std_devs,
-        intrinsics_std,
-        reprojection_rms_px: rms,
-        iterations: report.iterations,
-        termination: report.termination,
-        layout,
-    })
+}
+
+/// A solved round: the model and intrinsics found, and the parts of the
+/// unit-variance inverse normal matrix at them that the covariance and the
+/// variance components need.
+struct Solution {
+    model: CalibratedModel,
+    intrinsics: Intrinsics,
+    /// Kinematics and intrinsics block.
+    head_inverse: DMatrix<f64>,
+    /// Diagonal of the joint corrections' block.
+    tail_diagonal: DVector<f64>,
+}
+
+impl Solution {
+    fn at(problem: &ImageFit, report: &LmReport) -> Result<Self, IdentifyError> {
+        let (model, intrinsics) = problem.unpack(&report.x);
+        // Linearised at the solution itself (x = 0 around it, the joint
+        // corrections kept as found).
+        let at = ImageFit {
+            reference: &model,
+            intrinsics: &intrinsics,
+            ..*problem
+        };
+        let kinematic = problem.free.len() + INTRINSICS;
+        let x_at = DVector::from_fn(
+            at.params(),
+            |i, _| {
+                if i < kinematic {
+                    0.0
+                } else {
+                    report.x[i]
+                }
+            },
+        );
+        let (normal, _) = at
+            .normal_equations(&x_at, &report.residuals)
+            .ok_or(IdentifyError::NoPoses)?;
+        let kinematic = problem.free.len() + INTRINSICS;
+        let inverse = match problem.joints() {
+            0 => None,
+            nj => invert_arrow(&normal, kinematic, nj),
+        };
+        let (head, tail_diagonal) = match inverse {
+            Some(parts) => (parts.head, parts.tail_diagonal),
+            None => {
+                let full = covariance_from_normal(&normal, 1.0);
+                let head = full.view((0, 0), (kinematic, kinematic)).into_owned();
+                let tail = full
+                    .diagonal()
+                    .rows(kinematic, full.nrows() - kinematic)
+                    .into_owned();
+                (head, tail)
+            }
+        };
+        Ok(Self {
+            head_inverse: head,
+            tail_diagonal,
+            model,
+            intrinsics,
+        })
+    }
+
+    /// Förstner's factors `(lambda_px, lambda_q)`: each group's weighted
+    /// residual sum over its redundancy.
+    fn variance_factors(&self, problem: &ImageFit, report: &LmReport) -> (f64, f64) {
+        let kinematic = problem.free.len() + INTRINSICS;
+        let n = problem.params();
+        let rows = problem.image_rows();
+        let prior_weight = problem.noise.joint_sigma_rad().powi(-2);
+        let trace_q = self.tail_diagonal.sum() * prior_weight;
+        let image_cost: f64 = report.residuals.rows(0, rows).norm_squared();
+        let prior_cost: f64 = report.residuals.rows(rows, n - kinematic).norm_squared();
+        let r_q = (n - kinematic) as f64 - trace_q;
+        let r_px = rows as f64 - n as f64 + trace_q;
+        let lambda_q = if r_q > 0.0 { prior_cost / r_q } else { 1.0 };
+        (image_cost / r_px.max(1.0), lambda_q)
+    }
+
+    fn into_refinement(
+        self,
+        problem: &ImageFit,
+        report: &LmReport,
+        layout: ParamLayout,
+    ) -> JointRefinement {
+        let free = problem.free;
+        let nj = problem.joints();
+        let kinematic = free.len() + INTRINSICS;
+        let joint_corrections_rad = (0..problem.poses.len())
+            .map(|k| report.x.as_slice()[kinematic + k * nj..kinematic + (k + 1) * nj].to_vec())
+            .filter(|c| !c.is_empty())
+            .collect();
+        let variance = report.residual_variance();
+        let sd = |i: usize| (self.head_inverse[(i, i)] * variance).max(0.0).sqrt();
+        let mut std_devs = DVector::zeros(layout.len());
+        for (k, &i) in free.iter().enumerate() {
+            std_devs[i] = sd(k);
+        }
+        let rows = problem.image_rows();
+        let image_cost = report.residuals.rows(0, rows).norm_squared();
+        JointRefinement {
+            model: self.model,
+            intrinsics: self.intrinsics,
+            std_devs,
+            intrinsics_std: std::array::from_fn(|k| sd(free.len() + k)),
+            reprojection_rms_px: (image_cost / rows as f64).sqrt() * problem.noise.sigma_px,
+            sigma_px: problem.noise.sigma_px,
+            joint_sigma_rad: problem.noise.joint_sigma_rad(),
+            joint_corrections_rad,
+            iterations: report.iterations,
+            termination: report.termination,
+            layout,
+        }
+    }
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::sim::campaign::{simulate_campaign, CampaignSpec};
-    use crate::solver::finite_difference_jacobian;
-
-    #[test]
-    fn jacobian_matches_finite_differences_and_exact_points_are_fitted() {
-        let mut spec = CampaignSpec::standard("puma560", 5).unwrap();
-        spec.cal_poses = 25;
-        spec.val_poses = 0;
-        spec.pixel_sigma_px = 0.0;
-        spec.encoder_sigma_deg = 0.0;
-        let c = simulate_campaign(&spec).unwrap();
-        let truth = c.truth.model().unwrap();
-        let poses: Vec<ImagePose> = c
-            .poses
-            .iter()
-            .map(|p| ImagePose {
-                joints_rad: p.joints_rad.clone(),
-                observations: p.observations(&c.truth.board),
-            })
-            .collect();
-        let layout = ParamLayout::new(&truth.robot, Instrument::Camera);
-        let free: Vec<usize> = (0..layout.len())
-            .filter(|&i| {
-                !["dtheta_1", "d_1", "dtheta_6", "a_6", "d_6", "alpha_6"]
-                    .contains(&layout.params[i].name.as_str())
-            })
-            .collect();
-        let fit = ImageFit {
-            layout: &layout,
-            reference: &truth,
-            intrinsics: &c.truth.intrinsics,
-            free: &free,
-            poses: &poses[..3],
-            sigma_px: 0.5,
-        };
-        let x = DVector::from_fn(
-            fit.params(),
-            |i, _| if i < free.len() { 1e-4 } else { 1e-3 },
-        );
-        let analytic = fit.jacobian(&x).unwrap();
-        let fd = finite_difference_jacobian(|x| fit.residuals(x), &x).unwrap();
-        assert!(
-            (&analytic - &fd).amax() < 1e-4 * fd.amax(),
-            "{}",
-            (&analytic - &fd).amax()
-        );
-        // Start off the truth (intrinsics and kinematics), recover it.
-        let mut cam = c.truth.intrinsics;
-        cam.fx *= 1.001;
-        cam.cx += 2.0;
-        let mut start = truth.clone();
-        start.robot.joints[2].a_mm += 0.5;
-        let r = joint_refine(&start, &cam, &poses, &free, 0.1).unwrap();
-        assert!(r.reprojection_rms_px < 1e-6, "{}", r.reprojection_rms_px);
-        assert!((r.intrinsics.fx - c.truth.intrinsics.fx).abs() < 1e-4);
-        assert!((r.model.robot.joints[2].a_mm - truth.robot.joints[2].a_mm).abs() < 1e-6);
-        assert!(joint_refine(&start, &cam, &[], &free, 0.1).is_err());
-    }
-}
+#[path = "joint_refine_tests.rs"]
+mod tests;

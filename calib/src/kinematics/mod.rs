@@ -3,6 +3,7 @@
 pub mod identifiability;
 pub mod identify;
 pub mod ik;
+mod image_fit;
 pub mod initial;
 pub mod jacobian;
 pub mod joint_refine;
@@ -10,6 +11,7 @@ pub mod model;
 pub mod params;
 pub mod presets;
 pub mod projection;
+pub mod weights;
 
 pub use model::{choose_conventions, Convention, Joint, KinematicsError, RobotModel};
 pub use params::{CalibratedModel, Instrument, ParamKind, ParamLayout};

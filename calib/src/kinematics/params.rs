@@ -222,6 +222,14 @@ impl ParamLayout {
         self.params.iter().map(|p| p.name.clone()).collect()
     }
 
+    /// Indices of the joint offsets `dtheta_i`, in joint order: their
+    /// Jacobian columns are the tool's motion per radian of each joint.
+    pub fn joint_offset_indices(&self) -> Vec<usize> {
+        (0..self.params.len())
+            .filter(|&i| self.params[i].kind == ParamKind::JointOffset)
+            .collect()
+    }
+
     pub fn index_of(&self, name: &str) -> Option<usize> {
         self.params.iter().position(|p| p.name == name)
     }

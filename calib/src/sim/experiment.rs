@@ -22,12 +22,12 @@ use crate::camera::model::Intrinsics;
 use crate::camera::pose::estimate_pose;
 use crate::geometry::{perturb_left, Pose};
 use crate::kinematics::identify::{
-    fit_parameters, identify, validate, Identification, IdentifyError, IdentifyMode, Measurement,
-    Observed,
+    fit_parameters, identify, validate, IdentifyError, IdentifyMode, IdentifyOptions, JointNoise,
+    Measurement, Observed,
 };
 use crate::kinematics::ik::inverse_kinematics;
 use crate::kinematics::initial::initial_world_to_base;
-use crate::kinematics::joint_refine::{joint_refine, ImagePose};
+use crate::kinematics::joint_refine::{joint_refine, ImageNoise, ImagePose};
 use crate::kinematics::{CalibratedModel, Instrument};
 use crate::stats::AccuracyStats;
 
@@ -59,6 +59,11 @@ pub struct ExperimentResult {
     /// Largest `|estimate - truth| / sigma` over the joint refinement's
     /// free parameters, and its name.
     pub worst_sigma_ratio: (f64, String),
+    /// RMS over the free parameters of `(estimate - truth) / sigma`: 1 when
+    /// the reported standard deviations are right.
+    pub sigma_ratio_rms: f64,
+    /// Joint noise the joint refinement estimated (rad).
+    pub estimated_joint_sigma_rad: f64,
     pub fixed: Vec<String>,
     pub free_count: usize,
     pub condition_number: f64,
@@ -233,14 +238,17 @@ pub fn run_experiment(spec: &CampaignSpec) -> Result<ExperimentResult, Experimen
         val,
     } = prepare(spec)?;
     let sigma = spec.pixel_sigma_px;
-    let run = |data: &[Measurement], mode| -> Result<Identification, ExperimentError> {
-        Ok(identify(
-            &start_model(spec, data)?,
-            Instrument::Camera,
-            data,
-            mode,
-        )?)
+    // Every method is told the encoder noise, except the one the service
+    // runs (two-step weighted, then joint refinement), which estimates it.
+    let known = JointNoise::Known {
+        sigma_rad: spec.encoder_sigma_deg.to_radians(),
     };
+    let run_with = |data: &[Measurement], mode, joint_noise| {
+        let options = IdentifyOptions { mode, joint_noise };
+        identify(&start_model(spec, data)?, Instrument::Camera, data, options)
+            .map_err(ExperimentError::from)
+    };
+    let run = |data: &[Measurement], mode| run_with(data, mode, known);
     let stats = |m: &CalibratedModel| -> Result<AccuracyStats, ExperimentError> {
         Ok(validate(m, &val)?.0)
     };
@@ -249,11 +257,15 @@ pub fn run_experiment(spec: &CampaignSpec) -> Result<ExperimentResult, Experimen
     let plain_id = run(&plain, IdentifyMode::Weighted)?;
     let paper_id = run(&plain, IdentifyMode::Paper)?;
     let t0 = Instant::now();
-    let weighted_id = run(&weighted, IdentifyMode::Weighted)?;
+    let weighted_id = run_with(&weighted, IdentifyMode::Weighted, JointNoise::Estimate)?;
     let identify_seconds = t0.elapsed().as_secs_f64();
     let free = weighted_id.identifiability.free.clone();
     let t1 = Instant::now();
-    let joint = joint_refine(&weighted_id.model, &cam_step, &images, &free, sigma)?;
+    let noise = ImageNoise {
+        sigma_px: sigma,
+        joint: JointNoise::Estimate,
+    };
+    let joint = joint_refine(&weighted_id.model, &cam_step, &images, &free, noise)?;
     let joint_refine_seconds = t1.elapsed().as_secs_f64();
 
     // Truth in the identified parameterisation: the redundant terms of the
@@ -275,9 +287,12 @@ pub fn run_experiment(spec: &CampaignSpec) -> Result<ExperimentResult, Experimen
         Instrument::Camera,
         &exact,
         &free,
-        IdentifyMode::Weighted,
+        IdentifyMode::Weighted.into(),
     )?;
     let diff: DVector<f64> = joint.layout.difference(&joint.model, &equivalent);
+    let ratios: Vec<f64> = free.iter().map(|&i| diff[i] / joint.std_devs[i]).collect();
+    let sigma_ratio_rms =
+        (ratios.iter().map(|z| z * z).sum::<f64>() / ratios.len().max(1) as f64).sqrt();
     let worst = free
         .iter()
         .map(|&i| {
@@ -313,6 +328,8 @@ pub fn run_experiment(spec: &CampaignSpec) -> Result<ExperimentResult, Experimen
         paper: stats(&paper_id.model)?,
         joint: stats(&joint.model)?,
         worst_sigma_ratio: worst,
+        estimated_joint_sigma_rad: joint.joint_sigma_rad,
+        sigma_ratio_rms,
         fixed: weighted_id.identifiability.fixed.clone(),
         free_count: free.len(),
         condition_number: weighted_id.identifiability.condition_number,

@@ -1,0 +1,237 @@
+//! The joint refinement's least-squares problem (method.md §6 **beyond**,
+//! see [`super::joint_refine`]): residuals of every dot of every image,
+//! weighted by the dot noise, and the priors of the per-pose joint
+//! corrections; the analytic Jacobian and the normal equations assembled
+//! per pose from 6x6 sums over its dots.
+
+use nalgebra::{DMatrix, DVector, Matrix6, SMatrix};
+
+use super::jacobian::tool_pose_jacobian;
+use super::joint_refine::{ImageNoise, ImagePose};
+use super::params::{CalibratedModel, ParamLayout};
+use super::projection::{apply_intrinsics, project_with_jacobians, INTRINSIC_NAMES};
+use crate::arrow::solve_arrow;
+use crate::camera::model::Intrinsics;
+use crate::geometry::Pose;
+use crate::solver::LeastSquaresProblem;
+
+/// Intrinsic parameters refined with the kinematics.
+pub(super) const INTRINSICS: usize = INTRINSIC_NAMES.len();
+
+pub(super) struct ImageFit<'a> {
+    pub(super) layout: &'a ParamLayout,
+    pub(super) reference: &'a CalibratedModel,
+    pub(super) intrinsics: &'a Intrinsics,
+    pub(super) free: &'a [usize],
+    pub(super) poses: &'a [ImagePose],
+    pub(super) noise: ImageNoise,
+}
+
+/// One pose's linearisation: the tool-pose Jacobian's free and joint
+/// columns, and the sums over its dots in the 6-D pose perturbation.
+struct PoseBlock {
+    t_free: DMatrix<f64>,
+    t_joint: DMatrix<f64>,
+    h_pp: Matrix6<f64>,
+    h_pc: SMatrix<f64, 6, INTRINSICS>,
+    h_cc: SMatrix<f64, INTRINSICS, INTRINSICS>,
+    g_p: nalgebra::Vector6<f64>,
+    g_c: SMatrix<f64, INTRINSICS, 1>,
+}
+
+impl ImageFit<'_> {
+    pub(super) fn joints(&self) -> usize {
+        if self.noise.joint_sigma_rad() > 0.0 {
+            self.layout.joints()
+        } else {
+            0
+        }
+    }
+
+    pub(super) fn unpack(&self, x: &DVector<f64>) -> (CalibratedModel, Intrinsics) {
+        let mut full = DVector::zeros(self.layout.len());
+        for (k, &i) in self.free.iter().enumerate() {
+            full[i] = x[k];
+        }
+        let nf = self.free.len();
+        let cam = apply_intrinsics(self.intrinsics, &x.as_slice()[nf..nf + INTRINSICS]);
+        (self.layout.apply(self.reference, &full), cam)
+    }
+
+    /// Joints of pose `k` with its correction in `x` applied.
+    fn pose_joints(&self, x: &DVector<f64>, k: usize) -> Vec<f64> {
+        let q = &self.poses[k].joints_rad;
+        let nj = self.joints();
+        let start = self.free.len() + INTRINSICS + k * nj;
+        (0..q.len())
+            .map(|j| q[j] + if j < nj { x[start + j] } else { 0.0 })
+            .collect()
+    }
+
+    pub(super) fn image_rows(&self) -> usize {
+        2 * self
+            .poses
+            .iter()
+            .map(|p| p.observations.len())
+            .sum::<usize>()
+    }
+
+    pub(super) fn params(&self) -> usize {
+        self.free.len() + INTRINSICS + self.poses.len() * self.joints()
+    }
+
+    /// Pose `k` linearised at `x`: `(target_to_camera, block)`; the dot
+    /// residuals (px) are written to `r` from `row` on.
+    fn linearise_pose(
+        &self,
+        x: &DVector<f64>,
+        model: &CalibratedModel,
+        cam: &Intrinsics,
+        k: usize,
+        mut residual: impl FnMut(usize, f64, f64, &SMatrix<f64, 2, 6>, &SMatrix<f64, 2, 8>),
+    ) -> Option<(Pose, PoseBlock)> {
+        let q = self.pose_joints(x, k);
+        let (t2c, jt) = tool_pose_jacobian(self.layout, model, &q).ok()?;
+        let offsets = self.layout.joint_offset_indices();
+        let mut block = PoseBlock {
+            t_free: DMatrix::from_fn(6, self.free.len(), |r, c| jt[(r, self.free[c])]),
+            t_joint: DMatrix::from_fn(6, self.joints(), |r, c| jt[(r, offsets[c])]),
+            h_pp: Matrix6::zeros(),
+            h_pc: SMatrix::zeros(),
+            h_cc: SMatrix::zeros(),
+            g_p: nalgebra::Vector6::zeros(),
+            g_c: SMatrix::zeros(),
+        };
+        let s = self.noise.sigma_px;
+        for (i, (p, uv)) in self.poses[k].observations.iter().enumerate() {
+            let (pred, jp, jc) = project_with_jacobians(cam, &t2c, p)?;
+            let (jp, jc) = (jp / s, jc / s);
+            let r = nalgebra::Vector2::new((pred.x - uv.x) / s, (pred.y - uv.y) / s);
+            residual(i, r.x, r.y, &jp, &jc);
+            block.h_pp += jp.transpose() * jp;
+            block.h_pc += jp.transpose() * jc;
+            block.h_cc += jc.transpose() * jc;
+            block.g_p += jp.transpose() * r;
+            block.g_c += jc.transpose() * r;
+        }
+        Some((t2c, block))
+    }
+
+    /// The prior residuals `e / sigma_q` of every joint correction.
+    fn prior(&self, x: &DVector<f64>) -> DVector<f64> {
+        let start = self.free.len() + INTRINSICS;
+        DVector::from_fn(self.poses.len() * self.joints(), |i, _| {
+            x[start + i] / self.noise.joint_sigma_rad()
+        })
+    }
+}
+
+impl LeastSquaresProblem for ImageFit<'_> {
+    fn residuals(&self, x: &DVector<f64>) -> Option<DVector<f64>> {
+        let (model, cam) = self.unpack(x);
+        let prior = self.prior(x);
+        let mut r = DVector::zeros(self.image_rows() + prior.len());
+        let mut row = 0;
+        for (k, pose) in self.poses.iter().enumerate() {
+            let inv = model.world_to_tool(&self.pose_joints(x, k)).ok()?.inverse();
+            for (p, uv) in &pose.observations {
+                let pred = cam.project(&(inv * p))?;
+                r[row] = (pred.x - uv.x) / self.noise.sigma_px;
+                r[row + 1] = (pred.y - uv.y) / self.noise.sigma_px;
+                row += 2;
+            }
+        }
+        r.rows_mut(row, prior.len()).copy_from(&prior);
+        Some(r)
+    }
+
+    /// The dense Jacobian (the solver asks for it once, for its report).
+    fn jacobian(&self, x: &DVector<f64>) -> Option<DMatrix<f64>> {
+        let (model, cam) = self.unpack(x);
+        let (nf, nj) = (self.free.len(), self.joints());
+        let mut jac = DMatrix::zeros(self.image_rows() + self.poses.len() * nj, self.params());
+        let mut row = 0;
+        for k in 0..self.poses.len() {
+            let mut dots = Vec::new();
+            let (_, block) = self.linearise_pose(x, &model, &cam, k, |_, _, _, jp, jc| {
+                dots.push((*jp, *jc));
+            })?;
+            for (jp, jc) in dots {
+                let jp = DMatrix::from_column_slice(2, 6, jp.as_slice());
+                jac.view_mut((row, 0), (2, nf))
+                    .copy_from(&(&jp * &block.t_free));
+                jac.view_mut((row, nf), (2, INTRINSICS)).copy_from(&jc);
+                jac.view_mut((row, nf + INTRINSICS + k * nj), (2, nj))
+                    .copy_from(&(&jp * &block.t_joint));
+                row += 2;
+            }
+        }
+        for i in 0..self.poses.len() * nj {
+            jac[(row + i, nf + INTRINSICS + i)] = 1.0 / self.noise.joint_sigma_rad();
+        }
+        Some(jac)
+    }
+
+    /// The joint corrections are block-diagonal: eliminate them.
+    fn solve_normal(&self, a: &DMatrix<f64>, g: &DVector<f64>) -> Option<DVector<f64>> {
+        match self.joints() {
+            0 => None,
+            nj => solve_arrow(a, g, self.free.len() + INTRINSICS, nj),
+        }
+    }
+
+    /// `J^T J` and `J^T r` from each pose's 6-D sums (module doc).
+    fn normal_equations(
+        &self,
+        x: &DVector<f64>,
+        _residuals: &DVector<f64>,
+    ) -> Option<(DMatrix<f64>, DVector<f64>)> {
+        let (model, cam) = self.unpack(x);
+        let (nf, nj, n) = (self.free.len(), self.joints(), self.params());
+        let mut a = DMatrix::zeros(n, n);
+        let mut g = DVector::zeros(n);
+        let prior = self.prior(x);
+        let c0 = nf;
+        for k in 0..self.poses.len() {
+            let (_, b) = self.linearise_pose(x, &model, &cam, k, |_, _, _, _, _| {})?;
+            let hf = b.h_pp * &b.t_free;
+            let mut add = |r0: usize, c0: usize, m: &DMatrix<f64>| {
+                let mut v = a.view_mut((r0, c0), (m.nrows(), m.ncols()));
+                v += m;
+            };
+            add(0, 0, &(b.t_free.transpose() * &hf));
+            let kc =
+                b.t_free.transpose() * DMatrix::from_column_slice(6, INTRINSICS, b.h_pc.as_slice());
+            add(0, c0, &kc);
+            add(c0, 0, &kc.transpose());
+            add(
+                c0,
+                c0,
+                &DMatrix::from_column_slice(INTRINSICS, INTRINSICS, b.h_cc.as_slice()),
+            );
+            let gp = DVector::from_column_slice(b.g_p.as_slice());
+            let mut gk = g.rows_mut(0, nf);
+            gk += b.t_free.transpose() * &gp;
+            let mut gc = g.rows_mut(c0, INTRINSICS);
+            gc += DVector::from_column_slice(b.g_c.as_slice());
+            if nj > 0 {
+                let q0 = nf + INTRINSICS + k * nj;
+                let hj = b.h_pp * &b.t_joint;
+                let kq = b.t_free.transpose() * &hj;
+                add(0, q0, &kq);
+                add(q0, 0, &kq.transpose());
+                let cq = DMatrix::from_column_slice(6, INTRINSICS, b.h_pc.as_slice()).transpose()
+                    * &b.t_joint;
+                add(c0, q0, &cq);
+                add(q0, c0, &cq.transpose());
+                let prior_weight = self.noise.joint_sigma_rad().powi(-2);
+                let qq = b.t_joint.transpose() * &hj + DMatrix::identity(nj, nj) * prior_weight;
+                add(q0, q0, &qq);
+                let mut gq = g.rows_mut(q0, nj);
+                gq += b.t_joint.transpose() * &gp
+                    + prior.rows(k * nj, nj) / self.noise.joint_sigma_rad();
+            }
+        }
+        Some((a, g))
+    }
+}

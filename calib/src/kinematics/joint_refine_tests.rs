@@ -1,0 +1,69 @@
+use super::*;
+use crate::sim::campaign::{simulate_campaign, CampaignSpec};
+use crate::solver::finite_difference_jacobian;
+
+fn noise(sigma_px: f64) -> ImageNoise {
+    ImageNoise {
+        sigma_px,
+        joint: JointNoise::default(),
+    }
+}
+
+#[test]
+fn jacobian_matches_finite_differences_and_exact_points_are_fitted() {
+    let mut spec = CampaignSpec::standard("puma560", 5).unwrap();
+    spec.cal_poses = 25;
+    spec.val_poses = 0;
+    spec.pixel_sigma_px = 0.0;
+    spec.encoder_sigma_deg = 0.0;
+    let c = simulate_campaign(&spec).unwrap();
+    let truth = c.truth.model().unwrap();
+    let poses: Vec<ImagePose> = c
+        .poses
+        .iter()
+        .map(|p| ImagePose {
+            joints_rad: p.joints_rad.clone(),
+            observations: p.observations(&c.truth.board),
+        })
+        .collect();
+    let layout = ParamLayout::new(&truth.robot, Instrument::Camera);
+    let free: Vec<usize> = (0..layout.len())
+        .filter(|&i| {
+            !["dtheta_1", "d_1", "dtheta_6", "a_6", "d_6", "alpha_6"]
+                .contains(&layout.params[i].name.as_str())
+        })
+        .collect();
+    let fit = ImageFit {
+        layout: &layout,
+        reference: &truth,
+        intrinsics: &c.truth.intrinsics,
+        free: &free,
+        poses: &poses[..3],
+        noise: ImageNoise {
+            sigma_px: 0.5,
+            joint: JointNoise::Known { sigma_rad: 1e-5 },
+        },
+    };
+    let x = DVector::from_fn(
+        fit.params(),
+        |i, _| if i < free.len() { 1e-4 } else { 1e-3 },
+    );
+    let analytic = fit.jacobian(&x).unwrap();
+    let fd = finite_difference_jacobian(|x| fit.residuals(x), &x).unwrap();
+    assert!(
+        (&analytic - &fd).amax() < 1e-4 * fd.amax(),
+        "{}",
+        (&analytic - &fd).amax()
+    );
+    // Start off the truth (intrinsics and kinematics), recover it.
+    let mut cam = c.truth.intrinsics;
+    cam.fx *= 1.001;
+    cam.cx += 2.0;
+    let mut start = truth.clone();
+    start.robot.joints[2].a_mm += 0.5;
+    let r = joint_refine(&start, &cam, &poses, &free, noise(0.1)).unwrap();
+    assert!(r.reprojection_rms_px < 1e-6, "{}", r.reprojection_rms_px);
+    assert!((r.intrinsics.fx - c.truth.intrinsics.fx).abs() < 1e-4);
+    assert!((r.model.robot.joints[2].a_mm - truth.robot.joints[2].a_mm).abs() < 1e-6);
+    assert!(joint_refine(&start, &cam, &[], &free, noise(0.1)).is_err());
+}
