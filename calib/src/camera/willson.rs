@@ -14,6 +14,7 @@ use super::error::CameraError;
 pub use super::willson_fit::{
     calibrate_tsai_full, full_optimisation_cost, TsaiFit, MIN_POINTS_FULL_OPTIMISATION,
 };
+pub use super::willson_stages::{calibrate_tsai_willson, WillsonCalibration, WillsonStage};
 
 /// Fixed sensor constants (`Ncx Nfx dx dy dpx dpy` in Willson's files).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -174,6 +174,14 @@ fn noncoplanar_stage1(
     Some((*orthonormalize(&r).matrix(), u[3] * ty / sx, ty, sx))
 }
 
+/// All `zw` within [`COPLANAR_TOLERANCE_MM`] of 0: Willson's coplanar
+/// routines (`sx` fixed, five linear unknowns).
+pub(super) fn is_coplanar(points: &[TsaiPoint]) -> bool {
+    points
+        .iter()
+        .all(|p| p.world.z.abs() <= COPLANAR_TOLERANCE_MM)
+}
+
 /// Tsai's calibration with full non-linear optimisation (Willson's
 /// `ccal_fo` for coplanar data, `nccal_fo` otherwise; `sx` is fixed at 1 for
 /// coplanar data, where it cannot be calibrated).
@@ -189,9 +197,7 @@ pub fn calibrate_tsai_full(
             required: MIN_POINTS_FULL_OPTIMISATION,
         });
     }
-    let coplanar = points
-        .iter()
-        .all(|p| p.world.z.abs() <= COPLANAR_TOLERANCE_MM);
+    let coplanar = is_coplanar(points);
     if super::observations::is_collinear(points.iter().map(|p| Point2::new(p.world.x, p.world.y))) {
         return Err(CameraError::CollinearPoints { view: 0 });
     }
