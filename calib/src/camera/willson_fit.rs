@@ -1,8 +1,16 @@
-//! Tsai's full non-linear optimisation as in Willson's reference code
-//! (`ccal_fo` / `nccal_fo`): Tsai's linear stages (method.md §3, and the
-//! seven-unknown non-coplanar stage 1) start a Levenberg–Marquardt over all
-//! extrinsics, `f, kappa1, Cx, Cy` (and `sx` for non-coplanar data)
-//! minimising the undistorted sensor-plane error.
+//! Tsai's full non-linear optimisation, converged: Tsai's linear stages
+//! (method.md §3, and the seven-unknown non-coplanar stage 1) start one
+//! Levenberg–Marquardt (the project's solver, two residuals per point, tight
+//! tolerances) over all extrinsics, `f, kappa1, Cx, Cy` (and `sx` for
+//! non-coplanar data) minimising the undistorted sensor-plane error, Willson's
+//! own objective.
+//!
+//! This reaches the least-squares minimum, whose cost is lower than that of
+//! Willson's published cameras (by 5e-4 relative non-coplanar, 2e-4
+//! coplanar): Willson's `ccal_fo` / `nccal_fo` stop early, because MINPACK
+//! `lmdif` on one `hypot` residual per point meets `ftol = 1e-5` first. To
+//! reproduce his numbers use [`super::willson_stages::calibrate_tsai_willson`]
+//! ("Willson mode"); to calibrate, use this.
 
 use nalgebra::{DMatrix, DVector, Matrix3, Point2, Vector2, Vector3};
 
@@ -182,9 +190,11 @@ pub(super) fn is_coplanar(points: &[TsaiPoint]) -> bool {
         .all(|p| p.world.z.abs() <= COPLANAR_TOLERANCE_MM)
 }
 
-/// Tsai's calibration with full non-linear optimisation (Willson's
-/// `ccal_fo` for coplanar data, `nccal_fo` otherwise; `sx` is fixed at 1 for
-/// coplanar data, where it cannot be calibrated).
+/// Tsai's calibration with full non-linear optimisation, converged to the
+/// least-squares minimum of Willson's objective (the model and stages of
+/// his `ccal_fo` for coplanar data, `nccal_fo` otherwise; `sx` is fixed at 1
+/// for coplanar data, where it cannot be calibrated). Not his stopping
+/// point: see [`super::willson_stages::calibrate_tsai_willson`].
 pub fn calibrate_tsai_full(
     points: &[TsaiPoint],
     sensor: &TsaiSensor,
