@@ -13,6 +13,10 @@ pub mod sequence;
 pub mod tsai;
 pub mod willson;
 pub mod willson_fit;
+mod willson_linear;
+mod willson_lmpar;
+mod willson_minpack;
+pub mod willson_stages;
 
 pub use calibrate::{
     calibrate, CalibrationMode, CalibrationOptions, CameraCalibration, IntrinsicsStdDev,

@@ -5,7 +5,11 @@
 //! projection inverts the distortion cubic in closed form (Cardan). The full
 //! non-linear optimisation minimises the undistorted sensor-plane error over
 //! all extrinsics, `f, kappa1, Cx, Cy` (and `sx` for non-coplanar data),
-//! started from Tsai's linear stages (method.md §3).
+//! started from Tsai's linear stages (method.md §3). Two solvers of it:
+//! [`calibrate_tsai_full`] converges to the least-squares minimum (use it to
+//! calibrate); [`calibrate_tsai_willson`] replays Willson's staged MINPACK
+//! run and stops where he stopped (use it to reproduce his published
+//! cameras, which lie short of that minimum).
 
 use nalgebra::{Matrix3, Point2, Point3, Vector2, Vector3};
 
@@ -14,6 +18,7 @@ use super::error::CameraError;
 pub use super::willson_fit::{
     calibrate_tsai_full, full_optimisation_cost, TsaiFit, MIN_POINTS_FULL_OPTIMISATION,
 };
+pub use super::willson_stages::{calibrate_tsai_willson, WillsonCalibration, WillsonStage};
 
 /// Fixed sensor constants (`Ncx Nfx dx dy dpx dpy` in Willson's files).
 #[derive(Debug, Clone, Copy, PartialEq)]
