@@ -78,14 +78,27 @@ pub struct CampaignFile {
     pub session: SessionBody,
 }
 
-/// Simulates a campaign of `preset` and writes it to `out`.
-pub fn simulate(preset: &str, out: &Path, cal: usize, val: usize, seed: u64) -> Result<(), String> {
+/// The campaign [`simulate`] renders: the standard campaign of
+/// `preset` with its simulated camera.
+pub fn rendered_spec(
+    preset: &str,
+    cal: usize,
+    val: usize,
+    seed: u64,
+) -> Result<CampaignSpec, String> {
     let mut spec = CampaignSpec::standard(preset, seed).map_err(|e| e.to_string())?;
-    let (intrinsics, (width, height), pixel_um) = simulated_camera(preset);
+    let (intrinsics, image_size, _) = simulated_camera(preset);
     spec.intrinsics = intrinsics;
-    spec.image_size = (width, height);
+    spec.image_size = image_size;
     spec.cal_poses = cal;
     spec.val_poses = val;
+    Ok(spec)
+}
+
+/// Simulates a campaign of `preset` and writes it to `out`.
+pub fn simulate(preset: &str, out: &Path, cal: usize, val: usize, seed: u64) -> Result<(), String> {
+    let spec = rendered_spec(preset, cal, val, seed)?;
+    let (intrinsics, (width, height), pixel_um) = simulated_camera(preset);
     let campaign = simulate_campaign(&spec).map_err(|e| e.to_string())?;
     std::fs::create_dir_all(out.join("images")).map_err(|e| e.to_string())?;
     let target = simulated_target();
@@ -179,6 +192,14 @@ pub fn read(dir: &Path) -> Result<(CampaignFile, Vec<PoseEntry>), String> {
 
 /// Runs the whole pipeline on a campaign directory, without a server.
 pub fn calibrate_local(dir: &Path, serial: &str) -> Result<Report, String> {
+    let set = run_local(dir, serial)?
+        .parameter_set
+        .ok_or("the pipeline produced no parameter set")?;
+    serde_json::from_value(set.report).map_err(|e| e.to_string())
+}
+
+/// The pipeline's output on a campaign directory, without a server.
+pub fn run_local(dir: &Path, serial: &str) -> Result<pipeline::Output, String> {
     let (file, entries) = read(dir)?;
     let body: RobotBody = serde_json::from_value(file.robot.clone()).map_err(|e| e.to_string())?;
     let kinematics = body.resolve().map_err(|e| format!("{e:?}"))?;
@@ -210,10 +231,5 @@ pub fn calibrate_local(dir: &Path, serial: &str) -> Result<Report, String> {
         test_stage_delay: std::time::Duration::ZERO,
         validate_only: false,
     };
-    let output =
-        pipeline::run(&input, &|_, _, _| {}, &AtomicBool::new(false)).map_err(|e| e.to_string())?;
-    let set = output
-        .parameter_set
-        .ok_or("the pipeline produced no parameter set")?;
-    serde_json::from_value(set.report).map_err(|e| e.to_string())
+    pipeline::run(&input, &|_, _, _| {}, &AtomicBool::new(false)).map_err(|e| e.to_string())
 }

@@ -16,6 +16,7 @@ use rand::{rngs::StdRng, SeedableRng};
 use rand_distr::{Distribution, StandardNormal};
 
 use super::camera_step::camera_step_precision;
+use super::oracle::{oracle_measurements, truth_measurements};
 use super::campaign::{compliance, simulate_campaign, Campaign, CampaignSpec, SimError};
 use super::campaign_io::PoseSet;
 use crate::camera::model::Intrinsics;
@@ -93,22 +94,6 @@ fn camera_step_intrinsics(
     crate::kinematics::projection::apply_intrinsics(truth, (l * z).as_slice())
 }
 
-/// True camera positions at the validation poses, as measurements.
-fn truth_measurements(campaign: &Campaign, set: PoseSet) -> Vec<Measurement> {
-    campaign
-        .poses
-        .iter()
-        .filter(|p| p.set == set)
-        .map(|p| Measurement {
-            joints_rad: p.joints_rad.clone(),
-            observed: Observed::Pose {
-                world_to_tool: p.target_to_camera,
-                covariance: None,
-            },
-        })
-        .collect()
-}
-
 /// Start model: nominal kinematics, hand–eye guess, base by registration.
 pub fn start_model(
     spec: &CampaignSpec,
@@ -163,9 +148,10 @@ pub fn prepare(spec: &CampaignSpec) -> Result<Prepared, ExperimentError> {
     let precision =
         camera_step_precision(&truth_cam, &bundle, sigma).ok_or(ExperimentError::Degenerate)?;
     let cam_step = camera_step_intrinsics(&truth_cam, &precision.intrinsics, &mut rng);
-    let (mut oracle, mut plain, mut weighted, mut images) = (vec![], vec![], vec![], vec![]);
+    let (mut plain, mut weighted, mut images) = (vec![], vec![], vec![]);
     let mut strict_rng = StdRng::seed_from_u64(spec.seed ^ 0x5a5a);
     let mut oracle_known_intrinsics = vec![];
+    let oracle = oracle_measurements(&cal_poses, &precision.poses, &mut rng);
     for ((p, cov), strict) in cal_poses
         .iter()
         .zip(&precision.poses)
@@ -182,16 +168,7 @@ pub fn prepare(spec: &CampaignSpec) -> Result<Prepared, ExperimentError> {
             },
         });
         let obs = p.observations(&board);
-        let l = Cholesky::new(cov).map(|c| c.l()).unwrap_or_default();
-        let z = Vector6::from_fn(|_, _| StandardNormal.sample(&mut rng));
         let q = p.joints_rad.clone();
-        oracle.push(Measurement {
-            joints_rad: q.clone(),
-            observed: Observed::Pose {
-                world_to_tool: perturb_left(&p.target_to_camera, &(l * z)),
-                covariance: Some(cov),
-            },
-        });
         // OpenCV-style PnP: homography start, LM on the reprojection error.
         let fit = estimate_pose(&cam_step, &obs, None)?;
         plain.push(Measurement {

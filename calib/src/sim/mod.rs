@@ -4,6 +4,7 @@ pub mod camera_step;
 pub mod campaign;
 pub mod campaign_io;
 pub mod experiment;
+pub mod oracle;
 /// Views as point observations (no image): camera-calibration tests.
 pub mod point_views;
 pub mod render;
