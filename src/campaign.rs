@@ -207,6 +207,7 @@ pub fn calibrate_local(dir: &Path, serial: &str) -> Result<Report, String> {
         session: file.session,
         poses,
         options: CalibrationOptions::default(),
+        fixed_camera: None,
         test_stage_delay: std::time::Duration::ZERO,
         validate_only: false,
     };
