@@ -46,7 +46,8 @@ pub struct PoseRecord {
     pub joints_deg: Vec<f64>,
     pub set: String,
     pub image: Option<ImageMeta>,
-    /// `[{"row","col","x","y",...}]`: uploaded or detected image points.
+    /// `[{"row","col","x","y"}]`: the image points as uploaded (never rewritten;
+    /// what a job detected is in `detection`).
     pub points: Value,
     /// `{"measured_position_mm":[..],"measured_pose":{..}?}` for tracker poses.
     pub measured: Option<Value>,

@@ -83,12 +83,6 @@ pub struct PoseDetectionOut {
     /// Why no dots were detected on this pose's image.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub error: Option<String>,
-    /// What the residuals are measured against: `robot_model` (the
-    /// calibrated kinematics at this pose's joints, with the final
-    /// intrinsics) or `camera_view` (the camera calibration's own pose of
-    /// this view, for position-only identification).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub residuals_from: Option<String>,
     /// RMS length of this pose's residuals (px), outliers excluded.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub residual_rms_px: Option<f64>,

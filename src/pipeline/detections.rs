@@ -8,9 +8,10 @@
 //! centre after the camera stage's perspective/distortion bias correction
 //! (method.md §4 **beyond**), which is what the fits use. The prediction is
 //! the calibrated robot model's (method.md §5: `target_to_camera` at the
-//! pose's joints) through the final intrinsics when the job identified
-//! full poses, else the camera stage's own fit of that view (position-only
-//! identification leaves the camera orientation undetermined).
+//! pose's joints) through the final intrinsics, the residual the joint
+//! refinement minimises (method.md §6 **beyond**). Position-only
+//! identification leaves the camera's orientation undetermined: no
+//! residuals then.
 
 use nalgebra::{Isometry3, Point3};
 use robocal_calib::camera::Intrinsics;
@@ -21,10 +22,6 @@ use super::camera_stage::CameraStep;
 use super::measure::{GridPoint, Measured};
 use super::PoseInput;
 use crate::domain::PoseDetection;
-
-/// Which prediction the residuals are measured against.
-const FROM_ROBOT_MODEL: &str = "robot_model";
-const FROM_CAMERA_VIEW: &str = "camera_view";
 
 #[derive(Debug, Clone, Serialize)]
 struct PointDoc {
@@ -49,9 +46,6 @@ struct PoseDoc {
     /// Why no point was detected on this pose's image.
     #[serde(skip_serializing_if = "Option::is_none")]
     error: Option<String>,
-    /// `"robot_model"` or `"camera_view"`, once residuals are known.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    residuals_from: Option<&'static str>,
     /// RMS length of the residuals of this pose (px).
     #[serde(skip_serializing_if = "Option::is_none")]
     residual_rms_px: Option<f64>,
@@ -93,7 +87,6 @@ pub fn detected(poses: &[PoseInput], measured: &Measured) -> Vec<PoseDetection> 
                 source: source(pose),
                 points: points.iter().flatten().map(plain).collect(),
                 error: points.is_none().then(|| failure(measured, &pose.id)),
-                residuals_from: None,
                 residual_rms_px: None,
             };
             stored(pose, &doc)
@@ -109,9 +102,9 @@ fn failure(measured: &Measured, pose_id: &str) -> String {
         .map_or_else(|| "no dots detected".to_string(), |f| f.reason.clone())
 }
 
-/// The final points: [`detected`] plus every point's residual under the
-/// calibrated `model` and `intrinsics` (`full_pose`), or under the camera
-/// stage's fit of each view.
+/// The final points: [`detected`] plus, when the job identified full poses
+/// (`full_pose`), every point's residual under the calibrated `model` and
+/// `intrinsics`.
 pub fn with_residuals(
     poses: &[PoseInput],
     measured: &Measured,
@@ -121,20 +114,14 @@ pub fn with_residuals(
     full_pose: bool,
 ) -> Vec<PoseDetection> {
     let mut out = detected(poses, measured);
+    if !full_pose {
+        return out;
+    }
     for (view, &i) in step.view_pose.iter().enumerate() {
         let pose = &poses[i];
-        let (camera_to_target, from, intr) = if full_pose {
-            let joints_rad: Vec<f64> = pose.joints_deg.iter().map(|d| d.to_radians()).collect();
-            match model.world_to_tool(&joints_rad) {
-                Ok(target_to_camera) => (target_to_camera.inverse(), FROM_ROBOT_MODEL, intrinsics),
-                Err(_) => continue,
-            }
-        } else {
-            (
-                step.calibration.views[view].camera_to_target,
-                FROM_CAMERA_VIEW,
-                &step.calibration.intrinsics,
-            )
+        let joints_rad: Vec<f64> = pose.joints_deg.iter().map(|d| d.to_radians()).collect();
+        let Ok(target_to_camera) = model.world_to_tool(&joints_rad) else {
+            continue;
         };
         let outliers: Vec<(u32, u32)> = step
             .calibration
@@ -143,7 +130,7 @@ pub fn with_residuals(
             .filter(|o| o.view == view)
             .map(|o| (o.row, o.col))
             .collect();
-        let residuals = residuals_of(step, view, &camera_to_target, intr);
+        let residuals = residuals_of(step, view, &target_to_camera.inverse(), intrinsics);
         let points = measured.points[i].iter().flatten().map(|p| PointDoc {
             residual_px: residuals
                 .iter()
@@ -164,7 +151,6 @@ pub fn with_residuals(
             source: source(pose),
             points,
             error: None,
-            residuals_from: Some(from),
             residual_rms_px: (!used.is_empty()).then_some(rms),
         };
         out[i] = stored(pose, &doc);

@@ -98,7 +98,7 @@ fn check_points(
     for (i, pose) in poses.iter().enumerate() {
         assert_eq!(pose["source"], "image");
         assert_eq!(pose["detection"]["job_id"], job, "{pose}");
-        assert_eq!(pose["detection"]["residuals_from"], "robot_model");
+        assert!(pose["detection"]["residual_rms_px"].as_f64().unwrap() < 2.0 * max_rms_px);
         let points = points_of(pose);
         assert_eq!(points.len(), DOTS, "pose {i}");
         assert_eq!(pose["detected_points"], DOTS);
@@ -179,7 +179,7 @@ async fn failed_job_leaves_detected_points(
     assert_eq!(done["state"], "failed", "{done}");
     for pose in poses_of(app, &session).await {
         assert_eq!(pose["detection"]["job_id"], job.as_str(), "{pose}");
-        assert!(pose["detection"].get("residuals_from").is_none());
+        assert!(pose["detection"].get("residual_rms_px").is_none());
         let points = points_of(&pose);
         assert_eq!(points.len(), DOTS);
         assert!(points.values().all(|(_, _, r)| r.is_none()));
