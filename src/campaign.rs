@@ -228,6 +228,7 @@ pub fn run_local(dir: &Path, serial: &str) -> Result<pipeline::Output, String> {
         session: file.session,
         poses,
         options: CalibrationOptions::default(),
+        fixed_camera: None,
         test_stage_delay: std::time::Duration::ZERO,
         validate_only: false,
     };

@@ -46,11 +46,26 @@ pub struct PoseRecord {
     pub joints_deg: Vec<f64>,
     pub set: String,
     pub image: Option<ImageMeta>,
-    /// `[{"row","col","x","y",...}]`: uploaded or detected image points.
+    /// `[{"row","col","x","y"}]`: the image points as uploaded (never rewritten;
+    /// what a job detected is in `detection`).
     pub points: Value,
     /// `{"measured_position_mm":[..],"measured_pose":{..}?}` for tracker poses.
     pub measured: Option<Value>,
+    /// What the last calibration job measured on this pose (see
+    /// [`PoseDetection`]); `None` before any job ran its detect stage.
+    pub detection: Option<Value>,
     pub created_at: String,
+}
+
+/// One pose's image points as a calibration job measured them:
+/// `{"job_id","points":[{"row","col","x","y","residual_px"?}],"error"?,...}`.
+/// A job writes these for every pose of its session at once (after its
+/// detect stage, and again with residuals when it succeeds), replacing the
+/// previous job's.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PoseDetection {
+    pub pose_id: String,
+    pub detection: Value,
 }
 
 /// A pose to insert; its image blob must already be stored (`put_blob`).
@@ -160,6 +175,9 @@ pub enum JobOutcome {
         parameter_set: Option<NewParameterSet>,
         /// Extra result document (e.g. the validation summary).
         summary: Value,
+        /// Every pose's final image points with residuals (empty: keep
+        /// what the detect stage stored).
+        detections: Vec<PoseDetection>,
     },
     /// Failed for good (bad input): no retry.
     Failed { error: String },

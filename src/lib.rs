@@ -8,6 +8,7 @@
 pub use robocal_calib as calib;
 
 pub mod api;
+pub mod camera_reuse;
 pub mod campaign;
 pub mod cli;
 pub mod client;

@@ -1,29 +1,32 @@
 //! The calibration job: one synchronous function joining the numerics of
-//! `robocal-calib` for a session (detect → camera → poses → identify →
-//! report). It runs on a blocking thread, reports progress through a
-//! callback and stops when `cancel` becomes true.
+//! `robocal-calib` for a session (validate → detect → camera → poses →
+//! identify → report). It runs on a blocking thread, reports progress
+//! through a callback and stops when `cancel` becomes true.
 //!
-//! Today only the input-validation stage exists: enough poses, joint vectors
-//! matching the robot, images decodable at the session camera's size. The
-//! numerical stages plug in after [`validate`], returning their parameter set
-//! and report in [`Output::parameter_set`]; the worker stores them as the
-//! serial's next version in the transaction that finishes the job.
+//! The identified parameter set and its report come back in
+//! [`Output::parameter_set`], every pose's image points with their
+//! residuals in [`Output::detections`]; the worker stores both in the
+//! transaction that finishes the job. The points are also handed out right
+//! after the detect stage ([`run_observed`]), so they are visible even when
+//! a later stage fails.
 
-use std::io::Cursor;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-use serde_json::json;
-
+use robocal_calib::camera::Intrinsics;
 use robocal_calib::kinematics::RobotModel;
 
 mod camera_stage;
+mod detections;
 mod identify_stage;
 mod measure;
 pub mod results;
+mod validate;
 
-use crate::domain::NewParameterSet;
-use crate::schema::job::{CalibrationOptions, Validation};
+pub use validate::{check_image, validate};
+
+use crate::domain::{NewParameterSet, PoseDetection};
+use crate::schema::job::CalibrationOptions;
 use crate::schema::robot::KinematicsDoc;
 use crate::schema::session::{ImagePointDoc, Instrument, PoseSet, SessionBody};
 use crate::schema::{FieldError, PoseDoc};
@@ -70,6 +73,9 @@ pub struct Input {
     pub session: SessionBody,
     pub poses: Vec<PoseInput>,
     pub options: CalibrationOptions,
+    /// The session's `camera_calibration_id`, resolved: intrinsics the
+    /// camera stage holds fixed instead of estimating them.
+    pub fixed_camera: Option<FixedCamera>,
     /// Test hook (`ROBOCAL_TEST_STAGE_DELAY_MS`): sleep per pose in validation.
     pub test_stage_delay: Duration,
     /// Test hook (`ROBOCAL_TEST_VALIDATE_ONLY`): stop after validation.
@@ -88,6 +94,15 @@ pub struct PoseInput {
     pub measured_pose: Option<PoseDoc>,
 }
 
+/// Intrinsics of an earlier calibration, reused and held fixed (the paper
+/// keeps `fx` and `k` once tuned, method.md §4).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FixedCamera {
+    /// Where they come from: `"{serial}/{version}"` of a parameter set.
+    pub calibration_id: String,
+    pub intrinsics: Intrinsics,
+}
+
 #[derive(Debug, Clone)]
 pub struct Output {
     /// The identified parameter set and its accuracy report, when the job
@@ -95,6 +110,9 @@ pub struct Output {
     pub parameter_set: Option<NewParameterSet>,
     /// A short summary for the job's `result`.
     pub summary: serde_json::Value,
+    /// Every camera pose's image points with their reprojection residuals
+    /// (empty for tracker sessions and validation-only runs).
+    pub detections: Vec<PoseDetection>,
 }
 
 #[derive(Debug, Clone, thiserror::Error)]
@@ -147,6 +165,17 @@ pub fn run(
     progress: &dyn Fn(Stage, &str, f64),
     cancel: &AtomicBool,
 ) -> Result<Output, PipelineError> {
+    run_observed(input, progress, &|_| {}, cancel)
+}
+
+/// [`run`], handing every camera pose's image points to `detected` as soon
+/// as the detect stage has them (before the numerics that may fail).
+pub fn run_observed(
+    input: &Input,
+    progress: &dyn Fn(Stage, &str, f64),
+    detected: &dyn Fn(Vec<PoseDetection>),
+    cancel: &AtomicBool,
+) -> Result<Output, PipelineError> {
     let within = |stage: Stage, message: &str, fraction: f64| {
         let (lo, hi) = stage_span(stage);
         progress(stage, message, lo + (hi - lo) * fraction.clamp(0.0, 1.0));
@@ -164,8 +193,14 @@ pub fn run(
         return Ok(Output {
             parameter_set: None,
             summary: checked,
+            detections: Vec::new(),
         });
     }
+    // Intrinsics not re-estimated (fixed from an earlier calibration, or the
+    // paper's sequence values): the joint refinement, which re-fits them
+    // together with the kinematics, is left out.
+    let intrinsics_held = input.fixed_camera.is_some() || !input.options.refine_intrinsics;
+    let mut notes = Vec::new();
     let (measured, camera) = match input.session.instrument {
         Instrument::Camera => {
             let (target, camera_doc) = match (&input.session.target, &input.session.camera) {
@@ -184,6 +219,7 @@ pub fn run(
                 cancel,
             )?;
             check_cancel()?;
+            detected(detections::detected(&input.poses, &measured));
             within(
                 Stage::CalibrateCamera,
                 "Tsai start and joint refinement",
@@ -195,7 +231,18 @@ pub fn run(
                 target,
                 camera_doc,
                 input.options.refine_intrinsics,
+                input.fixed_camera.as_ref(),
             )?;
+            if let Some(fixed) = &input.fixed_camera {
+                notes.push(format!(
+                    "Camera intrinsics held fixed at those of calibration {} (camera_calibration_id); only the camera poses were fitted.",
+                    fixed.calibration_id
+                ));
+            } else if !input.options.refine_intrinsics {
+                notes.push(
+                    "Camera intrinsics from the paper's Tsai sequence (refine_intrinsics: false), not refined.".to_string(),
+                );
+            }
             (Some(measured), Some(step))
         }
         Instrument::Tracker => (None, None),
@@ -216,6 +263,12 @@ pub fn run(
         Some(p) => pose_of(p),
         None => robocal_calib::geometry::Pose::identity(),
     };
+    let joint_refinement = input.options.joint_refinement && !intrinsics_held;
+    if camera.is_some() && input.options.joint_refinement && intrinsics_held {
+        notes.push(
+            "Joint refinement skipped: it re-fits the camera intrinsics, which this calibration holds fixed.".to_string(),
+        );
+    }
     within(Stage::Identify, "kinematic identification", 0.0);
     let identified = identify_stage::identify_robot(
         &input.robot,
@@ -224,12 +277,11 @@ pub fn run(
         guess,
         kind,
         input.options.validation,
-        input.options.joint_refinement,
+        joint_refinement,
         &usable,
     )?;
     check_cancel()?;
     within(Stage::Report, "building the report", 0.0);
-    let mut notes = Vec::new();
     if let Some(m) = &measured {
         if !m.failures.is_empty() {
             notes.push(format!(
@@ -258,6 +310,17 @@ pub fn run(
     };
     let set = results::parameter_set(&context, &identified);
     let report = results::report(&context, &identified, &set);
+    let detections = match (&measured, &camera) {
+        (Some(m), Some(step)) => detections::with_residuals(
+            &input.poses,
+            m,
+            step,
+            &identified.model,
+            &set.camera.unwrap_or(step.intrinsics()),
+            kind == crate::schema::job::Measurement::Pose,
+        ),
+        _ => Vec::new(),
+    };
     within(Stage::Report, "done", 1.0);
     Ok(Output {
         parameter_set: Some(NewParameterSet {
@@ -265,6 +328,7 @@ pub fn run(
             report: serde_json::to_value(&report).unwrap_or_default(),
         }),
         summary: results::summary(&identified),
+        detections,
     })
 }
 
@@ -277,124 +341,4 @@ fn pose_of(doc: &PoseDoc) -> robocal_calib::geometry::Pose {
                 .ok()
         })
         .unwrap_or_else(robocal_calib::geometry::Pose::identity)
-}
-
-/// The validation stage; returns a summary of what was checked.
-pub fn validate(
-    input: &Input,
-    progress: &dyn Fn(Stage, &str, f64),
-    cancel: &AtomicBool,
-) -> Result<serde_json::Value, PipelineError> {
-    let joint_count = input.robot.dof();
-    let mut errors = Vec::new();
-    let cal = input.poses.iter().filter(|p| p.set == PoseSet::Cal).count();
-    let val = input.poses.len() - cal;
-    if cal < MIN_CALIBRATION_POSES {
-        errors.push(FieldError::new(
-            "poses",
-            format!("{cal} calibration poses; at least {MIN_CALIBRATION_POSES} are needed"),
-        ));
-    }
-    if input.options.validation == Validation::Named(crate::schema::job::ValidationNamed::ValSet)
-        && val == 0
-        && !input.poses.is_empty()
-    {
-        errors.push(FieldError::new(
-            "validation",
-            "\"val_set\" needs poses uploaded with set \"val\" (or use holdout_fraction)",
-        ));
-    }
-    let camera = input.session.camera.as_ref();
-    let total = input.poses.len().max(1) as f64;
-    for (i, pose) in input.poses.iter().enumerate() {
-        if cancel.load(Ordering::Relaxed) {
-            return Err(PipelineError::Cancelled);
-        }
-        progress(
-            Stage::Validate,
-            &format!("pose {} of {}", i + 1, input.poses.len()),
-            i as f64 / total,
-        );
-        let field = |name: &str| format!("poses[{}].{name}", pose.id);
-        if pose.joints_deg.len() != joint_count {
-            errors.push(FieldError::new(
-                field("joints_deg"),
-                format!(
-                    "{} values for a {joint_count}-joint robot",
-                    pose.joints_deg.len()
-                ),
-            ));
-        }
-        match input.session.instrument {
-            Instrument::Camera => match &pose.image {
-                Some(bytes) => {
-                    if let Err(message) = check_image(bytes, camera.map(|c| (c.width, c.height))) {
-                        errors.push(FieldError::new(field("image"), message));
-                    }
-                }
-                None if pose.image_points.is_empty() => errors.push(FieldError::new(
-                    field("image"),
-                    "neither image nor image points",
-                )),
-                None => {}
-            },
-            Instrument::Tracker => {
-                if pose.measured_position_mm.is_none() {
-                    errors.push(FieldError::new(field("measured_position_mm"), "missing"));
-                }
-            }
-        }
-        if !input.test_stage_delay.is_zero() {
-            sleep_cancellable(input.test_stage_delay, cancel)?;
-        }
-    }
-    if !errors.is_empty() {
-        return Err(PipelineError::Invalid(errors));
-    }
-    Ok(json!({
-        "stage": Stage::Validate.as_str(),
-        "calibration_poses": cal,
-        "validation_poses": val,
-        "joints": joint_count,
-    }))
-}
-
-fn sleep_cancellable(total: Duration, cancel: &AtomicBool) -> Result<(), PipelineError> {
-    let step = Duration::from_millis(20);
-    let mut slept = Duration::ZERO;
-    while slept < total {
-        if cancel.load(Ordering::Relaxed) {
-            return Err(PipelineError::Cancelled);
-        }
-        std::thread::sleep(step.min(total - slept));
-        slept += step;
-    }
-    Ok(())
-}
-
-/// Decodes an image (PNG or JPEG only, bounded memory) and checks its size
-/// against the session camera's. Returns `(width, height)`.
-pub fn check_image(bytes: &[u8], expected: Option<(u32, u32)>) -> Result<(u32, u32), String> {
-    let format = image::guess_format(bytes).map_err(|_| "not a PNG or JPEG image".to_string())?;
-    if !matches!(format, image::ImageFormat::Png | image::ImageFormat::Jpeg) {
-        return Err(format!(
-            "{format:?} images are not accepted; send PNG or JPEG"
-        ));
-    }
-    let mut reader = image::ImageReader::with_format(Cursor::new(bytes), format);
-    let mut limits = image::Limits::default();
-    limits.max_alloc = Some(MAX_DECODE_ALLOC_BYTES);
-    limits.max_image_width = Some(crate::schema::session::MAX_IMAGE_SIDE);
-    limits.max_image_height = Some(crate::schema::session::MAX_IMAGE_SIDE);
-    reader.limits(limits);
-    let img = reader
-        .decode()
-        .map_err(|e| format!("cannot decode image: {e}"))?;
-    let (w, h) = (img.width(), img.height());
-    if let Some((ew, eh)) = expected {
-        if (w, h) != (ew, eh) {
-            return Err(format!("image is {w}x{h}, the session camera is {ew}x{eh}"));
-        }
-    }
-    Ok((w, h))
 }

@@ -86,6 +86,19 @@ impl ApiError {
         )
     }
 
+    /// 404 for a reference inside the body: names the field that holds it.
+    pub fn not_found_field(field: &str, message: impl Into<String>) -> ApiError {
+        let error = FieldError::new(field, message);
+        ApiError {
+            errors: vec![error.clone()],
+            ..ApiError::new(
+                StatusCode::NOT_FOUND,
+                "not-found",
+                format!("{}: {}", error.field, error.message),
+            )
+        }
+    }
+
     pub fn conflict(detail: impl Into<String>) -> ApiError {
         ApiError::new(StatusCode::CONFLICT, "conflict", detail)
     }

@@ -5,7 +5,7 @@ use axum::extract::{FromRequest, Multipart, Path, Request, State};
 use axum::http::{header, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::Json;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
 use utoipa::ToSchema;
 use utoipa_axum::router::OpenApiRouter;
@@ -40,8 +40,14 @@ pub struct PoseOut {
     pub source: String,
     /// Number of image points (uploaded, or detected once detection ran).
     pub detected_points: usize,
-    #[schema(value_type = Vec<Object>)]
+    /// The image points: as uploaded, or as the last calibration job
+    /// detected them (then with residuals once that job succeeded).
+    #[schema(value_type = Vec<PoseImagePoint>)]
     pub points: Vec<Value>,
+    /// Which job measured `points`, and how well the model fits them;
+    /// absent until a calibration job ran its detect stage on the session.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub detection: Option<PoseDetectionOut>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub image: Option<ImageMeta>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -49,6 +55,37 @@ pub struct PoseOut {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub measured_pose: Option<PoseDoc>,
     pub created_at: String,
+}
+
+/// One image point of a pose (schema of `points`).
+#[derive(Debug, Serialize, Deserialize, ToSchema)]
+pub struct PoseImagePoint {
+    pub row: u32,
+    pub col: u32,
+    /// Dot centre in the image (px): uploaded, or as the detector found it.
+    pub x: f64,
+    pub y: f64,
+    /// `[dx, dy]` (px) after a successful calibration: the observed centre
+    /// (corrected for perspective bias) minus the calibrated model's
+    /// projection of the dot. Absent for points the fit leaves out (the
+    /// origin marker).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub residual_px: Option<[f64; 2]>,
+    /// Dropped by the camera calibration as an outlier.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub outlier: Option<bool>,
+}
+
+/// How a pose's points were measured by the last calibration job.
+#[derive(Debug, Serialize, Deserialize, ToSchema)]
+pub struct PoseDetectionOut {
+    pub job_id: String,
+    /// Why no dots were detected on this pose's image.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+    /// RMS length of this pose's residuals (px), outliers excluded.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub residual_rms_px: Option<f64>,
 }
 
 #[derive(Debug, Serialize, ToSchema)]
@@ -59,7 +96,14 @@ pub struct PoseList {
 
 impl From<PoseRecord> for PoseOut {
     fn from(p: PoseRecord) -> PoseOut {
-        let points = p.points.as_array().cloned().unwrap_or_default();
+        let detected = p.detection.as_ref().and_then(|d| d["points"].as_array());
+        let points = detected
+            .or_else(|| p.points.as_array())
+            .cloned()
+            .unwrap_or_default();
+        let detection = p
+            .detection
+            .and_then(|d| serde_json::from_value::<PoseDetectionOut>(d).ok());
         let measured = p.measured.unwrap_or(Value::Null);
         let source = if p.image.is_some() {
             "image"
@@ -76,6 +120,7 @@ impl From<PoseRecord> for PoseOut {
             source: source.into(),
             detected_points: points.len(),
             points,
+            detection,
             image: p.image,
             measured_position_mm: serde_json::from_value(measured["measured_position_mm"].clone())
                 .ok()

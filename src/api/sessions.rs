@@ -11,8 +11,9 @@ use utoipa_axum::routes;
 use super::error::{ApiError, ApiResult, Problem};
 use super::extract::{ApiJson, Paging};
 use super::AppState;
+use crate::camera_reuse::{self, ReuseError};
 use crate::domain::SessionRecord;
-use crate::schema::session::SessionBody;
+use crate::schema::session::{Instrument, SessionBody};
 
 pub fn router() -> OpenApiRouter<AppState> {
     OpenApiRouter::new()
@@ -63,14 +64,17 @@ pub async fn find_session(state: &AppState, id: &str) -> ApiResult<SessionRecord
     params(("serial" = String, Path, description = "Robot serial number")),
     request_body = SessionBody,
     responses((status = 201, body = SessionOut),
-              (status = 404, body = Problem, content_type = "application/problem+json"),
+              (status = 404, description = "No such robot, or no parameter set `camera_calibration_id`", body = Problem, content_type = "application/problem+json"),
               (status = 422, body = Problem, content_type = "application/problem+json")))]
 async fn create_session(
     State(state): State<AppState>,
     Path(serial): Path<String>,
-    ApiJson(body): ApiJson<SessionBody>,
+    ApiJson(mut body): ApiJson<SessionBody>,
 ) -> ApiResult<(StatusCode, Json<SessionOut>)> {
     body.check()?;
+    if let Some(id) = &body.camera_calibration_id {
+        body.camera_calibration_id = Some(resolve_camera_calibration(&state, &body, id).await?);
+    }
     let spec = serde_json::to_value(&body).map_err(ApiError::internal)?;
     let session = state
         .store
@@ -81,6 +85,32 @@ async fn create_session(
             e => e.into(),
         })?;
     Ok((StatusCode::CREATED, Json(session.try_into()?)))
+}
+
+/// Checks `camera_calibration_id` names a camera calibration this session
+/// can reuse; returns it with `latest` resolved, so the session's jobs all
+/// use one calibration.
+async fn resolve_camera_calibration(
+    state: &AppState,
+    body: &SessionBody,
+    id: &str,
+) -> ApiResult<String> {
+    if body.instrument != Instrument::Camera {
+        return Err(ApiError::invalid(
+            camera_reuse::FIELD,
+            "only a camera session reuses camera intrinsics",
+        ));
+    }
+    match camera_reuse::resolve(&state.store, id, body.camera.as_ref()).await {
+        Ok(fixed) => Ok(fixed.calibration_id),
+        Err(ReuseError::NotFound(message)) => {
+            Err(ApiError::not_found_field(camera_reuse::FIELD, message))
+        }
+        Err(ReuseError::Malformed(message) | ReuseError::Unusable(message)) => {
+            Err(ApiError::invalid(camera_reuse::FIELD, message))
+        }
+        Err(ReuseError::Store(e)) => Err(e.into()),
+    }
 }
 
 /// A robot's sessions, oldest first.

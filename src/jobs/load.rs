@@ -2,6 +2,7 @@
 
 use std::time::Duration;
 
+use crate::camera_reuse::{self, ReuseError};
 use crate::domain::ClaimedJob;
 use crate::pipeline::{Input, PoseInput};
 use crate::schema::job::CalibrationOptions;
@@ -41,6 +42,17 @@ pub async fn load_input(
     let spec: SessionBody = serde_json::from_value(session.spec).map_err(|e| bad("session", e))?;
     let options: CalibrationOptions =
         serde_json::from_value(job.options.clone()).map_err(|e| bad("options", e))?;
+    let fixed_camera = match &spec.camera_calibration_id {
+        Some(id) => Some(
+            camera_reuse::resolve(store, id, spec.camera.as_ref())
+                .await
+                .map_err(|e| match e {
+                    ReuseError::Store(e) => LoadError::Store(e),
+                    e => LoadError::Gone(format!("{}: {e}", camera_reuse::FIELD)),
+                })?,
+        ),
+        None => None,
+    };
     let mut poses = Vec::new();
     let mut cursor: Option<String> = None;
     loop {
@@ -86,6 +98,7 @@ pub async fn load_input(
         session: spec,
         poses,
         options,
+        fixed_camera,
         test_stage_delay,
         validate_only: false,
     })

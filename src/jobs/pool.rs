@@ -14,7 +14,7 @@ use tokio::time::Instant;
 
 use super::load::{load_input, LoadError};
 use super::queue::{claim_next, Lease, QueuePolicy};
-use crate::domain::{JobOutcome, LeaseStatus};
+use crate::domain::{JobOutcome, LeaseStatus, PoseDetection};
 use crate::pipeline::{self, PipelineError, Stage};
 use crate::store::DynStore;
 
@@ -139,13 +139,27 @@ impl Worker {
         let cancel = Arc::new(AtomicBool::new(false));
         let mut task = {
             let (progress, cancel) = (progress.clone(), cancel.clone());
+            let (store, job_id, worker_id) = (self.store.clone(), job_id.clone(), self.id.clone());
+            let runtime = tokio::runtime::Handle::current();
             tokio::task::spawn_blocking(move || {
                 let report = |stage: Stage, _message: &str, fraction: f64| {
                     if let Ok(mut p) = progress.lock() {
                         *p = (stage.as_str(), fraction.clamp(0.0, 1.0));
                     }
                 };
-                pipeline::run(&input, &report, &cancel)
+                // The detect stage's points go to the pose rows at once: a
+                // later stage may fail, and they show what was seen.
+                let detected = |detections: Vec<PoseDetection>| {
+                    let detections = stamp(&job_id, detections);
+                    let written =
+                        runtime.block_on(store.record_detections(&job_id, &worker_id, &detections));
+                    match written {
+                        Ok(LeaseStatus::Held) => {}
+                        Ok(_) => cancel.store(true, Ordering::SeqCst),
+                        Err(e) => tracing::warn!(error = %e, "storing detected points failed"),
+                    }
+                };
+                pipeline::run_observed(&input, &report, &detected, &cancel)
             })
         };
         let mut ticker = tokio::time::interval(self.config.policy.heartbeat());
@@ -185,6 +199,7 @@ impl Worker {
             Ok(Ok(out)) => JobOutcome::Succeeded {
                 parameter_set: out.parameter_set,
                 summary: out.summary,
+                detections: stamp(&job_id, out.detections),
             },
             Ok(Err(PipelineError::Cancelled)) if releasing => {
                 tracing::info!("shutdown: job released to the queue");
@@ -222,6 +237,17 @@ impl Worker {
             }
         }
     }
+}
+
+/// Names the job in each pose's detection document (which job's points a
+/// pose shows).
+fn stamp(job_id: &str, mut detections: Vec<PoseDetection>) -> Vec<PoseDetection> {
+    for d in &mut detections {
+        if let Some(doc) = d.detection.as_object_mut() {
+            doc.insert("job_id".into(), serde_json::Value::from(job_id));
+        }
+    }
+    detections
 }
 
 fn panic_message(join: tokio::task::JoinError) -> String {

@@ -1,6 +1,7 @@
 //! Stage "calibrate_camera": intrinsics and every image's camera pose from
 //! the detected dots (method.md §2–4; refined mode by default, the paper's
-//! Tsai sequence when `refine_intrinsics` is false).
+//! Tsai sequence when `refine_intrinsics` is false, and only the poses when
+//! the session reuses an earlier calibration's intrinsics).
 
 use nalgebra::{Point2, Point3};
 use robocal_calib::camera::calibrate::{calibrate, CalibrationMode, CalibrationOptions};
@@ -9,7 +10,7 @@ use robocal_calib::camera::pose::PoseEstimate;
 use robocal_calib::camera::{CameraCalibration, Intrinsics};
 
 use super::measure::{GridPoint, Measured};
-use super::{PipelineError, PoseInput, Stage};
+use super::{FixedCamera, PipelineError, PoseInput, Stage};
 use crate::report::{CameraReport, CameraStd, ViewReport};
 use crate::schema::session::{CameraDoc, TargetDoc};
 
@@ -20,6 +21,10 @@ pub struct CameraStep {
     pub view_pose: Vec<usize>,
     /// Per view, `(board point mm, bias-corrected pixel)`.
     pub observations: Vec<Vec<(Point3<f64>, Point2<f64>)>>,
+    /// Per view, the `(row, col)` of each of `observations`.
+    pub grid: Vec<Vec<(u32, u32)>>,
+    /// `"{serial}/{version}"` whose intrinsics were held fixed, if any.
+    pub fixed_from: Option<String>,
 }
 
 impl CameraStep {
@@ -71,6 +76,7 @@ pub fn calibrate_camera(
     target: &TargetDoc,
     camera: &CameraDoc,
     refine_intrinsics: bool,
+    fixed: Option<&FixedCamera>,
 ) -> Result<CameraStep, PipelineError> {
     let size = ImageSize {
         width: camera.width,
@@ -84,11 +90,15 @@ pub fn calibrate_camera(
         }
     }
     let options = CalibrationOptions {
-        mode: if refine_intrinsics {
+        // Fixed intrinsics are honoured by the refined mode only (it fits
+        // the poses and the bias correction around them); paper mode would
+        // return its own sequence estimates.
+        mode: if refine_intrinsics || fixed.is_some() {
             CalibrationMode::Refined
         } else {
             CalibrationMode::Paper
         },
+        fixed_intrinsics: fixed.map(|f| f.intrinsics),
         dot_diameter_mm: Some(target.dot_diameter_mm),
         ..CalibrationOptions::default()
     };
@@ -107,10 +117,16 @@ pub fn calibrate_camera(
                 .collect()
         })
         .collect();
+    let grid = views
+        .iter()
+        .map(|view| view.dots.iter().map(|d| (d.row, d.col)).collect())
+        .collect();
     Ok(CameraStep {
         calibration,
         view_pose,
         observations,
+        grid,
+        fixed_from: fixed.map(|f| f.calibration_id.clone()),
     })
 }
 
@@ -125,6 +141,18 @@ fn describe_camera_error(message: &str, view_pose: &[usize], poses: &[PoseInput]
     format!(
         "{out} (check the images of the named poses, or add views at 20-45 degrees to the board)"
     )
+}
+
+/// How the intrinsics were obtained: `"fixed"` (from an earlier
+/// calibration), `"paper"` (the Tsai sequence only) or `"refined"`.
+pub fn camera_mode(step: &CameraStep) -> &'static str {
+    if step.fixed_from.is_some() {
+        "fixed"
+    } else if step.calibration.paper_mode {
+        "paper"
+    } else {
+        "refined"
+    }
 }
 
 /// The report's camera section; `final_intrinsics` may come from the joint
@@ -152,7 +180,8 @@ pub fn camera_report(
         })
         .collect();
     CameraReport {
-        mode: if c.paper_mode { "paper" } else { "refined" }.to_string(),
+        mode: camera_mode(step).to_string(),
+        camera_calibration_id: step.fixed_from.clone(),
         image_width: c.image_size.width,
         image_height: c.image_size.height,
         intrinsics: *final_intrinsics,

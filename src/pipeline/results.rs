@@ -7,7 +7,7 @@ use robocal_calib::kinematics::{CalibratedModel, Instrument, ParamKind, ParamLay
 use serde::{Deserialize, Serialize};
 use serde_json::json;
 
-use super::camera_stage::{camera_report, CameraStep};
+use super::camera_stage::{camera_mode, camera_report, CameraStep};
 use super::identify_stage::Identified;
 use super::measure::Measured;
 use super::PoseInput;
@@ -53,6 +53,14 @@ pub struct ParameterSetDoc {
     pub flange_to_tool: PoseOut,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub camera: Option<robocal_calib::camera::Intrinsics>,
+    /// How `camera` was obtained: "refined", "paper" (`refine_intrinsics:
+    /// false`) or "fixed" (reused from `camera_calibration_id`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub camera_mode: Option<String>,
+    /// The earlier calibration (`"{serial}/{version}"`) whose intrinsics
+    /// `camera` repeats, when they were held fixed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub camera_calibration_id: Option<String>,
     pub fixed: Vec<String>,
     pub parameters: Vec<ParameterReport>,
 }
@@ -164,6 +172,8 @@ pub fn parameter_set(ctx: &Context, id: &Identified) -> ParameterSetDoc {
             .as_ref()
             .map(|r| r.0)
             .or_else(|| ctx.camera.map(|c| c.intrinsics())),
+        camera_mode: ctx.camera.map(|c| camera_mode(c).to_string()),
+        camera_calibration_id: ctx.camera.and_then(|c| c.fixed_from.clone()),
         fixed: id.identification.identifiability.fixed.clone(),
         parameters: rows,
     }

@@ -88,7 +88,7 @@ pub fn intrinsics_table(page: &mut String, camera: &CameraReport) {
         page,
         "<table class=\"data\"><caption class=\"muted\">Intrinsics ({} model, {} x {} px)</caption>\
          <tr><th>parameter</th><th class=\"num\">value</th><th class=\"num\">std dev</th><th>unit</th></tr>",
-        escape_xml(&camera.mode),
+        escape_xml(&camera.mode_label()),
         camera.image_width,
         camera.image_height
     );

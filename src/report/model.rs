@@ -22,8 +22,13 @@ pub struct ViewReport {
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CameraReport {
-    /// "refined" (default) or "paper".
+    /// "refined" (default), "paper" (`refine_intrinsics: false`) or
+    /// "fixed" (reused from `camera_calibration_id`).
     pub mode: String,
+    /// The earlier calibration (`"{serial}/{version}"`) whose intrinsics
+    /// were held fixed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub camera_calibration_id: Option<String>,
     pub image_width: u32,
     pub image_height: u32,
     /// `fx, fy, cx, cy, k1, k2, p1, p2, k3`, flattened into the report.
@@ -35,6 +40,16 @@ pub struct CameraReport {
     pub reprojection_rms_px: f64,
     pub outliers_dropped: usize,
     pub views: Vec<ViewReport>,
+}
+
+impl CameraReport {
+    /// The mode as printed: "refined", "paper" or "fixed from IRB-001/3".
+    pub fn mode_label(&self) -> String {
+        match &self.camera_calibration_id {
+            Some(id) => format!("{} from {id}", self.mode),
+            None => self.mode.clone(),
+        }
+    }
 }
 
 /// The calibrated intrinsics.

@@ -189,6 +189,7 @@ fn sample_camera(rng: &mut SampleRng, poses: &[PoseReport]) -> CameraReport {
         .collect();
     CameraReport {
         mode: "refined".into(),
+        camera_calibration_id: None,
         image_width: IMAGE_WIDTH,
         image_height: IMAGE_HEIGHT,
         intrinsics: Intrinsics {

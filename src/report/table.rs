@@ -191,7 +191,7 @@ fn camera(out: &mut String, report: &Report) {
         out,
         &format!(
             "Camera ({} model, {} x {} px)",
-            printable(&c.mode),
+            printable(&c.mode_label()),
             c.image_width,
             c.image_height
         ),

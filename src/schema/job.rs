@@ -38,8 +38,14 @@ pub enum Validation {
 pub struct CalibrationOptions {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub measurement: Option<Measurement>,
+    /// `false`: the camera intrinsics are the paper's Tsai-sequence
+    /// estimates, not refined (`camera_mode: "paper"` in the parameter set);
+    /// the joint refinement, which would re-fit them, is then skipped.
     #[serde(default = "yes")]
     pub refine_intrinsics: bool,
+    /// The final fit of kinematics, hand–eye and intrinsics to the image
+    /// points; skipped when the intrinsics are held (`refine_intrinsics:
+    /// false`, or a session `camera_calibration_id`).
     #[serde(default = "yes")]
     pub joint_refinement: bool,
     #[serde(default = "val_set")]

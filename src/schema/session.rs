@@ -65,6 +65,11 @@ pub struct SessionBody {
     pub camera: Option<CameraDoc>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub flange_to_camera_guess: Option<PoseDoc>,
+    /// An earlier calibration whose camera intrinsics this session reuses
+    /// and holds fixed: a parameter set as `"{serial}/{version}"` (any
+    /// robot's: the camera may have moved), or `"{serial}/latest"`, resolved
+    /// to its version when the session is created. It must hold camera
+    /// intrinsics measured on images of this session's size.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub camera_calibration_id: Option<String>,
 }

@@ -105,12 +105,22 @@ pub trait JobStore: Send + Sync {
         stage: &str,
         progress: f64,
     ) -> StoreResult<LeaseStatus>;
-    /// Records the outcome (and its parameter set) if the worker still holds the lease.
+    /// Records the outcome (and its parameter set and pose detections) if
+    /// the worker still holds the lease.
     async fn finish_job(
         &self,
         job_id: &str,
         worker_id: &str,
         outcome: &JobOutcome,
+    ) -> StoreResult<LeaseStatus>;
+    /// Replaces the image points every pose of the job's session shows
+    /// (`detections`; poses not listed are cleared) in one transaction, if
+    /// the worker still holds the job's lease.
+    async fn record_detections(
+        &self,
+        job_id: &str,
+        worker_id: &str,
+        detections: &[PoseDetection],
     ) -> StoreResult<LeaseStatus>;
     /// Gives a running job back to the queue without counting the attempt (shutdown).
     async fn release_job(&self, job_id: &str, worker_id: &str) -> StoreResult<()>;

@@ -57,6 +57,7 @@ where
         image,
         points: json(row.get::<&str, _>("points"))?,
         measured: opt_json(row.get("measured"))?,
+        detection: opt_json(row.get("detection"))?,
         created_at: row.get("created_at"),
     })
 }

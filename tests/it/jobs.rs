@@ -239,6 +239,7 @@ async fn queue_reclaims_expired_leases_until_max_attempts() {
     let outcome = JobOutcome::Succeeded {
         parameter_set: None,
         summary: json!({}),
+        detections: vec![],
     };
     assert_eq!(
         s.finish_job(&job.id, "A", &outcome).await.unwrap(),
@@ -270,6 +271,7 @@ async fn queue_reclaims_expired_leases_until_max_attempts() {
             report: json!({"r": 2}),
         }),
         summary: json!({"ok": true}),
+        detections: vec![],
     };
     assert_eq!(
         s.finish_job(&job.id, "W", &outcome).await.unwrap(),

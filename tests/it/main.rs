@@ -1,7 +1,9 @@
 //! One integration-test binary: the real server over HTTP, module per area.
 
 pub(crate) mod auth;
+pub(crate) mod camera_reuse;
 pub(crate) mod e2e;
+pub(crate) mod e2e_points;
 pub(crate) mod hostile;
 pub(crate) mod hostile_uploads;
 pub(crate) mod idempotency;

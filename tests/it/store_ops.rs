@@ -190,6 +190,7 @@ async fn every_store_operation_round_trips() {
     let done = JobOutcome::Succeeded {
         parameter_set: Some(set(1)),
         summary: json!({"ok": true}),
+        detections: vec![],
     };
     assert_eq!(
         s.finish_job(&c1.id, "w1", &done).await.unwrap(),
@@ -405,6 +406,7 @@ async fn concurrent_claimers_take_each_job_exactly_once() {
                 let outcome = JobOutcome::Succeeded {
                     parameter_set: Some(set(0)),
                     summary: json!({}),
+                    detections: vec![],
                 };
                 assert_eq!(
                     s.finish_job(&job.id, &worker, &outcome).await.unwrap(),

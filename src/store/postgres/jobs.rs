@@ -6,6 +6,7 @@ use super::results::insert_parameter_set_tx;
 use super::{json, PgStore};
 use crate::domain::{
     new_id, now_rfc3339, ClaimedJob, JobOutcome, JobRecord, JobState, LeaseStatus, NewJob,
+    PoseDetection,
 };
 use crate::store::rows::job;
 use crate::store::{JobStore, StoreError, StoreResult};
@@ -179,7 +180,7 @@ impl JobStore for PgStore {
         // Row lock: a concurrent reclaim (lease expired) or cancel waits, and
         // if it won first this worker no longer matches and writes nothing.
         let held = sqlx::query(
-            "SELECT serial, attempts, max_attempts FROM jobs
+            "SELECT serial, session_id, attempts, max_attempts FROM jobs
              WHERE id = $1 AND worker_id = $2 AND state = 'running' FOR UPDATE",
         )
         .bind(job_id)
@@ -198,7 +199,12 @@ impl JobStore for PgStore {
             JobOutcome::Succeeded {
                 parameter_set,
                 summary,
+                detections,
             } => {
+                if !detections.is_empty() {
+                    let session_id: String = held.get("session_id");
+                    write_detections_tx(&mut tx, &session_id, detections).await?;
+                }
                 let mut result = json!({ "summary": summary });
                 if let Some(set) = parameter_set {
                     let version =
@@ -237,6 +243,32 @@ impl JobStore for PgStore {
         Ok(LeaseStatus::Held)
     }
 
+    async fn record_detections(
+        &self,
+        job_id: &str,
+        worker_id: &str,
+        detections: &[PoseDetection],
+    ) -> StoreResult<LeaseStatus> {
+        let mut tx = self.pool.begin().await?;
+        // Row lock, as in `finish_job`: a reclaim or cancel racing this
+        // write waits, or wins and this worker writes nothing.
+        let session_id: Option<String> = sqlx::query_scalar(
+            "SELECT session_id FROM jobs
+             WHERE id = $1 AND worker_id = $2 AND state = 'running' FOR UPDATE",
+        )
+        .bind(job_id)
+        .bind(worker_id)
+        .fetch_optional(&mut *tx)
+        .await?;
+        let Some(session_id) = session_id else {
+            drop(tx);
+            return self.lost_or_cancelled(job_id).await;
+        };
+        write_detections_tx(&mut tx, &session_id, detections).await?;
+        tx.commit().await?;
+        Ok(LeaseStatus::Held)
+    }
+
     async fn release_job(&self, job_id: &str, worker_id: &str) -> StoreResult<()> {
         sqlx::query(
             "UPDATE jobs SET state = 'queued', attempts = greatest(attempts - 1, 0),
@@ -266,6 +298,30 @@ impl JobStore for PgStore {
             })
             .collect())
     }
+}
+
+/// Replaces every pose's detection document of a session: the listed poses
+/// get theirs, the others none (a pose uploaded after the job loaded its
+/// inputs shows no stale points from an earlier job). Two jobs of one
+/// session writing at once serialise on the rows: each write is whole.
+async fn write_detections_tx(
+    tx: &mut sqlx::Transaction<'static, sqlx::Postgres>,
+    session_id: &str,
+    detections: &[PoseDetection],
+) -> StoreResult<()> {
+    sqlx::query("UPDATE poses SET detection = NULL WHERE session_id = $1")
+        .bind(session_id)
+        .execute(&mut **tx)
+        .await?;
+    for d in detections {
+        sqlx::query("UPDATE poses SET detection = $1 WHERE session_id = $2 AND id = $3")
+            .bind(d.detection.to_string())
+            .bind(session_id)
+            .bind(&d.pose_id)
+            .execute(&mut **tx)
+            .await?;
+    }
+    Ok(())
 }
 
 impl PgStore {

@@ -35,11 +35,18 @@ mod sessions;
 pub use listen::JOBS_CHANNEL;
 
 /// Migrations compiled into the binary, so a deployed binary needs no files.
-const MIGRATIONS: &[(i64, &str, &str)] = &[(
-    1,
-    "init",
-    include_str!("../../../migrations/postgres/0001_init.sql"),
-)];
+const MIGRATIONS: &[(i64, &str, &str)] = &[
+    (
+        1,
+        "init",
+        include_str!("../../../migrations/postgres/0001_init.sql"),
+    ),
+    (
+        2,
+        "pose detection",
+        include_str!("../../../migrations/postgres/0002_pose_detection.sql"),
+    ),
+];
 
 /// Connections per replica. Each worker holds at most one while it claims or
 /// finishes; HTTP handlers share the rest.

@@ -10,7 +10,7 @@ use crate::store::{SessionStore, StoreError, StoreResult};
 const SESSION_COLUMNS: &str = "s.id, s.serial, s.instrument, s.spec, s.created_at,
     (SELECT count(*) FROM poses p WHERE p.session_id = s.id) AS pose_count";
 const POSE_COLUMNS: &str =
-    "id, session_id, joints_deg, pose_set, image_meta, points, measured, created_at";
+    "id, session_id, joints_deg, pose_set, image_meta, points, measured, detection, created_at";
 
 #[async_trait]
 impl SessionStore for PgStore {
@@ -127,6 +127,7 @@ impl SessionStore for PgStore {
                 image: p.image.clone(),
                 points: p.points.clone(),
                 measured: p.measured.clone(),
+                detection: None,
                 created_at: now_rfc3339(),
             };
             sqlx::query(

@@ -6,6 +6,7 @@ use super::results::insert_parameter_set_tx;
 use super::{json, SqliteStore};
 use crate::domain::{
     new_id, now_rfc3339, ClaimedJob, JobOutcome, JobRecord, JobState, LeaseStatus, NewJob,
+    PoseDetection,
 };
 use crate::store::rows::job;
 use crate::store::{JobStore, StoreError, StoreResult};
@@ -153,7 +154,7 @@ impl JobStore for SqliteStore {
     ) -> StoreResult<LeaseStatus> {
         let mut tx = self.begin_immediate().await?;
         let held = sqlx::query(
-            "SELECT serial, attempts, max_attempts FROM jobs
+            "SELECT serial, session_id, attempts, max_attempts FROM jobs
              WHERE id = ? AND worker_id = ? AND state = 'running'",
         )
         .bind(job_id)
@@ -172,7 +173,12 @@ impl JobStore for SqliteStore {
             JobOutcome::Succeeded {
                 parameter_set,
                 summary,
+                detections,
             } => {
+                if !detections.is_empty() {
+                    let session_id: String = held.get("session_id");
+                    write_detections_tx(&mut tx, &session_id, detections).await?;
+                }
                 let mut result = json!({ "summary": summary });
                 if let Some(set) = parameter_set {
                     let version =
@@ -213,6 +219,29 @@ impl JobStore for SqliteStore {
         Ok(LeaseStatus::Held)
     }
 
+    async fn record_detections(
+        &self,
+        job_id: &str,
+        worker_id: &str,
+        detections: &[PoseDetection],
+    ) -> StoreResult<LeaseStatus> {
+        let mut tx = self.begin_immediate().await?;
+        let session_id: Option<String> = sqlx::query_scalar(
+            "SELECT session_id FROM jobs WHERE id = ? AND worker_id = ? AND state = 'running'",
+        )
+        .bind(job_id)
+        .bind(worker_id)
+        .fetch_optional(&mut *tx)
+        .await?;
+        let Some(session_id) = session_id else {
+            drop(tx);
+            return self.lost_or_cancelled(job_id).await;
+        };
+        write_detections_tx(&mut tx, &session_id, detections).await?;
+        tx.commit().await?;
+        Ok(LeaseStatus::Held)
+    }
+
     async fn release_job(&self, job_id: &str, worker_id: &str) -> StoreResult<()> {
         sqlx::query(
             "UPDATE jobs SET state = 'queued', attempts = max(attempts - 1, 0), worker_id = NULL,
@@ -242,6 +271,29 @@ impl JobStore for SqliteStore {
             })
             .collect())
     }
+}
+
+/// Replaces every pose's detection document of a session: the listed poses
+/// get theirs, the others none (a pose uploaded after the job loaded its
+/// inputs shows no stale points from an earlier job).
+async fn write_detections_tx(
+    tx: &mut sqlx::Transaction<'static, sqlx::Sqlite>,
+    session_id: &str,
+    detections: &[PoseDetection],
+) -> StoreResult<()> {
+    sqlx::query("UPDATE poses SET detection = NULL WHERE session_id = ?")
+        .bind(session_id)
+        .execute(&mut **tx)
+        .await?;
+    for d in detections {
+        sqlx::query("UPDATE poses SET detection = ? WHERE session_id = ? AND id = ?")
+            .bind(d.detection.to_string())
+            .bind(session_id)
+            .bind(&d.pose_id)
+            .execute(&mut **tx)
+            .await?;
+    }
+    Ok(())
 }
 
 impl SqliteStore {

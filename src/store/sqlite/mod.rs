@@ -26,11 +26,18 @@ mod robots;
 mod sessions;
 
 /// Migrations compiled into the binary, so a deployed binary needs no files.
-const MIGRATIONS: &[(i64, &str, &str)] = &[(
-    1,
-    "init",
-    include_str!("../../../migrations/sqlite/0001_init.sql"),
-)];
+const MIGRATIONS: &[(i64, &str, &str)] = &[
+    (
+        1,
+        "init",
+        include_str!("../../../migrations/sqlite/0001_init.sql"),
+    ),
+    (
+        2,
+        "pose detection",
+        include_str!("../../../migrations/sqlite/0002_pose_detection.sql"),
+    ),
+];
 
 /// How long a statement waits for a competing writer before giving up.
 const BUSY_TIMEOUT: Duration = Duration::from_secs(10);

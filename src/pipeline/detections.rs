@@ -1,0 +1,176 @@
+//! The image points a job measured on each camera pose, in the form stored
+//! on the pose rows and served by `GET /v1/sessions/{id}/poses/{pose_id}`
+//! (api.md "Measurement sessions"): the detected (or uploaded) dot centres
+//! right after the detect stage, and once the job succeeds each point's
+//! reprojection residual under the final model.
+//!
+//! A residual is observed minus predicted, in pixels; "observed" is the dot
+//! centre after the camera stage's perspective/distortion bias correction
+//! (method.md §4 **beyond**), which is what the fits use. The prediction is
+//! the calibrated robot model's (method.md §5: `target_to_camera` at the
+//! pose's joints) through the final intrinsics, the residual the joint
+//! refinement minimises (method.md §6 **beyond**). Position-only
+//! identification leaves the camera's orientation undetermined: no
+//! residuals then.
+
+use nalgebra::{Isometry3, Point3};
+use robocal_calib::camera::Intrinsics;
+use robocal_calib::kinematics::CalibratedModel;
+use serde::Serialize;
+
+use super::camera_stage::CameraStep;
+use super::measure::{GridPoint, Measured};
+use super::PoseInput;
+use crate::domain::PoseDetection;
+
+#[derive(Debug, Clone, Serialize)]
+struct PointDoc {
+    row: u32,
+    col: u32,
+    x: f64,
+    y: f64,
+    /// `[dx, dy]`, observed minus predicted (px); absent for points the
+    /// fits leave out (the origin marker).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    residual_px: Option<[f64; 2]>,
+    /// Dropped by the camera stage as an outlier.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    outlier: bool,
+}
+
+#[derive(Debug, Clone, Serialize)]
+struct PoseDoc {
+    /// `"image"` (detected) or `"image_points"` (as uploaded).
+    source: &'static str,
+    points: Vec<PointDoc>,
+    /// Why no point was detected on this pose's image.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    error: Option<String>,
+    /// RMS length of the residuals of this pose (px).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    residual_rms_px: Option<f64>,
+}
+
+fn source(pose: &PoseInput) -> &'static str {
+    if pose.image.is_some() {
+        "image"
+    } else {
+        "image_points"
+    }
+}
+
+fn plain(p: &GridPoint) -> PointDoc {
+    PointDoc {
+        row: p.row,
+        col: p.col,
+        x: p.x,
+        y: p.y,
+        residual_px: None,
+        outlier: false,
+    }
+}
+
+fn stored(pose: &PoseInput, doc: &PoseDoc) -> PoseDetection {
+    PoseDetection {
+        pose_id: pose.id.clone(),
+        detection: serde_json::to_value(doc).unwrap_or_default(),
+    }
+}
+
+/// The detect stage's outcome per pose, without residuals.
+pub fn detected(poses: &[PoseInput], measured: &Measured) -> Vec<PoseDetection> {
+    poses
+        .iter()
+        .zip(&measured.points)
+        .map(|(pose, points)| {
+            let doc = PoseDoc {
+                source: source(pose),
+                points: points.iter().flatten().map(plain).collect(),
+                error: points.is_none().then(|| failure(measured, &pose.id)),
+                residual_rms_px: None,
+            };
+            stored(pose, &doc)
+        })
+        .collect()
+}
+
+fn failure(measured: &Measured, pose_id: &str) -> String {
+    measured
+        .failures
+        .iter()
+        .find(|f| f.pose_id == pose_id)
+        .map_or_else(|| "no dots detected".to_string(), |f| f.reason.clone())
+}
+
+/// The final points: [`detected`] plus, when the job identified full poses
+/// (`full_pose`), every point's residual under the calibrated `model` and
+/// `intrinsics`.
+pub fn with_residuals(
+    poses: &[PoseInput],
+    measured: &Measured,
+    step: &CameraStep,
+    model: &CalibratedModel,
+    intrinsics: &Intrinsics,
+    full_pose: bool,
+) -> Vec<PoseDetection> {
+    let mut out = detected(poses, measured);
+    if !full_pose {
+        return out;
+    }
+    for (view, &i) in step.view_pose.iter().enumerate() {
+        let pose = &poses[i];
+        let joints_rad: Vec<f64> = pose.joints_deg.iter().map(|d| d.to_radians()).collect();
+        let Ok(target_to_camera) = model.world_to_tool(&joints_rad) else {
+            continue;
+        };
+        let outliers: Vec<(u32, u32)> = step
+            .calibration
+            .outliers
+            .iter()
+            .filter(|o| o.view == view)
+            .map(|o| (o.row, o.col))
+            .collect();
+        let residuals = residuals_of(step, view, &target_to_camera.inverse(), intrinsics);
+        let points = measured.points[i].iter().flatten().map(|p| PointDoc {
+            residual_px: residuals
+                .iter()
+                .find(|(grid, _)| *grid == (p.row, p.col))
+                .map(|(_, r)| *r),
+            outlier: outliers.contains(&(p.row, p.col)),
+            ..plain(p)
+        });
+        let points: Vec<PointDoc> = points.collect();
+        let used: Vec<[f64; 2]> = points
+            .iter()
+            .filter(|p| !p.outlier)
+            .filter_map(|p| p.residual_px)
+            .collect();
+        let rms = (used.iter().map(|[x, y]| x * x + y * y).sum::<f64>() / used.len().max(1) as f64)
+            .sqrt();
+        let doc = PoseDoc {
+            source: source(pose),
+            points,
+            error: None,
+            residual_rms_px: (!used.is_empty()).then_some(rms),
+        };
+        out[i] = stored(pose, &doc);
+    }
+    out
+}
+
+/// `((row, col), [dx, dy])` of every dot the camera stage used in `view`.
+fn residuals_of(
+    step: &CameraStep,
+    view: usize,
+    camera_to_target: &Isometry3<f64>,
+    intrinsics: &Intrinsics,
+) -> Vec<((u32, u32), [f64; 2])> {
+    step.grid[view]
+        .iter()
+        .zip(&step.observations[view])
+        .filter_map(|(&grid, (p, observed)): (_, &(Point3<f64>, _))| {
+            let predicted = intrinsics.project(&(camera_to_target * p))?;
+            Some((grid, [observed.x - predicted.x, observed.y - predicted.y]))
+        })
+        .collect()
+}

@@ -1,0 +1,133 @@
+//! Stage "validate": enough poses, joint vectors matching the robot, images
+//! decodable at the session camera's size, before any numerics run.
+
+use std::io::Cursor;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
+
+use serde_json::json;
+
+use super::{Input, PipelineError, Stage, MAX_DECODE_ALLOC_BYTES, MIN_CALIBRATION_POSES};
+use crate::schema::job::Validation;
+use crate::schema::session::{Instrument, PoseSet};
+use crate::schema::FieldError;
+
+/// The validation stage; returns a summary of what was checked.
+pub fn validate(
+    input: &Input,
+    progress: &dyn Fn(Stage, &str, f64),
+    cancel: &AtomicBool,
+) -> Result<serde_json::Value, PipelineError> {
+    let joint_count = input.robot.dof();
+    let mut errors = Vec::new();
+    let cal = input.poses.iter().filter(|p| p.set == PoseSet::Cal).count();
+    let val = input.poses.len() - cal;
+    if cal < MIN_CALIBRATION_POSES {
+        errors.push(FieldError::new(
+            "poses",
+            format!("{cal} calibration poses; at least {MIN_CALIBRATION_POSES} are needed"),
+        ));
+    }
+    if input.options.validation == Validation::Named(crate::schema::job::ValidationNamed::ValSet)
+        && val == 0
+        && !input.poses.is_empty()
+    {
+        errors.push(FieldError::new(
+            "validation",
+            "\"val_set\" needs poses uploaded with set \"val\" (or use holdout_fraction)",
+        ));
+    }
+    let camera = input.session.camera.as_ref();
+    let total = input.poses.len().max(1) as f64;
+    for (i, pose) in input.poses.iter().enumerate() {
+        if cancel.load(Ordering::Relaxed) {
+            return Err(PipelineError::Cancelled);
+        }
+        progress(
+            Stage::Validate,
+            &format!("pose {} of {}", i + 1, input.poses.len()),
+            i as f64 / total,
+        );
+        let field = |name: &str| format!("poses[{}].{name}", pose.id);
+        if pose.joints_deg.len() != joint_count {
+            errors.push(FieldError::new(
+                field("joints_deg"),
+                format!(
+                    "{} values for a {joint_count}-joint robot",
+                    pose.joints_deg.len()
+                ),
+            ));
+        }
+        match input.session.instrument {
+            Instrument::Camera => match &pose.image {
+                Some(bytes) => {
+                    if let Err(message) = check_image(bytes, camera.map(|c| (c.width, c.height))) {
+                        errors.push(FieldError::new(field("image"), message));
+                    }
+                }
+                None if pose.image_points.is_empty() => errors.push(FieldError::new(
+                    field("image"),
+                    "neither image nor image points",
+                )),
+                None => {}
+            },
+            Instrument::Tracker => {
+                if pose.measured_position_mm.is_none() {
+                    errors.push(FieldError::new(field("measured_position_mm"), "missing"));
+                }
+            }
+        }
+        if !input.test_stage_delay.is_zero() {
+            sleep_cancellable(input.test_stage_delay, cancel)?;
+        }
+    }
+    if !errors.is_empty() {
+        return Err(PipelineError::Invalid(errors));
+    }
+    Ok(json!({
+        "stage": Stage::Validate.as_str(),
+        "calibration_poses": cal,
+        "validation_poses": val,
+        "joints": joint_count,
+    }))
+}
+
+fn sleep_cancellable(total: Duration, cancel: &AtomicBool) -> Result<(), PipelineError> {
+    let step = Duration::from_millis(20);
+    let mut slept = Duration::ZERO;
+    while slept < total {
+        if cancel.load(Ordering::Relaxed) {
+            return Err(PipelineError::Cancelled);
+        }
+        std::thread::sleep(step.min(total - slept));
+        slept += step;
+    }
+    Ok(())
+}
+
+/// Decodes an image (PNG or JPEG only, bounded memory) and checks its size
+/// against the session camera's. Returns `(width, height)`.
+pub fn check_image(bytes: &[u8], expected: Option<(u32, u32)>) -> Result<(u32, u32), String> {
+    let format = image::guess_format(bytes).map_err(|_| "not a PNG or JPEG image".to_string())?;
+    if !matches!(format, image::ImageFormat::Png | image::ImageFormat::Jpeg) {
+        return Err(format!(
+            "{format:?} images are not accepted; send PNG or JPEG"
+        ));
+    }
+    let mut reader = image::ImageReader::with_format(Cursor::new(bytes), format);
+    let mut limits = image::Limits::default();
+    limits.max_alloc = Some(MAX_DECODE_ALLOC_BYTES);
+    limits.max_image_width = Some(crate::schema::session::MAX_IMAGE_SIDE);
+    limits.max_image_height = Some(crate::schema::session::MAX_IMAGE_SIDE);
+    reader.limits(limits);
+    let img = reader
+        .decode()
+        .map_err(|e| format!("cannot decode image: {e}"))?;
+    let (w, h) = (img.width(), img.height());
+    if let Some((ew, eh)) = expected {
+        if (w, h) != (ew, eh) {
+            return Err(format!("image is {w}x{h}, the session camera is {ew}x{eh}"));
+        }
+    }
+    Ok((w, h))
+}
