@@ -55,7 +55,9 @@ fn main() -> Result<(), String> {
                 .collect();
             let oracle =
                 oracle_accuracy(&spec, &campaign, &points, sigma_px).map_err(|e| e.to_string())?;
-            let before = report["before"]["norm"]["mean_mm"].as_f64().unwrap_or(f64::NAN);
+            let parsed: robocal::report::Report =
+                serde_json::from_value(report.clone()).map_err(|e| e.to_string())?;
+            let before = parsed.before.norm.mean_mm;
             println!(
                 "{preset} seed {seed}: before {before:.4} mm (measured) | pipeline {:.4} mm | oracle {:.4} mm | pipeline/oracle {:.3} | dot noise {sigma_px:.4} px",
                 joint.norm.mean_mm,

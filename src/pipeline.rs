@@ -263,10 +263,10 @@ pub fn run_observed(
         Some(p) => pose_of(p),
         None => robocal_calib::geometry::Pose::identity(),
     };
-    let joint_refinement = input.options.joint_refinement && !intrinsics_held;
     if camera.is_some() && input.options.joint_refinement && intrinsics_held {
         notes.push(
-            "Joint refinement skipped: it re-fits the camera intrinsics, which this calibration holds fixed.".to_string(),
+            "Joint refinement held the camera intrinsics fixed, as this calibration asks."
+                .to_string(),
         );
     }
     within(Stage::Identify, "kinematic identification", 0.0);
@@ -277,7 +277,8 @@ pub fn run_observed(
         guess,
         kind,
         input.options.validation,
-        joint_refinement,
+        input.options.joint_refinement,
+        intrinsics_held,
         &usable,
     )?;
     check_cancel()?;

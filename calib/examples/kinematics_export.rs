@@ -74,6 +74,7 @@ fn main() {
                     sigma_px: spec.pixel_sigma_px,
                     joint: JointNoise::Estimate,
                 },
+                false,
             )
             .unwrap(),
         )

@@ -119,6 +119,7 @@ pub fn identify_robot(
     kind: MeasurementKind,
     validation: Validation,
     joint_refinement: bool,
+    hold_intrinsics: bool,
     usable: &[usize],
 ) -> Result<Identified, PipelineError> {
     let instrument = if camera.is_some() {
@@ -173,6 +174,7 @@ pub fn identify_robot(
                 sigma_px,
                 joint: joint_noise,
             },
+            hold_intrinsics,
         )
         .map_err(|e| numerical(Stage::Identify, e))?;
         model = joint.model.clone();

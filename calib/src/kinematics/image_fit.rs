@@ -25,6 +25,8 @@ pub(super) struct ImageFit<'a> {
     pub(super) free: &'a [usize],
     pub(super) poses: &'a [ImagePose],
     pub(super) noise: ImageNoise,
+    /// The intrinsics are held at `intrinsics` (a reused camera).
+    pub(super) hold_intrinsics: bool,
 }
 
 /// One pose's linearisation: the tool-pose Jacobian's free and joint
@@ -40,6 +42,15 @@ struct PoseBlock {
 }
 
 impl ImageFit<'_> {
+    /// Intrinsic parameters in the unknowns: none when held.
+    pub(super) fn ni(&self) -> usize {
+        if self.hold_intrinsics {
+            0
+        } else {
+            INTRINSICS
+        }
+    }
+
     pub(super) fn joints(&self) -> usize {
         if self.noise.joint_sigma_rad() > 0.0 {
             self.layout.joints()
@@ -54,7 +65,10 @@ impl ImageFit<'_> {
             full[i] = x[k];
         }
         let nf = self.free.len();
-        let cam = apply_intrinsics(self.intrinsics, &x.as_slice()[nf..nf + INTRINSICS]);
+        let cam = match self.ni() {
+            0 => *self.intrinsics,
+            ni => apply_intrinsics(self.intrinsics, &x.as_slice()[nf..nf + ni]),
+        };
         (self.layout.apply(self.reference, &full), cam)
     }
 
@@ -62,7 +76,7 @@ impl ImageFit<'_> {
     fn pose_joints(&self, x: &DVector<f64>, k: usize) -> Vec<f64> {
         let q = &self.poses[k].joints_rad;
         let nj = self.joints();
-        let start = self.free.len() + INTRINSICS + k * nj;
+        let start = self.free.len() + self.ni() + k * nj;
         (0..q.len())
             .map(|j| q[j] + if j < nj { x[start + j] } else { 0.0 })
             .collect()
@@ -77,7 +91,7 @@ impl ImageFit<'_> {
     }
 
     pub(super) fn params(&self) -> usize {
-        self.free.len() + INTRINSICS + self.poses.len() * self.joints()
+        self.free.len() + self.ni() + self.poses.len() * self.joints()
     }
 
     /// Pose `k` linearised at `x`: `(target_to_camera, block)`; the dot
@@ -119,7 +133,7 @@ impl ImageFit<'_> {
 
     /// The prior residuals `e / sigma_q` of every joint correction.
     fn prior(&self, x: &DVector<f64>) -> DVector<f64> {
-        let start = self.free.len() + INTRINSICS;
+        let start = self.free.len() + self.ni();
         DVector::from_fn(self.poses.len() * self.joints(), |i, _| {
             x[start + i] / self.noise.joint_sigma_rad()
         })
@@ -148,7 +162,7 @@ impl LeastSquaresProblem for ImageFit<'_> {
     /// The dense Jacobian (the solver asks for it once, for its report).
     fn jacobian(&self, x: &DVector<f64>) -> Option<DMatrix<f64>> {
         let (model, cam) = self.unpack(x);
-        let (nf, nj) = (self.free.len(), self.joints());
+        let (nf, nj, ni) = (self.free.len(), self.joints(), self.ni());
         let mut jac = DMatrix::zeros(self.image_rows() + self.poses.len() * nj, self.params());
         let mut row = 0;
         for k in 0..self.poses.len() {
@@ -160,14 +174,15 @@ impl LeastSquaresProblem for ImageFit<'_> {
                 let jp = DMatrix::from_column_slice(2, 6, jp.as_slice());
                 jac.view_mut((row, 0), (2, nf))
                     .copy_from(&(&jp * &block.t_free));
-                jac.view_mut((row, nf), (2, INTRINSICS)).copy_from(&jc);
-                jac.view_mut((row, nf + INTRINSICS + k * nj), (2, nj))
+                jac.view_mut((row, nf), (2, ni))
+                    .copy_from(&jc.columns(0, ni));
+                jac.view_mut((row, nf + ni + k * nj), (2, nj))
                     .copy_from(&(&jp * &block.t_joint));
                 row += 2;
             }
         }
         for i in 0..self.poses.len() * nj {
-            jac[(row + i, nf + INTRINSICS + i)] = 1.0 / self.noise.joint_sigma_rad();
+            jac[(row + i, nf + ni + i)] = 1.0 / self.noise.joint_sigma_rad();
         }
         Some(jac)
     }
@@ -176,7 +191,7 @@ impl LeastSquaresProblem for ImageFit<'_> {
     fn solve_normal(&self, a: &DMatrix<f64>, g: &DVector<f64>) -> Option<DVector<f64>> {
         match self.joints() {
             0 => None,
-            nj => solve_arrow(a, g, self.free.len() + INTRINSICS, nj),
+            nj => solve_arrow(a, g, self.free.len() + self.ni(), nj),
         }
     }
 
@@ -187,7 +202,7 @@ impl LeastSquaresProblem for ImageFit<'_> {
         _residuals: &DVector<f64>,
     ) -> Option<(DMatrix<f64>, DVector<f64>)> {
         let (model, cam) = self.unpack(x);
-        let (nf, nj, n) = (self.free.len(), self.joints(), self.params());
+        let (nf, nj, ni, n) = (self.free.len(), self.joints(), self.ni(), self.params());
         let mut a = DMatrix::zeros(n, n);
         let mut g = DVector::zeros(n);
         let prior = self.prior(x);
@@ -200,28 +215,27 @@ impl LeastSquaresProblem for ImageFit<'_> {
                 v += m;
             };
             add(0, 0, &(b.t_free.transpose() * &hf));
-            let kc =
-                b.t_free.transpose() * DMatrix::from_column_slice(6, INTRINSICS, b.h_pc.as_slice());
+            // Held intrinsics (ni = 0) drop out of every block.
+            let h_pc = DMatrix::from_column_slice(6, INTRINSICS, b.h_pc.as_slice())
+                .columns(0, ni)
+                .into_owned();
+            let kc = b.t_free.transpose() * &h_pc;
             add(0, c0, &kc);
             add(c0, 0, &kc.transpose());
-            add(
-                c0,
-                c0,
-                &DMatrix::from_column_slice(INTRINSICS, INTRINSICS, b.h_cc.as_slice()),
-            );
+            let h_cc = DMatrix::from_column_slice(INTRINSICS, INTRINSICS, b.h_cc.as_slice());
+            add(c0, c0, &h_cc.view((0, 0), (ni, ni)).into_owned());
             let gp = DVector::from_column_slice(b.g_p.as_slice());
             let mut gk = g.rows_mut(0, nf);
             gk += b.t_free.transpose() * &gp;
-            let mut gc = g.rows_mut(c0, INTRINSICS);
-            gc += DVector::from_column_slice(b.g_c.as_slice());
+            let mut gc = g.rows_mut(c0, ni);
+            gc += DVector::from_column_slice(&b.g_c.as_slice()[..ni]);
             if nj > 0 {
-                let q0 = nf + INTRINSICS + k * nj;
+                let q0 = nf + ni + k * nj;
                 let hj = b.h_pp * &b.t_joint;
                 let kq = b.t_free.transpose() * &hj;
                 add(0, q0, &kq);
                 add(q0, 0, &kq.transpose());
-                let cq = DMatrix::from_column_slice(6, INTRINSICS, b.h_pc.as_slice()).transpose()
-                    * &b.t_joint;
+                let cq = h_pc.transpose() * &b.t_joint;
                 add(c0, q0, &cq);
                 add(q0, c0, &cq.transpose());
                 let prior_weight = self.noise.joint_sigma_rad().powi(-2);

@@ -93,7 +93,8 @@ const MAX_LOG_STEP: f64 = std::f64::consts::LN_10;
 
 /// Refine `start` (usually the pose-level identification) and `intrinsics`
 /// (the camera step's) on the image points. `free` are the layout indices
-/// identified (the identifiability analysis's); `noise` weighs the data.
+/// identified (the identifiability analysis's); `noise` weighs the data;
+/// `hold_intrinsics` keeps `intrinsics` as they are (a reused camera).
 ///
 /// With [`JointNoise::Estimate`] the dot noise and the joint noise are
 /// estimated with the fit (Förstner's variance-component estimation, two
@@ -105,6 +106,7 @@ pub fn joint_refine(
     poses: &[ImagePose],
     free: &[usize],
     noise: ImageNoise,
+    hold_intrinsics: bool,
 ) -> Result<JointRefinement, IdentifyError> {
     if poses.is_empty() {
         return Err(IdentifyError::NoPoses);
@@ -126,7 +128,7 @@ pub fn joint_refine(
         JointNoise::Known { sigma_rad } => sigma_rad.abs(),
         JointNoise::Estimate => JOINT_SIGMA_START_RAD,
     };
-    let kinematic = free.len() + INTRINSICS;
+    let kinematic = free.len() + if hold_intrinsics { 0 } else { INTRINSICS };
     let mut x0: Option<DVector<f64>> = None;
     let mut previous: Option<(f64, f64)> = None;
     let mut round = 0;
@@ -144,6 +146,7 @@ pub fn joint_refine(
                     sigma_rad: joint_sigma_rad,
                 },
             },
+            hold_intrinsics,
         };
         let n = problem.params();
         let x_start = match x0.take() {
@@ -204,7 +207,7 @@ impl Solution {
             intrinsics: &intrinsics,
             ..*problem
         };
-        let kinematic = problem.free.len() + INTRINSICS;
+        let kinematic = problem.free.len() + problem.ni();
         let x_at = DVector::from_fn(
             at.params(),
             |i, _| {
@@ -218,7 +221,7 @@ impl Solution {
         let (normal, _) = at
             .normal_equations(&x_at, &report.residuals)
             .ok_or(IdentifyError::NoPoses)?;
-        let kinematic = problem.free.len() + INTRINSICS;
+        let kinematic = problem.free.len() + problem.ni();
         let inverse = match problem.joints() {
             0 => None,
             nj => invert_arrow(&normal, kinematic, nj),
@@ -246,7 +249,7 @@ impl Solution {
     /// Förstner's factors `(lambda_px, lambda_q)`: each group's weighted
     /// residual sum over its redundancy.
     fn variance_factors(&self, problem: &ImageFit, report: &LmReport) -> (f64, f64) {
-        let kinematic = problem.free.len() + INTRINSICS;
+        let kinematic = problem.free.len() + problem.ni();
         let n = problem.params();
         let rows = problem.image_rows();
         let prior_weight = problem.noise.joint_sigma_rad().powi(-2);
@@ -267,7 +270,7 @@ impl Solution {
     ) -> JointRefinement {
         let free = problem.free;
         let nj = problem.joints();
-        let kinematic = free.len() + INTRINSICS;
+        let kinematic = free.len() + problem.ni();
         let joint_corrections_rad = (0..problem.poses.len())
             .map(|k| report.x.as_slice()[kinematic + k * nj..kinematic + (k + 1) * nj].to_vec())
             .filter(|c| !c.is_empty())
@@ -284,7 +287,13 @@ impl Solution {
             model: self.model,
             intrinsics: self.intrinsics,
             std_devs,
-            intrinsics_std: std::array::from_fn(|k| sd(free.len() + k)),
+            intrinsics_std: std::array::from_fn(|k| {
+                if k < problem.ni() {
+                    sd(free.len() + k)
+                } else {
+                    0.0
+                }
+            }),
             reprojection_rms_px: (image_cost / rows as f64).sqrt() * problem.noise.sigma_px,
             sigma_px: problem.noise.sigma_px,
             joint_sigma_rad: problem.noise.joint_sigma_rad(),

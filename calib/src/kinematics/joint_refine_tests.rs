@@ -43,6 +43,7 @@ fn jacobian_matches_finite_differences_and_exact_points_are_fitted() {
             sigma_px: 0.5,
             joint: JointNoise::Known { sigma_rad: 1e-5 },
         },
+        hold_intrinsics: false,
     };
     let x = DVector::from_fn(
         fit.params(),
@@ -55,15 +56,30 @@ fn jacobian_matches_finite_differences_and_exact_points_are_fitted() {
         "{}",
         (&analytic - &fd).amax()
     );
+    // The assembled normal equations are J^T J and J^T r, with and without
+    // the intrinsics among the unknowns.
+    for hold_intrinsics in [false, true] {
+        let fit = ImageFit {
+            hold_intrinsics,
+            ..fit
+        };
+        let x = DVector::from_fn(fit.params(), |i, _| 1e-4 * ((i % 3) as f64 - 1.0));
+        let j = fit.jacobian(&x).unwrap();
+        let r = fit.residuals(&x).unwrap();
+        let (a, g) = fit.normal_equations(&x, &r).unwrap();
+        let (dense_a, dense_g) = (j.transpose() * &j, j.transpose() * &r);
+        assert!((&a - &dense_a).amax() < 1e-9 * dense_a.amax());
+        assert!((&g - &dense_g).amax() < 1e-9 * (1.0 + dense_g.amax()));
+    }
     // Start off the truth (intrinsics and kinematics), recover it.
     let mut cam = c.truth.intrinsics;
     cam.fx *= 1.001;
     cam.cx += 2.0;
     let mut start = truth.clone();
     start.robot.joints[2].a_mm += 0.5;
-    let r = joint_refine(&start, &cam, &poses, &free, noise(0.1)).unwrap();
+    let r = joint_refine(&start, &cam, &poses, &free, noise(0.1), false).unwrap();
     assert!(r.reprojection_rms_px < 1e-6, "{}", r.reprojection_rms_px);
     assert!((r.intrinsics.fx - c.truth.intrinsics.fx).abs() < 1e-4);
     assert!((r.model.robot.joints[2].a_mm - truth.robot.joints[2].a_mm).abs() < 1e-6);
-    assert!(joint_refine(&start, &cam, &[], &free, noise(0.1)).is_err());
+    assert!(joint_refine(&start, &cam, &[], &free, noise(0.1), false).is_err());
 }

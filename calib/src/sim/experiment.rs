@@ -16,9 +16,9 @@ use rand::{rngs::StdRng, SeedableRng};
 use rand_distr::{Distribution, StandardNormal};
 
 use super::camera_step::camera_step_precision;
-use super::oracle::{oracle_measurements, truth_measurements};
 use super::campaign::{compliance, simulate_campaign, Campaign, CampaignSpec, SimError};
 use super::campaign_io::PoseSet;
+use super::oracle::{oracle_measurements, truth_measurements};
 use crate::camera::model::Intrinsics;
 use crate::camera::pose::estimate_pose;
 use crate::geometry::{perturb_left, Pose};
@@ -242,7 +242,7 @@ pub fn run_experiment(spec: &CampaignSpec) -> Result<ExperimentResult, Experimen
         sigma_px: sigma,
         joint: JointNoise::Estimate,
     };
-    let joint = joint_refine(&weighted_id.model, &cam_step, &images, &free, noise)?;
+    let joint = joint_refine(&weighted_id.model, &cam_step, &images, &free, noise, false)?;
     let joint_refine_seconds = t1.elapsed().as_secs_f64();
 
     // Truth in the identified parameterisation: the redundant terms of the

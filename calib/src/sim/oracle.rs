@@ -91,7 +91,12 @@ pub fn oracle_accuracy(
             sigma_rad: spec.encoder_sigma_deg.to_radians(),
         },
     };
-    let id = identify(&start_model(spec, &data)?, Instrument::Camera, &data, options)?;
+    let id = identify(
+        &start_model(spec, &data)?,
+        Instrument::Camera,
+        &data,
+        options,
+    )?;
     let val = truth_measurements(campaign, PoseSet::Val);
     Ok(validate(&id.model, &val)?.0)
 }
