@@ -263,11 +263,18 @@ pub fn run_observed(
         Some(p) => pose_of(p),
         None => robocal_calib::geometry::Pose::identity(),
     };
+    // Paper mode keeps the paper's pipeline: its Tsai intrinsics are not
+    // the joint refinement's camera model, so refining on the image points
+    // with them held fits the model error instead (tens of px). A reused
+    // camera is held fixed.
+    let paper_camera = !input.options.refine_intrinsics && input.fixed_camera.is_none();
+    let joint_refinement = input.options.joint_refinement && !paper_camera;
     if camera.is_some() && input.options.joint_refinement && intrinsics_held {
-        notes.push(
-            "Joint refinement held the camera intrinsics fixed, as this calibration asks."
-                .to_string(),
-        );
+        notes.push(if paper_camera {
+            "Joint refinement skipped: paper mode (refine_intrinsics: false) keeps the paper's pose-level identification.".to_string()
+        } else {
+            "Joint refinement held the camera intrinsics fixed at the reused calibration's.".to_string()
+        });
     }
     within(Stage::Identify, "kinematic identification", 0.0);
     let identified = identify_stage::identify_robot(
@@ -277,7 +284,7 @@ pub fn run_observed(
         guess,
         kind,
         input.options.validation,
-        input.options.joint_refinement,
+        joint_refinement,
         intrinsics_held,
         &usable,
     )?;

@@ -139,16 +139,13 @@ pub fn identify_robot(
     };
     start.world_to_base =
         initial_world_to_base(&start, &cal_data).map_err(|e| numerical(Stage::Identify, e))?;
-    // Camera poses carry the camera step's covariance, so the joint noise
-    // can be estimated from the scatter beyond it; a tracker's assumed
-    // sigma cannot separate the two.
-    let joint_noise = match instrument {
-        Instrument::Camera => JointNoise::Estimate,
-        Instrument::Tracker => JointNoise::default(),
-    };
+    // The pose-level fit takes the measurement covariances as they are; the
+    // joint noise is estimated where the data can separate it from the dot
+    // noise: in the joint refinement on the image points (a paper-mode
+    // camera's biased poses would otherwise be read as joint noise).
     let options = IdentifyOptions {
         mode: IdentifyMode::Weighted,
-        joint_noise,
+        joint_noise: JointNoise::default(),
     };
     let identification = identify(&start, instrument, &cal_data, options)
         .map_err(|e| numerical(Stage::Identify, e))?;
@@ -172,7 +169,7 @@ pub fn identify_robot(
             &identification.identifiability.free,
             ImageNoise {
                 sigma_px,
-                joint: joint_noise,
+                joint: JointNoise::Estimate,
             },
             hold_intrinsics,
         )

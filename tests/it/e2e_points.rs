@@ -98,7 +98,8 @@ fn check_points(
     for (i, pose) in poses.iter().enumerate() {
         assert_eq!(pose["source"], "image");
         assert_eq!(pose["detection"]["job_id"], job, "{pose}");
-        assert!(pose["detection"]["residual_rms_px"].as_f64().unwrap() < 2.0 * max_rms_px);
+        let pose_rms = pose["detection"]["residual_rms_px"].as_f64().unwrap();
+        assert!(pose_rms < 2.0 * max_rms_px, "pose {i}: {pose_rms} px");
         let points = points_of(pose);
         assert_eq!(points.len(), DOTS, "pose {i}");
         assert_eq!(pose["detected_points"], DOTS);

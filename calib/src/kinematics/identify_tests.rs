@@ -149,3 +149,70 @@ fn holdout_takes_every_kth_pose() {
     assert_eq!(cal.len(), 7);
     assert_eq!(holdout_split(4, 0.0).1.len(), 0);
 }
+
+/// Joint noise added to the recorded joints is estimated from the
+/// pose-level residuals (variance components) when the measurement
+/// covariances are right.
+#[test]
+fn joint_noise_is_estimated_from_the_pose_residuals() {
+    const JOINT_SIGMA_RAD: f64 = 2e-4;
+    const POSITION_SIGMA_MM: f64 = 0.01;
+    const ROTATION_SIGMA_RAD: f64 = 2e-5;
+    const REL_TOL: f64 = 0.35;
+    let (_, start, mut data) = setup(Instrument::Camera);
+    let mut rng = StdRng::seed_from_u64(5);
+    let mut gauss = |s: f64| -> f64 {
+        // Box–Muller from two uniforms.
+        let (u, v): (f64, f64) = (rng.random_range(1e-12..1.0), rng.random_range(0.0..1.0));
+        s * (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
+    };
+    let cov = Matrix6::from_diagonal(&nalgebra::Vector6::new(
+        POSITION_SIGMA_MM.powi(2),
+        POSITION_SIGMA_MM.powi(2),
+        POSITION_SIGMA_MM.powi(2),
+        ROTATION_SIGMA_RAD.powi(2),
+        ROTATION_SIGMA_RAD.powi(2),
+        ROTATION_SIGMA_RAD.powi(2),
+    ));
+    for m in &mut data {
+        for q in &mut m.joints_rad {
+            *q += gauss(JOINT_SIGMA_RAD);
+        }
+        if let Observed::Pose {
+            world_to_tool,
+            covariance,
+        } = &mut m.observed
+        {
+            let d = nalgebra::Vector6::new(
+                gauss(POSITION_SIGMA_MM),
+                gauss(POSITION_SIGMA_MM),
+                gauss(POSITION_SIGMA_MM),
+                gauss(ROTATION_SIGMA_RAD),
+                gauss(ROTATION_SIGMA_RAD),
+                gauss(ROTATION_SIGMA_RAD),
+            );
+            *world_to_tool = crate::geometry::perturb_left(world_to_tool, &d);
+            *covariance = Some(cov);
+        }
+    }
+    let options = IdentifyOptions {
+        mode: IdentifyMode::Weighted,
+        joint_noise: JointNoise::Estimate,
+    };
+    let id = identify(&start, Instrument::Camera, &data, options).unwrap();
+    let rel = id.joint_sigma_rad / JOINT_SIGMA_RAD - 1.0;
+    assert!(
+        rel.abs() < REL_TOL,
+        "estimated {:e} rad",
+        id.joint_sigma_rad
+    );
+    // Told there is none, the fit leaves it at zero.
+    let id = identify(
+        &start,
+        Instrument::Camera,
+        &data,
+        IdentifyMode::Weighted.into(),
+    )
+    .unwrap();
+    assert_eq!(id.joint_sigma_rad, 0.0);
+}

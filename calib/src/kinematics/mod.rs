@@ -9,6 +9,7 @@ pub mod jacobian;
 pub mod joint_refine;
 pub mod model;
 pub mod params;
+mod pose_fit;
 pub mod presets;
 pub mod projection;
 pub mod weights;

@@ -216,7 +216,8 @@ pub fn run_experiment(spec: &CampaignSpec) -> Result<ExperimentResult, Experimen
     } = prepare(spec)?;
     let sigma = spec.pixel_sigma_px;
     // Every method is told the encoder noise, except the one the service
-    // runs (two-step weighted, then joint refinement), which estimates it.
+    // runs (two-step weighted, then the joint refinement, which estimates
+    // it; the pose-level fit takes the covariances as they are).
     let known = JointNoise::Known {
         sigma_rad: spec.encoder_sigma_deg.to_radians(),
     };
@@ -234,7 +235,7 @@ pub fn run_experiment(spec: &CampaignSpec) -> Result<ExperimentResult, Experimen
     let plain_id = run(&plain, IdentifyMode::Weighted)?;
     let paper_id = run(&plain, IdentifyMode::Paper)?;
     let t0 = Instant::now();
-    let weighted_id = run_with(&weighted, IdentifyMode::Weighted, JointNoise::Estimate)?;
+    let weighted_id = run_with(&weighted, IdentifyMode::Weighted, JointNoise::default())?;
     let identify_seconds = t0.elapsed().as_secs_f64();
     let free = weighted_id.identifiability.free.clone();
     let t1 = Instant::now();

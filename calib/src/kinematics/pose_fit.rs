@@ -1,0 +1,112 @@
+//! The pose-level identification problem (method.md §6): each pose's
+//! measured-minus-predicted tool pose (6 rows: mm and small-angle rad) or
+//! position (3 rows), whitened by its weights ([`super::weights`]), over the
+//! free entries of the parameter vector.
+
+use nalgebra::{DMatrix, DVector};
+
+use super::identify::{IdentifyError, Measurement, Observed};
+use super::jacobian::tool_pose_jacobian;
+use super::params::{CalibratedModel, ParamLayout};
+use crate::geometry::pose_error;
+use crate::solver::LeastSquaresProblem;
+
+/// Whitened residuals `W (measured - predicted)` over the free parameters.
+pub(super) struct PoseFit<'a> {
+    pub(super) layout: &'a ParamLayout,
+    pub(super) reference: &'a CalibratedModel,
+    pub(super) free: &'a [usize],
+    pub(super) data: &'a [Measurement],
+    pub(super) whitening: &'a [DMatrix<f64>],
+}
+
+impl PoseFit<'_> {
+    pub(super) fn full(&self, x: &DVector<f64>) -> DVector<f64> {
+        full_vector(self.layout, self.free, x)
+    }
+
+    fn rows(&self) -> usize {
+        self.layout.instrument.rows()
+    }
+
+    /// Residual and full-column Jacobian at model `m` (x = 0 around it).
+    pub(super) fn evaluate(
+        &self,
+        m: &CalibratedModel,
+        with_jac: bool,
+    ) -> Option<(DVector<f64>, DMatrix<f64>)> {
+        let rows = self.rows();
+        let cols = if with_jac { self.layout.len() } else { 0 };
+        let mut r = DVector::zeros(rows * self.data.len());
+        let mut jac = DMatrix::zeros(rows * self.data.len(), cols);
+        for (k, (meas, w)) in self.data.iter().zip(self.whitening).enumerate() {
+            let (pred, j) = if with_jac {
+                tool_pose_jacobian(self.layout, m, &meas.joints_rad).ok()?
+            } else {
+                (
+                    m.world_to_tool(&meas.joints_rad).ok()?,
+                    DMatrix::zeros(0, 0),
+                )
+            };
+            let e = match &meas.observed {
+                Observed::Pose { world_to_tool, .. } => pose_error(world_to_tool, &pred),
+                Observed::Position { position_mm, .. } => {
+                    let d = position_mm - pred.translation.vector;
+                    nalgebra::Vector6::new(d.x, d.y, d.z, 0.0, 0.0, 0.0)
+                }
+            };
+            r.rows_mut(k * rows, rows).copy_from(&(w * e.rows(0, rows)));
+            if with_jac {
+                jac.rows_mut(k * rows, rows)
+                    .copy_from(&(-(w * j.rows(0, rows))));
+            }
+        }
+        Some((r, jac))
+    }
+}
+
+impl LeastSquaresProblem for PoseFit<'_> {
+    fn residuals(&self, x: &DVector<f64>) -> Option<DVector<f64>> {
+        let m = self.layout.apply(self.reference, &self.full(x));
+        Some(self.evaluate(&m, false)?.0)
+    }
+
+    fn jacobian(&self, x: &DVector<f64>) -> Option<DMatrix<f64>> {
+        let m = self.layout.apply(self.reference, &self.full(x));
+        let (_, jac) = self.evaluate(&m, true)?;
+        Some(DMatrix::from_fn(jac.nrows(), self.free.len(), |r, c| {
+            jac[(r, self.free[c])]
+        }))
+    }
+}
+
+/// The layout-length vector with `x` at the `free` indices, zero elsewhere.
+pub(super) fn full_vector(layout: &ParamLayout, free: &[usize], x: &DVector<f64>) -> DVector<f64> {
+    let mut full = DVector::zeros(layout.len());
+    for (k, &i) in free.iter().enumerate() {
+        full[i] = x[k];
+    }
+    full
+}
+
+/// Measured minus predicted tool pose (or position) of `model` at every
+/// pose, unweighted, as `rows x 1` columns.
+pub(super) fn unweighted_residuals(
+    layout: &ParamLayout,
+    model: &CalibratedModel,
+    data: &[Measurement],
+) -> Result<Vec<DMatrix<f64>>, IdentifyError> {
+    let rows = layout.instrument.rows();
+    let identity = vec![DMatrix::identity(rows, rows); data.len()];
+    let probe = PoseFit {
+        layout,
+        reference: model,
+        free: &[],
+        data,
+        whitening: &identity,
+    };
+    let (r, _) = probe.evaluate(model, false).ok_or(IdentifyError::NoPoses)?;
+    Ok((0..data.len())
+        .map(|k| DMatrix::from_column_slice(rows, 1, r.rows(k * rows, rows).as_slice()))
+        .collect())
+}
