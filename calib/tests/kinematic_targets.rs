@@ -82,6 +82,8 @@ fn puma560_campaign_meets_accuracy_targets() {
 /// Relative tolerance on the estimated joint noise (one campaign's
 /// variance component has a few tens of percent of scatter).
 const JOINT_NOISE_REL_TOL: f64 = 0.4;
+/// Largest joint noise estimated when the campaign has none (deg).
+const NO_JOINT_NOISE_DEG: f64 = 6e-5;
 
 /// With the campaign's encoder noise (1e-4 deg) estimated from the data by
 /// the joint refinement's variance components, every identified parameter
@@ -108,10 +110,9 @@ fn identified_parameters_lie_within_three_sigma_of_truth() {
                 let rel = (estimated_deg / encoder_sigma_deg - 1.0).abs();
                 assert!(rel < JOINT_NOISE_REL_TOL, "{preset}: {estimated_deg:e} deg");
             } else {
-                assert!(
-                    estimated_deg < JOINT_NOISE_REL_TOL * 1e-4,
-                    "{estimated_deg:e}"
-                );
+                // Below ~5e-5 deg these campaigns cannot tell joint noise
+                // from none (20-campaign mean 2e-5 deg, BENCHMARKS.md).
+                assert!(estimated_deg < NO_JOINT_NOISE_DEG, "{estimated_deg:e}");
             }
         }
     }
