@@ -120,6 +120,11 @@ fn ur5_grid_calibration_matches_a_plain_geometric_fit() {
         "the controller's UR5 is ~2.5 mm off"
     );
     assert!(before.norm.mean_mm > 3.0 * after.norm.mean_mm);
+    assert_ne!(
+        id.termination,
+        robocal_calib::solver::Termination::MaxIterations,
+        "the fit converges"
+    );
     assert!(
         after.norm.mean_mm <= 0.105,
         "plain geometric fit reaches ~0.10 mm"

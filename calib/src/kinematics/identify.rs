@@ -115,6 +115,11 @@ impl IdentifyOptions {
     }
 }
 
+/// Iteration cap of the default fit: ill-conditioned tracker campaigns
+/// (the UR5 grid, condition number ~6e4) creep for ~300 iterations before
+/// the cost settles; each costs milliseconds.
+const MAX_ITERATIONS: usize = 1000;
+
 /// Rounds of (fit, re-estimate the joint noise) with [`JointNoise::Estimate`].
 const JOINT_NOISE_ROUNDS: usize = 2;
 
@@ -164,7 +169,10 @@ pub struct Identification {
 fn options(mode: IdentifyMode) -> LmOptions {
     match mode {
         IdentifyMode::Paper => LmOptions::paper(),
-        IdentifyMode::Weighted => LmOptions::default(),
+        IdentifyMode::Weighted => LmOptions {
+            max_iterations: MAX_ITERATIONS,
+            ..LmOptions::default()
+        },
     }
 }
 
