@@ -22,7 +22,7 @@ impl Elimination {
     /// positive definite.
     fn new(a: &DMatrix<f64>, head: usize, block: usize) -> Option<Self> {
         let n = a.nrows();
-        if a.ncols() != n || head > n || block == 0 || (n - head) % block != 0 {
+        if a.ncols() != n || head > n || block == 0 || !(n - head).is_multiple_of(block) {
             return None;
         }
         let blocks = (n - head) / block;
