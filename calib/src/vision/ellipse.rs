@@ -4,11 +4,19 @@
 //! surrounding background levels, sampled where it crosses pixel rows and
 //! columns (linear interpolation between neighbouring pixels). A conic is
 //! fitted to those points by linear least squares with the Euclidean-invariant
-//! constraint `A + C = 1`. The fitted ellipse is exposed per dot: its centre
+//! constraint `A + C = 1`. Uneven illumination (vignetting, a lamp's falloff)
+//! tilts the grey levels across a dot; with a blurred edge that moves the
+//! half-level contour towards the darker side on both flanks, shifting the
+//! centre by ~`sigma_blur * radius * gradient` (0.005 px on a 20 px dot at a
+//! 1280x1024 sensor's edge with 25 % corner vignetting — as large as the
+//! centre's random noise, and the same in every image). The illumination is
+//! therefore fitted as a plane over the background ring and divided out
+//! (it multiplies the dot's and the board's reflectance alike) before the
+//! contour is traced. The fitted ellipse is exposed per dot: its centre
 //! is the image of the dot's centre only up to the perspective bias, which
 //! `bias.rs` (or the camera model) corrects.
 
-use nalgebra::{Matrix2, Matrix5, Vector2, Vector5};
+use nalgebra::{Matrix2, Matrix3, Matrix5, Vector2, Vector3, Vector5};
 use serde::{Deserialize, Serialize};
 
 use super::blobs::Blob;
@@ -31,6 +39,9 @@ pub const MIN_CONTRAST_GREY: f32 = 12.0;
 /// (real edges of big dots carry print, paper and interlace texture).
 pub const MAX_FIT_RESIDUAL_PX: f64 = 0.6;
 pub const MAX_FIT_RESIDUAL_FRACTION: f64 = 0.03;
+/// Smallest relative illumination the gradient correction divides by (a
+/// wild plane fit must not blow the levels up).
+const MIN_SHADE: f64 = 0.5;
 /// Number of fit passes (each re-centres the edge annulus on the last fit).
 const FIT_PASSES: usize = 2;
 
@@ -133,7 +144,7 @@ pub fn refine_dot(img: &GrayImage, blob: &Blob) -> Result<RefinedDot, Rejection>
     let x1 = ((blob.x_max as f64 + margin).ceil() as usize).min(img.width - 1);
     let y1 = ((blob.y_max as f64 + margin).ceil() as usize).min(img.height - 1);
 
-    let (mut inner, mut ring) = (Vec::new(), Vec::new());
+    let (mut inner, mut ring, mut ring_at) = (Vec::new(), Vec::new(), Vec::new());
     let (qa, qb, qc) = ell.quadratic_form();
     for y in y0..=y1 {
         let dy = y as f64 - ell.cy;
@@ -144,6 +155,7 @@ pub fn refine_dot(img: &GrayImage, blob: &Blob) -> Result<RefinedDot, Rejection>
                 inner.push(img.at(x, y));
             } else if q > RING_INNER_RADIUS.powi(2) && q < RING_OUTER_RADIUS.powi(2) {
                 ring.push(img.at(x, y));
+                ring_at.push((dx, dy, img.at(x, y)));
             }
         }
     }
@@ -157,6 +169,13 @@ pub fn refine_dot(img: &GrayImage, blob: &Blob) -> Result<RefinedDot, Rejection>
         return Err(Rejection::LowContrast);
     }
     let mid = 0.5 * (bg + fg);
+    // Grey levels with the illumination's tilt across the dot divided out.
+    let (gx, gy) = illumination_gradient(&ring_at);
+    let (ox, oy) = (ell.cx, ell.cy);
+    let level = |x: usize, y: usize| {
+        let shade = 1.0 + gx * (x as f64 - ox) + gy * (y as f64 - oy);
+        (img.at(x, y) as f64 / shade.max(MIN_SHADE)) as f32
+    };
 
     let mut points: Vec<Vector2<f64>> = Vec::new();
     let mut fit = None;
@@ -172,9 +191,9 @@ pub fn refine_dot(img: &GrayImage, blob: &Blob) -> Result<RefinedDot, Rejection>
         };
         for y in y0..=y1 {
             for x in x0..=x1 {
-                let a = img.at(x, y);
+                let a = level(x, y);
                 if x < x1 {
-                    let b = img.at(x + 1, y);
+                    let b = level(x + 1, y);
                     if (a - mid) * (b - mid) < 0.0 {
                         let q = q_at(x as f64 + 0.5, y as f64);
                         if q > qmin && q < qmax {
@@ -185,7 +204,7 @@ pub fn refine_dot(img: &GrayImage, blob: &Blob) -> Result<RefinedDot, Rejection>
                     }
                 }
                 if y < y1 {
-                    let b = img.at(x, y + 1);
+                    let b = level(x, y + 1);
                     if (a - mid) * (b - mid) < 0.0 {
                         let q = q_at(x as f64, y as f64 + 0.5);
                         if q > qmin && q < qmax {
@@ -219,6 +238,23 @@ pub fn refine_dot(img: &GrayImage, blob: &Blob) -> Result<RefinedDot, Rejection>
             edge_width_px: (contrast / max_slope.max(f32::MIN_POSITIVE)) as f64,
         },
     })
+}
+
+/// Relative illumination gradient `(d/dx, d/dy) ln(grey)` per pixel at the
+/// dot centre: a plane `b0 + bx dx + by dy` fitted to the background ring's
+/// `(dx, dy, grey)` samples, as `(bx, by) / b0`; zero if the ring cannot
+/// carry a plane.
+fn illumination_gradient(ring: &[(f64, f64, f32)]) -> (f64, f64) {
+    let (mut ata, mut atb) = (Matrix3::<f64>::zeros(), Vector3::<f64>::zeros());
+    for &(dx, dy, v) in ring {
+        let row = Vector3::new(1.0, dx, dy);
+        ata += row * row.transpose();
+        atb += row * v as f64;
+    }
+    match ata.cholesky().map(|c| c.solve(&atb)) {
+        Some(b) if b[0] > 0.0 && b.iter().all(|v| v.is_finite()) => (b[1] / b[0], b[2] / b[0]),
+        _ => (0.0, 0.0),
+    }
 }
 
 /// An axis angle in `(-pi/2, pi/2]` (an ellipse axis has no sign).
