@@ -10,7 +10,7 @@ use nalgebra::{DMatrix, DVector, Isometry3, Point2, Point3, SMatrix, SVector, Ve
 use serde::{Deserialize, Serialize};
 
 use super::model::Intrinsics;
-use super::projection_jacobian::{projection_jacobian, INTRINSIC_PARAMS};
+use super::projection_jacobian::{projection_jacobian_at, PoseLinearisation, INTRINSIC_PARAMS};
 use crate::geometry::{pose_from_vector, pose_to_vector};
 use crate::solver::{LeastSquaresProblem, FINITE_DIFFERENCE_STEP};
 
@@ -182,29 +182,15 @@ impl LeastSquaresProblem for JointProblem<'_> {
             return None;
         }
         let ni = self.block.len();
-        let mut schur = a.view((0, 0), (ni, ni)).into_owned();
-        let mut rhs = g.rows(0, ni).into_owned();
-        let mut inverses = Vec::with_capacity(self.views.len());
-        for v in 0..self.views.len() {
-            let base = ni + POSE_PARAMS * v;
-            let app: SMatrix<f64, POSE_PARAMS, POSE_PARAMS> = a
-                .fixed_view::<POSE_PARAMS, POSE_PARAMS>(base, base)
-                .into_owned();
-            let app_inv = app.cholesky()?.inverse();
-            let aip = a.view((0, base), (ni, POSE_PARAMS));
-            let w = aip * app_inv;
-            schur -= &w * aip.transpose();
-            rhs -= &w * g.fixed_rows::<POSE_PARAMS>(base);
-            inverses.push(app_inv);
-        }
+        let reduced = self.schur_reduce(a, Some(g))?;
         let di = if ni > 0 {
-            schur.cholesky()?.solve(&rhs)
+            reduced.schur.cholesky()?.solve(&reduced.rhs)
         } else {
             DVector::zeros(0)
         };
         let mut d = DVector::zeros(g.len());
         d.rows_mut(0, ni).copy_from(&di);
-        for (v, app_inv) in inverses.iter().enumerate() {
+        for (v, app_inv) in reduced.pose_inverses.iter().enumerate() {
             let base = ni + POSE_PARAMS * v;
             let api = a.view((base, 0), (POSE_PARAMS, ni));
             let dp = app_inv * (g.fixed_rows::<POSE_PARAMS>(base) - api * &di);
@@ -228,14 +214,16 @@ impl LeastSquaresProblem for JointProblem<'_> {
         let mut g = DVector::zeros(n);
         for (v, obs) in self.views.iter().enumerate() {
             let base = ni + POSE_PARAMS * v;
-            let pose = Vector6::from_column_slice(&x.as_slice()[base..base + POSE_PARAMS]);
+            let pose = PoseLinearisation::new(&Vector6::from_column_slice(
+                &x.as_slice()[base..base + POSE_PARAMS],
+            ));
             let mut aii = SMatrix::<f64, INTRINSIC_PARAMS, INTRINSIC_PARAMS>::zeros();
             let mut aip = SMatrix::<f64, INTRINSIC_PARAMS, POSE_PARAMS>::zeros();
             let mut app = SMatrix::<f64, POSE_PARAMS, POSE_PARAMS>::zeros();
             let mut gi = SVector::<f64, INTRINSIC_PARAMS>::zeros();
             let mut gp = SVector::<f64, POSE_PARAMS>::zeros();
             for (i, (p, _)) in obs.iter().enumerate() {
-                let (ji, jp) = projection_jacobian(&intr, &pose, p)?;
+                let (ji, jp) = projection_jacobian_at(&intr, &pose, p)?;
                 // Residual = observed - projected: J = -d projection.
                 let rr = -nalgebra::Vector2::new(r[offsets[v] + 2 * i], r[offsets[v] + 2 * i + 1]);
                 aii += ji.tr_mul(&ji);
@@ -270,7 +258,7 @@ impl LeastSquaresProblem for JointProblem<'_> {
         Some((a, g))
     }
 
-    /// Analytic image rows ([`projection_jacobian`]): intrinsics touch
+    /// Analytic image rows ([`projection_jacobian_at`]): intrinsics touch
     /// every image row, a pose only its own image's rows; the few
     /// reference-distance rows by central differences.
     fn jacobian(&self, x: &DVector<f64>) -> Option<DMatrix<f64>> {
@@ -282,9 +270,11 @@ impl LeastSquaresProblem for JointProblem<'_> {
         let intr = self.intrinsics(x);
         for (v, obs) in self.views.iter().enumerate() {
             let base = ni + POSE_PARAMS * v;
-            let pose = Vector6::from_column_slice(&x.as_slice()[base..base + POSE_PARAMS]);
+            let pose = PoseLinearisation::new(&Vector6::from_column_slice(
+                &x.as_slice()[base..base + POSE_PARAMS],
+            ));
             for (i, (p, _)) in obs.iter().enumerate() {
-                let (ji, jp) = projection_jacobian(&intr, &pose, p)?;
+                let (ji, jp) = projection_jacobian_at(&intr, &pose, p)?;
                 let row = offsets[v] + 2 * i;
                 for k in 0..2 {
                     // Residual = observed - projected.
@@ -305,7 +295,57 @@ impl LeastSquaresProblem for JointProblem<'_> {
     }
 }
 
+/// The normal equations with every pose block eliminated.
+struct SchurReduction {
+    /// `A_ii - sum_v A_ip A_pp^-1 A_pi` (intrinsics x intrinsics).
+    schur: DMatrix<f64>,
+    /// `g_i - sum_v A_ip A_pp^-1 g_p` (empty without `g`).
+    rhs: DVector<f64>,
+    pose_inverses: Vec<SMatrix<f64, POSE_PARAMS, POSE_PARAMS>>,
+}
+
 impl JointProblem<'_> {
+    /// Eliminate the pose blocks of the normal matrix `a` (no reference
+    /// rows: they couple poses); `None` if a pose block is singular.
+    fn schur_reduce(&self, a: &DMatrix<f64>, g: Option<&DVector<f64>>) -> Option<SchurReduction> {
+        let ni = self.block.len();
+        let mut schur = a.view((0, 0), (ni, ni)).into_owned();
+        let mut rhs = g.map_or_else(|| DVector::zeros(0), |g| g.rows(0, ni).into_owned());
+        let mut pose_inverses = Vec::with_capacity(self.views.len());
+        for v in 0..self.views.len() {
+            let base = ni + POSE_PARAMS * v;
+            let app: SMatrix<f64, POSE_PARAMS, POSE_PARAMS> = a
+                .fixed_view::<POSE_PARAMS, POSE_PARAMS>(base, base)
+                .into_owned();
+            let app_inv = app.cholesky()?.inverse();
+            let aip = a.view((0, base), (ni, POSE_PARAMS));
+            let w = aip * app_inv;
+            schur -= &w * aip.transpose();
+            if let Some(g) = g {
+                rhs -= &w * g.fixed_rows::<POSE_PARAMS>(base);
+            }
+            pose_inverses.push(app_inv);
+        }
+        Some(SchurReduction {
+            schur,
+            rhs,
+            pose_inverses,
+        })
+    }
+
+    /// `(J^T J)^-1` restricted to the intrinsics, from the normal matrix
+    /// `a`: the inverse of the Schur complement of the pose blocks, so the
+    /// full (intrinsics + 6 per view) matrix is never inverted. With
+    /// reference rows (poses coupled) the dense inverse.
+    pub fn intrinsics_inverse_normal(&self, a: &DMatrix<f64>) -> Option<DMatrix<f64>> {
+        let ni = self.block.len();
+        if !self.references.is_empty() {
+            let inv = a.clone().cholesky()?.inverse();
+            return Some(inv.view((0, 0), (ni, ni)).into_owned());
+        }
+        Some(self.schur_reduce(a, None)?.schur.cholesky()?.inverse())
+    }
+
     /// Rows of the reference-distance residuals (central differences over
     /// the two poses involved).
     fn reference_jacobian(&self, x: &DVector<f64>) -> DMatrix<f64> {
