@@ -6,11 +6,12 @@
 //! Parameter vector: the intrinsics block (empty when intrinsics are fixed)
 //! followed by `[t, rotation vector]` of each view's `camera_to_target`.
 
-use nalgebra::{DMatrix, DVector, Isometry3, Point2, Point3, SMatrix, SVector, Vector6};
+use nalgebra::{DMatrix, DVector, Isometry3, Point2, Point3, Vector6};
 use serde::{Deserialize, Serialize};
 
 use super::model::Intrinsics;
-use super::projection_jacobian::{projection_jacobian_at, PoseLinearisation, INTRINSIC_PARAMS};
+use super::normal_blocks::{schur_reduce, PointNormalAccumulator};
+use super::projection_jacobian::{projection_jacobian_at, PoseLinearisation};
 use crate::geometry::{pose_from_vector, pose_to_vector};
 use crate::solver::{LeastSquaresProblem, FINITE_DIFFERENCE_STEP};
 
@@ -182,7 +183,7 @@ impl LeastSquaresProblem for JointProblem<'_> {
             return None;
         }
         let ni = self.block.len();
-        let reduced = self.schur_reduce(a, Some(g))?;
+        let reduced = schur_reduce(a, Some(g), self.block.len(), self.views.len())?;
         let di = if ni > 0 {
             reduced.schur.cholesky()?.solve(&reduced.rhs)
         } else {
@@ -217,34 +218,15 @@ impl LeastSquaresProblem for JointProblem<'_> {
             let pose = PoseLinearisation::new(&Vector6::from_column_slice(
                 &x.as_slice()[base..base + POSE_PARAMS],
             ));
-            let mut aii = SMatrix::<f64, INTRINSIC_PARAMS, INTRINSIC_PARAMS>::zeros();
-            let mut aip = SMatrix::<f64, INTRINSIC_PARAMS, POSE_PARAMS>::zeros();
-            let mut app = SMatrix::<f64, POSE_PARAMS, POSE_PARAMS>::zeros();
-            let mut gi = SVector::<f64, INTRINSIC_PARAMS>::zeros();
-            let mut gp = SVector::<f64, POSE_PARAMS>::zeros();
+            let mut acc = PointNormalAccumulator::default();
             for (i, (p, _)) in obs.iter().enumerate() {
                 let (ji, jp) = projection_jacobian_at(&intr, &pose, p)?;
-                // Residual = observed - projected: J = -d projection.
-                let rr = -nalgebra::Vector2::new(r[offsets[v] + 2 * i], r[offsets[v] + 2 * i + 1]);
-                aii += ji.tr_mul(&ji);
-                aip += ji.tr_mul(&jp);
-                app += jp.tr_mul(&jp);
-                gi += ji.tr_mul(&rr);
-                gp += jp.tr_mul(&rr);
+                // Residual = observed - projected: J = -d projection, so
+                // J^T r = d projection^T (-r).
+                let row = offsets[v] + 2 * i;
+                acc.add(&ji, &jp, [-r[row], -r[row + 1]]);
             }
-            a.view_mut((base, base), (POSE_PARAMS, POSE_PARAMS))
-                .copy_from(&app);
-            g.rows_mut(base, POSE_PARAMS).copy_from(&gp);
-            if ni > 0 {
-                let mut block = a.view_mut((0, 0), (ni, ni));
-                block += aii.view((0, 0), (ni, ni));
-                a.view_mut((0, base), (ni, POSE_PARAMS))
-                    .copy_from(&aip.view((0, 0), (ni, POSE_PARAMS)));
-                a.view_mut((base, 0), (POSE_PARAMS, ni))
-                    .copy_from(&aip.view((0, 0), (ni, POSE_PARAMS)).transpose());
-                let mut gblock = g.rows_mut(0, ni);
-                gblock += gi.rows(0, ni);
-            }
+            acc.write(&mut a, &mut g, ni, base);
         }
         if !self.references.is_empty() {
             let base = offsets[self.views.len()];
@@ -295,44 +277,7 @@ impl LeastSquaresProblem for JointProblem<'_> {
     }
 }
 
-/// The normal equations with every pose block eliminated.
-struct SchurReduction {
-    /// `A_ii - sum_v A_ip A_pp^-1 A_pi` (intrinsics x intrinsics).
-    schur: DMatrix<f64>,
-    /// `g_i - sum_v A_ip A_pp^-1 g_p` (empty without `g`).
-    rhs: DVector<f64>,
-    pose_inverses: Vec<SMatrix<f64, POSE_PARAMS, POSE_PARAMS>>,
-}
-
 impl JointProblem<'_> {
-    /// Eliminate the pose blocks of the normal matrix `a` (no reference
-    /// rows: they couple poses); `None` if a pose block is singular.
-    fn schur_reduce(&self, a: &DMatrix<f64>, g: Option<&DVector<f64>>) -> Option<SchurReduction> {
-        let ni = self.block.len();
-        let mut schur = a.view((0, 0), (ni, ni)).into_owned();
-        let mut rhs = g.map_or_else(|| DVector::zeros(0), |g| g.rows(0, ni).into_owned());
-        let mut pose_inverses = Vec::with_capacity(self.views.len());
-        for v in 0..self.views.len() {
-            let base = ni + POSE_PARAMS * v;
-            let app: SMatrix<f64, POSE_PARAMS, POSE_PARAMS> = a
-                .fixed_view::<POSE_PARAMS, POSE_PARAMS>(base, base)
-                .into_owned();
-            let app_inv = app.cholesky()?.inverse();
-            let aip = a.view((0, base), (ni, POSE_PARAMS));
-            let w = aip * app_inv;
-            schur -= &w * aip.transpose();
-            if let Some(g) = g {
-                rhs -= &w * g.fixed_rows::<POSE_PARAMS>(base);
-            }
-            pose_inverses.push(app_inv);
-        }
-        Some(SchurReduction {
-            schur,
-            rhs,
-            pose_inverses,
-        })
-    }
-
     /// `(J^T J)^-1` restricted to the intrinsics, from the normal matrix
     /// `a`: the inverse of the Schur complement of the pose blocks, so the
     /// full (intrinsics + 6 per view) matrix is never inverted. With
@@ -343,7 +288,12 @@ impl JointProblem<'_> {
             let inv = a.clone().cholesky()?.inverse();
             return Some(inv.view((0, 0), (ni, ni)).into_owned());
         }
-        Some(self.schur_reduce(a, None)?.schur.cholesky()?.inverse())
+        Some(
+            schur_reduce(a, None, ni, self.views.len())?
+                .schur
+                .cholesky()?
+                .inverse(),
+        )
     }
 
     /// Rows of the reference-distance residuals (central differences over

@@ -149,8 +149,9 @@ pub fn refine(input: &RefineInput) -> Result<Refinement, CameraError> {
             .iter()
             .map(|r| r.abs())
             .collect();
-        abs.sort_by(f64::total_cmp);
-        let sigma = MAD_TO_SIGMA * abs[abs.len() / 2];
+        let middle = abs.len() / 2;
+        let (_, median, _) = abs.select_nth_unstable_by(middle, f64::total_cmp);
+        let sigma = MAD_TO_SIGMA * *median;
         // Bias first: until the predicted offsets have settled, residuals
         // still hold the perspective bias (several sigma near the corners)
         // and must not be taken for outliers.

@@ -9,7 +9,7 @@ use rand_distr::{Distribution, Normal};
 
 pub use super::view_layout::ViewLayout;
 use super::view_layout::{board_pose, fit_into_frame, placement};
-use crate::camera::bias::projected_disc_centroid;
+use crate::camera::bias::DiscBoundary;
 use crate::camera::model::Intrinsics;
 use crate::camera::observations::{DotObservation, ImageSize, ViewObservations};
 
@@ -17,6 +17,11 @@ use crate::camera::observations::{DotObservation, ImageSize, ViewObservations};
 /// than the calibrator's own prediction uses, so the two are independent
 /// to well below 1e-4 px.
 pub const TRUTH_BOUNDARY_SAMPLES: usize = 512;
+/// The truth's boundary directions, tabulated once.
+fn truth_boundary() -> &'static DiscBoundary {
+    static BOUNDARY: std::sync::OnceLock<DiscBoundary> = std::sync::OnceLock::new();
+    BOUNDARY.get_or_init(|| DiscBoundary::new(TRUTH_BOUNDARY_SAMPLES))
+}
 /// Pose draws per view before giving up on fitting the board in the image.
 const MAX_POSE_ATTEMPTS: usize = 2000;
 /// Board pitch and dot size of the simulated boards (the issue's).
@@ -288,13 +293,8 @@ fn observe(
         for col in 0..board.cols {
             let target = board.point(row, col);
             let centre = spec.intrinsics.project(&(pose * target))?;
-            let centroid = projected_disc_centroid(
-                &spec.intrinsics,
-                pose,
-                &target,
-                radius,
-                TRUTH_BOUNDARY_SAMPLES,
-            )?;
+            let centroid =
+                truth_boundary().projected_centroid(&spec.intrinsics, pose, &target, radius)?;
             if !inside(&centroid) {
                 return None;
             }
