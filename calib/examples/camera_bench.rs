@@ -3,13 +3,14 @@
 //!
 //! `cargo run --release -p robocal-calib --example camera_bench -- [repeats]`
 //! (runs `python3 bench/opencv_calibrate.py`; needs opencv-python-headless):
-//! the default campaigns of both issue-4 cameras.
+//! the default campaigns of both issue-4 cameras; `-- [repeats] legacy`: the
+//! first design's campaign (9x9 board placed at random, 1280x1024).
 
 use std::io::Write;
 use std::time::Instant;
 
 use robocal_calib::camera::{calibrate, CalibrationOptions, CameraCalibration, ViewObservations};
-use robocal_calib::sim::point_views::{simulate_views, ViewCampaignSpec};
+use robocal_calib::sim::point_views::{simulate_views, DotBoard, ViewCampaignSpec, ViewLayout};
 
 const SCRIPT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../bench/opencv_calibrate.py");
 
@@ -166,6 +167,18 @@ fn main() {
         .and_then(|s| s.parse().ok())
         .unwrap_or(5)
         .max(1);
+    if std::env::args().nth(2).as_deref() == Some("legacy") {
+        // The first campaign design: the 9x9 board placed at random.
+        bench(
+            &ViewCampaignSpec {
+                board: DotBoard::standard(),
+                layout: ViewLayout::Random,
+                ..ViewCampaignSpec::modern_1280x1024(2024)
+            },
+            repeats,
+        );
+        return;
+    }
     bench(&ViewCampaignSpec::modern_1280x1024(2024), repeats);
     bench(&ViewCampaignSpec::paper_752x582(2024), repeats);
 }

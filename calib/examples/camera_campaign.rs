@@ -5,7 +5,9 @@
 
 use std::time::Instant;
 
-use robocal_calib::camera::{calibrate, CalibrationMode, CalibrationOptions, CameraCalibration};
+use robocal_calib::camera::{
+    calibrate, CalibrationMode, CalibrationOptions, CameraCalibration, ImageSize, Intrinsics,
+};
 use robocal_calib::sim::point_views::{
     simulate_views, SimulatedView, ViewCampaignSpec, ViewLayout, LAYOUT_ROLL_SPREAD_DEG,
 };
@@ -167,8 +169,8 @@ fn summarise(label: &str, runs: &[Errors]) {
 /// Campaign-design overrides from `key=value` arguments (the design study
 /// of BENCHMARKS.md "Camera"): `board=ROWSxCOLS`, `pitch=MM`, `dot=MM`,
 /// `layout=random|CXxCY` (stratified grid of image cells), `roll=DEG`
-/// (after `layout=`: the stratified board's roll spread), `camera=1280|752`
-/// (one camera only), `paper=0` (skip paper mode).
+/// (after `layout=`: the stratified board's roll spread), `camera=1280|752|2048`
+/// (one camera only; 2048 = the rendered campaign's camera, only on request), `paper=0` (skip paper mode).
 #[derive(Default)]
 struct Overrides {
     board: Option<(u32, u32)>,
@@ -240,6 +242,34 @@ impl Overrides {
     }
 }
 
+/// The camera of the rendered end-to-end campaign (`sim::campaign`,
+/// `CampaignSpec::standard`: 12 mm lens, 3.45 um pixels, 0.1 px dot noise)
+/// in this example's point-view campaign, for board-size comparisons.
+fn rendered_campaign_camera(seed: u64) -> ViewCampaignSpec {
+    let intrinsics = Intrinsics {
+        fx: 3480.0,
+        fy: 3478.0,
+        cx: 1030.0,
+        cy: 760.0,
+        k1: -0.08,
+        k2: 0.05,
+        p1: 2e-4,
+        p2: -1e-4,
+        k3: 0.0,
+    };
+    let size = ImageSize {
+        width: 2048,
+        height: 1536,
+    };
+    ViewCampaignSpec {
+        noise_px: RENDERED_CAMPAIGN_NOISE_PX,
+        ..ViewCampaignSpec::issue_campaign(intrinsics, size, seed)
+    }
+}
+
+/// Dot noise of the rendered campaign (`CampaignSpec::standard`).
+const RENDERED_CAMPAIGN_NOISE_PX: f64 = 0.1;
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let seeds: u64 = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(10);
@@ -256,8 +286,18 @@ fn main() {
             "752",
             ViewCampaignSpec::paper_752x582,
         ),
+        (
+            "2048x1536 (rendered end-to-end campaign's camera, 0.1 px)",
+            "2048",
+            rendered_campaign_camera,
+        ),
     ] {
-        if overrides.camera.as_deref().is_some_and(|c| c != key) {
+        // The rendered campaign's camera only on request (camera=2048).
+        let wanted = overrides
+            .camera
+            .as_deref()
+            .map_or(key != "2048", |c| c == key);
+        if !wanted {
             continue;
         }
         let (mut refined, mut paper) = (Vec::new(), Vec::new());
