@@ -22,17 +22,19 @@ fn truth_boundary() -> &'static DiscBoundary {
     static BOUNDARY: std::sync::OnceLock<DiscBoundary> = std::sync::OnceLock::new();
     BOUNDARY.get_or_init(|| DiscBoundary::new(TRUTH_BOUNDARY_SAMPLES))
 }
+
 /// Pose draws per view before giving up on fitting the board in the image.
 const MAX_POSE_ATTEMPTS: usize = 2000;
 /// Board pitch and dot size of the simulated boards (the issue's).
 pub const BOARD_PITCH_MM: f64 = 25.0;
 pub const BOARD_DOT_DIAMETER_MM: f64 = 8.0;
 /// The default campaigns' board spans at least this fraction of the image
-/// width and height at the middle of the distance range: the image centre's
-/// standard deviation falls about threefold from the 9x9 board
-/// (which spans ~30% of the 1280 px width) to such a board, taking cx, cy
-/// within 0.1 px and camera positions within 1:15000 from ~85% of campaigns
-/// to all of them (design study in BENCHMARKS.md "Camera").
+/// width and height at the middle of the distance range: from the issue's
+/// 9x9 board (~30% of the 1280 px width) to such a board the image centre's
+/// standard deviation falls fivefold (1280x1024) and 2.5-fold (752x582),
+/// taking cx, cy within 0.1 px and camera positions within 1:15000 from
+/// 55–90% of campaigns to all of them (design study in BENCHMARKS.md
+/// "Camera").
 pub const BOARD_FIELD_FRACTION: f64 = 0.5;
 /// Image cells of the default (stratified) layout: 3x3, so corners, edges
 /// and centre each see ~7 views tilted in ~7 directions.
@@ -40,6 +42,7 @@ pub const LAYOUT_CELLS: u32 = 3;
 /// Roll of the default layout's board about its normal, each side of the
 /// image rows.
 pub const LAYOUT_ROLL_SPREAD_DEG: f64 = 20.0;
+
 /// A flat board of dark dots; dot (r, c) at `(c p, r p, 0)` (method.md §1).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DotBoard {
