@@ -52,8 +52,9 @@ pub trait LeastSquaresProblem {
     /// the problem itself. Block-sparse problems (bundle-style camera
     /// calibration: each image row touches the intrinsics and one pose)
     /// override this so that the solver never forms the dense Jacobian
-    /// during the iterations (it asks for it once, for the report). The
-    /// default `None` lets the solver use [`Self::jacobian`].
+    /// (not even for the report: [`LmReport::jacobian`] is then `None` and
+    /// the covariance comes from [`LmReport::normal_matrix`]). The default
+    /// `None` lets the solver use [`Self::jacobian`].
     fn normal_equations(
         &self,
         _x: &DVector<f64>,
@@ -139,8 +140,13 @@ pub enum SolverError {
 pub struct LmReport {
     pub x: DVector<f64>,
     pub residuals: DVector<f64>,
-    /// Jacobian at `x` (unscaled).
-    pub jacobian: DMatrix<f64>,
+    /// Jacobian at `x` (unscaled); `None` when the problem assembled its
+    /// own normal equations ([`LeastSquaresProblem::normal_equations`]):
+    /// the dense Jacobian of a block-sparse problem (tens of thousands of
+    /// rows) would cost more than the whole solve.
+    pub jacobian: Option<DMatrix<f64>>,
+    /// `J^T J` at `x` (unscaled).
+    pub normal_matrix: DMatrix<f64>,
     /// Sum of squared residuals at `x`.
     pub cost: f64,
     pub initial_cost: f64,
@@ -157,7 +163,10 @@ impl LmReport {
 
     /// Parameter covariance `sigma^2 (J^T J)^+` (method.md §6 **beyond**).
     pub fn covariance(&self) -> DMatrix<f64> {
-        covariance_from_jacobian(&self.jacobian, self.residual_variance())
+        match &self.jacobian {
+            Some(j) => covariance_from_jacobian(j, self.residual_variance()),
+            None => covariance_from_normal(&self.normal_matrix, self.residual_variance()),
+        }
     }
 
     /// Standard deviation of each parameter.
@@ -387,14 +396,11 @@ pub fn solve<P: LeastSquaresProblem + ?Sized>(
             break;
         }
     }
-    let jacobian = match jac {
-        Some(j) => j,
-        None => problem.jacobian(&x).ok_or(SolverError::NonFinite)?,
-    };
     Ok(LmReport {
         x,
         residuals: r,
-        jacobian,
+        jacobian: jac,
+        normal_matrix: a_raw,
         cost,
         initial_cost,
         iterations,

@@ -230,4 +230,14 @@ fn assembled_normal_equations_match_dense_path() {
     )
     .unwrap();
     assert!((&dense.x - &fast.x).amax() < 1e-6 * dense.x.amax());
+    // No dense Jacobian is formed; the covariance from the normal matrix
+    // is the one from the Jacobian's SVD.
+    assert!(fast.jacobian.is_none() && dense.jacobian.is_some());
+    let (a, b) = (dense.covariance(), fast.covariance());
+    for i in 0..3 {
+        for j in 0..3 {
+            let scale = (a[(i, i)] * a[(j, j)]).sqrt();
+            assert!((a[(i, j)] - b[(i, j)]).abs() < 1e-4 * scale, "{a} vs {b}");
+        }
+    }
 }

@@ -13,8 +13,8 @@ use super::pose::{estimate_pose, planar_pose_guess, PoseEstimate};
 use super::refine::StationDistance;
 use super::refine_loop::{refine, RefineInput, Refinement};
 use super::sequence::{
-    paper_sequence, PaperCalibration, PaperOptions, PlanarView, CENTRE_STEP_MIN_PX_START,
-    SCALE_STEP_MIN_START,
+    paper_sequence, paper_sequence_searching, PaperCalibration, PaperOptions, PlanarView,
+    CENTRE_STEP_MIN_PX_START, SCALE_STEP_MIN_START,
 };
 use super::tsai::board_angle_deg;
 
@@ -28,6 +28,12 @@ pub const FOCAL_UNDETERMINED_REL: f64 = 0.01;
 /// ... or when the per-image Tsai focal lengths scatter by more than this
 /// (coefficient of variation).
 pub const PAPER_FX_SPREAD_MAX: f64 = 0.25;
+/// Refined mode: the paper-stage searches that only start the joint LM use
+/// at most this many dots per view (whole rows and columns dropped, see
+/// [`thin_for_search`]) ...
+const START_SEARCH_DOTS_PER_VIEW: usize = 80;
+/// ... unless fewer than this would remain.
+const START_SEARCH_MIN_DOTS: usize = 16;
 /// Outlier threshold in robust standard deviations (issue 4).
 pub const OUTLIER_SIGMAS: f64 = 5.0;
 
@@ -167,7 +173,13 @@ pub fn calibrate(
             ..options.paper
         },
     };
-    let paper = paper_sequence(&planar, image_size, &paper_options)?;
+    let paper = match options.mode {
+        CalibrationMode::Paper => paper_sequence(&planar, image_size, &paper_options)?,
+        CalibrationMode::Refined => {
+            let thinned: Vec<PlanarView> = views.iter().zip(&planar).map(thin_for_search).collect();
+            paper_sequence_searching(&planar, &thinned, image_size, &paper_options)?
+        }
+    };
     check_focal_determined_paper(&paper)?;
     let pairs: Vec<Vec<(Point3<f64>, Point2<f64>)>> = views.iter().map(|v| v.pairs()).collect();
     let start = options.fixed_intrinsics.unwrap_or(paper.intrinsics);
@@ -200,6 +212,30 @@ pub fn calibrate(
         }
     }
     finish(views, image_size, options, paper, refinement, &pairs)
+}
+
+/// The dots of every `stride`-th row and column, the smallest stride that
+/// leaves at most [`START_SEARCH_DOTS_PER_VIEW`] dots (all dots if fewer
+/// than [`START_SEARCH_MIN_DOTS`] would remain): the refined mode's start
+/// search needs the board's extent, not every dot.
+fn thin_for_search((view, planar): (&ViewObservations, &PlanarView)) -> PlanarView {
+    let mut stride = 1;
+    loop {
+        let kept: PlanarView = view
+            .dots
+            .iter()
+            .zip(planar)
+            .filter(|(d, _)| d.row % stride == 0 && d.col % stride == 0)
+            .map(|(_, p)| *p)
+            .collect();
+        if kept.len() < START_SEARCH_MIN_DOTS {
+            return planar.clone();
+        }
+        if kept.len() <= START_SEARCH_DOTS_PER_VIEW {
+            return kept;
+        }
+        stride += 1;
+    }
 }
 
 fn max_board_angle_deg(camera_to_target: &[Isometry3<f64>]) -> f64 {

@@ -5,22 +5,22 @@ use super::*;
 use crate::camera::refine::StationDistance;
 use crate::sim::point_views::{simulate_views, SimulatedView, ViewCampaignSpec};
 
-/// Issue 4 targets.
+/// Issue 4 targets: fx, fy within 0.01%, cx, cy within 0.1 px, per-axis
+/// reprojection RMS within 10% of the detector noise, camera positions
+/// within 1:15000 of the distance (RMS over the views), bias-corrected
+/// centres within 0.01 px of the true centre images. On the default
+/// campaigns (board spanning half the field of view, stratified views) the
+/// centre's standard deviation is ~0.008 px (1280x1024) and ~0.02 px
+/// (752x582), so every target holds with margin on every seed
+/// (BENCHMARKS.md "Camera": 30 campaigns per camera).
 const FOCAL_REL_TOL: f64 = 1e-4;
 const CENTRE_TOL_PX: f64 = 0.1;
 const RMS_REL_TOL: f64 = 0.10;
 const CORRECTED_CENTRE_TOL_PX: f64 = 0.01;
-/// The image centre's own standard deviation on these campaigns is about
-/// 0.05 px (Cramér–Rao: the estimate follows its covariance), so the
-/// 0.1 px target holds in ~90% of campaigns (BENCHMARKS.md, "Camera"). Per
-/// campaign we assert the error is within 3 reported sigma and the sigma
-/// itself leaves the 0.1 px target at >= 1.6 sigma.
-const CENTRE_SIGMAS: f64 = 3.0;
-const CENTRE_SD_MAX_PX: f64 = 0.06;
-/// RMS camera-position error over distance: the issue's 1:15000 holds in
-/// ~85% of campaigns (same reason, the centre error moves every station);
-/// each test campaign must beat OpenCV's 1:8700 by a margin.
-const POSITION_RATIO: f64 = 10000.0;
+const POSITION_RATIO: f64 = 15000.0;
+/// The reported centre standard deviation must be consistent with the
+/// actual error (the covariance is honest): within this many sigma.
+const CENTRE_SIGMAS: f64 = 4.0;
 
 fn views_of(sims: &[SimulatedView]) -> Vec<ViewObservations> {
     sims.iter().map(|s| s.observations.clone()).collect()
@@ -92,19 +92,28 @@ fn errors(spec: &ViewCampaignSpec, sims: &[SimulatedView], cal: &CameraCalibrati
 fn assert_refined_targets(e: &Errors, sd: &IntrinsicsStdDev) {
     assert!(
         e.fx_rel.abs() < FOCAL_REL_TOL && e.fy_rel.abs() < FOCAL_REL_TOL,
-        "focal"
+        "focal: fx {:+e} fy {:+e}",
+        e.fx_rel,
+        e.fy_rel
     );
     assert!(
-        sd.cx < CENTRE_SD_MAX_PX && sd.cy < CENTRE_SD_MAX_PX,
-        "centre sd"
+        e.cx_px.abs() < CENTRE_TOL_PX && e.cy_px.abs() < CENTRE_TOL_PX,
+        "centre: cx {:+} cy {:+} px",
+        e.cx_px,
+        e.cy_px
     );
     assert!(
         e.cx_px.abs() < CENTRE_SIGMAS * sd.cx && e.cy_px.abs() < CENTRE_SIGMAS * sd.cy,
-        "centre"
+        "centre error inconsistent with its reported sd {} {}",
+        sd.cx,
+        sd.cy
     );
-    assert!(e.cx_px.hypot(e.cy_px) < 2.0 * CENTRE_TOL_PX, "centre");
     assert!((e.rms_over_noise - 1.0).abs() < RMS_REL_TOL, "rms");
-    assert!(e.position_rel < 1.0 / POSITION_RATIO, "positions");
+    assert!(
+        e.position_rel < 1.0 / POSITION_RATIO,
+        "positions 1:{:.0}",
+        1.0 / e.position_rel
+    );
     assert!(
         e.corrected_centre_px < CORRECTED_CENTRE_TOL_PX,
         "bias correction"
@@ -136,13 +145,20 @@ fn campaign(spec: &ViewCampaignSpec) {
 
 #[test]
 fn refined_mode_meets_targets_on_a_modern_camera() {
-    campaign(&ViewCampaignSpec::modern_1280x1024(11));
+    for seed in [11, 13] {
+        campaign(&ViewCampaignSpec::modern_1280x1024(seed));
+    }
 }
 
 #[test]
 fn refined_mode_meets_targets_on_a_camera_like_the_papers() {
-    campaign(&ViewCampaignSpec::paper_752x582(12));
+    for seed in [12, 14] {
+        campaign(&ViewCampaignSpec::paper_752x582(seed));
+    }
 }
+
+/// Just above [`crate::camera::sequence::STAGE2_MIN_ANGLE_DEG`].
+const WEAK_TILT_DEG: f64 = 10.5;
 
 fn small_spec(seed: u64, views: usize) -> ViewCampaignSpec {
     ViewCampaignSpec {
@@ -204,8 +220,10 @@ fn reference_distances_pull_the_focal_length() {
     // Few, weakly tilted views: fx is loosely determined by the images; a
     // set of station distances 1% longer than the truth must lengthen the
     // fitted stations (and raise fx with them), consistent ones must not.
+    // (Tilts just above the paper stage's 10 deg cut-off: below it no view
+    // would enter the Tsai averages that start the refinement.)
     let spec = ViewCampaignSpec {
-        tilt_deg: (5.0, 10.0),
+        tilt_deg: (WEAK_TILT_DEG, WEAK_TILT_DEG + 4.0),
         ..small_spec(5, 6)
     };
     let sims = simulate_views(&spec).unwrap();

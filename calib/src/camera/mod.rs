@@ -4,6 +4,7 @@ pub mod bias;
 pub mod calibrate;
 pub mod error;
 pub mod model;
+pub mod normal_blocks;
 pub mod observations;
 pub mod pose;
 pub mod projection_jacobian;

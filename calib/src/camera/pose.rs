@@ -10,6 +10,8 @@ use nalgebra::{
 use super::error::CameraError;
 use super::model::Intrinsics;
 use super::observations::validate_points;
+use super::projection_jacobian::{projection_jacobian_at, PoseLinearisation};
+use super::refine::POSE_PARAMS;
 use crate::geometry::{orthonormalize, pose_error, pose_from_vector, pose_to_vector};
 use crate::solver::{finite_difference_jacobian, solve, LeastSquaresProblem, LmOptions};
 
@@ -54,6 +56,22 @@ impl LeastSquaresProblem for PoseProblem<'_> {
         let mut r = DVector::zeros(2 * self.observations.len());
         reprojection_residuals(self.intrinsics, &pose, self.observations, r.as_mut_slice())?;
         Some(r)
+    }
+
+    /// Analytic ([`projection_jacobian_at`]): residual = observed -
+    /// projected, so the rows are the negated projection derivatives.
+    fn jacobian(&self, x: &DVector<f64>) -> Option<DMatrix<f64>> {
+        let pose = PoseLinearisation::new(&Vector6::from_column_slice(x.as_slice()));
+        let mut jac = DMatrix::zeros(2 * self.observations.len(), POSE_PARAMS);
+        for (i, (p, _)) in self.observations.iter().enumerate() {
+            let (_, jp) = projection_jacobian_at(self.intrinsics, &pose, p)?;
+            for k in 0..2 {
+                for j in 0..POSE_PARAMS {
+                    jac[(2 * i + k, j)] = -jp[(k, j)];
+                }
+            }
+        }
+        Some(jac)
     }
 }
 

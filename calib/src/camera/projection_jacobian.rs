@@ -28,6 +28,29 @@ pub fn so3_left_jacobian(theta: &Vector3<f64>) -> Matrix3<f64> {
     Matrix3::identity() + ((1.0 - t.cos()) / (t * t)) * k + ((t - t.sin()) / (t * t * t)) * (k * k)
 }
 
+/// The per-view part of the derivatives: the pose's rotation matrix and
+/// the SO(3) left Jacobian of its rotation vector, computed once per view
+/// rather than once per point (each costs a sine and a cosine).
+#[derive(Debug, Clone, Copy)]
+pub struct PoseLinearisation {
+    rotation: Matrix3<f64>,
+    translation: Vector3<f64>,
+    left_jacobian: Matrix3<f64>,
+}
+
+impl PoseLinearisation {
+    /// For the pose vector `[t, theta]` of `camera_to_target`.
+    pub fn new(pose: &Vector6<f64>) -> Self {
+        let iso = pose_from_vector(pose);
+        let theta = Vector3::new(pose[3], pose[4], pose[5]);
+        Self {
+            rotation: iso.rotation.to_rotation_matrix().into_inner(),
+            translation: iso.translation.vector,
+            left_jacobian: so3_left_jacobian(&theta),
+        }
+    }
+}
+
 /// `d(u, v)/d intrinsics` (2x9) and `d(u, v)/d pose` (2x6) of one point;
 /// `None` behind the camera.
 pub fn projection_jacobian(
@@ -35,13 +58,22 @@ pub fn projection_jacobian(
     pose: &Vector6<f64>,
     p: &Point3<f64>,
 ) -> Option<(SMatrix<f64, 2, INTRINSIC_PARAMS>, SMatrix<f64, 2, 6>)> {
-    let iso = pose_from_vector(pose);
-    let rp = iso.rotation * p.coords;
-    let pc = rp + iso.translation.vector;
+    projection_jacobian_at(intr, &PoseLinearisation::new(pose), p)
+}
+
+/// [`projection_jacobian`] with the view's part precomputed.
+pub fn projection_jacobian_at(
+    intr: &Intrinsics,
+    pose: &PoseLinearisation,
+    p: &Point3<f64>,
+) -> Option<(SMatrix<f64, 2, INTRINSIC_PARAMS>, SMatrix<f64, 2, 6>)> {
+    let rp = pose.rotation * p.coords;
+    let pc = rp + pose.translation;
     if pc.z <= MIN_DEPTH_MM {
         return None;
     }
-    let (x, y) = (pc.x / pc.z, pc.y / pc.z);
+    let inv_z = 1.0 / pc.z;
+    let (x, y) = (pc.x * inv_z, pc.y * inv_z);
     let n = nalgebra::Vector2::new(x, y);
     let d = intr.distort(&n);
     let r2 = x * x + y * y;
@@ -53,7 +85,8 @@ pub fn projection_jacobian(
     ji[(1, 1)] = fx * d.y;
     ji[(0, 2)] = 1.0;
     ji[(1, 3)] = 1.0;
-    for (col, power) in [(4, r2), (5, r2 * r2), (8, r2 * r2 * r2)] {
+    let r4 = r2 * r2;
+    for (col, power) in [(4, r2), (5, r4), (8, r4 * r2)] {
         ji[(0, col)] = fx * x * power;
         ji[(1, col)] = fy * y * power;
     }
@@ -62,15 +95,20 @@ pub fn projection_jacobian(
     ji[(0, 7)] = fx * (r2 + 2.0 * x * x);
     ji[(1, 7)] = fy * 2.0 * x * y;
     // Chain: pixel <- distorted <- normalised <- camera point <- pose.
-    let d_pixel_d_norm = nalgebra::Matrix2::new(fx, 0.0, 0.0, fy) * intr.distort_jacobian(&n);
-    let d_norm_d_pc = Matrix2x3::new(1.0 / pc.z, 0.0, -x / pc.z, 0.0, 1.0 / pc.z, -y / pc.z);
+    let dd = intr.distort_jacobian(&n);
+    let d_pixel_d_norm = nalgebra::Matrix2::new(
+        fx * dd[(0, 0)],
+        fx * dd[(0, 1)],
+        fy * dd[(1, 0)],
+        fy * dd[(1, 1)],
+    );
+    let d_norm_d_pc = Matrix2x3::new(inv_z, 0.0, -x * inv_z, 0.0, inv_z, -y * inv_z);
     let d_pixel_d_pc = d_pixel_d_norm * d_norm_d_pc;
-    let theta = Vector3::new(pose[3], pose[4], pose[5]);
-    let d_pc_d_theta = -skew(&rp) * so3_left_jacobian(&theta);
+    // d pc / d theta = -[R p]x J_l(theta).
+    let d_pixel_d_theta = -(d_pixel_d_pc * skew(&rp)) * pose.left_jacobian;
     let mut jp = SMatrix::<f64, 2, 6>::zeros();
     jp.fixed_view_mut::<2, 3>(0, 0).copy_from(&d_pixel_d_pc);
-    jp.fixed_view_mut::<2, 3>(0, 3)
-        .copy_from(&(d_pixel_d_pc * d_pc_d_theta));
+    jp.fixed_view_mut::<2, 3>(0, 3).copy_from(&d_pixel_d_theta);
     Some((ji, jp))
 }
 

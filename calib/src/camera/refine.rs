@@ -6,11 +6,12 @@
 //! Parameter vector: the intrinsics block (empty when intrinsics are fixed)
 //! followed by `[t, rotation vector]` of each view's `camera_to_target`.
 
-use nalgebra::{DMatrix, DVector, Isometry3, Point2, Point3, SMatrix, SVector, Vector6};
+use nalgebra::{DMatrix, DVector, Isometry3, Point2, Point3, Vector6};
 use serde::{Deserialize, Serialize};
 
 use super::model::Intrinsics;
-use super::projection_jacobian::{projection_jacobian, INTRINSIC_PARAMS};
+use super::normal_blocks::{schur_reduce, PointNormalAccumulator};
+use super::projection_jacobian::{projection_jacobian_at, PoseLinearisation};
 use crate::geometry::{pose_from_vector, pose_to_vector};
 use crate::solver::{LeastSquaresProblem, FINITE_DIFFERENCE_STEP};
 
@@ -182,29 +183,15 @@ impl LeastSquaresProblem for JointProblem<'_> {
             return None;
         }
         let ni = self.block.len();
-        let mut schur = a.view((0, 0), (ni, ni)).into_owned();
-        let mut rhs = g.rows(0, ni).into_owned();
-        let mut inverses = Vec::with_capacity(self.views.len());
-        for v in 0..self.views.len() {
-            let base = ni + POSE_PARAMS * v;
-            let app: SMatrix<f64, POSE_PARAMS, POSE_PARAMS> = a
-                .fixed_view::<POSE_PARAMS, POSE_PARAMS>(base, base)
-                .into_owned();
-            let app_inv = app.cholesky()?.inverse();
-            let aip = a.view((0, base), (ni, POSE_PARAMS));
-            let w = aip * app_inv;
-            schur -= &w * aip.transpose();
-            rhs -= &w * g.fixed_rows::<POSE_PARAMS>(base);
-            inverses.push(app_inv);
-        }
+        let reduced = schur_reduce(a, Some(g), self.block.len(), self.views.len())?;
         let di = if ni > 0 {
-            schur.cholesky()?.solve(&rhs)
+            reduced.schur.cholesky()?.solve(&reduced.rhs)
         } else {
             DVector::zeros(0)
         };
         let mut d = DVector::zeros(g.len());
         d.rows_mut(0, ni).copy_from(&di);
-        for (v, app_inv) in inverses.iter().enumerate() {
+        for (v, app_inv) in reduced.pose_inverses.iter().enumerate() {
             let base = ni + POSE_PARAMS * v;
             let api = a.view((base, 0), (POSE_PARAMS, ni));
             let dp = app_inv * (g.fixed_rows::<POSE_PARAMS>(base) - api * &di);
@@ -228,35 +215,18 @@ impl LeastSquaresProblem for JointProblem<'_> {
         let mut g = DVector::zeros(n);
         for (v, obs) in self.views.iter().enumerate() {
             let base = ni + POSE_PARAMS * v;
-            let pose = Vector6::from_column_slice(&x.as_slice()[base..base + POSE_PARAMS]);
-            let mut aii = SMatrix::<f64, INTRINSIC_PARAMS, INTRINSIC_PARAMS>::zeros();
-            let mut aip = SMatrix::<f64, INTRINSIC_PARAMS, POSE_PARAMS>::zeros();
-            let mut app = SMatrix::<f64, POSE_PARAMS, POSE_PARAMS>::zeros();
-            let mut gi = SVector::<f64, INTRINSIC_PARAMS>::zeros();
-            let mut gp = SVector::<f64, POSE_PARAMS>::zeros();
+            let pose = PoseLinearisation::new(&Vector6::from_column_slice(
+                &x.as_slice()[base..base + POSE_PARAMS],
+            ));
+            let mut acc = PointNormalAccumulator::default();
             for (i, (p, _)) in obs.iter().enumerate() {
-                let (ji, jp) = projection_jacobian(&intr, &pose, p)?;
-                // Residual = observed - projected: J = -d projection.
-                let rr = -nalgebra::Vector2::new(r[offsets[v] + 2 * i], r[offsets[v] + 2 * i + 1]);
-                aii += ji.tr_mul(&ji);
-                aip += ji.tr_mul(&jp);
-                app += jp.tr_mul(&jp);
-                gi += ji.tr_mul(&rr);
-                gp += jp.tr_mul(&rr);
+                let (ji, jp) = projection_jacobian_at(&intr, &pose, p)?;
+                // Residual = observed - projected: J = -d projection, so
+                // J^T r = d projection^T (-r).
+                let row = offsets[v] + 2 * i;
+                acc.add(&ji, &jp, [-r[row], -r[row + 1]]);
             }
-            a.view_mut((base, base), (POSE_PARAMS, POSE_PARAMS))
-                .copy_from(&app);
-            g.rows_mut(base, POSE_PARAMS).copy_from(&gp);
-            if ni > 0 {
-                let mut block = a.view_mut((0, 0), (ni, ni));
-                block += aii.view((0, 0), (ni, ni));
-                a.view_mut((0, base), (ni, POSE_PARAMS))
-                    .copy_from(&aip.view((0, 0), (ni, POSE_PARAMS)));
-                a.view_mut((base, 0), (POSE_PARAMS, ni))
-                    .copy_from(&aip.view((0, 0), (ni, POSE_PARAMS)).transpose());
-                let mut gblock = g.rows_mut(0, ni);
-                gblock += gi.rows(0, ni);
-            }
+            acc.write(&mut a, &mut g, ni, base);
         }
         if !self.references.is_empty() {
             let base = offsets[self.views.len()];
@@ -270,7 +240,7 @@ impl LeastSquaresProblem for JointProblem<'_> {
         Some((a, g))
     }
 
-    /// Analytic image rows ([`projection_jacobian`]): intrinsics touch
+    /// Analytic image rows ([`projection_jacobian_at`]): intrinsics touch
     /// every image row, a pose only its own image's rows; the few
     /// reference-distance rows by central differences.
     fn jacobian(&self, x: &DVector<f64>) -> Option<DMatrix<f64>> {
@@ -282,9 +252,11 @@ impl LeastSquaresProblem for JointProblem<'_> {
         let intr = self.intrinsics(x);
         for (v, obs) in self.views.iter().enumerate() {
             let base = ni + POSE_PARAMS * v;
-            let pose = Vector6::from_column_slice(&x.as_slice()[base..base + POSE_PARAMS]);
+            let pose = PoseLinearisation::new(&Vector6::from_column_slice(
+                &x.as_slice()[base..base + POSE_PARAMS],
+            ));
             for (i, (p, _)) in obs.iter().enumerate() {
-                let (ji, jp) = projection_jacobian(&intr, &pose, p)?;
+                let (ji, jp) = projection_jacobian_at(&intr, &pose, p)?;
                 let row = offsets[v] + 2 * i;
                 for k in 0..2 {
                     // Residual = observed - projected.
@@ -306,6 +278,24 @@ impl LeastSquaresProblem for JointProblem<'_> {
 }
 
 impl JointProblem<'_> {
+    /// `(J^T J)^-1` restricted to the intrinsics, from the normal matrix
+    /// `a`: the inverse of the Schur complement of the pose blocks, so the
+    /// full (intrinsics + 6 per view) matrix is never inverted. With
+    /// reference rows (poses coupled) the dense inverse.
+    pub fn intrinsics_inverse_normal(&self, a: &DMatrix<f64>) -> Option<DMatrix<f64>> {
+        let ni = self.block.len();
+        if !self.references.is_empty() {
+            let inv = a.clone().cholesky()?.inverse();
+            return Some(inv.view((0, 0), (ni, ni)).into_owned());
+        }
+        Some(
+            schur_reduce(a, None, ni, self.views.len())?
+                .schur
+                .cholesky()?
+                .inverse(),
+        )
+    }
+
     /// Rows of the reference-distance residuals (central differences over
     /// the two poses involved).
     fn reference_jacobian(&self, x: &DVector<f64>) -> DMatrix<f64> {

@@ -18,11 +18,11 @@ const CENTRE_STEP_FRACTION: f64 = 0.02;
 /// Stop the centre search below this step (px) in paper mode.
 pub const CENTRE_STEP_MIN_PX: f64 = 1e-3;
 /// ... and when it only starts the refinement, which finds the centre itself.
-pub const CENTRE_STEP_MIN_PX_START: f64 = 0.05;
+pub const CENTRE_STEP_MIN_PX_START: f64 = 0.5;
 /// First and last pattern-search steps of the scale ratio.
 const SCALE_STEP: f64 = 0.01;
 pub const SCALE_STEP_MIN: f64 = 1e-6;
-pub const SCALE_STEP_MIN_START: f64 = 1e-4;
+pub const SCALE_STEP_MIN_START: f64 = 1e-3;
 /// Plausible range of `m` (pixel aspect).
 const SCALE_RATIO_RANGE: (f64, f64) = (0.5, 2.0);
 /// Views whose board is closer than this to fronto-parallel do not enter
@@ -155,7 +155,19 @@ pub fn paper_sequence(
     size: ImageSize,
     options: &PaperOptions,
 ) -> Result<PaperCalibration, CameraError> {
-    if views.is_empty() {
+    paper_sequence_searching(views, views, size, options)
+}
+
+/// [`paper_sequence`] with the `(cx, cy, m)` search run on `search_views`
+/// (the same views with fewer dots, say, when the result only starts the
+/// joint refinement) and stage 2 on all of `views`.
+pub fn paper_sequence_searching(
+    views: &[PlanarView],
+    search_views: &[PlanarView],
+    size: ImageSize,
+    options: &PaperOptions,
+) -> Result<PaperCalibration, CameraError> {
+    if views.is_empty() || search_views.is_empty() {
         return Err(CameraError::TooFewImages {
             usable: 0,
             required: 1,
@@ -172,7 +184,7 @@ pub fn paper_sequence(
         (size.height as f64 - 1.0) / 2.0,
     ]);
     let ([cx, cy, m], residual) = search(
-        views,
+        search_views,
         size,
         options,
         [cx0, cy0, options.initial_scale_ratio],

@@ -106,7 +106,9 @@ pub fn alignment_residual_rms(points: &[CentredPoint], m: f64) -> Option<f64> {
         // Distance in the pixel plane (not the m-scaled one) from the radial
         // line of direction (x / m, y), so that trial values of m compare.
         let xp = x / m;
-        let norm = xp.hypot(y);
+        // Plain sqrt, not hypot: no overflow risk at these magnitudes and
+        // this runs for every point in every evaluation of the searches.
+        let norm = (xp * xp + y * y).sqrt();
         if norm == 0.0 {
             return None;
         }

@@ -8,5 +8,7 @@ pub mod oracle;
 /// Views as point observations (no image): camera-calibration tests.
 pub mod point_views;
 pub mod render;
+/// Board placement and tilt of simulated campaigns (point views).
+pub mod view_layout;
 /// Random board views for rendering: detector tests and benchmarks.
 pub mod views;
