@@ -80,48 +80,6 @@ impl PointNormalAccumulator {
     }
 }
 
-/// The normal equations with every pose block eliminated.
-pub(crate) struct SchurReduction {
-    /// `A_ii - sum_v A_ip A_pp^-1 A_pi` (intrinsics x intrinsics).
-    pub schur: DMatrix<f64>,
-    /// `g_i - sum_v A_ip A_pp^-1 g_p` (empty without `g`).
-    pub rhs: DVector<f64>,
-    pub pose_inverses: Vec<SMatrix<f64, POSE_PARAMS, POSE_PARAMS>>,
-}
-
-/// Eliminate the `views` 6x6 pose blocks (after `ni` intrinsics) of the
-/// normal matrix `a` (no reference rows: they couple poses); `None` if a
-/// pose block is singular.
-pub(crate) fn schur_reduce(
-    a: &DMatrix<f64>,
-    g: Option<&DVector<f64>>,
-    ni: usize,
-    views: usize,
-) -> Option<SchurReduction> {
-    let mut schur = a.view((0, 0), (ni, ni)).into_owned();
-    let mut rhs = g.map_or_else(|| DVector::zeros(0), |g| g.rows(0, ni).into_owned());
-    let mut pose_inverses = Vec::with_capacity(views);
-    for v in 0..views {
-        let base = ni + POSE_PARAMS * v;
-        let app: SMatrix<f64, POSE_PARAMS, POSE_PARAMS> = a
-            .fixed_view::<POSE_PARAMS, POSE_PARAMS>(base, base)
-            .into_owned();
-        let app_inv = app.cholesky()?.inverse();
-        let aip = a.view((0, base), (ni, POSE_PARAMS));
-        let w = aip * app_inv;
-        schur -= &w * aip.transpose();
-        if let Some(g) = g {
-            rhs -= &w * g.fixed_rows::<POSE_PARAMS>(base);
-        }
-        pose_inverses.push(app_inv);
-    }
-    Some(SchurReduction {
-        schur,
-        rhs,
-        pose_inverses,
-    })
-}
-
 #[cfg(test)]
 mod tests {
     use nalgebra::DVector;

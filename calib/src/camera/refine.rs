@@ -10,9 +10,10 @@ use nalgebra::{DMatrix, DVector, Isometry3, Point2, Point3, Vector6};
 use serde::{Deserialize, Serialize};
 
 use super::model::Intrinsics;
-use super::normal_blocks::{schur_reduce, PointNormalAccumulator};
+use super::normal_blocks::PointNormalAccumulator;
 use super::projection_jacobian::{projection_jacobian_at, PoseLinearisation};
 use crate::geometry::{pose_from_vector, pose_to_vector};
+use crate::arrow::{invert_arrow, solve_arrow};
 use crate::solver::{LeastSquaresProblem, FINITE_DIFFERENCE_STEP};
 
 /// Pose parameters per view.
@@ -182,22 +183,7 @@ impl LeastSquaresProblem for JointProblem<'_> {
         if !self.references.is_empty() {
             return None;
         }
-        let ni = self.block.len();
-        let reduced = schur_reduce(a, Some(g), self.block.len(), self.views.len())?;
-        let di = if ni > 0 {
-            reduced.schur.cholesky()?.solve(&reduced.rhs)
-        } else {
-            DVector::zeros(0)
-        };
-        let mut d = DVector::zeros(g.len());
-        d.rows_mut(0, ni).copy_from(&di);
-        for (v, app_inv) in reduced.pose_inverses.iter().enumerate() {
-            let base = ni + POSE_PARAMS * v;
-            let api = a.view((base, 0), (POSE_PARAMS, ni));
-            let dp = app_inv * (g.fixed_rows::<POSE_PARAMS>(base) - api * &di);
-            d.fixed_rows_mut::<POSE_PARAMS>(base).copy_from(&dp);
-        }
-        Some(d)
+        solve_arrow(a, g, self.block.len(), POSE_PARAMS)
     }
 
     /// Assembled point by point from the analytic projection Jacobian,
@@ -288,12 +274,7 @@ impl JointProblem<'_> {
             let inv = a.clone().cholesky()?.inverse();
             return Some(inv.view((0, 0), (ni, ni)).into_owned());
         }
-        Some(
-            schur_reduce(a, None, ni, self.views.len())?
-                .schur
-                .cholesky()?
-                .inverse(),
-        )
+        Some(invert_arrow(a, ni, POSE_PARAMS)?.head)
     }
 
     /// Rows of the reference-distance residuals (central differences over
