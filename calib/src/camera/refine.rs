@@ -12,8 +12,8 @@ use serde::{Deserialize, Serialize};
 use super::model::Intrinsics;
 use super::normal_blocks::PointNormalAccumulator;
 use super::projection_jacobian::{projection_jacobian_at, PoseLinearisation};
-use crate::geometry::{pose_from_vector, pose_to_vector};
 use crate::arrow::{invert_arrow, solve_arrow};
+use crate::geometry::{pose_from_vector, pose_to_vector};
 use crate::solver::{LeastSquaresProblem, FINITE_DIFFERENCE_STEP};
 
 /// Pose parameters per view.
