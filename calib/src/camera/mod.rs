@@ -13,6 +13,8 @@ pub mod refine_loop;
 pub mod sequence;
 pub mod tsai;
 pub mod willson;
+#[cfg(test)]
+mod willson_data;
 pub mod willson_fit;
 mod willson_linear;
 mod willson_lmpar;

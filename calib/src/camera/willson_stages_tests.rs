@@ -11,46 +11,14 @@
 //! sensitivity (1-ulp changes of the data) and checks that our remaining
 //! differences from the published numbers lie inside it.
 
+use crate::camera::willson_data::{load, published, INITIAL_CENTRE};
 use nalgebra::Point2;
 
 use super::{calibrate_tsai_willson, WillsonCalibration};
-use crate::camera::willson::{parse_points, TsaiModel, TsaiPoint, TsaiSensor};
+use crate::camera::willson::{TsaiModel, TsaiPoint, TsaiSensor};
 use crate::camera::willson_fit::{calibrate_tsai_full, full_optimisation_cost};
 use crate::camera::CameraError;
 use nalgebra::Point3;
-
-const DATA: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/../../shared/data/tsai/willson_v3.0b3/"
-);
-/// Willson's initial image-centre guess for the Photometrics Star I (px).
-const INITIAL_CENTRE: (f64, f64) = (258.0, 204.0);
-
-fn load(name: &str) -> Vec<TsaiPoint> {
-    parse_points(&std::fs::read_to_string(format!("{DATA}{name}")).unwrap()).unwrap()
-}
-
-/// The 19-number camera file (`Ncx .. p2`), 11 significant digits.
-fn published(file: &str) -> TsaiModel {
-    let v: Vec<f64> = std::fs::read_to_string(format!("{DATA}{file}"))
-        .unwrap()
-        .split_whitespace()
-        .map(|t| t.parse().unwrap())
-        .collect();
-    TsaiModel {
-        cx: v[6],
-        cy: v[7],
-        sx: v[8],
-        f_mm: v[9],
-        kappa1: v[10],
-        tx: v[11],
-        ty: v[12],
-        tz: v[13],
-        rx: v[14],
-        ry: v[15],
-        rz: v[16],
-    }
-}
 
 fn willson(data: &str) -> (Vec<TsaiPoint>, WillsonCalibration) {
     let points = load(data);

@@ -1,17 +1,7 @@
 //! Willson's published Tsai results (shared/data/tsai/README.md).
 
 use super::*;
-
-const DATA: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/../../shared/data/tsai/willson_v3.0b3/"
-);
-/// Willson's initial image-centre guess for the Photometrics Star I.
-const INITIAL_CENTRE: (f64, f64) = (258.0, 204.0);
-
-fn load(name: &str) -> Vec<TsaiPoint> {
-    parse_points(&std::fs::read_to_string(format!("{DATA}{name}")).unwrap()).unwrap()
-}
+use crate::camera::willson_data::{load, published, INITIAL_CENTRE};
 
 fn close(name: &str, got: f64, published: f64, tol: f64) {
     println!("{name}: ours {got:.9} published {published:.9}");
@@ -19,27 +9,6 @@ fn close(name: &str, got: f64, published: f64, tol: f64) {
         (got - published).abs() <= tol,
         "{name}: {got} vs published {published} (tol {tol})"
     );
-}
-
-fn published(file: &str) -> TsaiModel {
-    let v: Vec<f64> = std::fs::read_to_string(format!("{DATA}{file}"))
-        .unwrap()
-        .split_whitespace()
-        .map(|t| t.parse().unwrap())
-        .collect();
-    TsaiModel {
-        cx: v[6],
-        cy: v[7],
-        sx: v[8],
-        f_mm: v[9],
-        kappa1: v[10],
-        tx: v[11],
-        ty: v[12],
-        tz: v[13],
-        rx: v[14],
-        ry: v[15],
-        rz: v[16],
-    }
 }
 
 /// Willson's `lmdif` stopped at a relative cost change of 1e-5 (`ftol`),
