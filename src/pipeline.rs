@@ -288,6 +288,12 @@ pub fn run_observed(
         intrinsics_held,
         &usable,
     )?;
+    if let Some(sigma) = identified.joint_noise_rad {
+        notes.push(format!(
+            "Joint noise (encoders, repeatability) estimated from the images: {:.1e} deg per joint; the parameter standard deviations include it.",
+            sigma.to_degrees()
+        ));
+    }
     check_cancel()?;
     within(Stage::Report, "building the report", 0.0);
     if let Some(m) = &measured {

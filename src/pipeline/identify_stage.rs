@@ -31,6 +31,8 @@ pub struct Identified {
     /// Refined intrinsics and their standard deviations, when the joint
     /// refinement ran.
     pub refined_intrinsics: Option<(Intrinsics, [f64; 8], f64)>,
+    /// Joint noise (rad) the joint refinement estimated from the images.
+    pub joint_noise_rad: Option<f64>,
     /// Indices (into the session's poses) of the calibration and validation poses.
     pub cal: Vec<usize>,
     pub val: Vec<usize>,
@@ -151,6 +153,7 @@ pub fn identify_robot(
         .map_err(|e| numerical(Stage::Identify, e))?;
     let mut model = identification.model.clone();
     let mut refined_intrinsics = None;
+    let mut joint_noise_rad = None;
     if let (Some(step), true) = (camera, joint_refinement && kind == MeasurementKind::Pose) {
         let images: Vec<ImagePose> = cal
             .iter()
@@ -175,6 +178,7 @@ pub fn identify_robot(
         )
         .map_err(|e| numerical(Stage::Identify, e))?;
         model = joint.model.clone();
+        joint_noise_rad = Some(joint.joint_sigma_rad);
         refined_intrinsics = Some((
             joint.intrinsics,
             joint.intrinsics_std,
@@ -212,6 +216,7 @@ pub fn identify_robot(
         identification,
         model,
         refined_intrinsics,
+        joint_noise_rad,
         cal,
         val: val_index,
         before,
