@@ -78,9 +78,14 @@ fn summary(preset: &str, all: &[robocal_calib::sim::experiment::ExperimentResult
         all.iter().map(f).sum::<f64>() / n
     };
     let oracle = mean(&|r| r.oracle.norm.mean_mm);
+    // Standard error of the mean z^2 over campaigns: the 30 z of one
+    // campaign are strongly correlated, so 20 campaigns give z rms only to
+    // about +-0.05 (400-campaign blocks of 20 spread 0.91-1.14).
+    let z2 = mean(&|r| r.sigma_ratio_rms.powi(2));
+    let z2_se = (mean(&|r| (r.sigma_ratio_rms.powi(2) - z2).powi(2)) / (n - 1.0).max(1.0)).sqrt();
     let joint = mean(&|r| r.joint.norm.mean_mm);
     println!(
-        "SUMMARY {preset} ({} campaigns, mean of per-campaign mean 3-D val error, mm): before {:.4} | oracle {:.4} (known-intrinsics oracle {:.4}) | two-step plain {:.4} ({:.2}x oracle) | two-step weighted {:.4} ({:.2}x) | paper mode {:.4} ({:.2}x) | joint {:.4} ({:.2}x oracle) | improvement {:.1}x | compensated {:.4} | joint val max {:.4} | campaigns with all params within 3 sigma {}/{} (z rms {:.3}, joint noise est {:.3e} deg) | identify {:.3} s, joint refine {:.3} s",
+        "SUMMARY {preset} ({} campaigns, mean of per-campaign mean 3-D val error, mm): before {:.4} | oracle {:.4} (known-intrinsics oracle {:.4}) | two-step plain {:.4} ({:.2}x oracle) | two-step weighted {:.4} ({:.2}x) | paper mode {:.4} ({:.2}x) | joint {:.4} ({:.2}x oracle) | improvement {:.1}x | compensated {:.4} | joint val max {:.4} | campaigns with all params within 3 sigma {}/{} (z rms {:.3}, mean z^2 {:.3} +- {:.3}, joint noise est {:.3e} deg) | identify {:.3} s, joint refine {:.3} s",
         all.len(),
         mean(&|r| r.before.norm.mean_mm),
         oracle,
@@ -99,6 +104,8 @@ fn summary(preset: &str, all: &[robocal_calib::sim::experiment::ExperimentResult
         all.iter().filter(|r| r.worst_sigma_ratio.0 <= 3.0).count(),
         all.len(),
         (mean(&|r| r.sigma_ratio_rms.powi(2))).sqrt(),
+        z2,
+        z2_se,
         mean(&|r| r.estimated_joint_sigma_rad.to_degrees()),
         mean(&|r| r.identify_seconds),
         mean(&|r| r.joint_refine_seconds),
