@@ -30,7 +30,7 @@ use robocal_calib::sim::campaign_io::PoseSet;
 use robocal_calib::sim::oracle::{oracle_accuracy, truth_measurements};
 
 /// Seeds the synthetic dot noise of run (a) apart from the campaign's.
-const SYNTH_SEED: u64 = 0x5eed_0a;
+const SYNTH_SEED: u64 = 0x005e_ed0a;
 
 #[derive(Parser)]
 struct Args {
