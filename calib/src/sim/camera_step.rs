@@ -4,7 +4,7 @@
 //! images. It sets the oracle's noise level and the two-step pipeline's
 //! weights; the per-image pose itself comes from `camera/pose.rs`.
 
-use nalgebra::{DMatrix, Matrix6, Point3};
+use nalgebra::{DMatrix, Matrix6, Point3, SMatrix};
 
 use crate::camera::model::Intrinsics;
 use crate::geometry::Pose;
@@ -24,6 +24,10 @@ pub struct CameraStepPrecision {
     /// Covariance of each pose were the intrinsics known exactly (a PnP
     /// with the true camera).
     pub poses_known_intrinsics: Vec<Matrix6<f64>>,
+    /// Per pose, how an intrinsics error moves the pose estimate
+    /// (`-A_k^-1 B_k`, linearised): one intrinsics error is shared by every
+    /// pose of the bundle, so the poses' errors are correlated.
+    pub pose_intrinsics_gain: Vec<SMatrix<f64, 6, 8>>,
 }
 
 /// Schur-complement evaluation of the bundle's covariance: with per-pose
@@ -64,9 +68,46 @@ pub fn camera_step_precision(
         })
         .collect();
     let poses_known_intrinsics = blocks.iter().map(|(a_inv, _)| a_inv * var).collect();
+    let pose_intrinsics_gain = blocks.iter().map(|(a_inv, b)| -(a_inv * b)).collect();
     Some(CameraStepPrecision {
         intrinsics: s_inv * var,
         poses,
         poses_known_intrinsics,
+        pose_intrinsics_gain,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::campaign::{simulate_campaign, CampaignSpec};
+    use crate::sim::campaign_io::Board;
+
+    /// The shared-intrinsics decomposition reproduces each pose's marginal:
+    /// `known + G C G^T` (what the correlated oracle's draws rely on).
+    #[test]
+    fn gain_and_known_intrinsics_make_the_marginal() {
+        let spec = CampaignSpec::standard("irb2400", 1).unwrap();
+        let campaign = simulate_campaign(&spec).unwrap();
+        let points = Board::standard().points();
+        let bundle: Vec<_> = campaign
+            .poses
+            .iter()
+            .take(20)
+            .map(|p| (p.target_to_camera, points.clone()))
+            .collect();
+        let sigma_px = 0.05;
+        let precision =
+            camera_step_precision(&campaign.truth.intrinsics, &bundle, sigma_px).unwrap();
+        let c = SMatrix::<f64, 8, 8>::from_column_slice(precision.intrinsics.as_slice());
+        for k in 0..bundle.len() {
+            let g = precision.pose_intrinsics_gain[k];
+            let rebuilt = precision.poses_known_intrinsics[k] + g * c * g.transpose();
+            let marginal = precision.poses[k];
+            assert!(
+                (rebuilt - marginal).norm() <= 1e-9 * marginal.norm(),
+                "pose {k}: {rebuilt} vs {marginal}"
+            );
+        }
+    }
 }
