@@ -131,12 +131,6 @@ pub fn refine(input: &RefineInput) -> Result<Refinement, CameraError> {
             .take()
             .unwrap_or_else(|| problem.encode(&input.initial_intrinsics, input.initial_poses));
         let report = solve(&problem, x0, &lm)?;
-        if std::env::var("ROBOCAL_DEBUG").is_ok() {
-            eprintln!(
-                "round: iterations {} cost {} -> {} {:?}",
-                report.iterations, report.initial_cost, report.cost, report.termination
-            );
-        }
         let intr = problem.intrinsics(&report.x);
         let poses: Vec<_> = (0..views.len())
             .map(|v| problem.pose(&report.x, v))
@@ -206,12 +200,6 @@ pub fn refine(input: &RefineInput) -> Result<Refinement, CameraError> {
                 .map(|r| r.sigma_mm)
                 .fold(f64::INFINITY, f64::min);
             reference_weight = sigma.max(f64::MIN_POSITIVE) / min_sigma;
-        }
-        if std::env::var("ROBOCAL_DEBUG").is_ok() {
-            eprintln!(
-                "bias change {change} sigma {sigma} outliers {}",
-                outliers.len()
-            );
         }
         x = Some(report.x.clone());
         let converged = !new_outliers && !refs_pending && change <= options.bias_tolerance_px;
