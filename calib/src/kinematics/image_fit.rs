@@ -12,7 +12,6 @@ use super::params::{CalibratedModel, ParamLayout};
 use super::projection::{apply_intrinsics, project_with_jacobians, INTRINSIC_NAMES};
 use crate::arrow::solve_arrow;
 use crate::camera::model::Intrinsics;
-use crate::geometry::Pose;
 use crate::solver::LeastSquaresProblem;
 
 /// Intrinsic parameters refined with the kinematics.
@@ -76,7 +75,7 @@ impl ImageFit<'_> {
     fn pose_joints(&self, x: &DVector<f64>, k: usize) -> Vec<f64> {
         let q = &self.poses[k].joints_rad;
         let nj = self.joints();
-        let start = self.free.len() + self.ni() + k * nj;
+        let start = self.head() + k * nj;
         (0..q.len())
             .map(|j| q[j] + if j < nj { x[start + j] } else { 0.0 })
             .collect()
@@ -90,20 +89,25 @@ impl ImageFit<'_> {
             .sum::<usize>()
     }
 
-    pub(super) fn params(&self) -> usize {
-        self.free.len() + self.ni() + self.poses.len() * self.joints()
+    /// Unknowns before the joint corrections: kinematics, then intrinsics.
+    pub(super) fn head(&self) -> usize {
+        self.free.len() + self.ni()
     }
 
-    /// Pose `k` linearised at `x`: `(target_to_camera, block)`; the dot
-    /// residuals (px) are written to `r` from `row` on.
+    pub(super) fn params(&self) -> usize {
+        self.head() + self.poses.len() * self.joints()
+    }
+
+    /// Pose `k` linearised at `x`; `per_dot` sees each dot's weighted
+    /// Jacobians (pose, intrinsics) in order.
     fn linearise_pose(
         &self,
         x: &DVector<f64>,
         model: &CalibratedModel,
         cam: &Intrinsics,
         k: usize,
-        mut residual: impl FnMut(usize, f64, f64, &SMatrix<f64, 2, 6>, &SMatrix<f64, 2, 8>),
-    ) -> Option<(Pose, PoseBlock)> {
+        mut per_dot: impl FnMut(&SMatrix<f64, 2, 6>, &SMatrix<f64, 2, 8>),
+    ) -> Option<PoseBlock> {
         let q = self.pose_joints(x, k);
         let (t2c, jt) = tool_pose_jacobian(self.layout, model, &q).ok()?;
         let offsets = self.layout.joint_offset_indices();
@@ -117,23 +121,23 @@ impl ImageFit<'_> {
             g_c: SMatrix::zeros(),
         };
         let s = self.noise.sigma_px;
-        for (i, (p, uv)) in self.poses[k].observations.iter().enumerate() {
+        for (p, uv) in &self.poses[k].observations {
             let (pred, jp, jc) = project_with_jacobians(cam, &t2c, p)?;
             let (jp, jc) = (jp / s, jc / s);
             let r = nalgebra::Vector2::new((pred.x - uv.x) / s, (pred.y - uv.y) / s);
-            residual(i, r.x, r.y, &jp, &jc);
+            per_dot(&jp, &jc);
             block.h_pp += jp.transpose() * jp;
             block.h_pc += jp.transpose() * jc;
             block.h_cc += jc.transpose() * jc;
             block.g_p += jp.transpose() * r;
             block.g_c += jc.transpose() * r;
         }
-        Some((t2c, block))
+        Some(block)
     }
 
     /// The prior residuals `e / sigma_q` of every joint correction.
     fn prior(&self, x: &DVector<f64>) -> DVector<f64> {
-        let start = self.free.len() + self.ni();
+        let start = self.head();
         DVector::from_fn(self.poses.len() * self.joints(), |i, _| {
             x[start + i] / self.noise.joint_sigma_rad()
         })
@@ -167,7 +171,7 @@ impl LeastSquaresProblem for ImageFit<'_> {
         let mut row = 0;
         for k in 0..self.poses.len() {
             let mut dots = Vec::new();
-            let (_, block) = self.linearise_pose(x, &model, &cam, k, |_, _, _, jp, jc| {
+            let block = self.linearise_pose(x, &model, &cam, k, |jp, jc| {
                 dots.push((*jp, *jc));
             })?;
             for (jp, jc) in dots {
@@ -191,7 +195,7 @@ impl LeastSquaresProblem for ImageFit<'_> {
     fn solve_normal(&self, a: &DMatrix<f64>, g: &DVector<f64>) -> Option<DVector<f64>> {
         match self.joints() {
             0 => None,
-            nj => solve_arrow(a, g, self.free.len() + self.ni(), nj),
+            nj => solve_arrow(a, g, self.head(), nj),
         }
     }
 
@@ -208,7 +212,7 @@ impl LeastSquaresProblem for ImageFit<'_> {
         let prior = self.prior(x);
         let c0 = nf;
         for k in 0..self.poses.len() {
-            let (_, b) = self.linearise_pose(x, &model, &cam, k, |_, _, _, _, _| {})?;
+            let b = self.linearise_pose(x, &model, &cam, k, |_, _| {})?;
             let hf = b.h_pp * &b.t_free;
             let mut add = |r0: usize, c0: usize, m: &DMatrix<f64>| {
                 let mut v = a.view_mut((r0, c0), (m.nrows(), m.ncols()));

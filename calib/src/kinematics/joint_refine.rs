@@ -207,7 +207,7 @@ impl Solution {
             intrinsics: &intrinsics,
             ..*problem
         };
-        let kinematic = problem.free.len() + problem.ni();
+        let kinematic = problem.head();
         let x_at = DVector::from_fn(
             at.params(),
             |i, _| {
@@ -221,7 +221,6 @@ impl Solution {
         let (normal, _) = at
             .normal_equations(&x_at, &report.residuals)
             .ok_or(IdentifyError::NoPoses)?;
-        let kinematic = problem.free.len() + problem.ni();
         let inverse = match problem.joints() {
             0 => None,
             nj => invert_arrow(&normal, kinematic, nj),
@@ -249,7 +248,7 @@ impl Solution {
     /// Förstner's factors `(lambda_px, lambda_q)`: each group's weighted
     /// residual sum over its redundancy.
     fn variance_factors(&self, problem: &ImageFit, report: &LmReport) -> (f64, f64) {
-        let kinematic = problem.free.len() + problem.ni();
+        let kinematic = problem.head();
         let n = problem.params();
         let rows = problem.image_rows();
         let prior_weight = problem.noise.joint_sigma_rad().powi(-2);
@@ -270,7 +269,7 @@ impl Solution {
     ) -> JointRefinement {
         let free = problem.free;
         let nj = problem.joints();
-        let kinematic = free.len() + problem.ni();
+        let kinematic = problem.head();
         let joint_corrections_rad = (0..problem.poses.len())
             .map(|k| report.x.as_slice()[kinematic + k * nj..kinematic + (k + 1) * nj].to_vec())
             .filter(|c| !c.is_empty())
