@@ -200,6 +200,15 @@ pub fn calibrate_local(dir: &Path, serial: &str) -> Result<Report, String> {
 
 /// The pipeline's output on a campaign directory, without a server.
 pub fn run_local(dir: &Path, serial: &str) -> Result<pipeline::Output, String> {
+    run_local_with(dir, serial, CalibrationOptions::default())
+}
+
+/// [`run_local`] with the calibration job's `options`.
+pub fn run_local_with(
+    dir: &Path,
+    serial: &str,
+    options: CalibrationOptions,
+) -> Result<pipeline::Output, String> {
     let (file, entries) = read(dir)?;
     let body: RobotBody = serde_json::from_value(file.robot.clone()).map_err(|e| e.to_string())?;
     let kinematics = body.resolve().map_err(|e| format!("{e:?}"))?;
@@ -227,7 +236,7 @@ pub fn run_local(dir: &Path, serial: &str) -> Result<pipeline::Output, String> {
         kinematics,
         session: file.session,
         poses,
-        options: CalibrationOptions::default(),
+        options,
         fixed_camera: None,
         test_stage_delay: std::time::Duration::ZERO,
         validate_only: false,

@@ -7,6 +7,7 @@
 //! thread, and stores the outcome.
 pub use robocal_calib as calib;
 
+pub mod accuracy;
 pub mod api;
 pub mod camera_reuse;
 pub mod campaign;

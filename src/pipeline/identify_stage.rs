@@ -28,6 +28,10 @@ pub struct Identified {
     pub identification: Identification,
     /// The final model (joint refinement when it ran, else the pose-level fit).
     pub model: CalibratedModel,
+    /// Standard deviations of `model`'s parameters (layout order, internal
+    /// units): the joint refinement's when it ran. The pose-level fit's
+    /// would describe a different, less precise estimate.
+    pub std_devs: nalgebra::DVector<f64>,
     /// Refined intrinsics and their standard deviations, when the joint
     /// refinement ran.
     pub refined_intrinsics: Option<(Intrinsics, [f64; 8], f64)>,
@@ -152,6 +156,7 @@ pub fn identify_robot(
     let identification = identify(&start, instrument, &cal_data, options)
         .map_err(|e| numerical(Stage::Identify, e))?;
     let mut model = identification.model.clone();
+    let mut std_devs = identification.std_devs.clone();
     let mut refined_intrinsics = None;
     let mut joint_noise_rad = None;
     if let (Some(step), true) = (camera, joint_refinement && kind == MeasurementKind::Pose) {
@@ -178,6 +183,7 @@ pub fn identify_robot(
         )
         .map_err(|e| numerical(Stage::Identify, e))?;
         model = joint.model.clone();
+        std_devs = joint.std_devs.clone();
         joint_noise_rad = Some(joint.joint_sigma_rad);
         refined_intrinsics = Some((
             joint.intrinsics,
@@ -215,6 +221,7 @@ pub fn identify_robot(
     Ok(Identified {
         identification,
         model,
+        std_devs,
         refined_intrinsics,
         joint_noise_rad,
         cal,

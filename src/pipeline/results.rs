@@ -111,7 +111,7 @@ fn display_value(layout: &ParamLayout, i: usize, value: f64) -> (f64, String) {
 fn parameter_rows(id: &Identified) -> Vec<ParameterReport> {
     let layout = &id.identification.layout;
     let correction = layout.difference(&id.model, &id.identification.before);
-    let std = &id.identification.std_devs;
+    let std = &id.std_devs;
     let fixed = &id.identification.identifiability.fixed;
     layout
         .params

@@ -1,5 +1,6 @@
 //! One integration-test binary: the real server over HTTP, module per area.
 
+pub(crate) mod accuracy;
 pub(crate) mod auth;
 pub(crate) mod camera_reuse;
 pub(crate) mod e2e;

@@ -18,13 +18,13 @@ use rand_distr::{Distribution, StandardNormal};
 use super::camera_step::camera_step_precision;
 use super::campaign::{compliance, simulate_campaign, Campaign, CampaignSpec, SimError};
 use super::campaign_io::PoseSet;
-use super::oracle::{oracle_measurements, truth_measurements};
+use super::oracle::{equivalent_truth, oracle_measurements, truth_measurements};
 use crate::camera::model::Intrinsics;
 use crate::camera::pose::estimate_pose;
 use crate::geometry::{perturb_left, Pose};
 use crate::kinematics::identify::{
-    fit_parameters, identify, validate, IdentifyError, IdentifyMode, IdentifyOptions, JointNoise,
-    Measurement, Observed,
+    identify, validate, IdentifyError, IdentifyMode, IdentifyOptions, JointNoise, Measurement,
+    Observed,
 };
 use crate::kinematics::ik::inverse_kinematics;
 use crate::kinematics::initial::initial_world_to_base;
@@ -44,6 +44,10 @@ pub enum ExperimentError {
     Degenerate,
     #[error("compensation: {0}")]
     Compensation(#[from] crate::kinematics::ik::IkError),
+    #[error("truth: {0}")]
+    Truth(#[from] crate::geometry::GeometryError),
+    #[error(transparent)]
+    Kinematics(#[from] crate::kinematics::KinematicsError),
 }
 
 /// Validation statistics (3-D camera position vs truth) of every method.
@@ -246,27 +250,10 @@ pub fn run_experiment(spec: &CampaignSpec) -> Result<ExperimentResult, Experimen
     let joint = joint_refine(&weighted_id.model, &cam_step, &images, &free, noise, false)?;
     let joint_refine_seconds = t1.elapsed().as_secs_f64();
 
-    // Truth in the identified parameterisation: the redundant terms of the
-    // true robot folded into base and hand–eye by an exact fit.
+    // Truth in the identified parameterisation (fixed terms folded into
+    // base and hand–eye).
     let true_model = exact_model(&campaign);
-    let exact: Vec<Measurement> = campaign
-        .poses
-        .iter()
-        .map(|p| Measurement {
-            joints_rad: p.joints_rad.clone(),
-            observed: Observed::Pose {
-                world_to_tool: true_model.world_to_tool(&p.joints_rad).unwrap_or_default(),
-                covariance: None,
-            },
-        })
-        .collect();
-    let (equivalent, _) = fit_parameters(
-        &weighted_id.before,
-        Instrument::Camera,
-        &exact,
-        &free,
-        IdentifyMode::Weighted.into(),
-    )?;
+    let equivalent = equivalent_truth(&campaign, &weighted_id.before, &free)?;
     let diff: DVector<f64> = joint.layout.difference(&joint.model, &equivalent);
     let ratios: Vec<f64> = free.iter().map(|&i| diff[i] / joint.std_devs[i]).collect();
     let sigma_ratio_rms =
