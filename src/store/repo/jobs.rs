@@ -1,0 +1,343 @@
+use async_trait::async_trait;
+use serde_json::json;
+
+use super::results::insert_parameter_set_tx;
+use crate::domain::{
+    new_id, now_rfc3339, ClaimedJob, JobOutcome, JobRecord, JobState, LeaseStatus, NewJob,
+    PoseDetection,
+};
+use crate::store::backend::{is_foreign_key_violation, Backend, Conn};
+use crate::store::rows::{claimed_job, job, Columns};
+use crate::store::statement::query;
+use crate::store::{JobStore, StoreError, StoreResult};
+
+const COLUMNS: &str = "id, kind, session_id, serial, options, state, stage, progress, attempts,
+    max_attempts, error, result, created_at, started_at, finished_at";
+
+#[async_trait]
+impl<B: Backend> JobStore for B {
+    async fn enqueue_job(&self, j: &NewJob, max_queued: i64) -> StoreResult<JobRecord> {
+        let mut tx = self.begin_write().await?;
+        B::serialise_enqueue(&mut tx).await?;
+        let row = B::fetch_optional_in(
+            &mut tx,
+            query(format!(
+                "INSERT INTO jobs (id, kind, session_id, serial, options, state, max_attempts,
+                   created_at)
+                 SELECT $1, $2, $3, $4, $5, 'queued', $6, $7
+                 WHERE (SELECT count(*) FROM jobs WHERE state = 'queued') < $8
+                 RETURNING {COLUMNS}"
+            ))
+            .bind(new_id())
+            .bind(&j.kind)
+            .bind(&j.session_id)
+            .bind(&j.serial)
+            .bind(j.options.to_string())
+            .bind(j.max_attempts)
+            .bind(now_rfc3339())
+            .bind(max_queued),
+        )
+        .await;
+        let row = match row {
+            Ok(Some(row)) => row,
+            Ok(None) => return Err(StoreError::QueueFull),
+            Err(e) if is_foreign_key_violation(&e) => return Err(StoreError::NotFound("session")),
+            Err(e) => return Err(e.into()),
+        };
+        let record = job(&row)?;
+        // On PostgreSQL the `jobs_claimable` trigger's NOTIFY goes out with this commit.
+        tx.commit().await?;
+        Ok(record)
+    }
+
+    async fn get_job(&self, id: &str) -> StoreResult<Option<JobRecord>> {
+        let row = self
+            .fetch_optional(query(format!("SELECT {COLUMNS} FROM jobs WHERE id = $1")).bind(id))
+            .await?;
+        row.as_ref().map(job).transpose()
+    }
+
+    async fn cancel_job(&self, id: &str) -> StoreResult<Option<JobRecord>> {
+        let row = self
+            .fetch_optional(
+                query(format!(
+                    "UPDATE jobs SET state = 'cancelled', finished_at = $1, lease_expires_at = NULL
+                     WHERE id = $2 AND state IN ('queued', 'running') RETURNING {COLUMNS}"
+                ))
+                .bind(now_rfc3339())
+                .bind(id),
+            )
+            .await?;
+        match row {
+            Some(row) => Ok(Some(job(&row)?)),
+            None => match self.get_job(id).await? {
+                None => Ok(None),
+                Some(j) => Err(StoreError::Conflict(format!(
+                    "job is already {}",
+                    j.state.as_str()
+                ))),
+            },
+        }
+    }
+
+    async fn fail_exhausted_jobs(&self, now_ms: i64) -> StoreResult<u64> {
+        // SKIP LOCKED: a row another replica is claiming or finishing right
+        // now is left to it (and to the next sweep).
+        let failed = self
+            .execute(
+                query(format!(
+                    "UPDATE jobs SET state = 'failed', finished_at = $1, worker_id = NULL,
+                       lease_expires_at = NULL,
+                       error = 'worker lost (lease expired) on attempt ' || attempts || ' of '
+                               || max_attempts || coalesce('; last error: ' || error, '')
+                     WHERE id IN (SELECT id FROM jobs
+                                  WHERE state = 'running' AND lease_expires_at < $2
+                                    AND attempts >= max_attempts{})",
+                    B::FOR_UPDATE_SKIP_LOCKED
+                ))
+                .bind(now_rfc3339())
+                .bind(now_ms),
+            )
+            .await?;
+        Ok(failed)
+    }
+
+    async fn claim_job(
+        &self,
+        worker_id: &str,
+        now_ms: i64,
+        lease_until_ms: i64,
+    ) -> StoreResult<Option<ClaimedJob>> {
+        // The oldest claimable row not locked by another claimer: replicas
+        // never wait on each other and never take the same job. Under READ
+        // COMMITTED the row is re-checked after locking, so a job claimed
+        // and committed meanwhile is skipped, not taken twice. (SQLite runs
+        // the one statement under its database write lock.)
+        let row = self
+            .fetch_optional(
+                query(format!(
+                    "UPDATE jobs SET state = 'running', attempts = attempts + 1, worker_id = $1,
+                       lease_expires_at = $2, started_at = coalesce(started_at, $3),
+                       stage = 'claimed'
+                     WHERE id = (SELECT id FROM jobs
+                                 WHERE state = 'queued'
+                                    OR (state = 'running' AND lease_expires_at < $4
+                                        AND attempts < max_attempts)
+                                 ORDER BY id LIMIT 1{})
+                     RETURNING id, session_id, serial, options, attempts",
+                    B::FOR_UPDATE_SKIP_LOCKED
+                ))
+                .bind(worker_id)
+                .bind(lease_until_ms)
+                .bind(now_rfc3339())
+                .bind(now_ms),
+            )
+            .await?;
+        row.as_ref().map(claimed_job).transpose()
+    }
+
+    async fn renew_lease(
+        &self,
+        job_id: &str,
+        worker_id: &str,
+        lease_until_ms: i64,
+        stage: &str,
+        progress: f64,
+    ) -> StoreResult<LeaseStatus> {
+        let renewed = self
+            .execute(
+                query(
+                    "UPDATE jobs SET lease_expires_at = $1, stage = $2, progress = $3
+                     WHERE id = $4 AND worker_id = $5 AND state = 'running'",
+                )
+                .bind(lease_until_ms)
+                .bind(stage)
+                .bind(progress)
+                .bind(job_id)
+                .bind(worker_id),
+            )
+            .await?;
+        if renewed > 0 {
+            return Ok(LeaseStatus::Held);
+        }
+        lost_or_cancelled(self, job_id).await
+    }
+
+    async fn finish_job(
+        &self,
+        job_id: &str,
+        worker_id: &str,
+        outcome: &JobOutcome,
+    ) -> StoreResult<LeaseStatus> {
+        let mut tx = self.begin_write().await?;
+        // Row lock: a concurrent reclaim (lease expired) or cancel waits, and
+        // if it won first this worker no longer matches and writes nothing.
+        let held = B::fetch_optional_in(
+            &mut tx,
+            query(format!(
+                "SELECT serial, session_id, attempts, max_attempts FROM jobs
+                 WHERE id = $1 AND worker_id = $2 AND state = 'running'{}",
+                B::FOR_UPDATE
+            ))
+            .bind(job_id)
+            .bind(worker_id),
+        )
+        .await?;
+        let Some(held) = held else {
+            drop(tx);
+            return lost_or_cancelled(self, job_id).await;
+        };
+        let serial = held.string("serial");
+        let attempts = held.int("attempts");
+        let max_attempts = held.int("max_attempts");
+        let (state, error, result) = match outcome {
+            JobOutcome::Succeeded {
+                parameter_set,
+                summary,
+                detections,
+            } => {
+                if !detections.is_empty() {
+                    write_detections_tx::<B>(&mut tx, held.str("session_id"), detections).await?;
+                }
+                let mut result = json!({ "summary": summary });
+                if let Some(set) = parameter_set {
+                    let version =
+                        insert_parameter_set_tx::<B>(&mut tx, &serial, Some(job_id), set).await?;
+                    result["serial"] = json!(serial);
+                    result["version"] = json!(version);
+                }
+                ("succeeded", None, Some(result.to_string()))
+            }
+            JobOutcome::Failed { error } => ("failed", Some(error.clone()), None),
+            JobOutcome::Retry { error } if attempts < max_attempts => {
+                ("queued", Some(error.clone()), None)
+            }
+            JobOutcome::Retry { error } => (
+                "failed",
+                Some(format!("{error} (after {attempts} attempts)")),
+                None,
+            ),
+        };
+        let finished = (state != "queued").then(now_rfc3339);
+        B::execute_in(
+            &mut tx,
+            query(
+                "UPDATE jobs SET state = $1, error = $2, result = $3, finished_at = $4,
+                   worker_id = NULL, lease_expires_at = NULL,
+                   progress = CASE WHEN $1 = 'succeeded' THEN 1.0 ELSE progress END,
+                   stage = CASE WHEN $1 = 'succeeded' THEN 'done' ELSE stage END
+                 WHERE id = $5",
+            )
+            .bind(state)
+            .bind(error)
+            .bind(result)
+            .bind(finished)
+            .bind(job_id),
+        )
+        .await?;
+        tx.commit().await?;
+        Ok(LeaseStatus::Held)
+    }
+
+    async fn record_detections(
+        &self,
+        job_id: &str,
+        worker_id: &str,
+        detections: &[PoseDetection],
+    ) -> StoreResult<LeaseStatus> {
+        let mut tx = self.begin_write().await?;
+        // Row lock, as in `finish_job`: a reclaim or cancel racing this
+        // write waits, or wins and this worker writes nothing.
+        let held = B::fetch_optional_in(
+            &mut tx,
+            query(format!(
+                "SELECT session_id FROM jobs
+                 WHERE id = $1 AND worker_id = $2 AND state = 'running'{}",
+                B::FOR_UPDATE
+            ))
+            .bind(job_id)
+            .bind(worker_id),
+        )
+        .await?;
+        let Some(held) = held else {
+            drop(tx);
+            return lost_or_cancelled(self, job_id).await;
+        };
+        write_detections_tx::<B>(&mut tx, held.str("session_id"), detections).await?;
+        tx.commit().await?;
+        Ok(LeaseStatus::Held)
+    }
+
+    async fn release_job(&self, job_id: &str, worker_id: &str) -> StoreResult<()> {
+        self.execute(
+            query(
+                "UPDATE jobs SET state = 'queued',
+                   attempts = CASE WHEN attempts > 0 THEN attempts - 1 ELSE 0 END,
+                   worker_id = NULL, lease_expires_at = NULL, stage = 'released'
+                 WHERE id = $1 AND worker_id = $2 AND state = 'running'",
+            )
+            .bind(job_id)
+            .bind(worker_id),
+        )
+        .await?;
+        Ok(())
+    }
+
+    async fn job_counts(&self) -> StoreResult<Vec<(JobState, i64)>> {
+        let rows = self
+            .fetch_all(query(
+                "SELECT state, count(*) AS n FROM jobs GROUP BY state",
+            ))
+            .await?;
+        Ok(JobState::ALL
+            .into_iter()
+            .map(|st| {
+                let n = rows
+                    .iter()
+                    .find(|r| r.str("state") == st.as_str())
+                    .map(|r| r.int("n"))
+                    .unwrap_or(0);
+                (st, n)
+            })
+            .collect())
+    }
+}
+
+/// Replaces every pose's detection document of a session: the listed poses
+/// get theirs, the others none (a pose uploaded after the job loaded its
+/// inputs shows no stale points from an earlier job). Two jobs of one
+/// session writing at once serialise on the rows: each write is whole.
+async fn write_detections_tx<B: Backend>(
+    tx: &mut Conn<B>,
+    session_id: &str,
+    detections: &[PoseDetection],
+) -> StoreResult<()> {
+    B::execute_in(
+        tx,
+        query("UPDATE poses SET detection = NULL WHERE session_id = $1").bind(session_id),
+    )
+    .await?;
+    for d in detections {
+        B::execute_in(
+            tx,
+            query("UPDATE poses SET detection = $1 WHERE session_id = $2 AND id = $3")
+                .bind(d.detection.to_string())
+                .bind(session_id)
+                .bind(&d.pose_id),
+        )
+        .await?;
+    }
+    Ok(())
+}
+
+/// Why a worker's write matched no row: the job was cancelled, or its lease
+/// went to another worker (or the job is gone).
+async fn lost_or_cancelled<B: Backend>(store: &B, job_id: &str) -> StoreResult<LeaseStatus> {
+    let row = store
+        .fetch_optional(query("SELECT state FROM jobs WHERE id = $1").bind(job_id))
+        .await?;
+    Ok(match row.as_ref().map(|r| r.str("state")) {
+        Some("cancelled") => LeaseStatus::Cancelled,
+        _ => LeaseStatus::Lost,
+    })
+}

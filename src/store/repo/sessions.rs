@@ -1,0 +1,207 @@
+use async_trait::async_trait;
+use serde_json::Value;
+
+use super::page_cursor;
+use crate::domain::{new_id, now_rfc3339, ImageMeta, NewPose, Page, PoseRecord, SessionRecord};
+use crate::store::backend::{is_foreign_key_violation, Backend};
+use crate::store::rows::{pose, session, Columns};
+use crate::store::statement::query;
+use crate::store::{SessionStore, StoreError, StoreResult};
+
+const SESSION_COLUMNS: &str = "s.id, s.serial, s.instrument, s.spec, s.created_at,
+    (SELECT count(*) FROM poses p WHERE p.session_id = s.id) AS pose_count";
+const POSE_COLUMNS: &str =
+    "id, session_id, joints_deg, pose_set, image_meta, points, measured, detection, created_at";
+
+#[async_trait]
+impl<B: Backend> SessionStore for B {
+    async fn create_session(
+        &self,
+        serial: &str,
+        instrument: &str,
+        spec: &Value,
+    ) -> StoreResult<SessionRecord> {
+        let id = new_id();
+        let created_at = now_rfc3339();
+        let inserted = self
+            .execute(
+                query(
+                    "INSERT INTO sessions (id, serial, instrument, spec, created_at)
+                     SELECT $1, serial, $2, $3, $4 FROM robots WHERE serial = $5",
+                )
+                .bind(&id)
+                .bind(instrument)
+                .bind(spec.to_string())
+                .bind(&created_at)
+                .bind(serial),
+            )
+            .await;
+        match inserted {
+            Ok(0) => return Err(StoreError::NotFound("robot")),
+            Ok(_) => {}
+            // The robot was deleted between the SELECT and the insert's FK check.
+            Err(e) if is_foreign_key_violation(&e) => return Err(StoreError::NotFound("robot")),
+            Err(e) => return Err(e.into()),
+        }
+        Ok(SessionRecord {
+            id,
+            serial: serial.to_string(),
+            instrument: instrument.to_string(),
+            spec: spec.clone(),
+            pose_count: 0,
+            created_at,
+        })
+    }
+
+    async fn get_session(&self, id: &str) -> StoreResult<Option<SessionRecord>> {
+        let row = self
+            .fetch_optional(
+                query(format!(
+                    "SELECT {SESSION_COLUMNS} FROM sessions s WHERE s.id = $1"
+                ))
+                .bind(id),
+            )
+            .await?;
+        row.as_ref().map(session).transpose()
+    }
+
+    async fn list_sessions(
+        &self,
+        serial: &str,
+        limit: i64,
+        after: Option<&str>,
+    ) -> StoreResult<Page<SessionRecord>> {
+        let rows = self
+            .fetch_all(
+                query(format!(
+                    "SELECT {SESSION_COLUMNS} FROM sessions s WHERE s.serial = $1 AND s.id > $2
+                     ORDER BY s.id LIMIT $3"
+                ))
+                .bind(serial)
+                .bind(after.unwrap_or(""))
+                .bind(limit),
+            )
+            .await?;
+        let items = rows.iter().map(session).collect::<StoreResult<Vec<_>>>()?;
+        let next_cursor = page_cursor(&items, limit, |s| s.id.clone());
+        Ok(Page { items, next_cursor })
+    }
+
+    async fn put_blob(&self, meta: &ImageMeta, data: &[u8]) -> StoreResult<()> {
+        // Two writers storing the same image: the second waits for the
+        // first's commit on the primary key, then does nothing.
+        self.execute(
+            query(
+                "INSERT INTO blobs (sha256, size_bytes, content_type, data, created_at)
+                 VALUES ($1, $2, $3, $4, $5) ON CONFLICT (sha256) DO NOTHING",
+            )
+            .bind(&meta.sha256)
+            .bind(meta.size_bytes)
+            .bind(&meta.content_type)
+            .bind(data)
+            .bind(now_rfc3339()),
+        )
+        .await?;
+        Ok(())
+    }
+
+    async fn get_blob(&self, sha256: &str) -> StoreResult<Option<Vec<u8>>> {
+        let row = self
+            .fetch_optional(query("SELECT data FROM blobs WHERE sha256 = $1").bind(sha256))
+            .await?;
+        Ok(row.map(|r| r.bytes("data")))
+    }
+
+    async fn add_poses(&self, session_id: &str, poses: &[NewPose]) -> StoreResult<Vec<PoseRecord>> {
+        let mut tx = self.begin_write().await?;
+        // Locks the session row (key share) so it cannot be deleted midway.
+        let exists = B::fetch_optional_in(
+            &mut tx,
+            query(format!(
+                "SELECT 1 FROM sessions WHERE id = $1{}",
+                B::FOR_KEY_SHARE
+            ))
+            .bind(session_id),
+        )
+        .await?;
+        if exists.is_none() {
+            return Err(StoreError::NotFound("session"));
+        }
+        let mut out = Vec::with_capacity(poses.len());
+        for p in poses {
+            let record = PoseRecord {
+                id: new_id(),
+                session_id: session_id.to_string(),
+                joints_deg: p.joints_deg.clone(),
+                set: p.set.clone(),
+                image: p.image.clone(),
+                points: p.points.clone(),
+                measured: p.measured.clone(),
+                detection: None,
+                created_at: now_rfc3339(),
+            };
+            B::execute_in(
+                &mut tx,
+                query(
+                    "INSERT INTO poses (id, session_id, joints_deg, pose_set, image_sha256,
+                       image_meta, points, measured, created_at)
+                     VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9)",
+                )
+                .bind(&record.id)
+                .bind(session_id)
+                .bind(serde_json::to_string(&record.joints_deg)?)
+                .bind(&record.set)
+                .bind(record.image.as_ref().map(|i| i.sha256.clone()))
+                .bind(
+                    record
+                        .image
+                        .as_ref()
+                        .map(serde_json::to_string)
+                        .transpose()?,
+                )
+                .bind(record.points.to_string())
+                .bind(record.measured.as_ref().map(|m| m.to_string()))
+                .bind(&record.created_at),
+            )
+            .await?;
+            out.push(record);
+        }
+        tx.commit().await?;
+        Ok(out)
+    }
+
+    async fn get_pose(&self, session_id: &str, pose_id: &str) -> StoreResult<Option<PoseRecord>> {
+        let row = self
+            .fetch_optional(
+                query(format!(
+                    "SELECT {POSE_COLUMNS} FROM poses WHERE session_id = $1 AND id = $2"
+                ))
+                .bind(session_id)
+                .bind(pose_id),
+            )
+            .await?;
+        row.as_ref().map(pose).transpose()
+    }
+
+    async fn list_poses(
+        &self,
+        session_id: &str,
+        limit: i64,
+        after: Option<&str>,
+    ) -> StoreResult<Page<PoseRecord>> {
+        let rows = self
+            .fetch_all(
+                query(format!(
+                    "SELECT {POSE_COLUMNS} FROM poses WHERE session_id = $1 AND id > $2
+                     ORDER BY id LIMIT $3"
+                ))
+                .bind(session_id)
+                .bind(after.unwrap_or(""))
+                .bind(limit),
+            )
+            .await?;
+        let items = rows.iter().map(pose).collect::<StoreResult<Vec<_>>>()?;
+        let next_cursor = page_cursor(&items, limit, |p| p.id.clone());
+        Ok(Page { items, next_cursor })
+    }
+}
