@@ -17,6 +17,7 @@ use tokio::sync::{watch, Notify};
 use crate::domain::*;
 
 mod backend;
+mod migrations;
 pub mod postgres;
 mod repo;
 mod rows;

@@ -1,13 +1,19 @@
 //! A statement and its bound values, independent of the backend. The shared
-//! repository code (`repo/`) builds these; each backend binds the values to
-//! its own `sqlx` query (`Backend::fetch_all` and friends). That keeps the
-//! shared code free of `sqlx`'s per-database trait bounds.
+//! repository code (`repo/`) builds these and runs them on a pool or a
+//! transaction, as with `sqlx::query`; each database's [`Driver`] binds the
+//! values to its own `sqlx` query. That keeps the shared code free of
+//! `sqlx`'s per-database trait bounds.
 //!
 //! Placeholders are written `$1, $2, ...` for both backends: PostgreSQL reads
 //! them natively and `sqlx`'s SQLite driver maps `$n` to the n-th bound value
 //! (a placeholder may repeat, as on PostgreSQL). No rewriting is needed.
 
 use std::borrow::Cow;
+
+use futures_util::future::BoxFuture;
+use sqlx::{Database, Pool, Transaction};
+
+use super::backend::Driver;
 
 /// One bound value. `None` binds a NULL of the variant's SQL type, which
 /// PostgreSQL needs to type the parameter.
@@ -39,6 +45,86 @@ impl<'a> Statement<'a> {
     pub fn bind(mut self, value: impl Into<Arg<'a>>) -> Self {
         self.args.push(value.into());
         self
+    }
+
+    /// Runs the statement; returns the number of rows it changed.
+    pub fn execute<'c, T: Target<'c>>(self, on: T) -> BoxFuture<'c, sqlx::Result<u64>>
+    where
+        'a: 'c,
+    {
+        Box::pin(async move {
+            match on.target() {
+                On::Pool(pool) => T::Db::execute_in(&mut *pool.acquire().await?, self).await,
+                On::Tx(conn) => T::Db::execute_in(conn, self).await,
+            }
+        })
+    }
+
+    pub fn fetch_optional<'c, T: Target<'c>>(
+        self,
+        on: T,
+    ) -> BoxFuture<'c, sqlx::Result<Option<DbRow<T::Db>>>>
+    where
+        'a: 'c,
+    {
+        Box::pin(async move {
+            match on.target() {
+                On::Pool(pool) => T::Db::fetch_optional_in(&mut *pool.acquire().await?, self).await,
+                On::Tx(conn) => T::Db::fetch_optional_in(conn, self).await,
+            }
+        })
+    }
+
+    pub fn fetch_one<'c, T: Target<'c>>(self, on: T) -> BoxFuture<'c, sqlx::Result<DbRow<T::Db>>>
+    where
+        'a: 'c,
+    {
+        let row = self.fetch_optional(on);
+        Box::pin(async move { row.await?.ok_or(sqlx::Error::RowNotFound) })
+    }
+
+    pub fn fetch_all<'c, T: Target<'c>>(
+        self,
+        on: T,
+    ) -> BoxFuture<'c, sqlx::Result<Vec<DbRow<T::Db>>>>
+    where
+        'a: 'c,
+    {
+        Box::pin(async move {
+            match on.target() {
+                On::Pool(pool) => T::Db::fetch_all_in(&mut *pool.acquire().await?, self).await,
+                On::Tx(conn) => T::Db::fetch_all_in(conn, self).await,
+            }
+        })
+    }
+}
+
+/// A result row of database `DB`.
+pub type DbRow<DB> = <DB as Database>::Row;
+
+/// Where a statement runs: `&Pool` (a connection taken for the statement)
+/// or `&mut Transaction`.
+pub trait Target<'c>: Send + 'c {
+    type Db: Driver;
+    fn target(self) -> On<'c, Self::Db>;
+}
+
+pub enum On<'c, DB: Database> {
+    Pool(&'c Pool<DB>),
+    Tx(&'c mut DB::Connection),
+}
+
+impl<'c, DB: Driver> Target<'c> for &'c Pool<DB> {
+    type Db = DB;
+    fn target(self) -> On<'c, DB> {
+        On::Pool(self)
+    }
+}
+
+impl<'c, DB: Driver> Target<'c> for &'c mut Transaction<'static, DB> {
+    type Db = DB;
+    fn target(self) -> On<'c, DB> {
+        On::Tx(&mut **self)
     }
 }
 
@@ -127,6 +213,7 @@ pub(crate) use bind_args;
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::store::rows::Columns;
 
     #[test]
     fn binds_in_placeholder_order_with_typed_nulls() {
@@ -144,5 +231,26 @@ mod tests {
                 Arg::Text(None)
             ]
         );
+    }
+
+    /// The shared statements rely on sqlx's SQLite driver reading `$n` as the
+    /// n-th bound value, out of order and repeated, as PostgreSQL does.
+    #[tokio::test]
+    async fn sqlite_reads_numbered_placeholders_like_postgres() {
+        let pool = sqlx::SqlitePool::connect("sqlite::memory:").await.unwrap();
+        let row = query(
+            "SELECT $2 AS second, $1 AS first, $2 || $1 AS both,
+               CAST($3 AS BIGINT) IS NULL AS no_version",
+        )
+        .bind("x")
+        .bind("y")
+        .bind(None::<i64>)
+        .fetch_one(&pool)
+        .await
+        .unwrap();
+        assert_eq!(row.str("first"), "x");
+        assert_eq!(row.str("second"), "y");
+        assert_eq!(row.str("both"), "yx");
+        assert_eq!(row.int("no_version"), 1);
     }
 }

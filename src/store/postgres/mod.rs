@@ -16,20 +16,19 @@
 //! - a trigger `NOTIFY`s `robocal_jobs` when a job becomes claimable, and
 //!   [`listen`] wakes this replica's idle workers on it.
 
-use std::borrow::Cow;
 use std::str::FromStr;
 use std::sync::Arc;
 use std::time::Duration;
 
 use async_trait::async_trait;
-use sqlx::migrate::{Migration, MigrationType, Migrator};
 use sqlx::postgres::{PgConnectOptions, PgPool, PgPoolOptions};
 use sqlx::{Postgres, Transaction};
 use tokio::sync::{watch, Notify};
 
-use super::backend::{run_statements, Backend, Conn};
+use super::backend::{run_statements, Backend, Driver};
+use super::migrations::{migrator, Embedded};
 use super::repo::UPSERT_ROBOT;
-use super::{Store, StoreError, StoreResult};
+use super::{StoreError, StoreResult};
 use crate::domain::RobotRecord;
 
 mod listen;
@@ -37,7 +36,7 @@ mod listen;
 pub use listen::JOBS_CHANNEL;
 
 /// Migrations compiled into the binary, so a deployed binary needs no files.
-const MIGRATIONS: &[(i64, &str, &str)] = &[
+const MIGRATIONS: &[Embedded] = &[
     (
         1,
         "init",
@@ -75,7 +74,7 @@ impl PgStore {
         // `Migrator::run` takes `pg_advisory_lock` before it creates its table
         // and releases it after the last migration (sqlx 0.8, `locking` on by
         // default): concurrent starts wait for each other.
-        migrator()
+        migrator(MIGRATIONS)
             .run(&pool)
             .await
             .map_err(|e| StoreError::Backend(format!("migrations failed: {e}")))?;
@@ -88,31 +87,13 @@ impl PgStore {
     }
 }
 
-fn migrator() -> Migrator {
-    let migrations: Vec<Migration> = MIGRATIONS
-        .iter()
-        .map(|(version, name, sql)| {
-            Migration::new(
-                *version,
-                Cow::Borrowed(*name),
-                MigrationType::Simple,
-                Cow::Borrowed(*sql),
-                false,
-            )
-        })
-        .collect();
-    Migrator {
-        migrations: Cow::Owned(migrations),
-        ..Migrator::DEFAULT
-    }
-}
-
 /// READ COMMITTED transactions; concurrent replicas are kept apart by row
 /// locks in the statements and by the two backend-specific writes below.
 #[async_trait]
 impl Backend for PgStore {
     type Db = Postgres;
 
+    const NAME: &'static str = "postgres";
     const FOR_UPDATE: &'static str = " FOR UPDATE";
     const FOR_UPDATE_SKIP_LOCKED: &'static str = " FOR UPDATE SKIP LOCKED";
     const FOR_KEY_SHARE: &'static str = " FOR KEY SHARE";
@@ -134,12 +115,10 @@ impl Backend for PgStore {
         Ok(self.pool.begin().await?)
     }
 
-    run_statements!();
-
-    async fn serialise_enqueue(tx: &mut Conn<Self>) -> StoreResult<()> {
+    async fn serialise_enqueue(tx: &mut Transaction<'static, Postgres>) -> StoreResult<()> {
         sqlx::query("SELECT pg_advisory_xact_lock($1)")
             .bind(ENQUEUE_LOCK)
-            .execute(tx)
+            .execute(&mut **tx)
             .await?;
         Ok(())
     }
@@ -158,21 +137,13 @@ impl Backend for PgStore {
             .await?;
         Ok(inserted)
     }
-}
 
-#[async_trait]
-impl Store for PgStore {
-    async fn ping(&self) -> StoreResult<()> {
-        sqlx::query("SELECT 1").execute(&self.pool).await?;
-        Ok(())
-    }
-
-    fn backend(&self) -> &'static str {
-        "postgres"
-    }
-
-    fn watch_jobs(&self, wake: Arc<Notify>, shutdown: watch::Receiver<bool>) -> bool {
+    fn listen_for_jobs(&self, wake: Arc<Notify>, shutdown: watch::Receiver<bool>) -> bool {
         listen::spawn(self.pool.clone(), wake, shutdown);
         true
     }
+}
+
+impl Driver for Postgres {
+    run_statements!();
 }

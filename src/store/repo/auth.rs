@@ -6,7 +6,7 @@ use crate::domain::{
 };
 use crate::store::backend::Backend;
 use crate::store::rows::{token, Columns};
-use crate::store::statement::query;
+use crate::store::statement::{query, Statement};
 use crate::store::{AuthStore, StoreResult};
 
 /// Stored responses are kept this long, then a key may be used afresh.
@@ -30,43 +30,38 @@ impl<B: Backend> AuthStore for B {
             scope,
             created_at: now_rfc3339(),
         };
-        self.execute(
-            query(
-                "INSERT INTO tokens (id, name, token_hash, scope, created_at)
-                 VALUES ($1, $2, $3, $4, $5)",
-            )
-            .bind(&record.id)
-            .bind(&record.name)
-            .bind(token_hash)
-            .bind(scope.as_str())
-            .bind(&record.created_at),
+        query(
+            "INSERT INTO tokens (id, name, token_hash, scope, created_at)
+             VALUES ($1, $2, $3, $4, $5)",
         )
+        .bind(&record.id)
+        .bind(&record.name)
+        .bind(token_hash)
+        .bind(scope.as_str())
+        .bind(&record.created_at)
+        .execute(self.pool())
         .await?;
         Ok(record)
     }
 
     async fn find_token(&self, token_hash: &str) -> StoreResult<Option<TokenRecord>> {
-        let row = self
-            .fetch_optional(
-                query("SELECT id, name, scope, created_at FROM tokens WHERE token_hash = $1")
-                    .bind(token_hash),
-            )
+        let row = query("SELECT id, name, scope, created_at FROM tokens WHERE token_hash = $1")
+            .bind(token_hash)
+            .fetch_optional(self.pool())
             .await?;
         row.as_ref().map(token).transpose()
     }
 
     async fn list_tokens(&self) -> StoreResult<Vec<TokenRecord>> {
-        let rows = self
-            .fetch_all(query(
-                "SELECT id, name, scope, created_at FROM tokens ORDER BY id",
-            ))
+        let rows = query("SELECT id, name, scope, created_at FROM tokens ORDER BY id")
+            .fetch_all(self.pool())
             .await?;
         rows.iter().map(token).collect()
     }
 
     async fn count_tokens(&self) -> StoreResult<i64> {
-        let row = self
-            .fetch_one(query("SELECT count(*) AS n FROM tokens"))
+        let row = query("SELECT count(*) AS n FROM tokens")
+            .fetch_one(self.pool())
             .await?;
         Ok(row.int("n"))
     }
@@ -76,67 +71,56 @@ impl<B: Backend> AuthStore for B {
         // Housekeeping of other keys, outside the claim: two replicas sweeping
         // the same rows could deadlock, and a failed sweep changes nothing
         // for this request.
-        if let Err(e) = self
-            .execute(
-                query(
-                    "DELETE FROM idempotency WHERE (state = 'done' AND created_ms < $1)
-                        OR (state = 'pending' AND created_ms < $2)",
-                )
-                .bind(now - IDEMPOTENCY_TTL_MS)
-                .bind(now - PENDING_STALE_MS),
-            )
-            .await
+        if let Err(e) = query(
+            "DELETE FROM idempotency WHERE (state = 'done' AND created_ms < $1)
+                OR (state = 'pending' AND created_ms < $2)",
+        )
+        .bind(now - IDEMPOTENCY_TTL_MS)
+        .bind(now - PENDING_STALE_MS)
+        .execute(self.pool())
+        .await
         {
             tracing::debug!(error = %e, "idempotency sweep skipped");
         }
         let mut tx = self.begin_write().await?;
         // This key, if expired (or abandoned by a dead request), is free again.
-        B::execute_in(
-            &mut tx,
+        bind_key(
             query(
                 "DELETE FROM idempotency
                  WHERE principal = $1 AND method = $2 AND path = $3 AND idem_key = $4
                    AND ((state = 'done' AND created_ms < $5)
                         OR (state = 'pending' AND created_ms < $6))",
-            )
-            .bind(&s.principal)
-            .bind(&s.method)
-            .bind(&s.path)
-            .bind(&s.key)
-            .bind(now - IDEMPOTENCY_TTL_MS)
-            .bind(now - PENDING_STALE_MS),
+            ),
+            s,
         )
+        .bind(now - IDEMPOTENCY_TTL_MS)
+        .bind(now - PENDING_STALE_MS)
+        .execute(&mut tx)
         .await?;
         // The primary key decides: of writers inserting the same key at once,
         // one inserts and the others wait for its commit, then insert nothing.
-        let inserted = B::execute_in(
-            &mut tx,
+        let inserted = bind_key(
             query(
                 "INSERT INTO idempotency (principal, method, path, idem_key, state, created_ms)
                  VALUES ($1, $2, $3, $4, 'pending', $5) ON CONFLICT DO NOTHING",
-            )
-            .bind(&s.principal)
-            .bind(&s.method)
-            .bind(&s.path)
-            .bind(&s.key)
-            .bind(now),
+            ),
+            s,
         )
+        .bind(now)
+        .execute(&mut tx)
         .await?;
         if inserted > 0 {
             tx.commit().await?;
             return Ok(IdempotencyClaim::Fresh);
         }
-        let row = B::fetch_optional_in(
-            &mut tx,
+        let row = bind_key(
             query(
                 "SELECT state, status, headers, body FROM idempotency
                  WHERE principal = $1 AND method = $2 AND path = $3 AND idem_key = $4",
-            )
-            .bind(&s.principal)
-            .bind(&s.method)
-            .bind(&s.path)
-            .bind(&s.key),
+            ),
+            s,
         )
+        .fetch_optional(&mut tx)
         .await?;
         tx.commit().await?;
         // Gone between the insert and the select (abandoned meanwhile): the
@@ -161,35 +145,40 @@ impl<B: Backend> AuthStore for B {
         s: &IdempotencyScope,
         response: &StoredResponse,
     ) -> StoreResult<()> {
-        self.execute(
+        bind_key(
             query(
-                "UPDATE idempotency SET state = 'done', status = $1, headers = $2, body = $3
-                 WHERE principal = $4 AND method = $5 AND path = $6 AND idem_key = $7",
-            )
-            .bind(response.status as i64)
-            .bind(serde_json::to_string(&response.headers)?)
-            .bind(&response.body)
-            .bind(&s.principal)
-            .bind(&s.method)
-            .bind(&s.path)
-            .bind(&s.key),
+                "UPDATE idempotency SET state = 'done', status = $5, headers = $6, body = $7
+                 WHERE principal = $1 AND method = $2 AND path = $3 AND idem_key = $4",
+            ),
+            s,
         )
+        .bind(response.status as i64)
+        .bind(serde_json::to_string(&response.headers)?)
+        .bind(&response.body)
+        .execute(self.pool())
         .await?;
         Ok(())
     }
 
     async fn abandon_idempotency(&self, s: &IdempotencyScope) -> StoreResult<()> {
-        self.execute(
+        bind_key(
             query(
                 "DELETE FROM idempotency WHERE principal = $1 AND method = $2 AND path = $3
                    AND idem_key = $4 AND state = 'pending'",
-            )
-            .bind(&s.principal)
-            .bind(&s.method)
-            .bind(&s.path)
-            .bind(&s.key),
+            ),
+            s,
         )
+        .execute(self.pool())
         .await?;
         Ok(())
     }
+}
+
+/// Binds an idempotency key's columns to `$1`..`$4` (principal, method,
+/// path, key), in which order every statement on the table names them.
+fn bind_key<'a>(stmt: Statement<'a>, s: &'a IdempotencyScope) -> Statement<'a> {
+    stmt.bind(&s.principal)
+        .bind(&s.method)
+        .bind(&s.path)
+        .bind(&s.key)
 }

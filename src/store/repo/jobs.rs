@@ -1,12 +1,13 @@
 use async_trait::async_trait;
 use serde_json::json;
+use sqlx::Transaction;
 
 use super::results::insert_parameter_set_tx;
 use crate::domain::{
     new_id, now_rfc3339, ClaimedJob, JobOutcome, JobRecord, JobState, LeaseStatus, NewJob,
     PoseDetection,
 };
-use crate::store::backend::{is_foreign_key_violation, Backend, Conn};
+use crate::store::backend::{is_foreign_key_violation, Backend};
 use crate::store::rows::{claimed_job, job, Columns};
 use crate::store::statement::query;
 use crate::store::{JobStore, StoreError, StoreResult};
@@ -19,24 +20,22 @@ impl<B: Backend> JobStore for B {
     async fn enqueue_job(&self, j: &NewJob, max_queued: i64) -> StoreResult<JobRecord> {
         let mut tx = self.begin_write().await?;
         B::serialise_enqueue(&mut tx).await?;
-        let row = B::fetch_optional_in(
-            &mut tx,
-            query(format!(
-                "INSERT INTO jobs (id, kind, session_id, serial, options, state, max_attempts,
-                   created_at)
-                 SELECT $1, $2, $3, $4, $5, 'queued', $6, $7
-                 WHERE (SELECT count(*) FROM jobs WHERE state = 'queued') < $8
-                 RETURNING {COLUMNS}"
-            ))
-            .bind(new_id())
-            .bind(&j.kind)
-            .bind(&j.session_id)
-            .bind(&j.serial)
-            .bind(j.options.to_string())
-            .bind(j.max_attempts)
-            .bind(now_rfc3339())
-            .bind(max_queued),
-        )
+        let row = query(format!(
+            "INSERT INTO jobs (id, kind, session_id, serial, options, state, max_attempts,
+               created_at)
+             SELECT $1, $2, $3, $4, $5, 'queued', $6, $7
+             WHERE (SELECT count(*) FROM jobs WHERE state = 'queued') < $8
+             RETURNING {COLUMNS}"
+        ))
+        .bind(new_id())
+        .bind(&j.kind)
+        .bind(&j.session_id)
+        .bind(&j.serial)
+        .bind(j.options.to_string())
+        .bind(j.max_attempts)
+        .bind(now_rfc3339())
+        .bind(max_queued)
+        .fetch_optional(&mut tx)
         .await;
         let row = match row {
             Ok(Some(row)) => row,
@@ -51,23 +50,22 @@ impl<B: Backend> JobStore for B {
     }
 
     async fn get_job(&self, id: &str) -> StoreResult<Option<JobRecord>> {
-        let row = self
-            .fetch_optional(query(format!("SELECT {COLUMNS} FROM jobs WHERE id = $1")).bind(id))
+        let row = query(format!("SELECT {COLUMNS} FROM jobs WHERE id = $1"))
+            .bind(id)
+            .fetch_optional(self.pool())
             .await?;
         row.as_ref().map(job).transpose()
     }
 
     async fn cancel_job(&self, id: &str) -> StoreResult<Option<JobRecord>> {
-        let row = self
-            .fetch_optional(
-                query(format!(
-                    "UPDATE jobs SET state = 'cancelled', finished_at = $1, lease_expires_at = NULL
-                     WHERE id = $2 AND state IN ('queued', 'running') RETURNING {COLUMNS}"
-                ))
-                .bind(now_rfc3339())
-                .bind(id),
-            )
-            .await?;
+        let row = query(format!(
+            "UPDATE jobs SET state = 'cancelled', finished_at = $1, lease_expires_at = NULL
+             WHERE id = $2 AND state IN ('queued', 'running') RETURNING {COLUMNS}"
+        ))
+        .bind(now_rfc3339())
+        .bind(id)
+        .fetch_optional(self.pool())
+        .await?;
         match row {
             Some(row) => Ok(Some(job(&row)?)),
             None => match self.get_job(id).await? {
@@ -83,22 +81,20 @@ impl<B: Backend> JobStore for B {
     async fn fail_exhausted_jobs(&self, now_ms: i64) -> StoreResult<u64> {
         // SKIP LOCKED: a row another replica is claiming or finishing right
         // now is left to it (and to the next sweep).
-        let failed = self
-            .execute(
-                query(format!(
-                    "UPDATE jobs SET state = 'failed', finished_at = $1, worker_id = NULL,
-                       lease_expires_at = NULL,
-                       error = 'worker lost (lease expired) on attempt ' || attempts || ' of '
-                               || max_attempts || coalesce('; last error: ' || error, '')
-                     WHERE id IN (SELECT id FROM jobs
-                                  WHERE state = 'running' AND lease_expires_at < $2
-                                    AND attempts >= max_attempts{})",
-                    B::FOR_UPDATE_SKIP_LOCKED
-                ))
-                .bind(now_rfc3339())
-                .bind(now_ms),
-            )
-            .await?;
+        let failed = query(format!(
+            "UPDATE jobs SET state = 'failed', finished_at = $1, worker_id = NULL,
+               lease_expires_at = NULL,
+               error = 'worker lost (lease expired) on attempt ' || attempts || ' of '
+                       || max_attempts || coalesce('; last error: ' || error, '')
+             WHERE id IN (SELECT id FROM jobs
+                          WHERE state = 'running' AND lease_expires_at < $2
+                            AND attempts >= max_attempts{})",
+            B::FOR_UPDATE_SKIP_LOCKED
+        ))
+        .bind(now_rfc3339())
+        .bind(now_ms)
+        .execute(self.pool())
+        .await?;
         Ok(failed)
     }
 
@@ -113,26 +109,23 @@ impl<B: Backend> JobStore for B {
         // COMMITTED the row is re-checked after locking, so a job claimed
         // and committed meanwhile is skipped, not taken twice. (SQLite runs
         // the one statement under its database write lock.)
-        let row = self
-            .fetch_optional(
-                query(format!(
-                    "UPDATE jobs SET state = 'running', attempts = attempts + 1, worker_id = $1,
-                       lease_expires_at = $2, started_at = coalesce(started_at, $3),
-                       stage = 'claimed'
-                     WHERE id = (SELECT id FROM jobs
-                                 WHERE state = 'queued'
-                                    OR (state = 'running' AND lease_expires_at < $4
-                                        AND attempts < max_attempts)
-                                 ORDER BY id LIMIT 1{})
-                     RETURNING id, session_id, serial, options, attempts",
-                    B::FOR_UPDATE_SKIP_LOCKED
-                ))
-                .bind(worker_id)
-                .bind(lease_until_ms)
-                .bind(now_rfc3339())
-                .bind(now_ms),
-            )
-            .await?;
+        let row = query(format!(
+            "UPDATE jobs SET state = 'running', attempts = attempts + 1, worker_id = $1,
+               lease_expires_at = $2, started_at = coalesce(started_at, $3), stage = 'claimed'
+             WHERE id = (SELECT id FROM jobs
+                         WHERE state = 'queued'
+                            OR (state = 'running' AND lease_expires_at < $4
+                                AND attempts < max_attempts)
+                         ORDER BY id LIMIT 1{})
+             RETURNING id, session_id, serial, options, attempts",
+            B::FOR_UPDATE_SKIP_LOCKED
+        ))
+        .bind(worker_id)
+        .bind(lease_until_ms)
+        .bind(now_rfc3339())
+        .bind(now_ms)
+        .fetch_optional(self.pool())
+        .await?;
         row.as_ref().map(claimed_job).transpose()
     }
 
@@ -144,19 +137,17 @@ impl<B: Backend> JobStore for B {
         stage: &str,
         progress: f64,
     ) -> StoreResult<LeaseStatus> {
-        let renewed = self
-            .execute(
-                query(
-                    "UPDATE jobs SET lease_expires_at = $1, stage = $2, progress = $3
-                     WHERE id = $4 AND worker_id = $5 AND state = 'running'",
-                )
-                .bind(lease_until_ms)
-                .bind(stage)
-                .bind(progress)
-                .bind(job_id)
-                .bind(worker_id),
-            )
-            .await?;
+        let renewed = query(
+            "UPDATE jobs SET lease_expires_at = $1, stage = $2, progress = $3
+             WHERE id = $4 AND worker_id = $5 AND state = 'running'",
+        )
+        .bind(lease_until_ms)
+        .bind(stage)
+        .bind(progress)
+        .bind(job_id)
+        .bind(worker_id)
+        .execute(self.pool())
+        .await?;
         if renewed > 0 {
             return Ok(LeaseStatus::Held);
         }
@@ -172,16 +163,14 @@ impl<B: Backend> JobStore for B {
         let mut tx = self.begin_write().await?;
         // Row lock: a concurrent reclaim (lease expired) or cancel waits, and
         // if it won first this worker no longer matches and writes nothing.
-        let held = B::fetch_optional_in(
-            &mut tx,
-            query(format!(
-                "SELECT serial, session_id, attempts, max_attempts FROM jobs
-                 WHERE id = $1 AND worker_id = $2 AND state = 'running'{}",
-                B::FOR_UPDATE
-            ))
-            .bind(job_id)
-            .bind(worker_id),
-        )
+        let held = query(format!(
+            "SELECT serial, session_id, attempts, max_attempts FROM jobs
+             WHERE id = $1 AND worker_id = $2 AND state = 'running'{}",
+            B::FOR_UPDATE
+        ))
+        .bind(job_id)
+        .bind(worker_id)
+        .fetch_optional(&mut tx)
         .await?;
         let Some(held) = held else {
             drop(tx);
@@ -219,21 +208,19 @@ impl<B: Backend> JobStore for B {
             ),
         };
         let finished = (state != "queued").then(now_rfc3339);
-        B::execute_in(
-            &mut tx,
-            query(
-                "UPDATE jobs SET state = $1, error = $2, result = $3, finished_at = $4,
-                   worker_id = NULL, lease_expires_at = NULL,
-                   progress = CASE WHEN $1 = 'succeeded' THEN 1.0 ELSE progress END,
-                   stage = CASE WHEN $1 = 'succeeded' THEN 'done' ELSE stage END
-                 WHERE id = $5",
-            )
-            .bind(state)
-            .bind(error)
-            .bind(result)
-            .bind(finished)
-            .bind(job_id),
+        query(
+            "UPDATE jobs SET state = $1, error = $2, result = $3, finished_at = $4,
+               worker_id = NULL, lease_expires_at = NULL,
+               progress = CASE WHEN $1 = 'succeeded' THEN 1.0 ELSE progress END,
+               stage = CASE WHEN $1 = 'succeeded' THEN 'done' ELSE stage END
+             WHERE id = $5",
         )
+        .bind(state)
+        .bind(error)
+        .bind(result)
+        .bind(finished)
+        .bind(job_id)
+        .execute(&mut tx)
         .await?;
         tx.commit().await?;
         Ok(LeaseStatus::Held)
@@ -248,16 +235,14 @@ impl<B: Backend> JobStore for B {
         let mut tx = self.begin_write().await?;
         // Row lock, as in `finish_job`: a reclaim or cancel racing this
         // write waits, or wins and this worker writes nothing.
-        let held = B::fetch_optional_in(
-            &mut tx,
-            query(format!(
-                "SELECT session_id FROM jobs
-                 WHERE id = $1 AND worker_id = $2 AND state = 'running'{}",
-                B::FOR_UPDATE
-            ))
-            .bind(job_id)
-            .bind(worker_id),
-        )
+        let held = query(format!(
+            "SELECT session_id FROM jobs
+             WHERE id = $1 AND worker_id = $2 AND state = 'running'{}",
+            B::FOR_UPDATE
+        ))
+        .bind(job_id)
+        .bind(worker_id)
+        .fetch_optional(&mut tx)
         .await?;
         let Some(held) = held else {
             drop(tx);
@@ -269,25 +254,22 @@ impl<B: Backend> JobStore for B {
     }
 
     async fn release_job(&self, job_id: &str, worker_id: &str) -> StoreResult<()> {
-        self.execute(
-            query(
-                "UPDATE jobs SET state = 'queued',
-                   attempts = CASE WHEN attempts > 0 THEN attempts - 1 ELSE 0 END,
-                   worker_id = NULL, lease_expires_at = NULL, stage = 'released'
-                 WHERE id = $1 AND worker_id = $2 AND state = 'running'",
-            )
-            .bind(job_id)
-            .bind(worker_id),
+        query(
+            "UPDATE jobs SET state = 'queued',
+               attempts = CASE WHEN attempts > 0 THEN attempts - 1 ELSE 0 END,
+               worker_id = NULL, lease_expires_at = NULL, stage = 'released'
+             WHERE id = $1 AND worker_id = $2 AND state = 'running'",
         )
+        .bind(job_id)
+        .bind(worker_id)
+        .execute(self.pool())
         .await?;
         Ok(())
     }
 
     async fn job_counts(&self) -> StoreResult<Vec<(JobState, i64)>> {
-        let rows = self
-            .fetch_all(query(
-                "SELECT state, count(*) AS n FROM jobs GROUP BY state",
-            ))
+        let rows = query("SELECT state, count(*) AS n FROM jobs GROUP BY state")
+            .fetch_all(self.pool())
             .await?;
         Ok(JobState::ALL
             .into_iter()
@@ -308,24 +290,21 @@ impl<B: Backend> JobStore for B {
 /// inputs shows no stale points from an earlier job). Two jobs of one
 /// session writing at once serialise on the rows: each write is whole.
 async fn write_detections_tx<B: Backend>(
-    tx: &mut Conn<B>,
+    tx: &mut Transaction<'static, B::Db>,
     session_id: &str,
     detections: &[PoseDetection],
 ) -> StoreResult<()> {
-    B::execute_in(
-        tx,
-        query("UPDATE poses SET detection = NULL WHERE session_id = $1").bind(session_id),
-    )
-    .await?;
-    for d in detections {
-        B::execute_in(
-            tx,
-            query("UPDATE poses SET detection = $1 WHERE session_id = $2 AND id = $3")
-                .bind(d.detection.to_string())
-                .bind(session_id)
-                .bind(&d.pose_id),
-        )
+    query("UPDATE poses SET detection = NULL WHERE session_id = $1")
+        .bind(session_id)
+        .execute(&mut *tx)
         .await?;
+    for d in detections {
+        query("UPDATE poses SET detection = $1 WHERE session_id = $2 AND id = $3")
+            .bind(d.detection.to_string())
+            .bind(session_id)
+            .bind(&d.pose_id)
+            .execute(&mut *tx)
+            .await?;
     }
     Ok(())
 }
@@ -333,8 +312,9 @@ async fn write_detections_tx<B: Backend>(
 /// Why a worker's write matched no row: the job was cancelled, or its lease
 /// went to another worker (or the job is gone).
 async fn lost_or_cancelled<B: Backend>(store: &B, job_id: &str) -> StoreResult<LeaseStatus> {
-    let row = store
-        .fetch_optional(query("SELECT state FROM jobs WHERE id = $1").bind(job_id))
+    let row = query("SELECT state FROM jobs WHERE id = $1")
+        .bind(job_id)
+        .fetch_optional(store.pool())
         .await?;
     Ok(match row.as_ref().map(|r| r.str("state")) {
         Some("cancelled") => LeaseStatus::Cancelled,

@@ -1,9 +1,10 @@
 use async_trait::async_trait;
 use serde_json::Value;
+use sqlx::Transaction;
 
 use super::page_cursor;
 use crate::domain::{now_rfc3339, NewParameterSet, Page, ParameterSetRecord};
-use crate::store::backend::{Backend, Conn};
+use crate::store::backend::Backend;
 use crate::store::rows::{json, parameter_set, Columns};
 use crate::store::statement::query;
 use crate::store::{ResultStore, StoreResult};
@@ -12,35 +13,33 @@ use crate::store::{ResultStore, StoreResult};
 /// transaction. The backend's `NEXT_VERSION` hands out 1, 2, 3... with no
 /// duplicate and no gap under concurrent writers (see each backend).
 pub(super) async fn insert_parameter_set_tx<B: Backend>(
-    tx: &mut Conn<B>,
+    tx: &mut Transaction<'static, B::Db>,
     serial: &str,
     job_id: Option<&str>,
     set: &NewParameterSet,
 ) -> StoreResult<i64> {
-    let version = B::fetch_one_in(tx, query(B::NEXT_VERSION).bind(serial))
+    let version = query(B::NEXT_VERSION)
+        .bind(serial)
+        .fetch_one(&mut *tx)
         .await?
         .int("version");
-    B::execute_in(
-        tx,
-        query(
-            "INSERT INTO parameter_sets (serial, version, job_id, parameters, created_at)
-             VALUES ($1, $2, $3, $4, $5)",
-        )
+    query(
+        "INSERT INTO parameter_sets (serial, version, job_id, parameters, created_at)
+         VALUES ($1, $2, $3, $4, $5)",
+    )
+    .bind(serial)
+    .bind(version)
+    .bind(job_id)
+    .bind(set.parameters.to_string())
+    .bind(now_rfc3339())
+    .execute(&mut *tx)
+    .await?;
+    query("INSERT INTO reports (serial, version, report) VALUES ($1, $2, $3)")
         .bind(serial)
         .bind(version)
-        .bind(job_id)
-        .bind(set.parameters.to_string())
-        .bind(now_rfc3339()),
-    )
-    .await?;
-    B::execute_in(
-        tx,
-        query("INSERT INTO reports (serial, version, report) VALUES ($1, $2, $3)")
-            .bind(serial)
-            .bind(version)
-            .bind(set.report.to_string()),
-    )
-    .await?;
+        .bind(set.report.to_string())
+        .execute(&mut *tx)
+        .await?;
     Ok(version)
 }
 
@@ -64,17 +63,15 @@ impl<B: Backend> ResultStore for B {
         limit: i64,
         before_version: Option<i64>,
     ) -> StoreResult<Page<ParameterSetRecord>> {
-        let rows = self
-            .fetch_all(
-                query(
-                    "SELECT serial, version, job_id, parameters, created_at FROM parameter_sets
-                     WHERE serial = $1 AND version < $2 ORDER BY version DESC LIMIT $3",
-                )
-                .bind(serial)
-                .bind(before_version.unwrap_or(i64::MAX))
-                .bind(limit),
-            )
-            .await?;
+        let rows = query(
+            "SELECT serial, version, job_id, parameters, created_at FROM parameter_sets
+             WHERE serial = $1 AND version < $2 ORDER BY version DESC LIMIT $3",
+        )
+        .bind(serial)
+        .bind(before_version.unwrap_or(i64::MAX))
+        .bind(limit)
+        .fetch_all(self.pool())
+        .await?;
         let items = rows
             .iter()
             .map(parameter_set)
@@ -88,27 +85,23 @@ impl<B: Backend> ResultStore for B {
         serial: &str,
         version: Option<i64>,
     ) -> StoreResult<Option<ParameterSetRecord>> {
-        let row = self
-            .fetch_optional(
-                query(
-                    "SELECT serial, version, job_id, parameters, created_at FROM parameter_sets
-                     WHERE serial = $1 AND (CAST($2 AS BIGINT) IS NULL OR version = $2)
-                     ORDER BY version DESC LIMIT 1",
-                )
-                .bind(serial)
-                .bind(version),
-            )
-            .await?;
+        let row = query(
+            "SELECT serial, version, job_id, parameters, created_at FROM parameter_sets
+             WHERE serial = $1 AND (CAST($2 AS BIGINT) IS NULL OR version = $2)
+             ORDER BY version DESC LIMIT 1",
+        )
+        .bind(serial)
+        .bind(version)
+        .fetch_optional(self.pool())
+        .await?;
         row.as_ref().map(parameter_set).transpose()
     }
 
     async fn get_report(&self, serial: &str, version: i64) -> StoreResult<Option<Value>> {
-        let row = self
-            .fetch_optional(
-                query("SELECT report FROM reports WHERE serial = $1 AND version = $2")
-                    .bind(serial)
-                    .bind(version),
-            )
+        let row = query("SELECT report FROM reports WHERE serial = $1 AND version = $2")
+            .bind(serial)
+            .bind(version)
+            .fetch_optional(self.pool())
             .await?;
         row.as_ref().map(|r| json(r.str("report"))).transpose()
     }

@@ -25,10 +25,9 @@ impl<B: Backend> RobotStore for B {
     }
 
     async fn get_robot(&self, serial: &str) -> StoreResult<Option<RobotRecord>> {
-        let row = self
-            .fetch_optional(
-                query(format!("SELECT {COLUMNS} FROM robots WHERE serial = $1")).bind(serial),
-            )
+        let row = query(format!("SELECT {COLUMNS} FROM robots WHERE serial = $1"))
+            .bind(serial)
+            .fetch_optional(self.pool())
             .await?;
         row.as_ref().map(robot).transpose()
     }
@@ -36,23 +35,22 @@ impl<B: Backend> RobotStore for B {
     async fn list_robots(&self, limit: i64, after: Option<&str>) -> StoreResult<Page<RobotRecord>> {
         // On PostgreSQL the key columns are COLLATE "C": byte order, as SQLite
         // sorts, whatever the database locale.
-        let rows = self
-            .fetch_all(
-                query(format!(
-                    "SELECT {COLUMNS} FROM robots WHERE serial > $1 ORDER BY serial LIMIT $2"
-                ))
-                .bind(after.unwrap_or(""))
-                .bind(limit),
-            )
-            .await?;
+        let rows = query(format!(
+            "SELECT {COLUMNS} FROM robots WHERE serial > $1 ORDER BY serial LIMIT $2"
+        ))
+        .bind(after.unwrap_or(""))
+        .bind(limit)
+        .fetch_all(self.pool())
+        .await?;
         let items = rows.iter().map(robot).collect::<StoreResult<Vec<_>>>()?;
         let next_cursor = page_cursor(&items, limit, |r| r.serial.clone());
         Ok(Page { items, next_cursor })
     }
 
     async fn delete_robot(&self, serial: &str) -> StoreResult<bool> {
-        let deleted = self
-            .execute(query("DELETE FROM robots WHERE serial = $1").bind(serial))
+        let deleted = query("DELETE FROM robots WHERE serial = $1")
+            .bind(serial)
+            .execute(self.pool())
             .await?;
         Ok(deleted > 0)
     }

@@ -23,19 +23,17 @@ impl<B: Backend> SessionStore for B {
     ) -> StoreResult<SessionRecord> {
         let id = new_id();
         let created_at = now_rfc3339();
-        let inserted = self
-            .execute(
-                query(
-                    "INSERT INTO sessions (id, serial, instrument, spec, created_at)
-                     SELECT $1, serial, $2, $3, $4 FROM robots WHERE serial = $5",
-                )
-                .bind(&id)
-                .bind(instrument)
-                .bind(spec.to_string())
-                .bind(&created_at)
-                .bind(serial),
-            )
-            .await;
+        let inserted = query(
+            "INSERT INTO sessions (id, serial, instrument, spec, created_at)
+             SELECT $1, serial, $2, $3, $4 FROM robots WHERE serial = $5",
+        )
+        .bind(&id)
+        .bind(instrument)
+        .bind(spec.to_string())
+        .bind(&created_at)
+        .bind(serial)
+        .execute(self.pool())
+        .await;
         match inserted {
             Ok(0) => return Err(StoreError::NotFound("robot")),
             Ok(_) => {}
@@ -54,14 +52,12 @@ impl<B: Backend> SessionStore for B {
     }
 
     async fn get_session(&self, id: &str) -> StoreResult<Option<SessionRecord>> {
-        let row = self
-            .fetch_optional(
-                query(format!(
-                    "SELECT {SESSION_COLUMNS} FROM sessions s WHERE s.id = $1"
-                ))
-                .bind(id),
-            )
-            .await?;
+        let row = query(format!(
+            "SELECT {SESSION_COLUMNS} FROM sessions s WHERE s.id = $1"
+        ))
+        .bind(id)
+        .fetch_optional(self.pool())
+        .await?;
         row.as_ref().map(session).transpose()
     }
 
@@ -71,17 +67,15 @@ impl<B: Backend> SessionStore for B {
         limit: i64,
         after: Option<&str>,
     ) -> StoreResult<Page<SessionRecord>> {
-        let rows = self
-            .fetch_all(
-                query(format!(
-                    "SELECT {SESSION_COLUMNS} FROM sessions s WHERE s.serial = $1 AND s.id > $2
-                     ORDER BY s.id LIMIT $3"
-                ))
-                .bind(serial)
-                .bind(after.unwrap_or(""))
-                .bind(limit),
-            )
-            .await?;
+        let rows = query(format!(
+            "SELECT {SESSION_COLUMNS} FROM sessions s WHERE s.serial = $1 AND s.id > $2
+             ORDER BY s.id LIMIT $3"
+        ))
+        .bind(serial)
+        .bind(after.unwrap_or(""))
+        .bind(limit)
+        .fetch_all(self.pool())
+        .await?;
         let items = rows.iter().map(session).collect::<StoreResult<Vec<_>>>()?;
         let next_cursor = page_cursor(&items, limit, |s| s.id.clone());
         Ok(Page { items, next_cursor })
@@ -90,24 +84,24 @@ impl<B: Backend> SessionStore for B {
     async fn put_blob(&self, meta: &ImageMeta, data: &[u8]) -> StoreResult<()> {
         // Two writers storing the same image: the second waits for the
         // first's commit on the primary key, then does nothing.
-        self.execute(
-            query(
-                "INSERT INTO blobs (sha256, size_bytes, content_type, data, created_at)
-                 VALUES ($1, $2, $3, $4, $5) ON CONFLICT (sha256) DO NOTHING",
-            )
-            .bind(&meta.sha256)
-            .bind(meta.size_bytes)
-            .bind(&meta.content_type)
-            .bind(data)
-            .bind(now_rfc3339()),
+        query(
+            "INSERT INTO blobs (sha256, size_bytes, content_type, data, created_at)
+             VALUES ($1, $2, $3, $4, $5) ON CONFLICT (sha256) DO NOTHING",
         )
+        .bind(&meta.sha256)
+        .bind(meta.size_bytes)
+        .bind(&meta.content_type)
+        .bind(data)
+        .bind(now_rfc3339())
+        .execute(self.pool())
         .await?;
         Ok(())
     }
 
     async fn get_blob(&self, sha256: &str) -> StoreResult<Option<Vec<u8>>> {
-        let row = self
-            .fetch_optional(query("SELECT data FROM blobs WHERE sha256 = $1").bind(sha256))
+        let row = query("SELECT data FROM blobs WHERE sha256 = $1")
+            .bind(sha256)
+            .fetch_optional(self.pool())
             .await?;
         Ok(row.map(|r| r.bytes("data")))
     }
@@ -115,14 +109,12 @@ impl<B: Backend> SessionStore for B {
     async fn add_poses(&self, session_id: &str, poses: &[NewPose]) -> StoreResult<Vec<PoseRecord>> {
         let mut tx = self.begin_write().await?;
         // Locks the session row (key share) so it cannot be deleted midway.
-        let exists = B::fetch_optional_in(
-            &mut tx,
-            query(format!(
-                "SELECT 1 FROM sessions WHERE id = $1{}",
-                B::FOR_KEY_SHARE
-            ))
-            .bind(session_id),
-        )
+        let exists = query(format!(
+            "SELECT 1 FROM sessions WHERE id = $1{}",
+            B::FOR_KEY_SHARE
+        ))
+        .bind(session_id)
+        .fetch_optional(&mut tx)
         .await?;
         if exists.is_none() {
             return Err(StoreError::NotFound("session"));
@@ -140,29 +132,27 @@ impl<B: Backend> SessionStore for B {
                 detection: None,
                 created_at: now_rfc3339(),
             };
-            B::execute_in(
-                &mut tx,
-                query(
-                    "INSERT INTO poses (id, session_id, joints_deg, pose_set, image_sha256,
-                       image_meta, points, measured, created_at)
-                     VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9)",
-                )
-                .bind(&record.id)
-                .bind(session_id)
-                .bind(serde_json::to_string(&record.joints_deg)?)
-                .bind(&record.set)
-                .bind(record.image.as_ref().map(|i| i.sha256.clone()))
-                .bind(
-                    record
-                        .image
-                        .as_ref()
-                        .map(serde_json::to_string)
-                        .transpose()?,
-                )
-                .bind(record.points.to_string())
-                .bind(record.measured.as_ref().map(|m| m.to_string()))
-                .bind(&record.created_at),
+            query(
+                "INSERT INTO poses (id, session_id, joints_deg, pose_set, image_sha256,
+                   image_meta, points, measured, created_at)
+                 VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9)",
             )
+            .bind(&record.id)
+            .bind(session_id)
+            .bind(serde_json::to_string(&record.joints_deg)?)
+            .bind(&record.set)
+            .bind(record.image.as_ref().map(|i| i.sha256.as_str()))
+            .bind(
+                record
+                    .image
+                    .as_ref()
+                    .map(serde_json::to_string)
+                    .transpose()?,
+            )
+            .bind(record.points.to_string())
+            .bind(record.measured.as_ref().map(|m| m.to_string()))
+            .bind(&record.created_at)
+            .execute(&mut tx)
             .await?;
             out.push(record);
         }
@@ -171,15 +161,13 @@ impl<B: Backend> SessionStore for B {
     }
 
     async fn get_pose(&self, session_id: &str, pose_id: &str) -> StoreResult<Option<PoseRecord>> {
-        let row = self
-            .fetch_optional(
-                query(format!(
-                    "SELECT {POSE_COLUMNS} FROM poses WHERE session_id = $1 AND id = $2"
-                ))
-                .bind(session_id)
-                .bind(pose_id),
-            )
-            .await?;
+        let row = query(format!(
+            "SELECT {POSE_COLUMNS} FROM poses WHERE session_id = $1 AND id = $2"
+        ))
+        .bind(session_id)
+        .bind(pose_id)
+        .fetch_optional(self.pool())
+        .await?;
         row.as_ref().map(pose).transpose()
     }
 
@@ -189,17 +177,15 @@ impl<B: Backend> SessionStore for B {
         limit: i64,
         after: Option<&str>,
     ) -> StoreResult<Page<PoseRecord>> {
-        let rows = self
-            .fetch_all(
-                query(format!(
-                    "SELECT {POSE_COLUMNS} FROM poses WHERE session_id = $1 AND id > $2
-                     ORDER BY id LIMIT $3"
-                ))
-                .bind(session_id)
-                .bind(after.unwrap_or(""))
-                .bind(limit),
-            )
-            .await?;
+        let rows = query(format!(
+            "SELECT {POSE_COLUMNS} FROM poses WHERE session_id = $1 AND id > $2
+             ORDER BY id LIMIT $3"
+        ))
+        .bind(session_id)
+        .bind(after.unwrap_or(""))
+        .bind(limit)
+        .fetch_all(self.pool())
+        .await?;
         let items = rows.iter().map(pose).collect::<StoreResult<Vec<_>>>()?;
         let next_cursor = page_cursor(&items, limit, |p| p.id.clone());
         Ok(Page { items, next_cursor })
