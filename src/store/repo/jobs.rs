@@ -9,7 +9,7 @@ use crate::domain::{
 };
 use crate::store::backend::{is_foreign_key_violation, Backend};
 use crate::store::rows::{claimed_job, job, Columns};
-use crate::store::statement::query;
+use crate::store::statement::{query, DbRow};
 use crate::store::{JobStore, StoreError, StoreResult};
 
 const COLUMNS: &str = "id, kind, session_id, serial, options, state, stage, progress, attempts,
@@ -161,18 +161,7 @@ impl<B: Backend> JobStore for B {
         outcome: &JobOutcome,
     ) -> StoreResult<LeaseStatus> {
         let mut tx = self.begin_write().await?;
-        // Row lock: a concurrent reclaim (lease expired) or cancel waits, and
-        // if it won first this worker no longer matches and writes nothing.
-        let held = query(format!(
-            "SELECT serial, session_id, attempts, max_attempts FROM jobs
-             WHERE id = $1 AND worker_id = $2 AND state = 'running'{}",
-            B::FOR_UPDATE
-        ))
-        .bind(job_id)
-        .bind(worker_id)
-        .fetch_optional(&mut tx)
-        .await?;
-        let Some(held) = held else {
+        let Some(held) = lock_held_job::<B>(&mut tx, job_id, worker_id).await? else {
             drop(tx);
             return lost_or_cancelled(self, job_id).await;
         };
@@ -233,18 +222,7 @@ impl<B: Backend> JobStore for B {
         detections: &[PoseDetection],
     ) -> StoreResult<LeaseStatus> {
         let mut tx = self.begin_write().await?;
-        // Row lock, as in `finish_job`: a reclaim or cancel racing this
-        // write waits, or wins and this worker writes nothing.
-        let held = query(format!(
-            "SELECT session_id FROM jobs
-             WHERE id = $1 AND worker_id = $2 AND state = 'running'{}",
-            B::FOR_UPDATE
-        ))
-        .bind(job_id)
-        .bind(worker_id)
-        .fetch_optional(&mut tx)
-        .await?;
-        let Some(held) = held else {
+        let Some(held) = lock_held_job::<B>(&mut tx, job_id, worker_id).await? else {
             drop(tx);
             return lost_or_cancelled(self, job_id).await;
         };
@@ -283,6 +261,25 @@ impl<B: Backend> JobStore for B {
             })
             .collect())
     }
+}
+
+/// The job's row, locked, if `worker_id` still holds its lease. A
+/// concurrent reclaim (lease expired) or cancel waits for this transaction,
+/// or won first, and then this worker no longer matches and writes nothing.
+async fn lock_held_job<B: Backend>(
+    tx: &mut Transaction<'static, B::Db>,
+    job_id: &str,
+    worker_id: &str,
+) -> StoreResult<Option<DbRow<B::Db>>> {
+    Ok(query(format!(
+        "SELECT serial, session_id, attempts, max_attempts FROM jobs
+         WHERE id = $1 AND worker_id = $2 AND state = 'running'{}",
+        B::FOR_UPDATE
+    ))
+    .bind(job_id)
+    .bind(worker_id)
+    .fetch_optional(tx)
+    .await?)
 }
 
 /// Replaces every pose's detection document of a session: the listed poses
