@@ -1,12 +1,12 @@
 //! Storage: one repository trait object, [`Store`], used by the HTTP handlers
-//! and the job workers. Every SQL statement lives in a backend module
-//! (`sqlite/`; a `postgres/` backend implements the same traits), so adding a
+//! and the job workers. Every SQL statement lives under `store/`, so adding a
 //! backend touches nothing outside `store/` and `migrations/<backend>/`.
 //!
 //! The trait is split by area ([`RobotStore`], [`SessionStore`], [`JobStore`],
-//! [`ResultStore`], [`AuthStore`]) so that each backend file stays small;
-//! [`Store`] is their sum and is what the rest of the program holds
-//! (`Arc<dyn Store>`).
+//! [`ResultStore`], [`AuthStore`]); each area is implemented once, in
+//! `repo/<area>.rs`, for every backend (`backend::Backend`: `sqlite/`,
+//! `postgres/`), which supplies only its dialect. [`Store`] is their sum and
+//! is what the rest of the program holds (`Arc<dyn Store>`).
 
 use std::sync::Arc;
 
@@ -16,9 +16,13 @@ use tokio::sync::{watch, Notify};
 
 use crate::domain::*;
 
+mod backend;
+mod migrations;
 pub mod postgres;
+mod repo;
 mod rows;
 pub mod sqlite;
+mod statement;
 
 #[derive(Debug, thiserror::Error)]
 pub enum StoreError {

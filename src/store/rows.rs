@@ -3,12 +3,12 @@
 //! only the SQL dialect differs between `sqlite/` and `postgres/`.
 
 use serde_json::Value;
-use sqlx::{ColumnIndex, Decode, Row, Type};
+use sqlx::{Decode, Row, Type};
 
 use super::StoreError;
 use super::StoreResult;
 use crate::domain::{
-    ImageMeta, JobRecord, JobState, ParameterSetRecord, PoseRecord, RobotRecord, Scope,
+    ClaimedJob, ImageMeta, JobRecord, JobState, ParameterSetRecord, PoseRecord, RobotRecord, Scope,
     SessionRecord, TokenRecord,
 };
 
@@ -16,134 +16,155 @@ pub fn json(text: &str) -> StoreResult<Value> {
     Ok(serde_json::from_str(text)?)
 }
 
-pub fn opt_json(text: Option<String>) -> StoreResult<Option<Value>> {
-    text.map(|t| json(&t)).transpose()
+pub fn opt_json(text: Option<&str>) -> StoreResult<Option<Value>> {
+    text.map(json).transpose()
 }
 
-pub fn session<'r, R>(row: &'r R) -> StoreResult<SessionRecord>
+/// A result row of either backend, read by column name as one of the few
+/// column types the schemas use. The blanket impl below states once what
+/// `sqlx` needs to decode them; code reading rows only names this trait.
+/// Like `Row::get`, each accessor panics on a missing column or a type the
+/// column cannot decode to (a bug in the statement, not bad data).
+pub trait Columns: Row {
+    fn str(&self, col: &'static str) -> &str;
+    fn opt_str(&self, col: &'static str) -> Option<&str>;
+    fn string(&self, col: &'static str) -> String;
+    fn opt_string(&self, col: &'static str) -> Option<String>;
+    fn int(&self, col: &'static str) -> i64;
+    fn opt_int(&self, col: &'static str) -> Option<i64>;
+    fn real(&self, col: &'static str) -> f64;
+    fn bytes(&self, col: &'static str) -> Vec<u8>;
+    fn opt_bytes(&self, col: &'static str) -> Option<Vec<u8>>;
+}
+
+impl<R> Columns for R
 where
     R: Row,
-    &'static str: ColumnIndex<R>,
-    String: Decode<'r, R::Database> + Type<R::Database>,
-    &'r str: Decode<'r, R::Database> + Type<R::Database>,
-    i64: Decode<'r, R::Database> + Type<R::Database>,
+    &'static str: sqlx::ColumnIndex<R>,
+    for<'r> &'r str: Decode<'r, R::Database> + Type<R::Database>,
+    for<'r> String: Decode<'r, R::Database> + Type<R::Database>,
+    for<'r> i64: Decode<'r, R::Database> + Type<R::Database>,
+    for<'r> f64: Decode<'r, R::Database> + Type<R::Database>,
+    for<'r> Vec<u8>: Decode<'r, R::Database> + Type<R::Database>,
 {
+    fn str(&self, col: &'static str) -> &str {
+        self.get(col)
+    }
+    fn opt_str(&self, col: &'static str) -> Option<&str> {
+        self.get(col)
+    }
+    fn string(&self, col: &'static str) -> String {
+        self.get(col)
+    }
+    fn opt_string(&self, col: &'static str) -> Option<String> {
+        self.get(col)
+    }
+    fn int(&self, col: &'static str) -> i64 {
+        self.get(col)
+    }
+    fn opt_int(&self, col: &'static str) -> Option<i64> {
+        self.get(col)
+    }
+    fn real(&self, col: &'static str) -> f64 {
+        self.get(col)
+    }
+    fn bytes(&self, col: &'static str) -> Vec<u8> {
+        self.get(col)
+    }
+    fn opt_bytes(&self, col: &'static str) -> Option<Vec<u8>> {
+        self.get(col)
+    }
+}
+
+pub fn session(row: &impl Columns) -> StoreResult<SessionRecord> {
     Ok(SessionRecord {
-        id: row.get("id"),
-        serial: row.get("serial"),
-        instrument: row.get("instrument"),
-        spec: json(row.get::<&str, _>("spec"))?,
-        pose_count: row.get("pose_count"),
-        created_at: row.get("created_at"),
+        id: row.string("id"),
+        serial: row.string("serial"),
+        instrument: row.string("instrument"),
+        spec: json(row.str("spec"))?,
+        pose_count: row.int("pose_count"),
+        created_at: row.string("created_at"),
     })
 }
 
-pub fn pose<'r, R>(row: &'r R) -> StoreResult<PoseRecord>
-where
-    R: Row,
-    &'static str: ColumnIndex<R>,
-    String: Decode<'r, R::Database> + Type<R::Database>,
-    &'r str: Decode<'r, R::Database> + Type<R::Database>,
-{
+pub fn pose(row: &impl Columns) -> StoreResult<PoseRecord> {
     let image: Option<ImageMeta> = row
-        .get::<Option<&str>, _>("image_meta")
+        .opt_str("image_meta")
         .map(serde_json::from_str)
         .transpose()?;
     Ok(PoseRecord {
-        id: row.get("id"),
-        session_id: row.get("session_id"),
-        joints_deg: serde_json::from_str(row.get::<&str, _>("joints_deg"))?,
-        set: row.get("pose_set"),
+        id: row.string("id"),
+        session_id: row.string("session_id"),
+        joints_deg: serde_json::from_str(row.str("joints_deg"))?,
+        set: row.string("pose_set"),
         image,
-        points: json(row.get::<&str, _>("points"))?,
-        measured: opt_json(row.get("measured"))?,
-        detection: opt_json(row.get("detection"))?,
-        created_at: row.get("created_at"),
+        points: json(row.str("points"))?,
+        measured: opt_json(row.opt_str("measured"))?,
+        detection: opt_json(row.opt_str("detection"))?,
+        created_at: row.string("created_at"),
     })
 }
 
-pub fn token<'r, R>(row: &'r R) -> StoreResult<TokenRecord>
-where
-    R: Row,
-    &'static str: ColumnIndex<R>,
-    String: Decode<'r, R::Database> + Type<R::Database>,
-    &'r str: Decode<'r, R::Database> + Type<R::Database>,
-    i64: Decode<'r, R::Database> + Type<R::Database>,
-    f64: Decode<'r, R::Database> + Type<R::Database>,
-{
-    let scope: String = row.get("scope");
+pub fn token(row: &impl Columns) -> StoreResult<TokenRecord> {
+    let scope = row.str("scope");
     Ok(TokenRecord {
-        id: row.get("id"),
-        name: row.get("name"),
-        scope: Scope::parse(&scope)
+        id: row.string("id"),
+        name: row.string("name"),
+        scope: Scope::parse(scope)
             .ok_or_else(|| StoreError::Backend(format!("unknown scope {scope:?}")))?,
-        created_at: row.get("created_at"),
+        created_at: row.string("created_at"),
     })
 }
 
-pub fn robot<'r, R>(row: &'r R) -> StoreResult<RobotRecord>
-where
-    R: Row,
-    &'static str: ColumnIndex<R>,
-    String: Decode<'r, R::Database> + Type<R::Database>,
-    &'r str: Decode<'r, R::Database> + Type<R::Database>,
-    i64: Decode<'r, R::Database> + Type<R::Database>,
-    f64: Decode<'r, R::Database> + Type<R::Database>,
-{
+pub fn robot(row: &impl Columns) -> StoreResult<RobotRecord> {
     Ok(RobotRecord {
-        serial: row.get("serial"),
-        model: row.get("model"),
-        preset: row.get("preset"),
-        kinematics: json(row.get::<&str, _>("kinematics"))?,
-        created_at: row.get("created_at"),
-        updated_at: row.get("updated_at"),
+        serial: row.string("serial"),
+        model: row.string("model"),
+        preset: row.opt_string("preset"),
+        kinematics: json(row.str("kinematics"))?,
+        created_at: row.string("created_at"),
+        updated_at: row.string("updated_at"),
     })
 }
 
-pub fn job<'r, R>(row: &'r R) -> StoreResult<JobRecord>
-where
-    R: Row,
-    &'static str: ColumnIndex<R>,
-    String: Decode<'r, R::Database> + Type<R::Database>,
-    &'r str: Decode<'r, R::Database> + Type<R::Database>,
-    i64: Decode<'r, R::Database> + Type<R::Database>,
-    f64: Decode<'r, R::Database> + Type<R::Database>,
-{
-    let state: String = row.get("state");
+pub fn job(row: &impl Columns) -> StoreResult<JobRecord> {
+    let state = row.str("state");
     Ok(JobRecord {
-        id: row.get("id"),
-        kind: row.get("kind"),
-        session_id: row.get("session_id"),
-        serial: row.get("serial"),
-        options: json(row.get::<&str, _>("options"))?,
-        state: JobState::parse(&state)
+        id: row.string("id"),
+        kind: row.string("kind"),
+        session_id: row.string("session_id"),
+        serial: row.string("serial"),
+        options: json(row.str("options"))?,
+        state: JobState::parse(state)
             .ok_or_else(|| StoreError::Backend(format!("unknown job state {state:?}")))?,
-        stage: row.get("stage"),
-        progress: row.get("progress"),
-        attempts: row.get("attempts"),
-        max_attempts: row.get("max_attempts"),
-        error: row.get("error"),
-        result: opt_json(row.get("result"))?,
-        created_at: row.get("created_at"),
-        started_at: row.get("started_at"),
-        finished_at: row.get("finished_at"),
+        stage: row.opt_string("stage"),
+        progress: row.real("progress"),
+        attempts: row.int("attempts"),
+        max_attempts: row.int("max_attempts"),
+        error: row.opt_string("error"),
+        result: opt_json(row.opt_str("result"))?,
+        created_at: row.string("created_at"),
+        started_at: row.opt_string("started_at"),
+        finished_at: row.opt_string("finished_at"),
     })
 }
 
-pub fn parameter_set<'r, R>(row: &'r R) -> StoreResult<ParameterSetRecord>
-where
-    R: Row,
-    &'static str: ColumnIndex<R>,
-    String: Decode<'r, R::Database> + Type<R::Database>,
-    &'r str: Decode<'r, R::Database> + Type<R::Database>,
-    i64: Decode<'r, R::Database> + Type<R::Database>,
-    f64: Decode<'r, R::Database> + Type<R::Database>,
-{
+pub fn parameter_set(row: &impl Columns) -> StoreResult<ParameterSetRecord> {
     Ok(ParameterSetRecord {
-        serial: row.get("serial"),
-        version: row.get("version"),
-        job_id: row.get("job_id"),
-        parameters: json(row.get::<&str, _>("parameters"))?,
-        created_at: row.get("created_at"),
+        serial: row.string("serial"),
+        version: row.int("version"),
+        job_id: row.opt_string("job_id"),
+        parameters: json(row.str("parameters"))?,
+        created_at: row.string("created_at"),
+    })
+}
+
+pub fn claimed_job(row: &impl Columns) -> StoreResult<ClaimedJob> {
+    Ok(ClaimedJob {
+        id: row.string("id"),
+        session_id: row.string("session_id"),
+        serial: row.string("serial"),
+        options: json(row.str("options"))?,
+        attempt: row.int("attempts"),
     })
 }

@@ -1,41 +1,42 @@
 //! PostgreSQL backend: the fleet deployment, several robocal replicas on one
 //! database. Runtime-checked `sqlx` queries, READ COMMITTED transactions.
 //!
-//! What keeps replicas correct (see each file):
-//! - jobs are claimed with `FOR UPDATE SKIP LOCKED` under a lease (`jobs.rs`);
-//! - the queue bound and parameter-set versions serialise on a row or an
-//!   advisory lock inside the writing transaction (`jobs.rs`, `results.rs`);
-//! - an idempotency key is claimed by a unique insert (`auth.rs`);
+//! The repository operations are shared with SQLite (`store/repo/`); this
+//! module supplies the PostgreSQL side of [`Backend`]. What keeps replicas
+//! correct:
+//! - jobs are claimed with `FOR UPDATE SKIP LOCKED` under a lease
+//!   (`repo/jobs.rs`, with [`Backend::FOR_UPDATE_SKIP_LOCKED`]);
+//! - the queue bound and parameter-set versions serialise on an advisory
+//!   lock or a counter row inside the writing transaction
+//!   (`serialise_enqueue`, `NEXT_VERSION` below);
+//! - an idempotency key is claimed by a unique insert (`repo/auth.rs`);
 //! - migrations run under `sqlx`'s migrator, which holds
 //!   `pg_advisory_lock` (keyed on the database name) while it checks and
 //!   applies them, so replicas starting together do not race;
 //! - a trigger `NOTIFY`s `robocal_jobs` when a job becomes claimable, and
 //!   [`listen`] wakes this replica's idle workers on it.
 
-use crate::store::rows::json;
-use std::borrow::Cow;
 use std::str::FromStr;
 use std::sync::Arc;
 use std::time::Duration;
 
 use async_trait::async_trait;
-use sqlx::migrate::{Migration, MigrationType, Migrator};
 use sqlx::postgres::{PgConnectOptions, PgPool, PgPoolOptions};
+use sqlx::{Postgres, Transaction};
 use tokio::sync::{watch, Notify};
 
-use super::{Store, StoreError, StoreResult};
+use super::backend::{run_statements, Backend, Driver};
+use super::migrations::{migrator, Embedded};
+use super::repo::UPSERT_ROBOT;
+use super::{StoreError, StoreResult};
+use crate::domain::RobotRecord;
 
-mod auth;
-mod jobs;
 mod listen;
-mod results;
-mod robots;
-mod sessions;
 
 pub use listen::JOBS_CHANNEL;
 
 /// Migrations compiled into the binary, so a deployed binary needs no files.
-const MIGRATIONS: &[(i64, &str, &str)] = &[
+const MIGRATIONS: &[Embedded] = &[
     (
         1,
         "init",
@@ -54,8 +55,9 @@ const MAX_CONNECTIONS: u32 = 10;
 /// How long a request waits for a free connection before failing.
 const ACQUIRE_TIMEOUT: Duration = Duration::from_secs(10);
 
-/// SQLSTATE of a foreign-key violation (the parent row vanished).
-const FOREIGN_KEY_VIOLATION: &str = "23503";
+/// Advisory lock key serialising enqueues (the `--max-queued` bound is a
+/// count-then-insert, which READ COMMITTED alone would let replicas overrun).
+const ENQUEUE_LOCK: i64 = 0x726f_626f_6361_6c01; // "robocal" + 1
 
 pub struct PgStore {
     pool: PgPool,
@@ -72,7 +74,7 @@ impl PgStore {
         // `Migrator::run` takes `pg_advisory_lock` before it creates its table
         // and releases it after the last migration (sqlx 0.8, `locking` on by
         // default): concurrent starts wait for each other.
-        migrator()
+        migrator(MIGRATIONS)
             .run(&pool)
             .await
             .map_err(|e| StoreError::Backend(format!("migrations failed: {e}")))?;
@@ -85,45 +87,63 @@ impl PgStore {
     }
 }
 
-fn migrator() -> Migrator {
-    let migrations: Vec<Migration> = MIGRATIONS
-        .iter()
-        .map(|(version, name, sql)| {
-            Migration::new(
-                *version,
-                Cow::Borrowed(*name),
-                MigrationType::Simple,
-                Cow::Borrowed(*sql),
-                false,
-            )
-        })
-        .collect();
-    Migrator {
-        migrations: Cow::Owned(migrations),
-        ..Migrator::DEFAULT
-    }
-}
-
-/// True when `e` is a foreign-key violation (a parent deleted concurrently).
-fn is_foreign_key_violation(e: &sqlx::Error) -> bool {
-    e.as_database_error()
-        .and_then(|d| d.code())
-        .is_some_and(|c| c == FOREIGN_KEY_VIOLATION)
-}
-
+/// READ COMMITTED transactions; concurrent replicas are kept apart by row
+/// locks in the statements and by the two backend-specific writes below.
 #[async_trait]
-impl Store for PgStore {
-    async fn ping(&self) -> StoreResult<()> {
-        sqlx::query("SELECT 1").execute(&self.pool).await?;
+impl Backend for PgStore {
+    type Db = Postgres;
+
+    const NAME: &'static str = "postgres";
+    const FOR_UPDATE: &'static str = " FOR UPDATE";
+    const FOR_UPDATE_SKIP_LOCKED: &'static str = " FOR UPDATE SKIP LOCKED";
+    const FOR_KEY_SHARE: &'static str = " FOR KEY SHARE";
+    /// The version comes from the serial's counter row, bumped by an upsert:
+    /// the row lock it takes makes concurrent writers (any replica) wait for
+    /// each other's commit, so versions are 1, 2, 3... with no duplicate, and a
+    /// transaction that rolls back takes its bump with it (no gap).
+    const NEXT_VERSION: &'static str =
+        "INSERT INTO parameter_set_counters (serial, last_version) VALUES ($1, 1)
+         ON CONFLICT (serial) DO UPDATE
+           SET last_version = parameter_set_counters.last_version + 1
+         RETURNING last_version AS version";
+
+    fn pool(&self) -> &PgPool {
+        &self.pool
+    }
+
+    async fn begin_write(&self) -> StoreResult<Transaction<'static, Postgres>> {
+        Ok(self.pool.begin().await?)
+    }
+
+    async fn serialise_enqueue(tx: &mut Transaction<'static, Postgres>) -> StoreResult<()> {
+        sqlx::query("SELECT pg_advisory_xact_lock($1)")
+            .bind(ENQUEUE_LOCK)
+            .execute(&mut **tx)
+            .await?;
         Ok(())
     }
 
-    fn backend(&self) -> &'static str {
-        "postgres"
+    /// One statement; `xmax = 0` is true only for a freshly inserted row,
+    /// so two replicas creating the same serial at once answer 201 once.
+    async fn upsert_robot(&self, r: &RobotRecord) -> StoreResult<bool> {
+        let inserted: bool = sqlx::query_scalar(&format!("{UPSERT_ROBOT} RETURNING (xmax = 0)"))
+            .bind(&r.serial)
+            .bind(&r.model)
+            .bind(&r.preset)
+            .bind(r.kinematics.to_string())
+            .bind(&r.created_at)
+            .bind(&r.updated_at)
+            .fetch_one(&self.pool)
+            .await?;
+        Ok(inserted)
     }
 
-    fn watch_jobs(&self, wake: Arc<Notify>, shutdown: watch::Receiver<bool>) -> bool {
+    fn listen_for_jobs(&self, wake: Arc<Notify>, shutdown: watch::Receiver<bool>) -> bool {
         listen::spawn(self.pool.clone(), wake, shutdown);
         true
     }
+}
+
+impl Driver for Postgres {
+    run_statements!();
 }

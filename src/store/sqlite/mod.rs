@@ -1,32 +1,28 @@
-//! SQLite backend (the default, single-node deployment). Runtime-checked
-//! `sqlx` queries; WAL journal with `synchronous = FULL`, so a write is on disk
-//! when the call returns. Writers that read before they write open their
-//! transaction with `BEGIN IMMEDIATE` so two writers never deadlock on a lock
-//! upgrade.
+//! SQLite backend (the default, single-node deployment): the SQLite side of
+//! [`Backend`]; the repository operations are shared (`store/repo/`).
+//! Runtime-checked `sqlx` queries; WAL journal with `synchronous = FULL`, so
+//! a write is on disk when the call returns. Writers that read before they
+//! write open their transaction with `BEGIN IMMEDIATE` so two writers never
+//! deadlock on a lock upgrade.
 
-use crate::store::rows::json;
-use std::borrow::Cow;
 use std::str::FromStr;
 use std::time::Duration;
 
 use async_trait::async_trait;
-use futures_util::future::BoxFuture;
-use sqlx::error::BoxDynError;
-use sqlx::migrate::{Migration, MigrationSource, MigrationType, Migrator};
 use sqlx::sqlite::{
     SqliteConnectOptions, SqliteJournalMode, SqlitePool, SqlitePoolOptions, SqliteSynchronous,
 };
+use sqlx::{Sqlite, Transaction};
 
-use super::{Store, StoreError, StoreResult};
-
-mod auth;
-mod jobs;
-mod results;
-mod robots;
-mod sessions;
+use super::backend::{run_statements, Backend, Driver};
+use super::migrations::{migrator, Embedded};
+use super::repo::UPSERT_ROBOT;
+use super::statement::query;
+use super::{StoreError, StoreResult};
+use crate::domain::RobotRecord;
 
 /// Migrations compiled into the binary, so a deployed binary needs no files.
-const MIGRATIONS: &[(i64, &str, &str)] = &[
+const MIGRATIONS: &[Embedded] = &[
     (
         1,
         "init",
@@ -78,9 +74,7 @@ impl SqliteStore {
                 Err(e) => return Err(e.into()),
             }
         };
-        let migrator = Migrator::new(Embedded)
-            .await
-            .map_err(|e| StoreError::Backend(format!("migrations: {e}")))?;
+        let migrator = migrator(MIGRATIONS);
         // sqlx takes no lock on SQLite: a second process starting at the same
         // moment can lose the race to apply a migration ("table ... already
         // exists"). Its retry then finds the migration applied and goes on.
@@ -98,43 +92,53 @@ impl SqliteStore {
         }
         Ok(SqliteStore { pool })
     }
+}
 
-    async fn begin_immediate(&self) -> StoreResult<sqlx::Transaction<'static, sqlx::Sqlite>> {
+/// SQLite serialises writers: a writing transaction holds the database
+/// write lock from `BEGIN IMMEDIATE` to its end, so no row locks are needed
+/// and a read-then-write inside it (the next version, the robot's existence)
+/// cannot race another writer.
+#[async_trait]
+impl Backend for SqliteStore {
+    type Db = Sqlite;
+
+    const NAME: &'static str = "sqlite";
+    const FOR_UPDATE: &'static str = "";
+    const FOR_UPDATE_SKIP_LOCKED: &'static str = "";
+    const FOR_KEY_SHARE: &'static str = "";
+    const NEXT_VERSION: &'static str =
+        "SELECT coalesce(max(version), 0) + 1 AS version FROM parameter_sets WHERE serial = $1";
+
+    fn pool(&self) -> &SqlitePool {
+        &self.pool
+    }
+
+    /// `BEGIN IMMEDIATE`: takes the write lock up front, so two writers that
+    /// read before they write never deadlock on a lock upgrade.
+    async fn begin_write(&self) -> StoreResult<Transaction<'static, Sqlite>> {
         Ok(self.pool.begin_with("BEGIN IMMEDIATE").await?)
     }
-}
 
-/// The migrations compiled into the binary, as a `sqlx` migration source.
-#[derive(Debug)]
-struct Embedded;
-
-impl<'s> MigrationSource<'s> for Embedded {
-    fn resolve(self) -> BoxFuture<'s, Result<Vec<Migration>, BoxDynError>> {
-        Box::pin(async {
-            Ok(MIGRATIONS
-                .iter()
-                .map(|(version, name, sql)| {
-                    Migration::new(
-                        *version,
-                        Cow::Borrowed(*name),
-                        MigrationType::Simple,
-                        Cow::Borrowed(*sql),
-                        false,
-                    )
-                })
-                .collect())
-        })
+    async fn upsert_robot(&self, r: &RobotRecord) -> StoreResult<bool> {
+        let mut tx = self.begin_write().await?;
+        let existed = query("SELECT 1 FROM robots WHERE serial = $1")
+            .bind(&r.serial)
+            .fetch_optional(&mut tx)
+            .await?;
+        query(UPSERT_ROBOT)
+            .bind(&r.serial)
+            .bind(&r.model)
+            .bind(r.preset.as_deref())
+            .bind(r.kinematics.to_string())
+            .bind(&r.created_at)
+            .bind(&r.updated_at)
+            .execute(&mut tx)
+            .await?;
+        tx.commit().await?;
+        Ok(existed.is_none())
     }
 }
 
-#[async_trait]
-impl Store for SqliteStore {
-    async fn ping(&self) -> StoreResult<()> {
-        sqlx::query("SELECT 1").execute(&self.pool).await?;
-        Ok(())
-    }
-
-    fn backend(&self) -> &'static str {
-        "sqlite"
-    }
+impl Driver for Sqlite {
+    run_statements!();
 }

@@ -1,39 +1,33 @@
 use async_trait::async_trait;
 use serde_json::json;
-use sqlx::Row;
+use sqlx::Transaction;
 
 use super::results::insert_parameter_set_tx;
-use super::{json, PgStore};
 use crate::domain::{
     new_id, now_rfc3339, ClaimedJob, JobOutcome, JobRecord, JobState, LeaseStatus, NewJob,
     PoseDetection,
 };
-use crate::store::rows::job;
+use crate::store::backend::{is_foreign_key_violation, Backend};
+use crate::store::rows::{claimed_job, job, Columns};
+use crate::store::statement::{query, DbRow};
 use crate::store::{JobStore, StoreError, StoreResult};
 
 const COLUMNS: &str = "id, kind, session_id, serial, options, state, stage, progress, attempts,
     max_attempts, error, result, created_at, started_at, finished_at";
 
-/// Advisory lock key serialising enqueues (the `--max-queued` bound is a
-/// count-then-insert, which READ COMMITTED alone would let replicas overrun).
-const ENQUEUE_LOCK: i64 = 0x726f_626f_6361_6c01; // "robocal" + 1
-
 #[async_trait]
-impl JobStore for PgStore {
+impl<B: Backend> JobStore for B {
     async fn enqueue_job(&self, j: &NewJob, max_queued: i64) -> StoreResult<JobRecord> {
-        let id = new_id();
-        let mut tx = self.pool.begin().await?;
-        sqlx::query("SELECT pg_advisory_xact_lock($1)")
-            .bind(ENQUEUE_LOCK)
-            .execute(&mut *tx)
-            .await?;
-        let row = sqlx::query(&format!(
-            "INSERT INTO jobs (id, kind, session_id, serial, options, state, max_attempts, created_at)
+        let mut tx = self.begin_write().await?;
+        B::serialise_enqueue(&mut tx).await?;
+        let row = query(format!(
+            "INSERT INTO jobs (id, kind, session_id, serial, options, state, max_attempts,
+               created_at)
              SELECT $1, $2, $3, $4, $5, 'queued', $6, $7
              WHERE (SELECT count(*) FROM jobs WHERE state = 'queued') < $8
              RETURNING {COLUMNS}"
         ))
-        .bind(&id)
+        .bind(new_id())
         .bind(&j.kind)
         .bind(&j.session_id)
         .bind(&j.serial)
@@ -41,38 +35,36 @@ impl JobStore for PgStore {
         .bind(j.max_attempts)
         .bind(now_rfc3339())
         .bind(max_queued)
-        .fetch_optional(&mut *tx)
+        .fetch_optional(&mut tx)
         .await;
         let row = match row {
             Ok(Some(row)) => row,
             Ok(None) => return Err(StoreError::QueueFull),
-            Err(e) if super::is_foreign_key_violation(&e) => {
-                return Err(StoreError::NotFound("session"))
-            }
+            Err(e) if is_foreign_key_violation(&e) => return Err(StoreError::NotFound("session")),
             Err(e) => return Err(e.into()),
         };
         let record = job(&row)?;
-        // The `jobs_claimable` trigger's NOTIFY goes out with this commit.
+        // On PostgreSQL the `jobs_claimable` trigger's NOTIFY goes out with this commit.
         tx.commit().await?;
         Ok(record)
     }
 
     async fn get_job(&self, id: &str) -> StoreResult<Option<JobRecord>> {
-        let row = sqlx::query(&format!("SELECT {COLUMNS} FROM jobs WHERE id = $1"))
+        let row = query(format!("SELECT {COLUMNS} FROM jobs WHERE id = $1"))
             .bind(id)
-            .fetch_optional(&self.pool)
+            .fetch_optional(self.pool())
             .await?;
         row.as_ref().map(job).transpose()
     }
 
     async fn cancel_job(&self, id: &str) -> StoreResult<Option<JobRecord>> {
-        let row = sqlx::query(&format!(
+        let row = query(format!(
             "UPDATE jobs SET state = 'cancelled', finished_at = $1, lease_expires_at = NULL
              WHERE id = $2 AND state IN ('queued', 'running') RETURNING {COLUMNS}"
         ))
         .bind(now_rfc3339())
         .bind(id)
-        .fetch_optional(&self.pool)
+        .fetch_optional(self.pool())
         .await?;
         match row {
             Some(row) => Ok(Some(job(&row)?)),
@@ -89,21 +81,21 @@ impl JobStore for PgStore {
     async fn fail_exhausted_jobs(&self, now_ms: i64) -> StoreResult<u64> {
         // SKIP LOCKED: a row another replica is claiming or finishing right
         // now is left to it (and to the next sweep).
-        let done = sqlx::query(
+        let failed = query(format!(
             "UPDATE jobs SET state = 'failed', finished_at = $1, worker_id = NULL,
                lease_expires_at = NULL,
                error = 'worker lost (lease expired) on attempt ' || attempts || ' of '
                        || max_attempts || coalesce('; last error: ' || error, '')
              WHERE id IN (SELECT id FROM jobs
                           WHERE state = 'running' AND lease_expires_at < $2
-                            AND attempts >= max_attempts
-                          FOR UPDATE SKIP LOCKED)",
-        )
+                            AND attempts >= max_attempts{})",
+            B::FOR_UPDATE_SKIP_LOCKED
+        ))
         .bind(now_rfc3339())
         .bind(now_ms)
-        .execute(&self.pool)
+        .execute(self.pool())
         .await?;
-        Ok(done.rows_affected())
+        Ok(failed)
     }
 
     async fn claim_job(
@@ -115,34 +107,26 @@ impl JobStore for PgStore {
         // The oldest claimable row not locked by another claimer: replicas
         // never wait on each other and never take the same job. Under READ
         // COMMITTED the row is re-checked after locking, so a job claimed
-        // and committed meanwhile is skipped, not taken twice.
-        let row = sqlx::query(
+        // and committed meanwhile is skipped, not taken twice. (SQLite runs
+        // the one statement under its database write lock.)
+        let row = query(format!(
             "UPDATE jobs SET state = 'running', attempts = attempts + 1, worker_id = $1,
                lease_expires_at = $2, started_at = coalesce(started_at, $3), stage = 'claimed'
              WHERE id = (SELECT id FROM jobs
                          WHERE state = 'queued'
                             OR (state = 'running' AND lease_expires_at < $4
                                 AND attempts < max_attempts)
-                         ORDER BY id LIMIT 1
-                         FOR UPDATE SKIP LOCKED)
+                         ORDER BY id LIMIT 1{})
              RETURNING id, session_id, serial, options, attempts",
-        )
+            B::FOR_UPDATE_SKIP_LOCKED
+        ))
         .bind(worker_id)
         .bind(lease_until_ms)
         .bind(now_rfc3339())
         .bind(now_ms)
-        .fetch_optional(&self.pool)
+        .fetch_optional(self.pool())
         .await?;
-        row.map(|row| {
-            Ok(ClaimedJob {
-                id: row.get("id"),
-                session_id: row.get("session_id"),
-                serial: row.get("serial"),
-                options: json(row.get::<&str, _>("options"))?,
-                attempt: row.get("attempts"),
-            })
-        })
-        .transpose()
+        row.as_ref().map(claimed_job).transpose()
     }
 
     async fn renew_lease(
@@ -153,7 +137,7 @@ impl JobStore for PgStore {
         stage: &str,
         progress: f64,
     ) -> StoreResult<LeaseStatus> {
-        let done = sqlx::query(
+        let renewed = query(
             "UPDATE jobs SET lease_expires_at = $1, stage = $2, progress = $3
              WHERE id = $4 AND worker_id = $5 AND state = 'running'",
         )
@@ -162,12 +146,12 @@ impl JobStore for PgStore {
         .bind(progress)
         .bind(job_id)
         .bind(worker_id)
-        .execute(&self.pool)
+        .execute(self.pool())
         .await?;
-        if done.rows_affected() > 0 {
+        if renewed > 0 {
             return Ok(LeaseStatus::Held);
         }
-        self.lost_or_cancelled(job_id).await
+        lost_or_cancelled(self, job_id).await
     }
 
     async fn finish_job(
@@ -176,25 +160,14 @@ impl JobStore for PgStore {
         worker_id: &str,
         outcome: &JobOutcome,
     ) -> StoreResult<LeaseStatus> {
-        let mut tx = self.pool.begin().await?;
-        // Row lock: a concurrent reclaim (lease expired) or cancel waits, and
-        // if it won first this worker no longer matches and writes nothing.
-        let held = sqlx::query(
-            "SELECT serial, session_id, attempts, max_attempts FROM jobs
-             WHERE id = $1 AND worker_id = $2 AND state = 'running' FOR UPDATE",
-        )
-        .bind(job_id)
-        .bind(worker_id)
-        .fetch_optional(&mut *tx)
-        .await?;
-        let Some(held) = held else {
+        let mut tx = self.begin_write().await?;
+        let Some(held) = lock_held_job::<B>(&mut tx, job_id, worker_id).await? else {
             drop(tx);
-            return self.lost_or_cancelled(job_id).await;
+            return lost_or_cancelled(self, job_id).await;
         };
-        let serial: String = held.get("serial");
-        let attempts: i64 = held.get("attempts");
-        let max_attempts: i64 = held.get("max_attempts");
-        let now = now_rfc3339();
+        let serial = held.string("serial");
+        let attempts = held.int("attempts");
+        let max_attempts = held.int("max_attempts");
         let (state, error, result) = match outcome {
             JobOutcome::Succeeded {
                 parameter_set,
@@ -202,13 +175,12 @@ impl JobStore for PgStore {
                 detections,
             } => {
                 if !detections.is_empty() {
-                    let session_id: String = held.get("session_id");
-                    write_detections_tx(&mut tx, &session_id, detections).await?;
+                    write_detections_tx::<B>(&mut tx, held.str("session_id"), detections).await?;
                 }
                 let mut result = json!({ "summary": summary });
                 if let Some(set) = parameter_set {
                     let version =
-                        insert_parameter_set_tx(&mut tx, &serial, Some(job_id), set).await?;
+                        insert_parameter_set_tx::<B>(&mut tx, &serial, Some(job_id), set).await?;
                     result["serial"] = json!(serial);
                     result["version"] = json!(version);
                 }
@@ -224,8 +196,8 @@ impl JobStore for PgStore {
                 None,
             ),
         };
-        let finished = (state != "queued").then_some(now);
-        sqlx::query(
+        let finished = (state != "queued").then(now_rfc3339);
+        query(
             "UPDATE jobs SET state = $1, error = $2, result = $3, finished_at = $4,
                worker_id = NULL, lease_expires_at = NULL,
                progress = CASE WHEN $1 = 'succeeded' THEN 1.0 ELSE progress END,
@@ -237,7 +209,7 @@ impl JobStore for PgStore {
         .bind(result)
         .bind(finished)
         .bind(job_id)
-        .execute(&mut *tx)
+        .execute(&mut tx)
         .await?;
         tx.commit().await?;
         Ok(LeaseStatus::Held)
@@ -249,50 +221,41 @@ impl JobStore for PgStore {
         worker_id: &str,
         detections: &[PoseDetection],
     ) -> StoreResult<LeaseStatus> {
-        let mut tx = self.pool.begin().await?;
-        // Row lock, as in `finish_job`: a reclaim or cancel racing this
-        // write waits, or wins and this worker writes nothing.
-        let session_id: Option<String> = sqlx::query_scalar(
-            "SELECT session_id FROM jobs
-             WHERE id = $1 AND worker_id = $2 AND state = 'running' FOR UPDATE",
-        )
-        .bind(job_id)
-        .bind(worker_id)
-        .fetch_optional(&mut *tx)
-        .await?;
-        let Some(session_id) = session_id else {
+        let mut tx = self.begin_write().await?;
+        let Some(held) = lock_held_job::<B>(&mut tx, job_id, worker_id).await? else {
             drop(tx);
-            return self.lost_or_cancelled(job_id).await;
+            return lost_or_cancelled(self, job_id).await;
         };
-        write_detections_tx(&mut tx, &session_id, detections).await?;
+        write_detections_tx::<B>(&mut tx, held.str("session_id"), detections).await?;
         tx.commit().await?;
         Ok(LeaseStatus::Held)
     }
 
     async fn release_job(&self, job_id: &str, worker_id: &str) -> StoreResult<()> {
-        sqlx::query(
-            "UPDATE jobs SET state = 'queued', attempts = greatest(attempts - 1, 0),
+        query(
+            "UPDATE jobs SET state = 'queued',
+               attempts = CASE WHEN attempts > 0 THEN attempts - 1 ELSE 0 END,
                worker_id = NULL, lease_expires_at = NULL, stage = 'released'
              WHERE id = $1 AND worker_id = $2 AND state = 'running'",
         )
         .bind(job_id)
         .bind(worker_id)
-        .execute(&self.pool)
+        .execute(self.pool())
         .await?;
         Ok(())
     }
 
     async fn job_counts(&self) -> StoreResult<Vec<(JobState, i64)>> {
-        let rows = sqlx::query("SELECT state, count(*) AS n FROM jobs GROUP BY state")
-            .fetch_all(&self.pool)
+        let rows = query("SELECT state, count(*) AS n FROM jobs GROUP BY state")
+            .fetch_all(self.pool())
             .await?;
         Ok(JobState::ALL
             .into_iter()
             .map(|st| {
                 let n = rows
                     .iter()
-                    .find(|r| r.get::<&str, _>("state") == st.as_str())
-                    .map(|r| r.get::<i64, _>("n"))
+                    .find(|r| r.str("state") == st.as_str())
+                    .map(|r| r.int("n"))
                     .unwrap_or(0);
                 (st, n)
             })
@@ -300,39 +263,58 @@ impl JobStore for PgStore {
     }
 }
 
+/// The job's row, locked, if `worker_id` still holds its lease. A
+/// concurrent reclaim (lease expired) or cancel waits for this transaction,
+/// or won first, and then this worker no longer matches and writes nothing.
+async fn lock_held_job<B: Backend>(
+    tx: &mut Transaction<'static, B::Db>,
+    job_id: &str,
+    worker_id: &str,
+) -> StoreResult<Option<DbRow<B::Db>>> {
+    Ok(query(format!(
+        "SELECT serial, session_id, attempts, max_attempts FROM jobs
+         WHERE id = $1 AND worker_id = $2 AND state = 'running'{}",
+        B::FOR_UPDATE
+    ))
+    .bind(job_id)
+    .bind(worker_id)
+    .fetch_optional(tx)
+    .await?)
+}
+
 /// Replaces every pose's detection document of a session: the listed poses
 /// get theirs, the others none (a pose uploaded after the job loaded its
 /// inputs shows no stale points from an earlier job). Two jobs of one
 /// session writing at once serialise on the rows: each write is whole.
-async fn write_detections_tx(
-    tx: &mut sqlx::Transaction<'static, sqlx::Postgres>,
+async fn write_detections_tx<B: Backend>(
+    tx: &mut Transaction<'static, B::Db>,
     session_id: &str,
     detections: &[PoseDetection],
 ) -> StoreResult<()> {
-    sqlx::query("UPDATE poses SET detection = NULL WHERE session_id = $1")
+    query("UPDATE poses SET detection = NULL WHERE session_id = $1")
         .bind(session_id)
-        .execute(&mut **tx)
+        .execute(&mut *tx)
         .await?;
     for d in detections {
-        sqlx::query("UPDATE poses SET detection = $1 WHERE session_id = $2 AND id = $3")
+        query("UPDATE poses SET detection = $1 WHERE session_id = $2 AND id = $3")
             .bind(d.detection.to_string())
             .bind(session_id)
             .bind(&d.pose_id)
-            .execute(&mut **tx)
+            .execute(&mut *tx)
             .await?;
     }
     Ok(())
 }
 
-impl PgStore {
-    async fn lost_or_cancelled(&self, job_id: &str) -> StoreResult<LeaseStatus> {
-        let state: Option<String> = sqlx::query_scalar("SELECT state FROM jobs WHERE id = $1")
-            .bind(job_id)
-            .fetch_optional(&self.pool)
-            .await?;
-        Ok(match state.as_deref() {
-            Some("cancelled") => LeaseStatus::Cancelled,
-            _ => LeaseStatus::Lost,
-        })
-    }
+/// Why a worker's write matched no row: the job was cancelled, or its lease
+/// went to another worker (or the job is gone).
+async fn lost_or_cancelled<B: Backend>(store: &B, job_id: &str) -> StoreResult<LeaseStatus> {
+    let row = query("SELECT state FROM jobs WHERE id = $1")
+        .bind(job_id)
+        .fetch_optional(store.pool())
+        .await?;
+    Ok(match row.as_ref().map(|r| r.str("state")) {
+        Some("cancelled") => LeaseStatus::Cancelled,
+        _ => LeaseStatus::Lost,
+    })
 }

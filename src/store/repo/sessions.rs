@@ -1,10 +1,11 @@
 use async_trait::async_trait;
 use serde_json::Value;
 
-use super::robots::page_cursor;
-use super::{is_foreign_key_violation, PgStore};
+use super::page_cursor;
 use crate::domain::{new_id, now_rfc3339, ImageMeta, NewPose, Page, PoseRecord, SessionRecord};
-use crate::store::rows::{pose, session};
+use crate::store::backend::{is_foreign_key_violation, Backend};
+use crate::store::rows::{pose, session, Columns};
+use crate::store::statement::query;
 use crate::store::{SessionStore, StoreError, StoreResult};
 
 const SESSION_COLUMNS: &str = "s.id, s.serial, s.instrument, s.spec, s.created_at,
@@ -13,7 +14,7 @@ const POSE_COLUMNS: &str =
     "id, session_id, joints_deg, pose_set, image_meta, points, measured, detection, created_at";
 
 #[async_trait]
-impl SessionStore for PgStore {
+impl<B: Backend> SessionStore for B {
     async fn create_session(
         &self,
         serial: &str,
@@ -22,7 +23,7 @@ impl SessionStore for PgStore {
     ) -> StoreResult<SessionRecord> {
         let id = new_id();
         let created_at = now_rfc3339();
-        let done = sqlx::query(
+        let inserted = query(
             "INSERT INTO sessions (id, serial, instrument, spec, created_at)
              SELECT $1, serial, $2, $3, $4 FROM robots WHERE serial = $5",
         )
@@ -31,10 +32,10 @@ impl SessionStore for PgStore {
         .bind(spec.to_string())
         .bind(&created_at)
         .bind(serial)
-        .execute(&self.pool)
+        .execute(self.pool())
         .await;
-        match done {
-            Ok(done) if done.rows_affected() == 0 => return Err(StoreError::NotFound("robot")),
+        match inserted {
+            Ok(0) => return Err(StoreError::NotFound("robot")),
             Ok(_) => {}
             // The robot was deleted between the SELECT and the insert's FK check.
             Err(e) if is_foreign_key_violation(&e) => return Err(StoreError::NotFound("robot")),
@@ -51,11 +52,11 @@ impl SessionStore for PgStore {
     }
 
     async fn get_session(&self, id: &str) -> StoreResult<Option<SessionRecord>> {
-        let row = sqlx::query(&format!(
+        let row = query(format!(
             "SELECT {SESSION_COLUMNS} FROM sessions s WHERE s.id = $1"
         ))
         .bind(id)
-        .fetch_optional(&self.pool)
+        .fetch_optional(self.pool())
         .await?;
         row.as_ref().map(session).transpose()
     }
@@ -66,14 +67,14 @@ impl SessionStore for PgStore {
         limit: i64,
         after: Option<&str>,
     ) -> StoreResult<Page<SessionRecord>> {
-        let rows = sqlx::query(&format!(
+        let rows = query(format!(
             "SELECT {SESSION_COLUMNS} FROM sessions s WHERE s.serial = $1 AND s.id > $2
              ORDER BY s.id LIMIT $3"
         ))
         .bind(serial)
         .bind(after.unwrap_or(""))
         .bind(limit)
-        .fetch_all(&self.pool)
+        .fetch_all(self.pool())
         .await?;
         let items = rows.iter().map(session).collect::<StoreResult<Vec<_>>>()?;
         let next_cursor = page_cursor(&items, limit, |s| s.id.clone());
@@ -81,9 +82,9 @@ impl SessionStore for PgStore {
     }
 
     async fn put_blob(&self, meta: &ImageMeta, data: &[u8]) -> StoreResult<()> {
-        // Two replicas storing the same image: the second waits for the
+        // Two writers storing the same image: the second waits for the
         // first's commit on the primary key, then does nothing.
-        sqlx::query(
+        query(
             "INSERT INTO blobs (sha256, size_bytes, content_type, data, created_at)
              VALUES ($1, $2, $3, $4, $5) ON CONFLICT (sha256) DO NOTHING",
         )
@@ -92,28 +93,29 @@ impl SessionStore for PgStore {
         .bind(&meta.content_type)
         .bind(data)
         .bind(now_rfc3339())
-        .execute(&self.pool)
+        .execute(self.pool())
         .await?;
         Ok(())
     }
 
     async fn get_blob(&self, sha256: &str) -> StoreResult<Option<Vec<u8>>> {
-        Ok(
-            sqlx::query_scalar("SELECT data FROM blobs WHERE sha256 = $1")
-                .bind(sha256)
-                .fetch_optional(&self.pool)
-                .await?,
-        )
+        let row = query("SELECT data FROM blobs WHERE sha256 = $1")
+            .bind(sha256)
+            .fetch_optional(self.pool())
+            .await?;
+        Ok(row.map(|r| r.bytes("data")))
     }
 
     async fn add_poses(&self, session_id: &str, poses: &[NewPose]) -> StoreResult<Vec<PoseRecord>> {
-        let mut tx = self.pool.begin().await?;
+        let mut tx = self.begin_write().await?;
         // Locks the session row (key share) so it cannot be deleted midway.
-        let exists: Option<i32> =
-            sqlx::query_scalar("SELECT 1 FROM sessions WHERE id = $1 FOR KEY SHARE")
-                .bind(session_id)
-                .fetch_optional(&mut *tx)
-                .await?;
+        let exists = query(format!(
+            "SELECT 1 FROM sessions WHERE id = $1{}",
+            B::FOR_KEY_SHARE
+        ))
+        .bind(session_id)
+        .fetch_optional(&mut tx)
+        .await?;
         if exists.is_none() {
             return Err(StoreError::NotFound("session"));
         }
@@ -130,7 +132,7 @@ impl SessionStore for PgStore {
                 detection: None,
                 created_at: now_rfc3339(),
             };
-            sqlx::query(
+            query(
                 "INSERT INTO poses (id, session_id, joints_deg, pose_set, image_sha256,
                    image_meta, points, measured, created_at)
                  VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9)",
@@ -139,7 +141,7 @@ impl SessionStore for PgStore {
             .bind(session_id)
             .bind(serde_json::to_string(&record.joints_deg)?)
             .bind(&record.set)
-            .bind(record.image.as_ref().map(|i| i.sha256.clone()))
+            .bind(record.image.as_ref().map(|i| i.sha256.as_str()))
             .bind(
                 record
                     .image
@@ -150,7 +152,7 @@ impl SessionStore for PgStore {
             .bind(record.points.to_string())
             .bind(record.measured.as_ref().map(|m| m.to_string()))
             .bind(&record.created_at)
-            .execute(&mut *tx)
+            .execute(&mut tx)
             .await?;
             out.push(record);
         }
@@ -159,12 +161,12 @@ impl SessionStore for PgStore {
     }
 
     async fn get_pose(&self, session_id: &str, pose_id: &str) -> StoreResult<Option<PoseRecord>> {
-        let row = sqlx::query(&format!(
+        let row = query(format!(
             "SELECT {POSE_COLUMNS} FROM poses WHERE session_id = $1 AND id = $2"
         ))
         .bind(session_id)
         .bind(pose_id)
-        .fetch_optional(&self.pool)
+        .fetch_optional(self.pool())
         .await?;
         row.as_ref().map(pose).transpose()
     }
@@ -175,14 +177,14 @@ impl SessionStore for PgStore {
         limit: i64,
         after: Option<&str>,
     ) -> StoreResult<Page<PoseRecord>> {
-        let rows = sqlx::query(&format!(
+        let rows = query(format!(
             "SELECT {POSE_COLUMNS} FROM poses WHERE session_id = $1 AND id > $2
              ORDER BY id LIMIT $3"
         ))
         .bind(session_id)
         .bind(after.unwrap_or(""))
         .bind(limit)
-        .fetch_all(&self.pool)
+        .fetch_all(self.pool())
         .await?;
         let items = rows.iter().map(pose).collect::<StoreResult<Vec<_>>>()?;
         let next_cursor = page_cursor(&items, limit, |p| p.id.clone());

@@ -1,21 +1,23 @@
 use async_trait::async_trait;
-use sqlx::Row;
 
-use super::PgStore;
 use crate::domain::{
     new_id, now_rfc3339, now_unix_ms, IdempotencyClaim, IdempotencyScope, Scope, StoredResponse,
     TokenRecord,
 };
-use crate::store::rows::token;
+use crate::store::backend::Backend;
+use crate::store::rows::{token, Columns};
+use crate::store::statement::{query, Statement};
 use crate::store::{AuthStore, StoreResult};
 
 /// Stored responses are kept this long, then a key may be used afresh.
 const IDEMPOTENCY_TTL_MS: i64 = 24 * 3600 * 1000;
 /// A pending key older than this belongs to a request that died: reusable.
 const PENDING_STALE_MS: i64 = 10 * 60 * 1000;
+/// A stored response without a status (never written so) replays as 200.
+const DEFAULT_STATUS: i64 = 200;
 
 #[async_trait]
-impl AuthStore for PgStore {
+impl<B: Backend> AuthStore for B {
     async fn create_token(
         &self,
         name: &str,
@@ -28,7 +30,7 @@ impl AuthStore for PgStore {
             scope,
             created_at: now_rfc3339(),
         };
-        sqlx::query(
+        query(
             "INSERT INTO tokens (id, name, token_hash, scope, created_at)
              VALUES ($1, $2, $3, $4, $5)",
         )
@@ -37,31 +39,31 @@ impl AuthStore for PgStore {
         .bind(token_hash)
         .bind(scope.as_str())
         .bind(&record.created_at)
-        .execute(&self.pool)
+        .execute(self.pool())
         .await?;
         Ok(record)
     }
 
     async fn find_token(&self, token_hash: &str) -> StoreResult<Option<TokenRecord>> {
-        let row =
-            sqlx::query("SELECT id, name, scope, created_at FROM tokens WHERE token_hash = $1")
-                .bind(token_hash)
-                .fetch_optional(&self.pool)
-                .await?;
+        let row = query("SELECT id, name, scope, created_at FROM tokens WHERE token_hash = $1")
+            .bind(token_hash)
+            .fetch_optional(self.pool())
+            .await?;
         row.as_ref().map(token).transpose()
     }
 
     async fn list_tokens(&self) -> StoreResult<Vec<TokenRecord>> {
-        let rows = sqlx::query("SELECT id, name, scope, created_at FROM tokens ORDER BY id")
-            .fetch_all(&self.pool)
+        let rows = query("SELECT id, name, scope, created_at FROM tokens ORDER BY id")
+            .fetch_all(self.pool())
             .await?;
         rows.iter().map(token).collect()
     }
 
     async fn count_tokens(&self) -> StoreResult<i64> {
-        Ok(sqlx::query_scalar("SELECT count(*) FROM tokens")
-            .fetch_one(&self.pool)
-            .await?)
+        let row = query("SELECT count(*) AS n FROM tokens")
+            .fetch_one(self.pool())
+            .await?;
+        Ok(row.int("n"))
     }
 
     async fn claim_idempotency(&self, s: &IdempotencyScope) -> StoreResult<IdempotencyClaim> {
@@ -69,58 +71,56 @@ impl AuthStore for PgStore {
         // Housekeeping of other keys, outside the claim: two replicas sweeping
         // the same rows could deadlock, and a failed sweep changes nothing
         // for this request.
-        if let Err(e) = sqlx::query(
+        if let Err(e) = query(
             "DELETE FROM idempotency WHERE (state = 'done' AND created_ms < $1)
                 OR (state = 'pending' AND created_ms < $2)",
         )
         .bind(now - IDEMPOTENCY_TTL_MS)
         .bind(now - PENDING_STALE_MS)
-        .execute(&self.pool)
+        .execute(self.pool())
         .await
         {
             tracing::debug!(error = %e, "idempotency sweep skipped");
         }
-        let mut tx = self.pool.begin().await?;
+        let mut tx = self.begin_write().await?;
         // This key, if expired (or abandoned by a dead request), is free again.
-        sqlx::query(
-            "DELETE FROM idempotency
-             WHERE principal = $1 AND method = $2 AND path = $3 AND idem_key = $4
-               AND ((state = 'done' AND created_ms < $5) OR (state = 'pending' AND created_ms < $6))",
+        bind_key(
+            query(
+                "DELETE FROM idempotency
+                 WHERE principal = $1 AND method = $2 AND path = $3 AND idem_key = $4
+                   AND ((state = 'done' AND created_ms < $5)
+                        OR (state = 'pending' AND created_ms < $6))",
+            ),
+            s,
         )
-        .bind(&s.principal)
-        .bind(&s.method)
-        .bind(&s.path)
-        .bind(&s.key)
         .bind(now - IDEMPOTENCY_TTL_MS)
         .bind(now - PENDING_STALE_MS)
-        .execute(&mut *tx)
+        .execute(&mut tx)
         .await?;
-        // The primary key decides: of replicas inserting the same key at once,
+        // The primary key decides: of writers inserting the same key at once,
         // one inserts and the others wait for its commit, then insert nothing.
-        let inserted = sqlx::query(
-            "INSERT INTO idempotency (principal, method, path, idem_key, state, created_ms)
-             VALUES ($1, $2, $3, $4, 'pending', $5) ON CONFLICT DO NOTHING",
+        let inserted = bind_key(
+            query(
+                "INSERT INTO idempotency (principal, method, path, idem_key, state, created_ms)
+                 VALUES ($1, $2, $3, $4, 'pending', $5) ON CONFLICT DO NOTHING",
+            ),
+            s,
         )
-        .bind(&s.principal)
-        .bind(&s.method)
-        .bind(&s.path)
-        .bind(&s.key)
         .bind(now)
-        .execute(&mut *tx)
+        .execute(&mut tx)
         .await?;
-        if inserted.rows_affected() > 0 {
+        if inserted > 0 {
             tx.commit().await?;
             return Ok(IdempotencyClaim::Fresh);
         }
-        let row = sqlx::query(
-            "SELECT state, status, headers, body FROM idempotency
-             WHERE principal = $1 AND method = $2 AND path = $3 AND idem_key = $4",
+        let row = bind_key(
+            query(
+                "SELECT state, status, headers, body FROM idempotency
+                 WHERE principal = $1 AND method = $2 AND path = $3 AND idem_key = $4",
+            ),
+            s,
         )
-        .bind(&s.principal)
-        .bind(&s.method)
-        .bind(&s.path)
-        .bind(&s.key)
-        .fetch_optional(&mut *tx)
+        .fetch_optional(&mut tx)
         .await?;
         tx.commit().await?;
         // Gone between the insert and the select (abandoned meanwhile): the
@@ -128,15 +128,15 @@ impl AuthStore for PgStore {
         let Some(row) = row else {
             return Ok(IdempotencyClaim::InFlight);
         };
-        if row.get::<&str, _>("state") == "pending" {
+        if row.str("state") == "pending" {
             return Ok(IdempotencyClaim::InFlight);
         }
         let headers: Vec<(String, String)> =
-            serde_json::from_str(row.get::<Option<&str>, _>("headers").unwrap_or("[]"))?;
+            serde_json::from_str(row.opt_str("headers").unwrap_or("[]"))?;
         Ok(IdempotencyClaim::Replay(StoredResponse {
-            status: row.get::<Option<i64>, _>("status").unwrap_or(200) as u16,
+            status: row.opt_int("status").unwrap_or(DEFAULT_STATUS) as u16,
             headers,
-            body: row.get::<Option<Vec<u8>>, _>("body").unwrap_or_default(),
+            body: row.opt_bytes("body").unwrap_or_default(),
         }))
     }
 
@@ -145,33 +145,40 @@ impl AuthStore for PgStore {
         s: &IdempotencyScope,
         response: &StoredResponse,
     ) -> StoreResult<()> {
-        sqlx::query(
-            "UPDATE idempotency SET state = 'done', status = $1, headers = $2, body = $3
-             WHERE principal = $4 AND method = $5 AND path = $6 AND idem_key = $7",
+        bind_key(
+            query(
+                "UPDATE idempotency SET state = 'done', status = $5, headers = $6, body = $7
+                 WHERE principal = $1 AND method = $2 AND path = $3 AND idem_key = $4",
+            ),
+            s,
         )
         .bind(response.status as i64)
         .bind(serde_json::to_string(&response.headers)?)
         .bind(&response.body)
-        .bind(&s.principal)
-        .bind(&s.method)
-        .bind(&s.path)
-        .bind(&s.key)
-        .execute(&self.pool)
+        .execute(self.pool())
         .await?;
         Ok(())
     }
 
     async fn abandon_idempotency(&self, s: &IdempotencyScope) -> StoreResult<()> {
-        sqlx::query(
-            "DELETE FROM idempotency WHERE principal = $1 AND method = $2 AND path = $3
-               AND idem_key = $4 AND state = 'pending'",
+        bind_key(
+            query(
+                "DELETE FROM idempotency WHERE principal = $1 AND method = $2 AND path = $3
+                   AND idem_key = $4 AND state = 'pending'",
+            ),
+            s,
         )
-        .bind(&s.principal)
-        .bind(&s.method)
-        .bind(&s.path)
-        .bind(&s.key)
-        .execute(&self.pool)
+        .execute(self.pool())
         .await?;
         Ok(())
     }
+}
+
+/// Binds an idempotency key's columns to `$1`..`$4` (principal, method,
+/// path, key), in which order every statement on the table names them.
+fn bind_key<'a>(stmt: Statement<'a>, s: &'a IdempotencyScope) -> Statement<'a> {
+    stmt.bind(&s.principal)
+        .bind(&s.method)
+        .bind(&s.path)
+        .bind(&s.key)
 }

@@ -1,0 +1,129 @@
+//! What the shared repository code (`repo/`) needs from a database backend:
+//! a pool, a way to open a writing transaction, and the few places where
+//! the SQLite and PostgreSQL dialects (or their concurrency models) differ.
+//! Each repository operation is written once, in `repo/`, over [`Backend`];
+//! `sqlite/` and `postgres/` only implement it.
+//!
+//! Why the differences are this few: statements use `$n` placeholders,
+//! which both drivers read (see `statement.rs`), and only portable SQL
+//! (`RETURNING`, `ON CONFLICT`, `CAST`, `CASE`). What remains is row locking
+//! (PostgreSQL replicas lock rows; SQLite's `BEGIN IMMEDIATE` already
+//! excludes every other writer) and the writes whose race-freedom needs
+//! backend-specific SQL.
+
+use std::sync::Arc;
+
+use async_trait::async_trait;
+use futures_util::future::BoxFuture;
+use sqlx::{Database, Pool, Transaction};
+use tokio::sync::{watch, Notify};
+
+use super::rows::Columns;
+use super::statement::Statement;
+use super::StoreResult;
+use crate::domain::RobotRecord;
+
+#[async_trait]
+pub trait Backend: Send + Sync + 'static {
+    type Db: Driver;
+
+    /// Backend name for logs ("sqlite", "postgres").
+    const NAME: &'static str;
+    /// Row-lock clause for a row this transaction will update.
+    const FOR_UPDATE: &'static str;
+    /// Row-lock clause that skips rows another transaction holds (a claim
+    /// never waits for, nor takes, a job another replica is claiming).
+    const FOR_UPDATE_SKIP_LOCKED: &'static str;
+    /// Row-lock clause that keeps a parent row from being deleted meanwhile.
+    const FOR_KEY_SHARE: &'static str;
+    /// Takes the serial's next parameter-set version (`$1` = serial) inside
+    /// the writing transaction; returns it as column `version`.
+    const NEXT_VERSION: &'static str;
+
+    fn pool(&self) -> &Pool<Self::Db>;
+
+    /// Opens a transaction that is going to write.
+    async fn begin_write(&self) -> StoreResult<Transaction<'static, Self::Db>>;
+
+    /// Serialises enqueues (the `--max-queued` bound is a count, then an
+    /// insert) inside the enqueue's transaction. Nothing to do where the
+    /// writing transaction excludes other writers already.
+    async fn serialise_enqueue(_tx: &mut Transaction<'static, Self::Db>) -> StoreResult<()> {
+        Ok(())
+    }
+
+    /// Creates or replaces the robot; `true` when it was created, answered
+    /// once even when two processes create the same serial at once.
+    async fn upsert_robot(&self, robot: &RobotRecord) -> StoreResult<bool>;
+
+    /// See [`Store::watch_jobs`](super::Store::watch_jobs).
+    fn listen_for_jobs(&self, _wake: Arc<Notify>, _shutdown: watch::Receiver<bool>) -> bool {
+        false
+    }
+}
+
+/// A `sqlx` database whose driver runs a [`Statement`] and whose rows read
+/// as [`Columns`]. The three methods read the same for every driver but,
+/// written generically, would need each driver's trait bounds:
+/// [`run_statements!`] writes them in `impl Driver for <database>`.
+pub trait Driver: Database<Row: Columns> {
+    /// Runs `stmt`; returns the number of rows it changed.
+    fn execute_in<'c>(
+        conn: &'c mut Self::Connection,
+        stmt: Statement<'c>,
+    ) -> BoxFuture<'c, sqlx::Result<u64>>;
+    fn fetch_optional_in<'c>(
+        conn: &'c mut Self::Connection,
+        stmt: Statement<'c>,
+    ) -> BoxFuture<'c, sqlx::Result<Option<Self::Row>>>;
+    fn fetch_all_in<'c>(
+        conn: &'c mut Self::Connection,
+        stmt: Statement<'c>,
+    ) -> BoxFuture<'c, sqlx::Result<Vec<Self::Row>>>;
+}
+
+/// The body of `impl Driver for <database>`.
+macro_rules! run_statements {
+    () => {
+        fn execute_in<'c>(
+            conn: &'c mut Self::Connection,
+            stmt: $crate::store::statement::Statement<'c>,
+        ) -> ::futures_util::future::BoxFuture<'c, ::sqlx::Result<u64>> {
+            Box::pin(async move {
+                let $crate::store::statement::Statement { sql, args } = stmt;
+                let q = $crate::store::statement::bind_args!(::sqlx::query(&sql), args);
+                Ok(q.execute(conn).await?.rows_affected())
+            })
+        }
+
+        fn fetch_optional_in<'c>(
+            conn: &'c mut Self::Connection,
+            stmt: $crate::store::statement::Statement<'c>,
+        ) -> ::futures_util::future::BoxFuture<'c, ::sqlx::Result<Option<Self::Row>>> {
+            Box::pin(async move {
+                let $crate::store::statement::Statement { sql, args } = stmt;
+                let q = $crate::store::statement::bind_args!(::sqlx::query(&sql), args);
+                q.fetch_optional(conn).await
+            })
+        }
+
+        fn fetch_all_in<'c>(
+            conn: &'c mut Self::Connection,
+            stmt: $crate::store::statement::Statement<'c>,
+        ) -> ::futures_util::future::BoxFuture<'c, ::sqlx::Result<Vec<Self::Row>>> {
+            Box::pin(async move {
+                let $crate::store::statement::Statement { sql, args } = stmt;
+                let q = $crate::store::statement::bind_args!(::sqlx::query(&sql), args);
+                q.fetch_all(conn).await
+            })
+        }
+    };
+}
+pub(crate) use run_statements;
+
+/// True when `e` is a foreign-key violation (a parent row deleted
+/// concurrently, or never there).
+pub fn is_foreign_key_violation(e: &sqlx::Error) -> bool {
+    e.as_database_error()
+        .is_some_and(|d| d.is_foreign_key_violation())
+}
