@@ -241,6 +241,18 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSetDoc) -> Report {
         .collect();
     let ident = &id.identification.identifiability;
     let mut notes = ctx.notes.clone();
+    if id.after.norm.mean_mm > id.before.norm.mean_mm {
+        notes.push(format!(
+            "Warning: this set predicts the validation poses worse than the nominal model ({:.3} mm against {:.3} mm mean): do not send it to production. {}",
+            id.after.norm.mean_mm,
+            id.before.norm.mean_mm,
+            if set.camera_mode.as_deref() == Some("paper") {
+                "The paper's camera model (one radial term) does not fit this lens well enough; calibrate with refine_intrinsics: true."
+            } else {
+                "Check the validation poses and the board description, or add calibration poses."
+            }
+        ));
+    }
     if !ident.weak.is_empty() {
         notes.push(format!(
             "The poses did not determine {}: held at nominal. Add poses that move these joints more widely to identify them.",

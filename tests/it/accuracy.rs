@@ -14,6 +14,7 @@ use robocal::client::Client;
 use robocal_calib::sim::campaign::simulate_campaign;
 use serde_json::{json, Value};
 
+use crate::e2e_points::assert_warns_iff_worse;
 use crate::support::{is_finished, spawn_app_with, TestApp};
 
 const WAIT: Duration = Duration::from_secs(600);
@@ -25,8 +26,10 @@ const SEEDS: std::ops::RangeInclusive<u64> = 1..=4;
 const FLOOR_DRAWS: u64 = 3;
 /// The served model against the image-level oracle floor (issue 5).
 const ORACLE_FACTOR: f64 = 1.1;
-/// The two-step job must be worse than the default job by this.
-const TWO_STEP_MARGIN: f64 = 1.3;
+/// The two-step job must be worse than the default job by this on the
+/// mean of these campaigns (1.47x IRB over 8, 2.64x PUMA over 24 in the
+/// benchmark; one campaign can go either way, IRB seed 1 does).
+const TWO_STEP_MARGIN: f64 = 1.2;
 const MIN_IMPROVEMENT: f64 = 12.0;
 /// Reported sigmas: RMS of (estimate - truth) / sigma over all identified
 /// parameters of all campaigns (1 when right; the z of one campaign are
@@ -53,6 +56,17 @@ async fn served_set(
         .get(&format!("/v1/robots/{serial}/parameter-sets/{version}"))
         .await;
     assert_eq!(r.status(), 200);
+    r.json().await.unwrap()
+}
+
+/// The report of a served set.
+async fn report_of(app: &TestApp, serial: &str, set: &Value) -> Value {
+    let path = format!(
+        "/v1/robots/{serial}/parameter-sets/{}/report",
+        set["version"]
+    );
+    let r = app.get(&path).await;
+    assert_eq!(r.status(), 200, "{path}");
     r.json().await.unwrap()
 }
 
@@ -83,12 +97,26 @@ async fn targets_hold(preset: &str) {
             json!({"joint_refinement": false}),
         )
         .await;
-        let report: Value = app
-            .get(&format!("/v1/robots/{serial}/parameter-sets/1/report"))
-            .await
-            .json()
-            .await
-            .unwrap();
+        if seed == *SEEDS.start() {
+            // Paper mode, reported beside (BENCHMARKS.md): on these lenses
+            // it is worse than the nominal model, and its report says so.
+            let paper = served_set(
+                &app,
+                &client,
+                &serial,
+                &session,
+                json!({"refine_intrinsics": false}),
+            )
+            .await;
+            let report = report_of(&app, &serial, &paper).await;
+            assert_eq!(report["camera"]["mode"], "paper");
+            assert!(
+                report["after"]["mean_mm"].as_f64() > report["before"]["mean_mm"].as_f64(),
+                "{preset}: paper mode now beats the nominal model: update BENCHMARKS.md"
+            );
+            assert_warns_iff_worse(&report);
+        }
+        let report = report_of(&app, &serial, &set).await;
         let sigma_px = dot_noise_px(&report).unwrap();
         let preset_owned = preset.to_string();
         let (served, two, floors) = tokio::task::spawn_blocking(move || {

@@ -258,6 +258,7 @@ async fn detected_points_residuals_and_a_reused_camera_through_the_service() {
     assert_eq!(report2["camera"]["mode"], "paper");
     assert_eq!(report2["camera"]["fx"], set2["camera"]["fx"]);
     assert_ne!(set2["camera"]["fx"], set1["camera"]["fx"]);
+    assert_warns_iff_worse(&report2);
     // Uploaded images are untouched by the jobs.
     for (pose, entry) in poses.iter().zip(&entries) {
         let id = pose["id"].as_str().unwrap();
@@ -303,4 +304,15 @@ async fn detected_points_residuals_and_a_reused_camera_through_the_service() {
     let job3_id = job3["id"].as_str().unwrap();
     let poses = poses_of(&app, &reuse).await;
     check_points(&poses, job3_id, &truth, pitch_mm, MAX_RESIDUAL_RMS_PX);
+}
+
+/// A set worse than the nominal model says so in its report, with what to do.
+pub(crate) fn assert_warns_iff_worse(report: &Value) {
+    let worse = report["after"]["mean_mm"].as_f64() > report["before"]["mean_mm"].as_f64();
+    let warned = report["notes"].as_array().unwrap().iter().any(|n| {
+        n.as_str()
+            .unwrap()
+            .starts_with("Warning: this set predicts")
+    });
+    assert_eq!(worse, warned, "{}", report["notes"]);
 }
