@@ -10,7 +10,7 @@ use std::io::Write;
 use std::time::Instant;
 
 use robocal_calib::camera::{calibrate, CalibrationOptions, CameraCalibration, ViewObservations};
-use robocal_calib::sim::point_views::{simulate_views, DotBoard, ViewCampaignSpec, ViewLayout};
+use robocal_calib::sim::point_views::{simulate_views, Board, ViewCampaignSpec, ViewLayout};
 
 const SCRIPT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../bench/opencv_calibrate.py");
 
@@ -171,7 +171,7 @@ fn main() {
         // The first campaign design: the 9x9 board placed at random.
         bench(
             &ViewCampaignSpec {
-                board: DotBoard::standard(),
+                board: Board::standard(),
                 layout: ViewLayout::Random,
                 ..ViewCampaignSpec::modern_1280x1024(2024)
             },

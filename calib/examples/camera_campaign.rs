@@ -173,7 +173,7 @@ fn summarise(label: &str, runs: &[Errors]) {
 /// (one camera only; 2048 = the rendered campaign's camera, only on request), `paper=0` (skip paper mode).
 #[derive(Default)]
 struct Overrides {
-    board: Option<(u32, u32)>,
+    board: Option<(usize, usize)>,
     pitch_mm: Option<f64>,
     dot_mm: Option<f64>,
     layout: Option<ViewLayout>,
@@ -181,7 +181,7 @@ struct Overrides {
     skip_paper: bool,
 }
 
-fn parse_pair(v: &str) -> Option<(u32, u32)> {
+fn parse_pair<T: std::str::FromStr>(v: &str) -> Option<(T, T)> {
     let (a, b) = v.split_once('x')?;
     Some((a.parse().ok()?, b.parse().ok()?))
 }

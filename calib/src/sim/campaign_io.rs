@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 
 use super::campaign::{Campaign, CampaignSpec};
 use crate::camera::model::Intrinsics;
+use crate::camera::observations::ImageSize;
 use crate::geometry::{pose_from_matrix_rows, pose_to_matrix_rows, GeometryError, Pose};
 
 /// A pose as a 4x4 row-major matrix (api.md "Poses"), exact to round-off
@@ -14,7 +15,12 @@ use crate::geometry::{pose_from_matrix_rows, pose_to_matrix_rows, GeometryError,
 pub type MatrixRows = [[f64; 4]; 4];
 use crate::kinematics::RobotModel;
 
-/// The dot-grid board (method.md §1): dot (r, c) at `(c*p, r*p, 0)`.
+/// Board pitch and dot size of the simulated boards (the issues').
+pub const BOARD_PITCH_MM: f64 = 25.0;
+pub const BOARD_DOT_DIAMETER_MM: f64 = 8.0;
+
+/// The dot-grid board of every simulation (method.md §1): dot (r, c) at
+/// `(c*p, r*p, 0)`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Board {
     pub rows: usize,
@@ -29,19 +35,42 @@ impl Board {
         Self {
             rows: 9,
             cols: 9,
-            pitch_mm: 25.0,
-            dot_diameter_mm: 8.0,
+            pitch_mm: BOARD_PITCH_MM,
+            dot_diameter_mm: BOARD_DOT_DIAMETER_MM,
         }
+    }
+
+    /// A board sized to the field of view, as a cell would choose it: the
+    /// standard pitch and dots, and enough dots that the board spans at
+    /// least `fraction` of the image width and height at `distance_mm`
+    /// (pinhole field of view `size / f * distance`).
+    pub fn spanning_field(
+        intrinsics: &Intrinsics,
+        image_size: ImageSize,
+        distance_mm: f64,
+        fraction: f64,
+    ) -> Self {
+        let standard = Self::standard();
+        let dots = |pixels: u32, focal_px: f64| {
+            let extent_mm = fraction * pixels as f64 / focal_px * distance_mm;
+            (extent_mm / standard.pitch_mm).ceil().max(1.0) as usize + 1
+        };
+        Self {
+            rows: dots(image_size.height, intrinsics.fy),
+            cols: dots(image_size.width, intrinsics.fx),
+            ..standard
+        }
+    }
+
+    /// Centre of dot `(row, col)` in the target frame.
+    pub fn point(&self, row: usize, col: usize) -> Point3<f64> {
+        Point3::new(col as f64 * self.pitch_mm, row as f64 * self.pitch_mm, 0.0)
     }
 
     /// Dot centres in the target frame, row-major.
     pub fn points(&self) -> Vec<Point3<f64>> {
         (0..self.rows)
-            .flat_map(|r| {
-                (0..self.cols).map(move |c| {
-                    Point3::new(c as f64 * self.pitch_mm, r as f64 * self.pitch_mm, 0.0)
-                })
-            })
+            .flat_map(|r| (0..self.cols).map(move |c| self.point(r, c)))
             .collect()
     }
 

@@ -3,10 +3,11 @@
 //! centre is the area centroid of its projected circular boundary (what a
 //! good detector measures, method.md §4 **beyond**) plus Gaussian noise.
 
-use nalgebra::{Isometry3, Point2, Point3, Unit, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Point2, Unit, UnitQuaternion, Vector3};
 use rand::{rngs::StdRng, Rng, SeedableRng};
 use rand_distr::{Distribution, Normal};
 
+pub use super::campaign_io::Board;
 pub use super::view_layout::ViewLayout;
 use super::view_layout::{board_pose, fit_into_frame, placement};
 use crate::camera::bias::DiscBoundary;
@@ -25,9 +26,6 @@ fn truth_boundary() -> &'static DiscBoundary {
 
 /// Pose draws per view before giving up on fitting the board in the image.
 const MAX_POSE_ATTEMPTS: usize = 2000;
-/// Board pitch and dot size of the simulated boards (the issue's).
-pub const BOARD_PITCH_MM: f64 = 25.0;
-pub const BOARD_DOT_DIAMETER_MM: f64 = 8.0;
 /// The default campaigns' board spans at least this fraction of the image
 /// width and height at the middle of the distance range: from the issue's
 /// 9x9 board (~30% of the 1280 px width) to such a board the image centre's
@@ -43,65 +41,11 @@ pub const LAYOUT_CELLS: u32 = 3;
 /// image rows.
 pub const LAYOUT_ROLL_SPREAD_DEG: f64 = 20.0;
 
-/// A flat board of dark dots; dot (r, c) at `(c p, r p, 0)` (method.md §1).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct DotBoard {
-    pub rows: u32,
-    pub cols: u32,
-    pub pitch_mm: f64,
-    pub dot_diameter_mm: f64,
-}
-
-impl DotBoard {
-    /// The board: 9x9 dots of 8 mm on a 25 mm pitch.
-    pub fn standard() -> Self {
-        Self {
-            rows: 9,
-            cols: 9,
-            pitch_mm: BOARD_PITCH_MM,
-            dot_diameter_mm: BOARD_DOT_DIAMETER_MM,
-        }
-    }
-
-    /// A board sized to the field of view, as a cell would choose it: 25 mm
-    /// pitch, 8 mm dots, and enough dots that the board spans at least
-    /// `fraction` of the image width and height at `distance_mm` (pinhole
-    /// field of view `size / f * distance`).
-    pub fn spanning_field(
-        intrinsics: &Intrinsics,
-        image_size: ImageSize,
-        distance_mm: f64,
-        fraction: f64,
-    ) -> Self {
-        let dots = |pixels: u32, focal_px: f64| {
-            let extent_mm = fraction * pixels as f64 / focal_px * distance_mm;
-            (extent_mm / BOARD_PITCH_MM).ceil().max(1.0) as u32 + 1
-        };
-        Self {
-            rows: dots(image_size.height, intrinsics.fy),
-            cols: dots(image_size.width, intrinsics.fx),
-            ..Self::standard()
-        }
-    }
-
-    pub fn point(&self, row: u32, col: u32) -> Point3<f64> {
-        Point3::new(col as f64 * self.pitch_mm, row as f64 * self.pitch_mm, 0.0)
-    }
-
-    pub fn centre(&self) -> Point3<f64> {
-        Point3::new(
-            (self.cols - 1) as f64 * self.pitch_mm / 2.0,
-            (self.rows - 1) as f64 * self.pitch_mm / 2.0,
-            0.0,
-        )
-    }
-}
-
 #[derive(Debug, Clone, PartialEq)]
 pub struct ViewCampaignSpec {
     pub intrinsics: Intrinsics,
     pub image_size: ImageSize,
-    pub board: DotBoard,
+    pub board: Board,
     pub views: usize,
     pub distance_mm: (f64, f64),
     pub tilt_deg: (f64, f64),
@@ -165,7 +109,7 @@ impl ViewCampaignSpec {
         Self {
             intrinsics,
             image_size,
-            board: DotBoard::spanning_field(
+            board: Board::spanning_field(
                 &intrinsics,
                 image_size,
                 mid_distance_mm,
@@ -303,8 +247,8 @@ fn observe(
             }
             let pixel = centroid + nalgebra::Vector2::new(noise.sample(rng), noise.sample(rng));
             dots.push(DotObservation {
-                row,
-                col,
+                row: row as u32,
+                col: col as u32,
                 target_mm: target,
                 pixel,
             });

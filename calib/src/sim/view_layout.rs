@@ -194,7 +194,7 @@ fn stratified(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::point_views::{simulate_views, DotBoard};
+    use crate::sim::point_views::{simulate_views, Board};
 
     /// Distance (fraction of the image width, Chebyshev) from a frame
     /// corner within which some dot must come: a tilted board's image is a
@@ -208,7 +208,7 @@ mod tests {
         let paper = ViewCampaignSpec::paper_752x582(0).board;
         assert_eq!((modern.rows, modern.cols), (15, 19));
         assert_eq!((paper.rows, paper.cols), (11, 14));
-        assert_eq!(DotBoard::standard().rows, 9);
+        assert_eq!(Board::standard().rows, 9);
     }
 
     #[test]
