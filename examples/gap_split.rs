@@ -19,13 +19,13 @@
 use clap::Parser;
 use nalgebra::Point3;
 use rand::{rngs::StdRng, Rng, SeedableRng};
-use robocal::campaign::{rendered_spec, run_local, simulate, simulated_target};
+use robocal::campaign::{run_local, simulate, simulated_target};
 use robocal::evaluate::model_of;
 use robocal_calib::camera::Intrinsics;
 use robocal_calib::kinematics::identify::{validate, JointNoise};
 use robocal_calib::kinematics::joint_refine::{joint_refine, ImageNoise, ImagePose};
 use robocal_calib::kinematics::{CalibratedModel, Instrument, ParamLayout};
-use robocal_calib::sim::campaign::{simulate_campaign, Campaign};
+use robocal_calib::sim::campaign::Campaign;
 use robocal_calib::sim::campaign_io::PoseSet;
 use robocal_calib::sim::oracle::{oracle_accuracy, truth_measurements};
 
@@ -94,7 +94,7 @@ fn main() -> Result<(), String> {
     for preset in args.robots.split(',') {
         for seed in args.seeds.split(',').map(|s| s.parse::<u64>().unwrap()) {
             let dir = tempfile::tempdir().map_err(|e| e.to_string())?;
-            simulate(preset, dir.path(), args.cal, args.val, seed)?;
+            let (spec, campaign) = simulate(preset, dir.path(), args.cal, args.val, seed)?;
             let output = run_local(dir.path(), "GAP")?;
             let set = output.parameter_set.ok_or("no parameter set")?;
             let model = model_of(&set.parameters)?;
@@ -106,8 +106,6 @@ fn main() -> Result<(), String> {
             let free: Vec<usize> = (0..layout.len())
                 .filter(|&i| !fixed.contains(&layout.params[i].name))
                 .collect();
-            let spec = rendered_spec(preset, args.cal, args.val, seed)?;
-            let campaign = simulate_campaign(&spec).map_err(|e| e.to_string())?;
             let truth = campaign.truth.intrinsics;
             let sigma_px = set.report["camera"]["reprojection_rms_px"]
                 .as_f64()

@@ -17,9 +17,8 @@
 
 use clap::Parser;
 use robocal::accuracy::{compare_with_truth, dot_noise_px, oracle_floors};
-use robocal::campaign::{rendered_spec, run_local_with, simulate};
+use robocal::campaign::{run_local_with, simulate};
 use robocal::schema::job::CalibrationOptions;
-use robocal_calib::sim::campaign::simulate_campaign;
 
 /// A parameter further than this many sigmas from the truth is a miss.
 const SIGMA_BOUND: f64 = 3.0;
@@ -63,9 +62,7 @@ fn main() -> Result<(), String> {
         let mut t = Totals::default();
         for seed in args.first_seed..args.first_seed + args.campaigns {
             let dir = tempfile::tempdir().map_err(|e| e.to_string())?;
-            simulate(preset, dir.path(), args.cal, args.val, seed)?;
-            let spec = rendered_spec(preset, args.cal, args.val, seed)?;
-            let campaign = simulate_campaign(&spec).map_err(|e| e.to_string())?;
+            let (spec, campaign) = simulate(preset, dir.path(), args.cal, args.val, seed)?;
             let run = |options: CalibrationOptions| {
                 run_local_with(dir.path(), "ACCURACY", options)?
                     .parameter_set

@@ -9,7 +9,7 @@ use std::sync::atomic::AtomicBool;
 
 use rand::{rngs::StdRng, SeedableRng};
 use robocal_calib::camera::Intrinsics;
-use robocal_calib::sim::campaign::{simulate_campaign, CampaignSpec};
+use robocal_calib::sim::campaign::{simulate_campaign, Campaign, CampaignSpec};
 use robocal_calib::sim::campaign_io::{image_name, PoseEntry, PoseSet as SimPoseSet};
 use robocal_calib::sim::render::{render_target, RenderOptions};
 use robocal_calib::vision::TargetSpec;
@@ -95,8 +95,15 @@ pub fn rendered_spec(
     Ok(spec)
 }
 
-/// Simulates a campaign of `preset` and writes it to `out`.
-pub fn simulate(preset: &str, out: &Path, cal: usize, val: usize, seed: u64) -> Result<(), String> {
+/// Simulates a campaign of `preset` and writes it to `out`; returns the
+/// campaign (its truth) so callers that judge it need not simulate again.
+pub fn simulate(
+    preset: &str,
+    out: &Path,
+    cal: usize,
+    val: usize,
+    seed: u64,
+) -> Result<(CampaignSpec, Campaign), String> {
     let spec = rendered_spec(preset, cal, val, seed)?;
     let (intrinsics, (width, height), pixel_um) = simulated_camera(preset);
     let campaign = simulate_campaign(&spec).map_err(|e| e.to_string())?;
@@ -169,7 +176,8 @@ pub fn simulate(preset: &str, out: &Path, cal: usize, val: usize, seed: u64) -> 
     };
     write_json(&out.join("campaign.json"), &file)?;
     write_json(&out.join("poses.json"), &campaign.pose_entries())?;
-    write_json(&out.join("truth.json"), &campaign.full_truth())
+    write_json(&out.join("truth.json"), &campaign.full_truth())?;
+    Ok((spec, campaign))
 }
 
 fn write_json(path: &Path, value: &impl Serialize) -> Result<(), String> {

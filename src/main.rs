@@ -146,7 +146,7 @@ async fn main() -> ExitCode {
             seed,
             dir,
         } => robocal::campaign::simulate(&robot, &dir, cal, val, seed)
-            .map(|()| eprintln!("campaign written to {}", dir.display())),
+            .map(|_| eprintln!("campaign written to {}", dir.display())),
         Command::Upload {
             serial,
             dir,

@@ -9,9 +9,8 @@
 use std::time::Duration;
 
 use robocal::accuracy::{compare_with_truth, dot_noise_px, oracle_floors, TruthComparison};
-use robocal::campaign::{rendered_spec, simulate};
+use robocal::campaign::simulate;
 use robocal::client::Client;
-use robocal_calib::sim::campaign::simulate_campaign;
 use serde_json::{json, Value};
 
 use crate::e2e_points::assert_warns_iff_worse;
@@ -79,7 +78,7 @@ async fn targets_hold(preset: &str) {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().to_path_buf();
         let preset_owned = preset.to_string();
-        tokio::task::spawn_blocking(move || {
+        let (spec, campaign) = tokio::task::spawn_blocking(move || {
             simulate(&preset_owned, &path, CAL_POSES, VAL_POSES, seed).unwrap()
         })
         .await
@@ -118,10 +117,7 @@ async fn targets_hold(preset: &str) {
         }
         let report = report_of(&app, &serial, &set).await;
         let sigma_px = dot_noise_px(&report).unwrap();
-        let preset_owned = preset.to_string();
         let (served, two, floors) = tokio::task::spawn_blocking(move || {
-            let spec = rendered_spec(&preset_owned, CAL_POSES, VAL_POSES, seed).unwrap();
-            let campaign = simulate_campaign(&spec).unwrap();
             let served: TruthComparison = compare_with_truth(&set, &campaign).unwrap();
             let two = compare_with_truth(&two, &campaign).unwrap();
             let floors =
