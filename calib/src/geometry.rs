@@ -167,6 +167,10 @@ pub fn pose_error(measured: &Pose, predicted: &Pose) -> Vector6<f64> {
 }
 
 #[cfg(test)]
+#[path = "geometry_proptests.rs"]
+mod proptests;
+
+#[cfg(test)]
 mod tests {
     use super::*;
     use approx::assert_relative_eq;

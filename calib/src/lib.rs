@@ -6,10 +6,11 @@
 //! (`p_a = a_to_b * p_b`), lengths are millimetres, angles radians inside the
 //! numerics unless a name says `_deg`.
 
-pub mod arrow;
 pub mod camera;
+pub mod covariance;
 pub mod geometry;
 pub mod kinematics;
+pub mod schur;
 pub mod sim;
 pub mod solver;
 pub mod stats;

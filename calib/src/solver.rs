@@ -18,11 +18,10 @@
 
 use nalgebra::{DMatrix, DVector};
 
+pub use crate::covariance::{covariance_from_jacobian, covariance_from_normal, COVARIANCE_RCOND};
+
 /// Relative step of the forward/central finite-difference Jacobian.
 pub const FINITE_DIFFERENCE_STEP: f64 = 1e-6;
-/// Singular values below this fraction of the largest are treated as zero
-/// when inverting `J^T J` for the covariance.
-pub const COVARIANCE_RCOND: f64 = 1e-10;
 /// Damping above this means no step can reduce the cost any more.
 const MAX_DAMPING: f64 = 1e32;
 /// Nielsen's initial damping, relative to the largest diagonal of `J^T J`.
@@ -173,43 +172,6 @@ impl LmReport {
     pub fn standard_deviations(&self) -> DVector<f64> {
         self.covariance().diagonal().map(|v| v.max(0.0).sqrt())
     }
-}
-
-/// `variance * (J^T J)^+`, computed from the SVD of `J` for stability;
-/// directions with singular value below [`COVARIANCE_RCOND`] times the
-/// largest contribute nothing (they are unidentifiable, not infinitely
-/// uncertain: the caller reports them as fixed).
-pub fn covariance_from_jacobian(jacobian: &DMatrix<f64>, variance: f64) -> DMatrix<f64> {
-    let n = jacobian.ncols();
-    let svd = jacobian.clone().svd(false, true);
-    let v_t = svd.v_t.expect("v_t requested");
-    let s_max = svd.singular_values.max();
-    let mut cov = DMatrix::zeros(n, n);
-    for (k, &s) in svd.singular_values.iter().enumerate() {
-        if s > COVARIANCE_RCOND * s_max && s > 0.0 {
-            let v = v_t.row(k).transpose();
-            cov += (&v * v.transpose()) * (variance / (s * s));
-        }
-    }
-    cov
-}
-
-/// `variance * (J^T J)^+` from the normal matrix `J^T J` itself, for
-/// problems that assemble it without the dense Jacobian: the symmetric
-/// eigendecomposition with the same cut-off as [`covariance_from_jacobian`]
-/// (eigenvalues are squared singular values).
-pub fn covariance_from_normal(normal: &DMatrix<f64>, variance: f64) -> DMatrix<f64> {
-    let n = normal.ncols();
-    let eigen = normal.clone().symmetric_eigen();
-    let l_max = eigen.eigenvalues.max();
-    let mut cov = DMatrix::zeros(n, n);
-    for (k, &l) in eigen.eigenvalues.iter().enumerate() {
-        if l > COVARIANCE_RCOND * COVARIANCE_RCOND * l_max && l > 0.0 {
-            let v = eigen.eigenvectors.column(k);
-            cov += (v * v.transpose()) * (variance / l);
-        }
-    }
-    cov
 }
 
 /// Central-difference Jacobian of `f` at `x`.

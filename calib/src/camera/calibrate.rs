@@ -8,9 +8,10 @@ use serde::{Deserialize, Serialize};
 
 use super::error::CameraError;
 use super::model::Intrinsics;
+pub use super::model::IntrinsicsStdDev;
 use super::observations::{validate_views, Correspondences, ImageSize, ViewObservations};
+pub use super::options::{CalibrationMode, CalibrationOptions, OUTLIER_SIGMAS};
 use super::pose::{estimate_pose, planar_pose_guess, PoseEstimate};
-use super::refine::StationDistance;
 use super::refine_loop::{refine, RefineInput, Refinement};
 use super::sequence::{
     paper_sequence, paper_sequence_searching, PaperCalibration, PaperOptions, PlanarView,
@@ -34,68 +35,6 @@ pub const PAPER_FX_SPREAD_MAX: f64 = 0.25;
 const START_SEARCH_DOTS_PER_VIEW: usize = 80;
 /// ... unless fewer than this would remain.
 const START_SEARCH_MIN_DOTS: usize = 16;
-/// Outlier threshold in robust standard deviations (issue 4).
-pub const OUTLIER_SIGMAS: f64 = 5.0;
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-pub enum CalibrationMode {
-    /// The paper's method only (Tsai RAC + sequence searches + averages).
-    Paper,
-    /// Paper start, then the joint refinement.
-    #[default]
-    Refined,
-}
-
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct CalibrationOptions {
-    pub mode: CalibrationMode,
-    pub paper: PaperOptions,
-    /// Also estimate the radial `k3` (wide-angle lenses).
-    pub estimate_k3: bool,
-    /// Keep these intrinsics (an earlier calibration) and fit poses only.
-    pub fixed_intrinsics: Option<Intrinsics>,
-    /// Measured distances between camera stations; they tune `fx`.
-    pub reference_distances: Vec<StationDistance>,
-    /// Dot diameter on the board: enables the perspective/distortion bias
-    /// correction of the dot centres (method.md §4).
-    pub dot_diameter_mm: Option<f64>,
-    pub outlier_sigmas: f64,
-    pub max_bias_iterations: usize,
-    /// Stop the bias iteration when no predicted offset moves more (px).
-    pub bias_tolerance_px: f64,
-}
-
-impl Default for CalibrationOptions {
-    fn default() -> Self {
-        Self {
-            mode: CalibrationMode::Refined,
-            paper: PaperOptions::default(),
-            estimate_k3: false,
-            fixed_intrinsics: None,
-            reference_distances: Vec::new(),
-            dot_diameter_mm: None,
-            outlier_sigmas: OUTLIER_SIGMAS,
-            max_bias_iterations: 10,
-            bias_tolerance_px: 1e-5,
-        }
-    }
-}
-
-/// Standard deviations of the intrinsics (from `sigma^2 (J^T J)^-1`).
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-pub struct IntrinsicsStdDev {
-    pub fx: f64,
-    pub fy: f64,
-    pub scale_ratio: f64,
-    pub cx: f64,
-    pub cy: f64,
-    pub k1: f64,
-    pub k2: f64,
-    pub p1: f64,
-    pub p2: f64,
-    pub k3: f64,
-}
-
 /// A dot left out as an outlier.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct OutlierDot {

@@ -6,20 +6,13 @@ pub mod error;
 pub mod model;
 pub mod normal_blocks;
 pub mod observations;
+pub mod options;
 pub mod pose;
 pub mod projection_jacobian;
 pub mod refine;
 pub mod refine_loop;
 pub mod sequence;
 pub mod tsai;
-pub mod willson;
-#[cfg(test)]
-mod willson_data;
-pub mod willson_fit;
-mod willson_linear;
-mod willson_lmpar;
-mod willson_minpack;
-pub mod willson_stages;
 
 pub use calibrate::{
     calibrate, CalibrationMode, CalibrationOptions, CameraCalibration, IntrinsicsStdDev,

@@ -118,6 +118,21 @@ impl Intrinsics {
     }
 }
 
+/// Standard deviations of the intrinsics (from `sigma^2 (J^T J)^-1`).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct IntrinsicsStdDev {
+    pub fx: f64,
+    pub fy: f64,
+    pub scale_ratio: f64,
+    pub cx: f64,
+    pub cy: f64,
+    pub k1: f64,
+    pub k2: f64,
+    pub p1: f64,
+    pub p2: f64,
+    pub k3: f64,
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

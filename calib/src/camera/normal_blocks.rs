@@ -6,7 +6,7 @@
 use nalgebra::{DMatrix, DVector, SMatrix};
 
 use super::projection_jacobian::INTRINSIC_PARAMS;
-use super::refine::POSE_PARAMS;
+use super::projection_jacobian::POSE_PARAMS;
 
 /// Parameters one image point's rows depend on: the intrinsics, then its
 /// view's pose.

@@ -10,8 +10,8 @@ use nalgebra::{
 use super::error::CameraError;
 use super::model::Intrinsics;
 use super::observations::validate_points;
+use super::projection_jacobian::POSE_PARAMS;
 use super::projection_jacobian::{projection_jacobian_at, PoseLinearisation};
-use super::refine::POSE_PARAMS;
 use crate::geometry::{orthonormalize, pose_error, pose_from_vector, pose_to_vector};
 use crate::solver::{finite_difference_jacobian, solve, LeastSquaresProblem, LmOptions};
 

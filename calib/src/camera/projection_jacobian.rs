@@ -11,6 +11,8 @@ use crate::geometry::pose_from_vector;
 
 /// Intrinsic parameters in the refinement's order.
 pub const INTRINSIC_PARAMS: usize = 9;
+/// Pose parameters per view.
+pub const POSE_PARAMS: usize = 6;
 /// Below this rotation angle (rad) the left Jacobian uses its series.
 const SMALL_ANGLE: f64 = 1e-8;
 

@@ -12,12 +12,11 @@ use serde::{Deserialize, Serialize};
 use super::model::Intrinsics;
 use super::normal_blocks::PointNormalAccumulator;
 use super::projection_jacobian::{projection_jacobian_at, PoseLinearisation};
-use crate::arrow::{invert_arrow, solve_arrow};
 use crate::geometry::{pose_from_vector, pose_to_vector};
+use crate::schur::{schur_invert, schur_solve};
 use crate::solver::{LeastSquaresProblem, FINITE_DIFFERENCE_STEP};
 
-/// Pose parameters per view.
-pub const POSE_PARAMS: usize = 6;
+pub use super::projection_jacobian::POSE_PARAMS;
 
 /// A measured distance between the camera stations of two views (method.md §4).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -183,7 +182,7 @@ impl LeastSquaresProblem for JointProblem<'_> {
         if !self.references.is_empty() {
             return None;
         }
-        solve_arrow(a, g, self.block.len(), POSE_PARAMS)
+        schur_solve(a, g, self.block.len(), POSE_PARAMS)
     }
 
     /// Assembled point by point from the analytic projection Jacobian,
@@ -274,7 +273,7 @@ impl JointProblem<'_> {
             let inv = a.clone().cholesky()?.inverse();
             return Some(inv.view((0, 0), (ni, ni)).into_owned());
         }
-        Some(invert_arrow(a, ni, POSE_PARAMS)?.head)
+        Some(schur_invert(a, ni, POSE_PARAMS)?.head)
     }
 
     /// Rows of the reference-distance residuals (central differences over

@@ -8,10 +8,11 @@
 use nalgebra::{DVector, Isometry3, Point2, Point3, Vector2};
 
 use super::bias::{DiscBoundary, BOUNDARY_SAMPLES};
-use super::calibrate::{CalibrationOptions, IntrinsicsStdDev};
 use super::error::CameraError;
 use super::model::Intrinsics;
+use super::model::IntrinsicsStdDev;
 use super::observations::{Correspondences, MIN_DOTS_PER_VIEW};
+use super::options::CalibrationOptions;
 use super::refine::{IntrinsicsBlock, JointProblem};
 use crate::solver::{solve, Damping, LmOptions, LmReport};
 

@@ -11,109 +11,19 @@
 //! whitens each pose's residual with its covariance from the camera step and
 //! uses column scaling with gain-ratio damping.
 
-use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, Vector3};
-use serde::{Deserialize, Serialize};
+use nalgebra::{DMatrix, DVector, Vector3};
 
-use super::identifiability::{analyse, IdentifiabilityError, IdentifiabilityReport};
-use super::model::KinematicsError;
+use super::identifiability::{analyse, IdentifiabilityReport};
+pub use super::identify_error::IdentifyError;
+pub use super::identify_options::{IdentifyMode, IdentifyOptions, JointNoise};
+pub use super::measurement::{
+    Measurement, Observed, DEFAULT_POSITION_SIGMA_MM, DEFAULT_ROTATION_SIGMA_RAD,
+};
 use super::params::{CalibratedModel, Instrument, ParamKind, ParamLayout};
 use super::pose_fit::{full_vector, unweighted_residuals, PoseFit};
 use super::weights::{estimate_joint_sigma, PoseCovariances};
-use crate::geometry::Pose;
-use crate::solver::{solve, LeastSquaresProblem, LmOptions, SolverError, Termination};
+use crate::solver::{solve, LeastSquaresProblem, LmOptions, Termination};
 use crate::stats::AccuracyStats;
-
-/// Position standard deviation assumed for a pose given without covariance.
-pub const DEFAULT_POSITION_SIGMA_MM: f64 = 0.1;
-/// Orientation standard deviation assumed for a pose given without covariance.
-pub const DEFAULT_ROTATION_SIGMA_RAD: f64 = 1e-4;
-
-/// What was measured at one pose, in the world (target or instrument) frame.
-// A few thousand measurements at most: the 6x6 covariance stays inline.
-#[allow(clippy::large_enum_variant)]
-#[derive(Debug, Clone, PartialEq)]
-pub enum Observed {
-    /// Full tool pose with an optional 6x6 covariance in the
-    /// [`pose_error`] parameterisation (`[dp mm; dr rad]`, world frame).
-    Pose {
-        world_to_tool: Pose,
-        covariance: Option<Matrix6<f64>>,
-    },
-    /// Tool position with an optional 3x3 covariance (mm^2).
-    Position {
-        position_mm: Vector3<f64>,
-        covariance: Option<Matrix3<f64>>,
-    },
-}
-
-impl Observed {
-    pub fn position_mm(&self) -> Vector3<f64> {
-        match self {
-            Observed::Pose { world_to_tool, .. } => world_to_tool.translation.vector,
-            Observed::Position { position_mm, .. } => *position_mm,
-        }
-    }
-}
-
-#[derive(Debug, Clone, PartialEq)]
-pub struct Measurement {
-    pub joints_rad: Vec<f64>,
-    pub observed: Observed,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum IdentifyMode {
-    /// Paper eq. 18: Marquardt schedule, plain residuals, no scaling.
-    Paper,
-    /// Covariance weights, column scaling, gain-ratio damping.
-    #[default]
-    Weighted,
-}
-
-/// Noise of the recorded joint angles (encoders, repeatability).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum JointNoise {
-    /// The same standard deviation (rad) on every joint; 0 ignores it.
-    Known { sigma_rad: f64 },
-    /// Estimated from the residuals ([`estimate_joint_sigma`]): only
-    /// meaningful when the measurement covariances are calibrated (camera
-    /// poses from the camera step).
-    Estimate,
-}
-
-impl Default for JointNoise {
-    fn default() -> Self {
-        Self::Known { sigma_rad: 0.0 }
-    }
-}
-
-/// How to identify: the solver variant and the joint noise.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct IdentifyOptions {
-    pub mode: IdentifyMode,
-    pub joint_noise: JointNoise,
-}
-
-impl From<IdentifyMode> for IdentifyOptions {
-    fn from(mode: IdentifyMode) -> Self {
-        Self {
-            mode,
-            joint_noise: JointNoise::default(),
-        }
-    }
-}
-
-impl IdentifyOptions {
-    /// The joint noise to start from: the known value, or none.
-    fn initial_joint_sigma_rad(&self) -> f64 {
-        match self.joint_noise {
-            JointNoise::Known { sigma_rad } => sigma_rad.abs(),
-            JointNoise::Estimate => 0.0,
-        }
-    }
-}
 
 /// Iteration cap of the default fit: ill-conditioned tracker campaigns
 /// (the UR5 grid, condition number ~6e4) creep for ~300 iterations before
@@ -122,29 +32,6 @@ const MAX_ITERATIONS: usize = 1000;
 
 /// Rounds of (fit, re-estimate the joint noise) with [`JointNoise::Estimate`].
 const JOINT_NOISE_ROUNDS: usize = 2;
-
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum IdentifyError {
-    #[error("no calibration poses")]
-    NoPoses,
-    #[error("pose {pose}: {source}")]
-    Pose {
-        pose: usize,
-        source: KinematicsError,
-    },
-    #[error("pose {pose}: a {instrument:?} session needs {expected} measurements")]
-    WrongMeasurement {
-        pose: usize,
-        instrument: Instrument,
-        expected: &'static str,
-    },
-    #[error("pose {pose}: covariance is not positive definite")]
-    BadCovariance { pose: usize },
-    #[error(transparent)]
-    Identifiability(#[from] IdentifiabilityError),
-    #[error("solver: {0}")]
-    Solver(#[from] SolverError),
-}
 
 /// The identified model with its uncertainty.
 #[derive(Debug, Clone)]

@@ -1,6 +1,8 @@
 use super::*;
+use crate::geometry::Pose;
 use crate::kinematics::initial::initial_world_to_base;
 use crate::sim::campaign::{perturb_robot, CampaignSpec};
+use nalgebra::Matrix6;
 use rand::{rngs::StdRng, Rng, SeedableRng};
 
 /// Noise-free data recovers the model to round-off.

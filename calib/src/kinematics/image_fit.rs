@@ -6,12 +6,12 @@
 
 use nalgebra::{DMatrix, DVector, Matrix6, SMatrix};
 
+use super::image_pose::{ImageNoise, ImagePose};
 use super::jacobian::tool_pose_jacobian;
-use super::joint_refine::{ImageNoise, ImagePose};
 use super::params::{CalibratedModel, ParamLayout};
 use super::projection::{apply_intrinsics, project_with_jacobians, INTRINSIC_NAMES};
-use crate::arrow::solve_arrow;
 use crate::camera::model::Intrinsics;
+use crate::schur::schur_solve;
 use crate::solver::LeastSquaresProblem;
 
 /// Intrinsic parameters refined with the kinematics.
@@ -195,7 +195,7 @@ impl LeastSquaresProblem for ImageFit<'_> {
     fn solve_normal(&self, a: &DMatrix<f64>, g: &DVector<f64>) -> Option<DVector<f64>> {
         match self.joints() {
             0 => None,
-            nj => solve_arrow(a, g, self.head(), nj),
+            nj => schur_solve(a, g, self.head(), nj),
         }
     }
 

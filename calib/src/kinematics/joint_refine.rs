@@ -21,44 +21,18 @@
 //! assembled per pose from 6x6 sums over its dots, so the corrections cost
 //! little.
 
-use nalgebra::{DMatrix, DVector, Point2, Point3};
+use nalgebra::{DMatrix, DVector};
 
-use super::identify::{IdentifyError, JointNoise};
+use super::identify_error::IdentifyError;
+use super::identify_options::JointNoise;
 use super::image_fit::{ImageFit, INTRINSICS};
+pub use super::image_pose::{ImageNoise, ImagePose};
 use super::params::{CalibratedModel, Instrument, ParamLayout};
-use crate::arrow::invert_arrow;
 use crate::camera::model::Intrinsics;
+use crate::schur::schur_invert;
 use crate::solver::{
     covariance_from_normal, solve, LeastSquaresProblem, LmOptions, LmReport, Termination,
 };
-
-/// One pose of a camera campaign: recorded joints and the detected dots.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ImagePose {
-    pub joints_rad: Vec<f64>,
-    /// `(dot centre in the target frame mm, observed pixel)`.
-    pub observations: Vec<(Point3<f64>, Point2<f64>)>,
-}
-
-/// The noise the joint refinement weighs the data with.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ImageNoise {
-    /// Dot-centre noise per image axis (px); re-estimated with the joint
-    /// noise when that is estimated.
-    pub sigma_px: f64,
-    /// Noise of every recorded joint angle.
-    pub joint: JointNoise,
-}
-
-impl ImageNoise {
-    /// The joint noise in use (rad); 0 while it is still to be estimated.
-    pub(super) fn joint_sigma_rad(&self) -> f64 {
-        match self.joint {
-            JointNoise::Known { sigma_rad } => sigma_rad.abs(),
-            JointNoise::Estimate => 0.0,
-        }
-    }
-}
 
 #[derive(Debug, Clone)]
 pub struct JointRefinement {
@@ -223,7 +197,7 @@ impl Solution {
             .ok_or(IdentifyError::NoPoses)?;
         let inverse = match problem.joints() {
             0 => None,
-            nj => invert_arrow(&normal, kinematic, nj),
+            nj => schur_invert(&normal, kinematic, nj),
         };
         let (head, tail_diagonal) = match inverse {
             Some(parts) => (parts.head, parts.tail_diagonal),

@@ -2,11 +2,15 @@
 
 pub mod identifiability;
 pub mod identify;
+pub mod identify_error;
+pub mod identify_options;
 pub mod ik;
 mod image_fit;
+pub mod image_pose;
 pub mod initial;
 pub mod jacobian;
 pub mod joint_refine;
+pub mod measurement;
 pub mod model;
 pub mod params;
 mod pose_fit;

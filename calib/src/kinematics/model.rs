@@ -193,6 +193,10 @@ pub fn choose_conventions(joints: &[(Option<Convention>, Joint)]) -> Vec<Joint> 
 }
 
 #[cfg(test)]
+#[path = "link_proptests.rs"]
+mod proptests;
+
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::kinematics::presets;

@@ -5,8 +5,9 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use super::identify::{IdentifyError, Measurement, Observed};
+use super::identify_error::IdentifyError;
 use super::jacobian::tool_pose_jacobian;
+use super::measurement::{Measurement, Observed};
 use super::params::{CalibratedModel, ParamLayout};
 use crate::geometry::pose_error;
 use crate::solver::LeastSquaresProblem;

@@ -16,11 +16,12 @@
 
 use nalgebra::DMatrix;
 
-use super::identify::{
-    IdentifyError, IdentifyMode, Measurement, Observed, DEFAULT_POSITION_SIGMA_MM,
-    DEFAULT_ROTATION_SIGMA_RAD,
-};
+use super::identify_error::IdentifyError;
+use super::identify_options::IdentifyMode;
 use super::jacobian::tool_pose_jacobian;
+use super::measurement::{
+    Measurement, Observed, DEFAULT_POSITION_SIGMA_MM, DEFAULT_ROTATION_SIGMA_RAD,
+};
 use super::params::{CalibratedModel, Instrument, ParamLayout};
 
 /// Bisection steps for the variance component (relative width 2^-60).

@@ -10,9 +10,9 @@ use nalgebra::{Point2, Point3, Rotation3, UnitQuaternion, Vector3};
 use rand::{rngs::StdRng, Rng, SeedableRng};
 use rand_distr::{Distribution, Normal};
 
-use super::campaign_io::{Board, PoseSet, Truth};
+use super::campaign_io::{image_name, Board, PoseEntry, PoseSet, Truth};
 use crate::camera::model::Intrinsics;
-use crate::geometry::{pose_from_xyz_rpy_deg, Pose};
+use crate::geometry::{pose_from_xyz_rpy_deg, pose_to_matrix_rows, Pose};
 use crate::kinematics::ik::inverse_kinematics;
 use crate::kinematics::{CalibratedModel, Convention, RobotModel};
 
@@ -325,8 +325,66 @@ pub fn simulate_campaign(spec: &CampaignSpec) -> Result<Campaign, SimError> {
             observed_px,
         });
     }
-    let truth = Truth::new(spec, &robot, &target_to_base, &flange_to_camera);
+    let truth = campaign_truth(spec, &robot, &target_to_base, &flange_to_camera);
     Ok(Campaign { truth, poses })
+}
+
+/// The campaign-level truth (the per-pose parts are filled by
+/// [`Campaign::full_truth`]).
+fn campaign_truth(
+    spec: &CampaignSpec,
+    robot: &RobotModel,
+    target_to_base: &Pose,
+    flange_to_camera: &Pose,
+) -> Truth {
+    Truth {
+        nominal: spec.nominal.clone(),
+        robot: robot.clone(),
+        target_to_base: pose_to_matrix_rows(target_to_base),
+        flange_to_camera: pose_to_matrix_rows(flange_to_camera),
+        flange_to_camera_guess: pose_to_matrix_rows(&spec.flange_to_camera_guess),
+        intrinsics: spec.intrinsics,
+        image_width: spec.image_size.0,
+        image_height: spec.image_size.1,
+        board: spec.board,
+        pixel_sigma_px: spec.pixel_sigma_px,
+        encoder_sigma_deg: spec.encoder_sigma_deg,
+        compliance_rad_per_m: spec.compliance_rad_per_m,
+        true_joints_deg: Vec::new(),
+        target_to_camera: Vec::new(),
+        seed: spec.seed,
+    }
+}
+
+impl Campaign {
+    /// The rows of `poses.json`, images named by [`image_name`].
+    pub fn pose_entries(&self) -> Vec<PoseEntry> {
+        self.poses
+            .iter()
+            .enumerate()
+            .map(|(i, p)| PoseEntry {
+                joints_deg: p.joints_rad.iter().map(|q| q.to_degrees()).collect(),
+                image: image_name(i),
+                set: p.set,
+            })
+            .collect()
+    }
+
+    /// `truth.json` with the per-pose truth filled in.
+    pub fn full_truth(&self) -> Truth {
+        let mut t = self.truth.clone();
+        t.true_joints_deg = self
+            .poses
+            .iter()
+            .map(|p| p.true_joints_rad.iter().map(|q| q.to_degrees()).collect())
+            .collect();
+        t.target_to_camera = self
+            .poses
+            .iter()
+            .map(|p| pose_to_matrix_rows(&p.target_to_camera))
+            .collect();
+        t
+    }
 }
 
 #[cfg(test)]

@@ -5,10 +5,9 @@
 use nalgebra::Point3;
 use serde::{Deserialize, Serialize};
 
-use super::campaign::{Campaign, CampaignSpec};
 use crate::camera::model::Intrinsics;
 use crate::camera::observations::ImageSize;
-use crate::geometry::{pose_from_matrix_rows, pose_to_matrix_rows, GeometryError, Pose};
+use crate::geometry::{pose_from_matrix_rows, GeometryError};
 
 /// A pose as a 4x4 row-major matrix (api.md "Poses"), exact to round-off
 /// unlike roll–pitch–yaw near pitch +-90 degrees.
@@ -121,33 +120,6 @@ pub struct Truth {
 }
 
 impl Truth {
-    pub(crate) fn new(
-        spec: &CampaignSpec,
-        robot: &RobotModel,
-        target_to_base: &Pose,
-        flange_to_camera: &Pose,
-    ) -> Self {
-        Self {
-            nominal: spec.nominal.clone(),
-            robot: robot.clone(),
-            target_to_base: pose_to_matrix_rows(target_to_base),
-            flange_to_camera: pose_to_matrix_rows(flange_to_camera),
-            flange_to_camera_guess: pose_to_matrix_rows(&spec.flange_to_camera_guess),
-            intrinsics: spec.intrinsics,
-            image_width: spec.image_size.0,
-            image_height: spec.image_size.1,
-            board: spec.board,
-            pixel_sigma_px: spec.pixel_sigma_px,
-            encoder_sigma_deg: spec.encoder_sigma_deg,
-            compliance_rad_per_m: spec.compliance_rad_per_m,
-            true_joints_deg: Vec::new(),
-            target_to_camera: Vec::new(),
-            seed: spec.seed,
-        }
-    }
-}
-
-impl Truth {
     /// The true model: robot, `target_to_base`, `flange_to_camera`.
     pub fn model(&self) -> Result<crate::kinematics::CalibratedModel, GeometryError> {
         Ok(crate::kinematics::CalibratedModel {
@@ -161,35 +133,4 @@ impl Truth {
 /// Name of pose `index`'s image inside the campaign directory.
 pub fn image_name(index: usize) -> String {
     format!("images/{:04}.png", index + 1)
-}
-
-impl Campaign {
-    /// The rows of `poses.json`, images named by [`image_name`].
-    pub fn pose_entries(&self) -> Vec<PoseEntry> {
-        self.poses
-            .iter()
-            .enumerate()
-            .map(|(i, p)| PoseEntry {
-                joints_deg: p.joints_rad.iter().map(|q| q.to_degrees()).collect(),
-                image: image_name(i),
-                set: p.set,
-            })
-            .collect()
-    }
-
-    /// `truth.json` with the per-pose truth filled in.
-    pub fn full_truth(&self) -> Truth {
-        let mut t = self.truth.clone();
-        t.true_joints_deg = self
-            .poses
-            .iter()
-            .map(|p| p.true_joints_rad.iter().map(|q| q.to_degrees()).collect())
-            .collect();
-        t.target_to_camera = self
-            .poses
-            .iter()
-            .map(|p| pose_to_matrix_rows(&p.target_to_camera))
-            .collect();
-        t
-    }
 }

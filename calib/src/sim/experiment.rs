@@ -16,39 +16,21 @@ use rand::{rngs::StdRng, SeedableRng};
 use rand_distr::{Distribution, StandardNormal};
 
 use super::camera_step::camera_step_precision;
-use super::campaign::{compliance, simulate_campaign, Campaign, CampaignSpec, SimError};
+use super::campaign::{compliance, simulate_campaign, Campaign, CampaignSpec};
 use super::campaign_io::PoseSet;
+pub use super::experiment_error::ExperimentError;
 use super::oracle::{equivalent_truth, oracle_measurements, truth_measurements};
+pub use super::start_model::start_model;
 use crate::camera::model::Intrinsics;
 use crate::camera::pose::estimate_pose;
 use crate::geometry::{perturb_left, Pose};
 use crate::kinematics::identify::{
-    identify, validate, IdentifyError, IdentifyMode, IdentifyOptions, JointNoise, Measurement,
-    Observed,
+    identify, validate, IdentifyMode, IdentifyOptions, JointNoise, Measurement, Observed,
 };
 use crate::kinematics::ik::inverse_kinematics;
-use crate::kinematics::initial::initial_world_to_base;
 use crate::kinematics::joint_refine::{joint_refine, ImageNoise, ImagePose};
 use crate::kinematics::{CalibratedModel, Instrument};
 use crate::stats::AccuracyStats;
-
-#[derive(Debug, thiserror::Error)]
-pub enum ExperimentError {
-    #[error(transparent)]
-    Sim(#[from] SimError),
-    #[error(transparent)]
-    Identify(#[from] IdentifyError),
-    #[error("pose fit: {0}")]
-    PoseFit(#[from] crate::camera::error::CameraError),
-    #[error("the camera bundle is degenerate")]
-    Degenerate,
-    #[error("compensation: {0}")]
-    Compensation(#[from] crate::kinematics::ik::IkError),
-    #[error("truth: {0}")]
-    Truth(#[from] crate::geometry::GeometryError),
-    #[error(transparent)]
-    Kinematics(#[from] crate::kinematics::KinematicsError),
-}
 
 /// Validation statistics (3-D camera position vs truth) of every method.
 #[derive(Debug, Clone)]
@@ -96,20 +78,6 @@ fn camera_step_intrinsics(
         .unwrap_or_else(|| cov.map(|_| 0.0));
     let z = DVector::from_fn(cov.nrows(), |_, _| StandardNormal.sample(rng));
     crate::kinematics::projection::apply_intrinsics(truth, (l * z).as_slice())
-}
-
-/// Start model: nominal kinematics, hand–eye guess, base by registration.
-pub fn start_model(
-    spec: &CampaignSpec,
-    cal: &[Measurement],
-) -> Result<CalibratedModel, IdentifyError> {
-    let mut m = CalibratedModel {
-        robot: spec.nominal.clone(),
-        world_to_base: Pose::identity(),
-        flange_to_tool: spec.flange_to_camera_guess,
-    };
-    m.world_to_base = initial_world_to_base(&m, cal)?;
-    Ok(m)
 }
 
 /// A simulated campaign turned into every method's input.

@@ -4,11 +4,15 @@ pub mod camera_step;
 pub mod campaign;
 pub mod campaign_io;
 pub mod experiment;
+pub mod experiment_error;
 pub mod oracle;
 /// Views as point observations (no image): camera-calibration tests.
 pub mod point_views;
 pub mod render;
+pub mod start_model;
 /// Board placement and tilt of simulated campaigns (point views).
 pub mod view_layout;
+/// What a simulated camera campaign is made of.
+pub mod view_spec;
 /// Random board views for rendering: detector tests and benchmarks.
 pub mod views;

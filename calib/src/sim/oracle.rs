@@ -26,7 +26,8 @@ use rand_distr::{Distribution, StandardNormal};
 use super::camera_step::camera_step_precision;
 use super::campaign::{Campaign, CampaignSpec, SimPose};
 use super::campaign_io::PoseSet;
-use super::experiment::{start_model, ExperimentError};
+use super::experiment_error::ExperimentError;
+use super::start_model::start_model;
 use crate::geometry::perturb_left;
 use crate::kinematics::identify::{
     fit_parameters, identify, validate, IdentifyMode, IdentifyOptions, JointNoise, Measurement,

@@ -8,11 +8,12 @@ use rand::{rngs::StdRng, Rng, SeedableRng};
 use rand_distr::{Distribution, Normal};
 
 pub use super::campaign_io::Board;
-pub use super::view_layout::ViewLayout;
 use super::view_layout::{board_pose, fit_into_frame, placement};
+pub use super::view_spec::{
+    ViewCampaignSpec, ViewLayout, BOARD_FIELD_FRACTION, LAYOUT_CELLS, LAYOUT_ROLL_SPREAD_DEG,
+};
 use crate::camera::bias::DiscBoundary;
-use crate::camera::model::Intrinsics;
-use crate::camera::observations::{DotObservation, ImageSize, ViewObservations};
+use crate::camera::observations::{DotObservation, ViewObservations};
 
 /// Boundary samples for the simulated "true" measured centres: far more
 /// than the calibrator's own prediction uses, so the two are independent
@@ -26,110 +27,6 @@ fn truth_boundary() -> &'static DiscBoundary {
 
 /// Pose draws per view before giving up on fitting the board in the image.
 const MAX_POSE_ATTEMPTS: usize = 2000;
-/// The default campaigns' board spans at least this fraction of the image
-/// width and height at the middle of the distance range: from the issue's
-/// 9x9 board (~30% of the 1280 px width) to such a board the image centre's
-/// standard deviation falls fivefold (1280x1024) and 2.5-fold (752x582),
-/// taking cx, cy within 0.1 px and camera positions within 1:15000 from
-/// 55–90% of campaigns to all of them (design study in BENCHMARKS.md
-/// "Camera").
-pub const BOARD_FIELD_FRACTION: f64 = 0.5;
-/// Image cells of the default (stratified) layout: 3x3, so corners, edges
-/// and centre each see ~7 views tilted in ~7 directions.
-pub const LAYOUT_CELLS: u32 = 3;
-/// Roll of the default layout's board about its normal, each side of the
-/// image rows.
-pub const LAYOUT_ROLL_SPREAD_DEG: f64 = 20.0;
-
-#[derive(Debug, Clone, PartialEq)]
-pub struct ViewCampaignSpec {
-    pub intrinsics: Intrinsics,
-    pub image_size: ImageSize,
-    pub board: Board,
-    pub views: usize,
-    pub distance_mm: (f64, f64),
-    pub tilt_deg: (f64, f64),
-    /// Standard deviation of the detector noise per axis (px).
-    pub noise_px: f64,
-    /// Dots must stay this far inside the image (px).
-    pub margin_px: f64,
-    pub layout: ViewLayout,
-    pub seed: u64,
-}
-
-impl ViewCampaignSpec {
-    /// A modern 1280x1024 camera with square pixels (issue 4), a board
-    /// spanning half the field of view (15x19 dots) and the stratified layout.
-    pub fn modern_1280x1024(seed: u64) -> Self {
-        let intrinsics = Intrinsics {
-            fx: 1200.0,
-            fy: 1200.0,
-            cx: 645.3,
-            cy: 508.7,
-            k1: -0.12,
-            k2: 0.09,
-            p1: 3e-4,
-            p2: -2e-4,
-            k3: 0.0,
-        };
-        let image_size = ImageSize {
-            width: 1280,
-            height: 1024,
-        };
-        Self::issue_campaign(intrinsics, image_size, seed)
-    }
-
-    /// A camera like the paper's analog one: 752x582, `fy/fx = 0.9825`
-    /// (board 11x14 dots).
-    pub fn paper_752x582(seed: u64) -> Self {
-        let intrinsics = Intrinsics {
-            fx: 1000.0,
-            fy: 982.5,
-            cx: 380.2,
-            cy: 287.6,
-            k1: -0.08,
-            k2: 0.03,
-            p1: 2e-4,
-            p2: 1e-4,
-            k3: 0.0,
-        };
-        let image_size = ImageSize {
-            width: 752,
-            height: 582,
-        };
-        Self::issue_campaign(intrinsics, image_size, seed)
-    }
-
-    /// The issue's campaign for a camera: 60 views at 600–1000 mm and
-    /// 20–45 deg, 0.01 px noise (the detector's centre noise), the board
-    /// sized to the field of view at mid distance, stratified layout.
-    pub fn issue_campaign(intrinsics: Intrinsics, image_size: ImageSize, seed: u64) -> Self {
-        let distance_mm = (600.0, 1000.0);
-        let mid_distance_mm = 0.5 * (distance_mm.0 + distance_mm.1);
-        Self {
-            intrinsics,
-            image_size,
-            board: Board::spanning_field(
-                &intrinsics,
-                image_size,
-                mid_distance_mm,
-                BOARD_FIELD_FRACTION,
-            ),
-            views: 60,
-            distance_mm,
-            tilt_deg: (20.0, 45.0),
-            noise_px: 0.01,
-            margin_px: 15.0,
-            layout: ViewLayout::Stratified {
-                cells_x: LAYOUT_CELLS,
-                cells_y: LAYOUT_CELLS,
-                roll_spread_deg: LAYOUT_ROLL_SPREAD_DEG,
-            },
-            seed,
-        }
-    }
-}
-
 /// One simulated view with its truth.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SimulatedView {

@@ -9,7 +9,7 @@ use std::f64::consts::TAU;
 use nalgebra::{Isometry3, Point2, Translation3, UnitQuaternion, Vector2, Vector3};
 use rand::{rngs::StdRng, Rng};
 
-use super::point_views::ViewCampaignSpec;
+use super::view_spec::{ViewCampaignSpec, ViewLayout};
 
 /// Stratified layout: slide iterations to fit the board into the frame,
 /// their overshoot, and the extra margin (px) between the dot centres and
@@ -24,22 +24,6 @@ const STRATIFIED_AIM_OVERREACH: f64 = 0.25;
 const RANDOM_AIM_FRACTION: (f64, f64) = (0.1, 0.9);
 /// `pi (3 - sqrt 5)`: successive multiples spread evenly round the circle.
 const GOLDEN_ANGLE_RAD: f64 = 2.399_963_229_728_653;
-
-/// Where in the image the board is put and which way it is tilted.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum ViewLayout {
-    /// Board centre uniform over the central 80% of the image, tilt axis
-    /// uniform: views cluster wherever the board fits most easily.
-    Random,
-    /// A planned campaign: board centres cycle through a grid of image
-    /// cells (corners included), tilt directions evenly spread per cell,
-    /// board rows within `roll_spread_deg` of the image rows (180: any roll).
-    Stratified {
-        cells_x: u32,
-        cells_y: u32,
-        roll_spread_deg: f64,
-    },
-}
 
 /// The board pose that puts the board centre's image at `aim`, the board
 /// centre `distance_mm` from the camera.

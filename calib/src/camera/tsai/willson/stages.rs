@@ -10,7 +10,7 @@
 //! Xd (1 + kappa1 rd^2)`. The Jacobian of that length is rank one per point,
 //! so Gauss–Newton converges slowly and `ftol` stops it short of the minimum
 //! of the same cost: the published cameras are *not* least-squares minima.
-//! [`super::willson_fit::calibrate_tsai_full`] keeps the converged minimum
+//! [`super::fit::calibrate_tsai_full`] keeps the converged minimum
 //! (two residuals per point, project LM); use it for calibration, and this
 //! mode to check the implementation against Willson's numbers.
 //!
@@ -36,12 +36,13 @@
 
 use nalgebra::Point2;
 
-use super::error::CameraError;
-use super::willson::{TsaiModel, TsaiPoint, TsaiSensor};
-use super::willson_fit::{is_coplanar, MIN_POINTS_FULL_OPTIMISATION};
-use super::willson_linear::{rotation_rows, WillsonState};
-pub use super::willson_minpack::LmdifReport;
-use super::willson_minpack::{lmdif, LmdifFailure, LmdifOptions};
+use super::fit::{is_coplanar, MIN_POINTS_FULL_OPTIMISATION};
+use super::linear::{rotation_rows, WillsonState};
+pub use super::minpack::LmdifReport;
+use super::minpack::{lmdif, LmdifFailure, LmdifOptions};
+use super::model::{TsaiModel, TsaiPoint, TsaiSensor};
+use crate::camera::error::CameraError;
+use crate::camera::observations::is_collinear;
 
 /// Willson's `lmdif` settings (`cal_main.h`).
 const FTOL: f64 = 1e-5;
@@ -95,7 +96,7 @@ pub fn calibrate_tsai_willson(
     if !points.iter().all(finite) || !initial_centre.coords.iter().all(|v| v.is_finite()) {
         return Err(CameraError::NonFinite { view: 0 });
     }
-    if super::observations::is_collinear(points.iter().map(|p| Point2::new(p.world.x, p.world.y))) {
+    if is_collinear(points.iter().map(|p| Point2::new(p.world.x, p.world.y))) {
         return Err(CameraError::CollinearPoints { view: 0 });
     }
     let dpx = sensor.dx * sensor.ncx / sensor.nfx;
@@ -296,5 +297,5 @@ fn model_error(s: &WillsonState, p: &[f64], sx: f64, cx: f64, cy: f64, err: &mut
 }
 
 #[cfg(test)]
-#[path = "willson_stages_tests.rs"]
+#[path = "stages_tests.rs"]
 mod tests;

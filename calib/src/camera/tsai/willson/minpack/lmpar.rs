@@ -1,10 +1,10 @@
 //! MINPACK's `qrfac`, `lmpar` and `qrsolv` (public domain, Argonne 1980),
-//! re-implemented from the algorithm for [`super::willson_minpack::lmdif`].
+//! re-implemented from the algorithm for [`super::lmdif::lmdif`].
 //! Matrices are column-major with leading dimension `ld` (Fortran layout);
 //! the loop and operation order of MINPACK is kept because Willson's
 //! published camera depends on where `lmdif` stops.
 
-use super::willson_minpack::{enorm, DWARF, EPSMCH};
+use super::norm::{enorm, DWARF, EPSMCH};
 
 /// `lmpar` accepts `|D x| - delta` within this fraction of `delta`.
 const PAR_TOLERANCE: f64 = 0.1;

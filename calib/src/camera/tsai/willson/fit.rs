@@ -9,14 +9,15 @@
 //! Willson's published cameras (by 5e-4 relative non-coplanar, 2e-4
 //! coplanar): Willson's `ccal_fo` / `nccal_fo` stop early, because MINPACK
 //! `lmdif` on one `hypot` residual per point meets `ftol = 1e-5` first. To
-//! reproduce his numbers use [`super::willson_stages::calibrate_tsai_willson`]
+//! reproduce his numbers use [`super::stages::calibrate_tsai_willson`]
 //! ("Willson mode"); to calibrate, use this.
 
 use nalgebra::{DMatrix, DVector, Matrix3, Point2, Vector2, Vector3};
 
-use super::error::CameraError;
-use super::tsai::{stage1, CentredPoint};
-use super::willson::{euler_from_rotation, TsaiModel, TsaiPoint, TsaiSensor};
+use super::model::{euler_from_rotation, TsaiModel, TsaiPoint, TsaiSensor};
+use crate::camera::error::CameraError;
+use crate::camera::observations::is_collinear;
+use crate::camera::tsai::{stage1, CentredPoint};
 use crate::geometry::orthonormalize;
 use crate::solver::{solve, LeastSquaresProblem, LmOptions};
 
@@ -194,7 +195,7 @@ pub(super) fn is_coplanar(points: &[TsaiPoint]) -> bool {
 /// least-squares minimum of Willson's objective (the model and stages of
 /// his `ccal_fo` for coplanar data, `nccal_fo` otherwise; `sx` is fixed at 1
 /// for coplanar data, where it cannot be calibrated). Not his stopping
-/// point: see [`super::willson_stages::calibrate_tsai_willson`].
+/// point: see [`super::stages::calibrate_tsai_willson`].
 pub fn calibrate_tsai_full(
     points: &[TsaiPoint],
     sensor: &TsaiSensor,
@@ -208,7 +209,7 @@ pub fn calibrate_tsai_full(
         });
     }
     let coplanar = is_coplanar(points);
-    if super::observations::is_collinear(points.iter().map(|p| Point2::new(p.world.x, p.world.y))) {
+    if is_collinear(points.iter().map(|p| Point2::new(p.world.x, p.world.y))) {
         return Err(CameraError::CollinearPoints { view: 0 });
     }
     let start = linear_start(points, sensor, initial_centre, coplanar).ok_or(

@@ -14,6 +14,11 @@ use nalgebra::{
 use super::error::CameraError;
 use crate::geometry::orthonormalize;
 
+/// Willson's reference implementation, replayed only to reproduce his
+/// published cameras: compiled for tests, or with the `willson` feature.
+#[cfg(any(test, feature = "willson"))]
+pub mod willson;
+
 /// Fewest points for stage 1 (five unknowns).
 pub const STAGE1_MIN_POINTS: usize = 5;
 /// `|D|` below this fraction of `S` means the 2x2 block is rank one and

@@ -8,7 +8,7 @@
 //! as Willson's globals are, because his coplanar stages leave rotation and
 //! translation as side effects of their last residual evaluation.
 
-use super::willson::TsaiPoint;
+use super::model::TsaiPoint;
 
 /// Willson refuses a normal matrix whose determinant is below this.
 const MIN_NORMAL_DETERMINANT: f64 = 0.001;
@@ -389,5 +389,5 @@ pub(super) fn rotation_rows(rx: f64, ry: f64, rz: f64) -> [f64; 9] {
 }
 
 #[cfg(test)]
-#[path = "willson_linear_tests.rs"]
+#[path = "linear_tests.rs"]
 mod tests;

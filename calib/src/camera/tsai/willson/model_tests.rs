@@ -1,7 +1,8 @@
 //! Willson's published Tsai results (shared/data/tsai/README.md).
 
 use super::*;
-use crate::camera::willson_data::{load, published, INITIAL_CENTRE};
+use crate::camera::tsai::willson::fit::{calibrate_tsai_full, full_optimisation_cost};
+use crate::camera::tsai::willson::test_data::{load, published, INITIAL_CENTRE};
 
 fn close(name: &str, got: f64, published: f64, tol: f64) {
     println!("{name}: ours {got:.9} published {published:.9}");

@@ -11,12 +11,12 @@
 //! sensitivity (1-ulp changes of the data) and checks that our remaining
 //! differences from the published numbers lie inside it.
 
-use crate::camera::willson_data::{load, published, INITIAL_CENTRE};
+use crate::camera::tsai::willson::test_data::{load, published, INITIAL_CENTRE};
 use nalgebra::Point2;
 
 use super::{calibrate_tsai_willson, WillsonCalibration};
-use crate::camera::willson::{TsaiModel, TsaiPoint, TsaiSensor};
-use crate::camera::willson_fit::{calibrate_tsai_full, full_optimisation_cost};
+use crate::camera::tsai::willson::fit::{calibrate_tsai_full, full_optimisation_cost};
+use crate::camera::tsai::willson::model::{TsaiModel, TsaiPoint, TsaiSensor};
 use crate::camera::CameraError;
 use nalgebra::Point3;
 

@@ -1,7 +1,7 @@
 //! Willson's sample data and published camera files
 //! (`shared/data/tsai/willson_v3.0b3/`), shared by the Tsai tests.
 
-use super::willson::{parse_points, TsaiModel, TsaiPoint};
+use super::model::{parse_points, TsaiModel, TsaiPoint};
 
 const DATA: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),

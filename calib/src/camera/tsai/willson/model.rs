@@ -13,12 +13,7 @@
 
 use nalgebra::{Matrix3, Point2, Point3, Vector2, Vector3};
 
-use super::error::CameraError;
-
-pub use super::willson_fit::{
-    calibrate_tsai_full, full_optimisation_cost, TsaiFit, MIN_POINTS_FULL_OPTIMISATION,
-};
-pub use super::willson_stages::{calibrate_tsai_willson, WillsonCalibration, WillsonStage};
+use crate::camera::error::CameraError;
 
 /// Fixed sensor constants (`Ncx Nfx dx dy dpx dpy` in Willson's files).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -216,5 +211,5 @@ pub(super) fn stats(e: &[f64]) -> ErrorStats {
 }
 
 #[cfg(test)]
-#[path = "willson_tests.rs"]
+#[path = "model_tests.rs"]
 mod tests;

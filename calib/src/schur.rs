@@ -54,7 +54,7 @@ impl Elimination {
 /// Solve `A d = g` for a positive definite block-arrowhead `A` whose first
 /// `head` rows are dense and whose tail is block-diagonal in `block`-sized
 /// blocks; `None` when it is not positive definite (or not so shaped).
-pub fn solve_arrow(
+pub fn schur_solve(
     a: &DMatrix<f64>,
     g: &DVector<f64>,
     head: usize,
@@ -91,9 +91,9 @@ pub struct ArrowInverse {
     pub tail_diagonal: DVector<f64>,
 }
 
-/// Invert a block-arrowhead `A` (see [`solve_arrow`]) in the parts a
+/// Invert a block-arrowhead `A` (see [`schur_solve`]) in the parts a
 /// covariance needs; `None` when it is not positive definite.
-pub fn invert_arrow(a: &DMatrix<f64>, head: usize, block: usize) -> Option<ArrowInverse> {
+pub fn schur_invert(a: &DMatrix<f64>, head: usize, block: usize) -> Option<ArrowInverse> {
     let e = Elimination::new(a, head, block)?;
     let head_inverse = if head > 0 {
         e.schur.clone().cholesky()?.inverse()
@@ -149,10 +149,10 @@ mod tests {
             let a = arrowhead(head, block, blocks);
             let g = DVector::from_fn(a.nrows(), |i, _| (i as f64 * 0.37).sin());
             let dense = a.clone().cholesky().unwrap();
-            let d = solve_arrow(&a, &g, head, block).unwrap();
+            let d = schur_solve(&a, &g, head, block).unwrap();
             assert!((&d - dense.solve(&g)).amax() < 1e-9 * (1.0 + d.amax()));
             let inv = dense.inverse();
-            let parts = invert_arrow(&a, head, block).unwrap();
+            let parts = schur_invert(&a, head, block).unwrap();
             assert!((&parts.head - inv.view((0, 0), (head, head))).amax() < 1e-9 * inv.amax());
             let tail = inv.diagonal().rows(head, a.nrows() - head).into_owned();
             assert!((&parts.tail_diagonal - tail).amax() < 1e-9 * inv.amax());
@@ -163,8 +163,8 @@ mod tests {
     fn misshapen_or_indefinite_systems_are_refused() {
         let a = arrowhead(2, 3, 2);
         let g = DVector::zeros(a.nrows());
-        assert!(solve_arrow(&a, &g, 3, 3).is_none(), "tail not whole blocks");
-        assert!(solve_arrow(&a, &g, 2, 0).is_none());
-        assert!(invert_arrow(&(-a), 2, 3).is_none());
+        assert!(schur_solve(&a, &g, 3, 3).is_none(), "tail not whole blocks");
+        assert!(schur_solve(&a, &g, 2, 0).is_none());
+        assert!(schur_invert(&(-a), 2, 3).is_none());
     }
 }
