@@ -225,9 +225,9 @@ mod tests {
         let html = render_html(&report);
         for pose in &report.per_pose {
             assert!(
-                html.contains(&format!(">{}<", pose.pose_id)),
+                html.contains(&format!(">{}<", pose.label)),
                 "{}",
-                pose.pose_id
+                pose.label
             );
         }
         for p in &report.parameters {
@@ -242,7 +242,7 @@ mod tests {
     fn hostile_text_is_escaped() {
         let mut report = sample_report();
         report.serial = "<script>alert(1)</script>".into();
-        report.per_pose[0].pose_id = "\"><img src=x onerror=alert(1)>".into();
+        report.per_pose[0].label = "\"><img src=x onerror=alert(1)>".into();
         report.notes.push("</li></ul><script>".into());
         let html = render_html(&report);
         assert!(!html.contains("<script") && !html.contains("<img"));
