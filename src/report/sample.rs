@@ -89,8 +89,8 @@ pub fn sample_report_sized(calibration: usize, validation: usize) -> Report {
     Report {
         serial: "IRB2400-SN-48213".into(),
         version: 3,
-        job_id: "job-7f3a9c1e".into(),
-        session_id: "ses-2026-11-21-a".into(),
+        job_id: "0193a5f2-8b20-7c31-9d4e-5f6a7b8c9d0e".into(),
+        session_id: "0193a5f1-2a3b-7c4d-8e5f-60718293a4b5".into(),
         created_at: "2026-11-21T16:42:05Z".into(),
         instrument: "camera".into(),
         measurement: "pose".into(),

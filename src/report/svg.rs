@@ -35,7 +35,7 @@ const CHART_NAME_CHARS: usize = 18;
 /// Pose names are written slanted, reading upwards to their tick.
 const POSE_NAME_ANGLE_DEG: f64 = -60.0;
 /// Average advance of a character of the chart font (sans-serif, 11 px).
-const CHAR_WIDTH: f64 = FONT_SIZE * 0.56;
+const CHAR_WIDTH: f64 = FONT_SIZE * 0.6;
 /// Gaps above and below the slanted names.
 const POSE_NAME_PADDING: f64 = 8.0;
 /// Room right of the pose chart for the mean labels.
@@ -345,7 +345,7 @@ fn pose_chart(report: &Report, width: f64, height: f64) -> Svg {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::report::sample::{sample_report, sample_tracker_report};
+    use crate::report::sample::{sample_report, sample_report_sized, sample_tracker_report};
     use crate::report::xml_check::check_balanced;
     use crate::report::ErrorStats;
 
@@ -383,6 +383,71 @@ mod tests {
             residual_field_svg,
         ] {
             check_balanced(&chart(&report), false).unwrap();
+        }
+    }
+
+    /// The slanted pose names of the pose chart: (x, y, text).
+    fn pose_names(chart: &Svg) -> Vec<(f64, f64, String)> {
+        let attr = |line: &str, name: &str| -> f64 {
+            let start = line.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
+            line[start..].split('"').next().unwrap().parse().unwrap()
+        };
+        chart
+            .body
+            .lines()
+            .filter(|l| l.contains(&format!("rotate({POSE_NAME_ANGLE_DEG} ")))
+            .map(|l| {
+                let text = l.rsplit_once("\">").unwrap().1.trim_end_matches("</text>");
+                (attr(l, "x"), attr(l, "y"), text.to_string())
+            })
+            .collect()
+    }
+
+    #[test]
+    fn pose_names_stay_inside_the_chart_and_apart_from_5_to_200_poses() {
+        let slant = POSE_NAME_ANGLE_DEG.to_radians();
+        for poses in [5, 61, 200] {
+            for stored_before_labels in [false, true] {
+                let mut report = sample_report_sized(poses - poses / 2, poses / 2);
+                if stored_before_labels {
+                    // Old reports: 36-character ids only.
+                    report.per_pose.iter_mut().for_each(|p| p.label.clear());
+                }
+                let height = pose_chart_height(&report);
+                let chart = pose_chart(&report, SHEET_WIDTH, height);
+                let names = pose_names(&chart);
+                let case = format!("{poses} poses, labels cleared: {stored_before_labels}");
+                assert!(
+                    !names.is_empty() && names.len() <= MAX_POSE_LABELS,
+                    "{case}"
+                );
+                for pair in names.windows(2) {
+                    assert!(pair[1].0 - pair[0].0 >= MIN_POSE_LABEL_SPACING, "{case}");
+                }
+                for (x, y, text) in &names {
+                    let chars = text.chars().count();
+                    assert!(chars <= CHART_NAME_CHARS, "{case}: {text}");
+                    let length = chars as f64 * CHAR_WIDTH;
+                    // Above the axis title, right of the sheet's edge.
+                    assert!(
+                        y + length * slant.sin().abs() < height - FONT_SIZE - 8.0,
+                        "{case}"
+                    );
+                    assert!(x - length * slant.cos() > 0.0, "{case}: {text}");
+                }
+                let judged = judged_poses(&report).0;
+                let area = plot_area(
+                    SHEET_WIDTH,
+                    height,
+                    pose_label_room(&report),
+                    MEAN_LABEL_ROOM,
+                );
+                let every = label_every(judged.len(), area.w / judged.len() as f64);
+                let expected: Vec<String> =
+                    judged.into_iter().step_by(every).map(chart_name).collect();
+                let named: Vec<&str> = names.iter().map(|n| n.2.as_str()).collect();
+                assert_eq!(named, expected, "{case}");
+            }
         }
     }
 
