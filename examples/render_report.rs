@@ -3,14 +3,24 @@
 //! for looking at the renderings: `cargo run --example render_report`.
 //! The output directory can be changed with `REPORT_OUT_DIR`; with
 //! `REPORT_JSON` set the report JSON is written to /tmp/report.json too.
-//! `--tracker` renders the laser-tracker variant (no camera).
+//! `--tracker` renders the laser-tracker variant (no camera); `--poses N`
+//! the sample with N poses (half of them validation poses), to check the
+//! charts stay readable from a handful of poses to hundreds.
 
 use robocal::report::{render_html, render_svg, render_table, sample, Report};
+use std::error::Error;
 use std::path::PathBuf;
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
+fn main() -> Result<(), Box<dyn Error>> {
     let report: Report = match std::env::args().nth(1) {
         Some(path) if path == "--tracker" => sample::sample_tracker_report(),
+        Some(flag) if flag == "--poses" => {
+            let n: usize = std::env::args()
+                .nth(2)
+                .ok_or("--poses needs a count")?
+                .parse()?;
+            sample::sample_report_sized(n - n / 2, n / 2)
+        }
         Some(path) => serde_json::from_str(&std::fs::read_to_string(path)?)?,
         None => sample::sample_report(),
     };

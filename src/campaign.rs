@@ -226,6 +226,7 @@ pub fn run_local_with(
             std::fs::read(dir.join(&entry.image)).map_err(|e| format!("{}: {e}", entry.image))?;
         poses.push(PoseInput {
             id: format!("p{:03}", i + 1),
+            label: entry.image.clone(),
             joints_deg: entry.joints_deg.clone(),
             set: match entry.set {
                 SimPoseSet::Cal => PoseSet::Cal,

@@ -6,6 +6,14 @@
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
+mod label;
+mod serial;
+pub use label::{
+    check_label, label_from_archive_path, label_from_file_name, label_or_number, LABEL_RULE,
+    MAX_LABEL_CHARS,
+};
+pub use serial::{InvalidSerial, Serial, MAX_SERIAL_LEN, SERIAL_RULE};
+
 /// A robot as stored: the kinematics document is the *resolved* joint table
 /// (conventions chosen, presets expanded).
 #[derive(Debug, Clone)]
@@ -51,6 +59,9 @@ pub struct PoseRecord {
     pub points: Value,
     /// `{"measured_position_mm":[..],"measured_pose":{..}?}` for tracker poses.
     pub measured: Option<Value>,
+    /// What the pose is called: the uploaded image's file name, or the
+    /// `label` a JSON pose sent (see [`NewPose::label`]).
+    pub label: Option<String>,
     /// What the last calibration job measured on this pose (see
     /// [`PoseDetection`]); `None` before any job ran its detect stage.
     pub detection: Option<Value>,
@@ -76,6 +87,10 @@ pub struct NewPose {
     pub image: Option<ImageMeta>,
     pub points: Value,
     pub measured: Option<Value>,
+    /// The image's file name (multipart filename, or its path inside a
+    /// dataset archive) or a JSON pose's `label`, so the pose can be traced
+    /// back to its photo; `None`: reports number the pose (`#12`).
+    pub label: Option<String>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

@@ -85,6 +85,9 @@ pub struct Input {
 #[derive(Debug, Clone)]
 pub struct PoseInput {
     pub id: String,
+    /// What reports call the pose: its stored label (the photo's file
+    /// name), or its number in upload order (`#12`).
+    pub label: String,
     pub joints_deg: Vec<f64>,
     pub set: PoseSet,
     /// Encoded PNG/JPEG bytes when the pose was uploaded with an image.

@@ -86,6 +86,9 @@ pub async fn start(config: ServeConfig) -> Result<RunningServer, StartError> {
         wake.clone(),
         shutdown_rx.clone(),
     );
+    // Spool files of killed uploads and images no pose names: at start, then periodically.
+    let housekeeping =
+        crate::housekeeping::spawn(store.clone(), config.upload_dir(), shutdown_rx.clone());
     tracing::info!(%addr, backend = store.backend(), workers = config.worker_count(), job_events = listening, "robocal listening");
     let state = AppState {
         store,
@@ -105,6 +108,7 @@ pub async fn start(config: ServeConfig) -> Result<RunningServer, StartError> {
             tracing::error!(error = %e, "HTTP server failed");
         }
         pool.join().await;
+        let _ = housekeeping.await;
         tracing::info!("robocal stopped");
     });
     Ok(RunningServer {

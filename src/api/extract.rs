@@ -10,6 +10,7 @@ use serde::Deserialize;
 
 use super::error::ApiError;
 use super::AppState;
+use crate::domain::{InvalidSerial, Serial};
 
 /// Default page size of listings.
 pub const DEFAULT_LIMIT: i64 = 100;
@@ -144,6 +145,33 @@ fn strip_position(message: &str) -> String {
     match message.find(" at line ") {
         Some(i) => message[..i].to_string(),
         None => message.to_string(),
+    }
+}
+
+/// The `{serial}` segment of a robot path, validated once ([`Serial`]): a
+/// bad one (`.`, `..`, foreign characters) is a 422 naming `serial`, so no
+/// robot can be stored under a name no client can address again.
+pub struct SerialPath(pub Serial);
+
+impl<S: Send + Sync> FromRequestParts<S> for SerialPath {
+    type Rejection = ApiError;
+
+    async fn from_request_parts(parts: &mut Parts, state: &S) -> Result<Self, ApiError> {
+        let params = axum::extract::RawPathParams::from_request_parts(parts, state)
+            .await
+            .map_err(|e| ApiError::malformed("path", e.body_text()))?;
+        let raw = params
+            .iter()
+            .find(|(name, _)| *name == "serial")
+            .map(|(_, value)| value)
+            .ok_or_else(|| ApiError::internal("route without a {serial} segment"))?;
+        Ok(SerialPath(Serial::parse(raw)?))
+    }
+}
+
+impl From<InvalidSerial> for ApiError {
+    fn from(e: InvalidSerial) -> ApiError {
+        ApiError::invalid("serial", e.to_string())
     }
 }
 

@@ -35,6 +35,7 @@ pub mod poses;
 pub mod results;
 pub mod robots;
 pub mod sessions;
+pub mod staged_images;
 pub mod tokens;
 pub mod upload;
 

@@ -16,7 +16,7 @@ use super::extract::{is_json, parse_json, read_limited, Paging};
 use super::sessions::find_session;
 use super::upload::{ingest_image, read_field_limited, robot_joint_count, session_spec};
 use super::AppState;
-use crate::domain::{ImageMeta, NewPose, PoseRecord};
+use crate::domain::{label_from_file_name, ImageMeta, NewPose, PoseRecord};
 use crate::schema::session::{check_joints, Instrument, PoseJsonBody, PoseSet};
 use crate::schema::{Checker, PoseDoc};
 
@@ -54,6 +54,11 @@ pub struct PoseOut {
     pub measured_position_mm: Option<[f64; 3]>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub measured_pose: Option<PoseDoc>,
+    /// What the pose is called: the uploaded image's file name (multipart
+    /// filename, or its path in a dataset archive) or a JSON pose's
+    /// `label`. Absent when none was given; reports then number the pose.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub label: Option<String>,
     pub created_at: String,
 }
 
@@ -128,6 +133,7 @@ impl From<PoseRecord> for PoseOut {
             measured_pose: serde_json::from_value(measured["measured_pose"].clone())
                 .ok()
                 .flatten(),
+            label: p.label,
             created_at: p.created_at,
         }
     }
@@ -203,6 +209,7 @@ fn json_pose(body: PoseJsonBody) -> NewPose {
         image: None,
         points: serde_json::to_value(body.image_points.unwrap_or_default()).unwrap_or(json!([])),
         measured,
+        label: body.label,
     }
 }
 
@@ -215,7 +222,7 @@ async fn multipart_pose(
     let malformed = |e: axum::extract::multipart::MultipartError| {
         ApiError::malformed("multipart", e.body_text())
     };
-    let (mut joints, mut set, mut image) = (None, PoseSet::Cal, None);
+    let (mut joints, mut set, mut image, mut label) = (None, PoseSet::Cal, None, None);
     while let Some(mut field) = multipart.next_field().await.map_err(malformed)? {
         let name = field.name().unwrap_or("").to_string();
         match name.as_str() {
@@ -233,6 +240,7 @@ async fn multipart_pose(
                     .ok_or_else(|| ApiError::invalid("set", "\"cal\" or \"val\""))?;
             }
             "image" => {
+                label = field.file_name().and_then(label_from_file_name);
                 let limit = state.config.max_image_bytes;
                 image = Some(read_field_limited(&mut field, limit, "max_image_bytes").await?);
             }
@@ -256,6 +264,7 @@ async fn multipart_pose(
         image: Some(meta),
         points: json!([]),
         measured: None,
+        label,
     })
 }
 

@@ -13,7 +13,7 @@ use axum::response::Html;
 use robocal_calib::kinematics::CalibratedModel;
 
 use super::error::{ApiError, ApiResult, Problem};
-use super::extract::{ApiJson, Paging};
+use super::extract::{ApiJson, Paging, SerialPath};
 use super::AppState;
 use crate::domain::ParameterSetRecord;
 use crate::evaluate;
@@ -96,7 +96,7 @@ async fn find(state: &AppState, serial: &str, version: &str) -> ApiResult<Parame
     responses((status = 200, body = ParameterSetList), (status = 422, body = Problem, content_type = "application/problem+json")))]
 async fn list_parameter_sets(
     State(state): State<AppState>,
-    Path(serial): Path<String>,
+    SerialPath(serial): SerialPath,
     paging: Paging,
 ) -> ApiResult<Json<ParameterSetList>> {
     let before = match paging.cursor.as_deref() {
@@ -123,7 +123,8 @@ async fn list_parameter_sets(
     responses((status = 200, body = ParameterSetOut), (status = 404, body = Problem, content_type = "application/problem+json")))]
 async fn get_parameter_set(
     State(state): State<AppState>,
-    Path((serial, version)): Path<(String, String)>,
+    SerialPath(serial): SerialPath,
+    Path((_serial, version)): Path<(String, String)>,
 ) -> ApiResult<Json<ParameterSetOut>> {
     Ok(Json(find(&state, &serial, &version).await?.into()))
 }
@@ -135,7 +136,8 @@ async fn get_parameter_set(
     responses((status = 200, body = Object), (status = 404, body = Problem, content_type = "application/problem+json")))]
 async fn get_report(
     State(state): State<AppState>,
-    Path((serial, version)): Path<(String, String)>,
+    SerialPath(serial): SerialPath,
+    Path((_serial, version)): Path<(String, String)>,
 ) -> ApiResult<Json<Value>> {
     Ok(Json(report_json(&state, &serial, &version).await?))
 }
@@ -170,7 +172,8 @@ async fn typed_report(state: &AppState, serial: &str, version: &str) -> ApiResul
     responses((status = 200, content_type = "image/svg+xml", body = String), (status = 404, body = Problem, content_type = "application/problem+json")))]
 async fn get_report_svg(
     State(state): State<AppState>,
-    Path((serial, version)): Path<(String, String)>,
+    SerialPath(serial): SerialPath,
+    Path((_serial, version)): Path<(String, String)>,
 ) -> ApiResult<([(header::HeaderName, &'static str); 1], String)> {
     let report = typed_report(&state, &serial, &version).await?;
     Ok((
@@ -186,7 +189,8 @@ async fn get_report_svg(
     responses((status = 200, content_type = "text/html", body = String), (status = 404, body = Problem, content_type = "application/problem+json")))]
 async fn get_report_html(
     State(state): State<AppState>,
-    Path((serial, version)): Path<(String, String)>,
+    SerialPath(serial): SerialPath,
+    Path((_serial, version)): Path<(String, String)>,
 ) -> ApiResult<Html<String>> {
     let report = typed_report(&state, &serial, &version).await?;
     Ok(Html(render_html(&report)))
@@ -206,7 +210,8 @@ async fn model(state: &AppState, serial: &str, version: &str) -> ApiResult<Calib
     responses((status = 200, body = evaluate::ForwardResponse), (status = 422, body = Problem, content_type = "application/problem+json")))]
 async fn forward(
     State(state): State<AppState>,
-    Path((serial, version)): Path<(String, String)>,
+    SerialPath(serial): SerialPath,
+    Path((_serial, version)): Path<(String, String)>,
     ApiJson(body): ApiJson<evaluate::ForwardRequest>,
 ) -> ApiResult<Json<evaluate::ForwardResponse>> {
     let model = model(&state, &serial, &version).await?;
@@ -223,7 +228,8 @@ async fn forward(
     responses((status = 200, body = evaluate::CompensateResponse), (status = 422, body = Problem, content_type = "application/problem+json")))]
 async fn compensate(
     State(state): State<AppState>,
-    Path((serial, version)): Path<(String, String)>,
+    SerialPath(serial): SerialPath,
+    Path((_serial, version)): Path<(String, String)>,
     ApiJson(body): ApiJson<evaluate::CompensateRequest>,
 ) -> ApiResult<Json<evaluate::CompensateResponse>> {
     let model = model(&state, &serial, &version).await?;

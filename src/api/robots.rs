@@ -1,6 +1,6 @@
 //! `/v1/robots`: robots with their joint tables.
 
-use axum::extract::{Path, State};
+use axum::extract::State;
 use axum::http::StatusCode;
 use axum::Json;
 use serde::Serialize;
@@ -9,10 +9,10 @@ use utoipa_axum::router::OpenApiRouter;
 use utoipa_axum::routes;
 
 use super::error::{ApiError, ApiResult, Problem};
-use super::extract::{ApiJson, Paging};
+use super::extract::{ApiJson, Paging, SerialPath};
 use super::AppState;
 use crate::domain::{now_rfc3339, RobotRecord};
-use crate::schema::robot::{check_serial, KinematicsDoc, Preset, RobotBody};
+use crate::schema::robot::{KinematicsDoc, Preset, RobotBody};
 
 pub fn router() -> OpenApiRouter<AppState> {
     OpenApiRouter::new()
@@ -57,7 +57,7 @@ impl TryFrom<RobotRecord> for RobotOut {
 
 /// Create or replace a robot (joint table or preset).
 #[utoipa::path(put, path = "/v1/robots/{serial}", tag = "robots",
-    params(("serial" = String, Path, description = "Robot serial number")),
+    params(("serial" = String, Path, description = "Robot serial number: 1 to 64 characters of A-Z a-z 0-9 - _ . (not \".\" or \"..\")")),
     request_body = RobotBody,
     responses(
         (status = 201, description = "Created", body = RobotOut),
@@ -66,14 +66,13 @@ impl TryFrom<RobotRecord> for RobotOut {
     ))]
 async fn put_robot(
     State(state): State<AppState>,
-    Path(serial): Path<String>,
+    SerialPath(serial): SerialPath,
     ApiJson(body): ApiJson<RobotBody>,
 ) -> ApiResult<(StatusCode, Json<RobotOut>)> {
-    check_serial(&serial)?;
     let kinematics = body.resolve()?;
     let now = now_rfc3339();
     let record = RobotRecord {
-        serial: serial.clone(),
+        serial: serial.to_string(),
         model: body.model.trim().to_string(),
         preset: body.preset.map(|p| p.as_str().to_string()),
         kinematics: serde_json::to_value(&kinematics).map_err(ApiError::internal)?,
@@ -97,10 +96,11 @@ async fn put_robot(
 /// One robot.
 #[utoipa::path(get, path = "/v1/robots/{serial}", tag = "robots",
     params(("serial" = String, Path, description = "Robot serial number")),
-    responses((status = 200, body = RobotOut), (status = 404, body = Problem, content_type = "application/problem+json")))]
+    responses((status = 200, body = RobotOut), (status = 404, body = Problem, content_type = "application/problem+json"),
+              (status = 422, description = "Not a valid serial", body = Problem, content_type = "application/problem+json")))]
 async fn get_robot(
     State(state): State<AppState>,
-    Path(serial): Path<String>,
+    SerialPath(serial): SerialPath,
 ) -> ApiResult<Json<RobotOut>> {
     let robot = state
         .store
@@ -110,13 +110,16 @@ async fn get_robot(
     Ok(Json(robot.try_into()?))
 }
 
-/// Delete a robot with its sessions, poses and jobs (parameter sets stay).
+/// Delete a robot with everything it had: sessions, poses, jobs, parameter
+/// sets and reports, and the images no other robot's pose names. A robot
+/// created later under the same serial starts empty.
 #[utoipa::path(delete, path = "/v1/robots/{serial}", tag = "robots",
     params(("serial" = String, Path, description = "Robot serial number")),
-    responses((status = 204, description = "Deleted"), (status = 404, body = Problem, content_type = "application/problem+json")))]
+    responses((status = 204, description = "Deleted"), (status = 404, body = Problem, content_type = "application/problem+json"),
+              (status = 422, description = "Not a valid serial", body = Problem, content_type = "application/problem+json")))]
 async fn delete_robot(
     State(state): State<AppState>,
-    Path(serial): Path<String>,
+    SerialPath(serial): SerialPath,
 ) -> ApiResult<StatusCode> {
     if state.store.delete_robot(&serial).await? {
         Ok(StatusCode::NO_CONTENT)

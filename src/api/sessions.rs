@@ -9,7 +9,7 @@ use utoipa_axum::router::OpenApiRouter;
 use utoipa_axum::routes;
 
 use super::error::{ApiError, ApiResult, Problem};
-use super::extract::{ApiJson, Paging};
+use super::extract::{ApiJson, Paging, SerialPath};
 use super::AppState;
 use crate::camera_reuse::{self, ReuseError};
 use crate::domain::SessionRecord;
@@ -68,7 +68,7 @@ pub async fn find_session(state: &AppState, id: &str) -> ApiResult<SessionRecord
               (status = 422, body = Problem, content_type = "application/problem+json")))]
 async fn create_session(
     State(state): State<AppState>,
-    Path(serial): Path<String>,
+    SerialPath(serial): SerialPath,
     ApiJson(mut body): ApiJson<SessionBody>,
 ) -> ApiResult<(StatusCode, Json<SessionOut>)> {
     body.check()?;
@@ -121,7 +121,7 @@ async fn resolve_camera_calibration(
     responses((status = 200, body = SessionList), (status = 404, body = Problem, content_type = "application/problem+json")))]
 async fn list_sessions(
     State(state): State<AppState>,
-    Path(serial): Path<String>,
+    SerialPath(serial): SerialPath,
     paging: Paging,
 ) -> ApiResult<Json<SessionList>> {
     if state.store.get_robot(&serial).await?.is_none() {

@@ -18,9 +18,10 @@ use utoipa_axum::routes;
 use super::error::{ApiError, ApiResult, Problem};
 use super::extract::content_length;
 use super::sessions::find_session;
+use super::staged_images::StagedImages;
 use super::AppState;
 use crate::dataset::{DatasetError, DatasetLimits, DatasetReader};
-use crate::domain::{ImageMeta, NewPose, SessionRecord};
+use crate::domain::{label_from_archive_path, ImageMeta, NewPose, SessionRecord};
 use crate::schema::session::{check_joints, Instrument, SessionBody};
 use crate::schema::Checker;
 
@@ -175,6 +176,7 @@ async fn upload_dataset(
     }
     c.finish()?;
     let camera_size = spec.camera.as_ref().map(|k| (k.width, k.height));
+    let mut staged = StagedImages::new(state.store.clone());
     let mut poses = Vec::with_capacity(reader.manifest.len());
     for i in 0..reader.manifest.len() {
         let doc = reader.manifest[i].clone();
@@ -193,17 +195,32 @@ async fn upload_dataset(
         .await
         .map_err(ApiError::internal)?;
         reader = back;
-        let (meta, bytes) = result?;
+        let (meta, bytes) = match result {
+            Ok(ok) => ok,
+            Err(e) => {
+                staged.discard().await;
+                return Err(e);
+            }
+        };
         state.store.put_blob(&meta, &bytes).await?;
+        staged.stored(&meta.sha256);
         poses.push(NewPose {
             joints_deg: reader.manifest[i].joints_deg.clone(),
             set: reader.manifest[i].set.as_str().to_string(),
             image: Some(meta),
             points: serde_json::json!([]),
             measured: None,
+            label: label_from_archive_path(&reader.manifest[i].image),
         });
     }
-    let stored = state.store.add_poses(&session.id, &poses).await?;
+    let stored = match state.store.add_poses(&session.id, &poses).await {
+        Ok(stored) => stored,
+        Err(e) => {
+            staged.discard().await;
+            return Err(e.into());
+        }
+    };
+    staged.keep();
     drop(archive);
     Ok((
         StatusCode::CREATED,
@@ -223,7 +240,7 @@ async fn spool_to_file(state: &AppState, req: Request) -> ApiResult<tempfile::Na
     }
     let dir = state.config.upload_dir();
     let temp = tempfile::Builder::new()
-        .prefix("robocal-upload-")
+        .prefix(crate::housekeeping::SPOOL_PREFIX)
         .tempfile_in(&dir)
         .map_err(|e| ApiError::internal(format!("temp file in {}: {e}", dir.display())))?;
     let std_file = temp.reopen().map_err(ApiError::internal)?;

@@ -3,7 +3,7 @@
 use std::time::Duration;
 
 use crate::camera_reuse::{self, ReuseError};
-use crate::domain::ClaimedJob;
+use crate::domain::{label_or_number, ClaimedJob};
 use crate::pipeline::{Input, PoseInput};
 use crate::schema::job::CalibrationOptions;
 use crate::schema::robot::KinematicsDoc;
@@ -75,8 +75,10 @@ pub async fn load_input(
             let measured_pose: Option<PoseDoc> =
                 serde_json::from_value(measured["measured_pose"].clone())
                     .map_err(|e| bad("measured_pose", e))?;
+            let label = label_or_number(p.label.as_deref(), poses.len());
             poses.push(PoseInput {
                 id: p.id,
+                label,
                 joints_deg: p.joints_deg,
                 set: PoseSet::parse(&p.set).unwrap_or_default(),
                 image,

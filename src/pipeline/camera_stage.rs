@@ -170,6 +170,7 @@ pub fn camera_report(
         .zip(&step.view_pose)
         .map(|(v, &pose)| ViewReport {
             pose_id: poses[pose].id.clone(),
+            label: poses[pose].label.clone(),
             rms_px: v.rms_px,
             board_angle_deg: v.board_angle_deg,
             warning: (v.board_angle_deg < robocal_calib::camera::calibrate::WARN_BOARD_ANGLE_DEG)

@@ -145,6 +145,7 @@ pub fn measure(
             Some(Err(reason)) => {
                 measured.failures.push(DetectionFailure {
                     pose_id: pose.id.clone(),
+                    label: pose.label.clone(),
                     reason,
                 });
                 measured.points.push(None);

@@ -230,6 +230,7 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSetDoc) -> Report {
         .iter()
         .map(|(i, before, after)| PoseReport {
             pose_id: ctx.poses[*i].id.clone(),
+            label: ctx.poses[*i].label.clone(),
             set: "val".into(),
             joints_deg: ctx.poses[*i].joints_deg.clone(),
             before_error_mm: [before.x, before.y, before.z],

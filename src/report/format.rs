@@ -23,6 +23,28 @@ pub fn escape_xml(text: &str) -> String {
     out
 }
 
+/// Most characters of a pose name in tables: a name is a file name or a
+/// 36-character id, and a table row must stay one line.
+pub const TABLE_NAME_CHARS: usize = 32;
+
+/// `text` cut to `max_chars` characters with an ellipsis in the middle.
+/// The end is kept longer than the start: numbered shots
+/// (`campaign_2024_pose_017.png`) differ in their last characters.
+pub fn ellipsize(text: &str, max_chars: usize) -> String {
+    let count = text.chars().count();
+    if count <= max_chars || max_chars < 3 {
+        return text
+            .chars()
+            .take(max_chars.max(count.min(max_chars)))
+            .collect();
+    }
+    let head = (max_chars - 1) / 3;
+    let tail = max_chars - 1 - head;
+    let start: String = text.chars().take(head).collect();
+    let end: String = text.chars().skip(count - tail).collect();
+    format!("{start}…{end}")
+}
+
 /// Placeholder printed for a value that is missing or not finite.
 pub const NOT_AVAILABLE: &str = "n/a";
 

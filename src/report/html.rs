@@ -24,6 +24,7 @@ p { margin: 6px 0; }
 .meta { border-collapse: collapse; margin: 8px 0; }
 .meta th { text-align: left; font-weight: normal; color: var(--muted); padding: 1px 14px 1px 0; }
 .meta td { padding: 1px 22px 1px 0; font-weight: bold; white-space: nowrap; }
+.meta td.id { white-space: normal; overflow-wrap: anywhere; font-weight: normal; font-size: 9pt; }
 thead { display: table-header-group; }
 .verdict { display: flex; gap: 32px; align-items: baseline; flex-wrap: wrap; border: 1.5px solid #222;
   padding: 10px 16px; margin: 12px 0; break-inside: avoid; }
@@ -128,7 +129,7 @@ fn header(page: &mut String, report: &Report) {
         page,
         "<header>\n<h1>Robot calibration accuracy report</h1>\n<table class=\"meta\">\
          <tr><th>Robot serial</th><td>{}</td><th>Parameter set</th><td>v{}</td><th>Created</th><td>{}</td></tr>\
-         <tr><th>Instrument</th><td>{} ({})</td><th>Job</th><td>{}</td><th>Session</th><td>{}</td></tr>\
+         <tr><th>Instrument</th><td>{} ({})</td><th>Job</th><td class=\"id\">{}</td><th>Session</th><td class=\"id\">{}</td></tr>\
          </table>\n</header>\n",
         escape_xml(&report.serial),
         report.version,
@@ -225,9 +226,9 @@ mod tests {
         let html = render_html(&report);
         for pose in &report.per_pose {
             assert!(
-                html.contains(&format!(">{}<", pose.pose_id)),
+                html.contains(&format!(">{}<", pose.label)),
                 "{}",
-                pose.pose_id
+                pose.label
             );
         }
         for p in &report.parameters {
@@ -242,7 +243,7 @@ mod tests {
     fn hostile_text_is_escaped() {
         let mut report = sample_report();
         report.serial = "<script>alert(1)</script>".into();
-        report.per_pose[0].pose_id = "\"><img src=x onerror=alert(1)>".into();
+        report.per_pose[0].label = "\"><img src=x onerror=alert(1)>".into();
         report.notes.push("</li></ul><script>".into());
         let html = render_html(&report);
         assert!(!html.contains("<script") && !html.contains("<img"));

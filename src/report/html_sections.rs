@@ -2,8 +2,8 @@
 //! All text from the report is escaped with [`escape_xml`].
 
 use super::format::{
-    decimals_for_std, escape_xml, fixed, mm, significant, with_precision_of, NOT_AVAILABLE,
-    STAT_ROWS,
+    decimals_for_std, ellipsize, escape_xml, fixed, mm, significant, with_precision_of,
+    NOT_AVAILABLE, STAT_ROWS, TABLE_NAME_CHARS,
 };
 use super::model::{CameraReport, Report};
 use std::fmt::Write;
@@ -163,8 +163,8 @@ pub fn view_warnings_table(page: &mut String, camera: &CameraReport) {
         for v in warned {
             let _ = writeln!(
                 page,
-                "<tr><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"warn\">{}</td></tr>",
-                escape_xml(&v.pose_id),
+                "<tr>{}<td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"warn\">{}</td></tr>",
+                name_cell(v.name()),
                 fixed(v.rms_px, RMS_DECIMALS),
                 fixed(v.board_angle_deg, ANGLE_DECIMALS),
                 escape_xml(v.warning.as_deref().unwrap_or_default())
@@ -186,8 +186,8 @@ pub fn detection(page: &mut String, report: &Report) {
         for f in &d.failures {
             let _ = writeln!(
                 page,
-                "<tr><td>{}</td><td class=\"warn\">{}</td></tr>",
-                escape_xml(&f.pose_id),
+                "<tr>{}<td class=\"warn\">{}</td></tr>",
+                name_cell(f.name()),
                 escape_xml(&f.reason)
             );
         }
@@ -254,6 +254,15 @@ pub fn identifiability(page: &mut String, report: &Report) {
     );
 }
 
+/// A table cell naming a pose: cut to one line, the whole name on hover.
+fn name_cell(name: &str) -> String {
+    format!(
+        "<td title=\"{}\">{}</td>",
+        escape_xml(name),
+        escape_xml(&ellipsize(name, TABLE_NAME_CHARS))
+    )
+}
+
 pub fn per_pose(page: &mut String, report: &Report) {
     page.push_str(
         "<section class=\"pagebreak\">\n<h2>Appendix: error at every pose [mm]</h2>\n<p>Error = measured − predicted \
@@ -272,8 +281,8 @@ pub fn per_pose(page: &mut String, report: &Report) {
         let row_class = if p.set == "val" { " class=\"val\"" } else { "" };
         let _ = write!(
             page,
-            "<tr{row_class}><td>{}</td><td>{}</td>",
-            escape_xml(&p.pose_id),
+            "<tr{row_class}>{}<td>{}</td>",
+            name_cell(p.name()),
             escape_xml(&p.set)
         );
         for v in [bx, by, bz] {

@@ -13,6 +13,9 @@ pub use robocal_calib::stats::{AccuracyStats as AccuracySummary, ErrorStats};
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ViewReport {
     pub pose_id: String,
+    /// The pose's label (see [`PoseReport::label`]).
+    #[serde(default)]
+    pub label: String,
     pub rms_px: f64,
     pub board_angle_deg: f64,
     /// E.g. "board-to-image angle under 20 degrees: focal length poorly conditioned".
@@ -60,6 +63,9 @@ pub use robocal_calib::camera::IntrinsicsStdDev as CameraStd;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct DetectionFailure {
     pub pose_id: String,
+    /// The pose's label (see [`PoseReport::label`]).
+    #[serde(default)]
+    pub label: String,
     pub reason: String,
 }
 
@@ -76,6 +82,11 @@ pub struct DetectionReport {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PoseReport {
     pub pose_id: String,
+    /// What the pose is called: the uploaded image's file name, a JSON
+    /// pose's `label`, or its number in upload order (`#12`). Empty in
+    /// reports stored before labels existed.
+    #[serde(default)]
+    pub label: String,
     /// "cal" or "val".
     pub set: String,
     pub joints_deg: Vec<f64>,
@@ -85,6 +96,34 @@ pub struct PoseReport {
     pub after_mm: f64,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub reprojection_rms_px: Option<f64>,
+}
+
+/// The name a rendering shows for a pose: its label, or its id in reports
+/// stored before labels existed.
+pub fn pose_name<'a>(label: &'a str, pose_id: &'a str) -> &'a str {
+    if label.is_empty() {
+        pose_id
+    } else {
+        label
+    }
+}
+
+impl PoseReport {
+    pub fn name(&self) -> &str {
+        pose_name(&self.label, &self.pose_id)
+    }
+}
+
+impl ViewReport {
+    pub fn name(&self) -> &str {
+        pose_name(&self.label, &self.pose_id)
+    }
+}
+
+impl DetectionFailure {
+    pub fn name(&self) -> &str {
+        pose_name(&self.label, &self.pose_id)
+    }
 }
 
 /// One identified parameter against its nominal value.

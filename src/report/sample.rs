@@ -69,10 +69,18 @@ const JOINT_LIMITS_DEG: [(f64, f64); 6] = [
 
 /// The sample camera campaign report (deterministic).
 pub fn sample_report() -> Report {
+    sample_report_sized(CALIBRATION_POSES, VALIDATION_POSES)
+}
+
+/// The sample with `calibration` + `validation` poses (one calibration
+/// pose rejected by detection when there are more than
+/// [`FAILED_POSE`]), for looking at the renderings from a handful of
+/// poses to hundreds.
+pub fn sample_report_sized(calibration: usize, validation: usize) -> Report {
     let mut rng = SampleRng(SEED);
-    let per_pose = sample_poses(&mut rng);
+    let per_pose = sample_poses(&mut rng, calibration, validation);
     let camera = sample_camera(&mut rng, &per_pose);
-    let residual_field = sample_residuals(&mut rng);
+    let residual_field = sample_residuals(&mut rng, per_pose.len());
     let val: Vec<&PoseReport> = per_pose.iter().filter(|p| p.set == "val").collect();
     let before = summary(val.iter().map(|p| p.before_error_mm));
     let after = summary(val.iter().map(|p| p.after_error_mm));
@@ -81,20 +89,24 @@ pub fn sample_report() -> Report {
     Report {
         serial: "IRB2400-SN-48213".into(),
         version: 3,
-        job_id: "job-7f3a9c1e".into(),
-        session_id: "ses-2026-11-21-a".into(),
+        job_id: "0193a5f2-8b20-7c31-9d4e-5f6a7b8c9d0e".into(),
+        session_id: "0193a5f1-2a3b-7c4d-8e5f-60718293a4b5".into(),
         created_at: "2026-11-21T16:42:05Z".into(),
         instrument: "camera".into(),
         measurement: "pose".into(),
         camera: Some(camera),
         detection: Some(DetectionReport {
-            images: CALIBRATION_POSES + VALIDATION_POSES,
-            images_detected: CALIBRATION_POSES + VALIDATION_POSES - 1,
+            images: calibration + validation,
+            images_detected: per_pose_count_detected(calibration, validation),
             dots_per_image: DOTS_PER_IMAGE,
-            failures: vec![DetectionFailure {
-                pose_id: pose_id(FAILED_POSE),
-                reason: "61 of 99 dots found: board partly outside the image; retake with the board fully in view".into(),
-            }],
+            failures: (FAILED_POSE < calibration)
+                .then(|| DetectionFailure {
+                    pose_id: pose_id(FAILED_POSE),
+                    label: pose_label(FAILED_POSE),
+                    reason: "61 of 99 dots found: board partly outside the image; retake with the board fully in view".into(),
+                })
+                .into_iter()
+                .collect(),
         }),
         before,
         after,
@@ -130,21 +142,32 @@ pub fn sample_tracker_report() -> Report {
     report
 }
 
+/// Pose ids as the service makes them (UUIDv7: 36 characters, the
+/// leading ones shared by poses uploaded together).
 fn pose_id(index: usize) -> String {
-    format!("p{:03}", index + 1)
+    format!("0193a5f2-7c1e-7d40-8a6b-{:012x}", 0x3c5e_0000 + index)
 }
 
-fn sample_poses(rng: &mut SampleRng) -> Vec<PoseReport> {
+/// Labels as a camera's file names look.
+fn pose_label(index: usize) -> String {
+    format!("IRB2400_2026-11-21_pose_{:03}.png", index + 1)
+}
+
+fn per_pose_count_detected(calibration: usize, validation: usize) -> usize {
+    calibration + validation - usize::from(FAILED_POSE < calibration)
+}
+
+fn sample_poses(rng: &mut SampleRng, calibration: usize, validation: usize) -> Vec<PoseReport> {
     let mut poses = Vec::new();
-    for index in 0..CALIBRATION_POSES + VALIDATION_POSES {
-        if index == FAILED_POSE {
+    for index in 0..calibration + validation {
+        if index == FAILED_POSE && FAILED_POSE < calibration {
             continue;
         }
         let joints_deg = JOINT_LIMITS_DEG
             .iter()
             .map(|(lo, hi)| rng.uniform(*lo, *hi))
             .collect();
-        let calibration = index < CALIBRATION_POSES;
+        let calibration = index < calibration;
         // Calibration poses fit a little better than validation poses.
         let (before, after) = if calibration {
             (rng.uniform(0.8, 2.6), rng.uniform(0.04, 0.11))
@@ -155,6 +178,7 @@ fn sample_poses(rng: &mut SampleRng) -> Vec<PoseReport> {
         let after_error_mm = rng.vector(after);
         poses.push(PoseReport {
             pose_id: pose_id(index),
+            label: pose_label(index),
             set: if calibration { "cal" } else { "val" }.into(),
             joints_deg,
             before_error_mm,
@@ -181,6 +205,7 @@ fn sample_camera(rng: &mut SampleRng, poses: &[PoseReport]) -> CameraReport {
             });
             ViewReport {
                 pose_id: p.pose_id.clone(),
+                label: p.label.clone(),
                 rms_px: p.reprojection_rms_px.unwrap_or_default(),
                 board_angle_deg,
                 warning,
@@ -220,11 +245,10 @@ fn sample_camera(rng: &mut SampleRng, poses: &[PoseReport]) -> CameraReport {
     }
 }
 
-fn sample_residuals(rng: &mut SampleRng) -> Vec<ResidualSample> {
+fn sample_residuals(rng: &mut SampleRng, views: usize) -> Vec<ResidualSample> {
     let (w, h) = (f64::from(IMAGE_WIDTH), f64::from(IMAGE_HEIGHT));
     let (cx, cy) = (w / 2.0, h / 2.0);
     let corner_r2 = cx * cx + cy * cy;
-    let views = CALIBRATION_POSES + VALIDATION_POSES - 1;
     let mut samples = Vec::with_capacity(views * RESIDUALS_PER_VIEW);
     for _ in 0..views {
         // Each view's board covers a different part of the image.

@@ -5,7 +5,7 @@
 
 use super::distribution::{axis_chart, histogram_chart};
 use super::field::{field_height, residual_field_chart};
-use super::format::{before_fit, headline, mm};
+use super::format::{before_fit, ellipsize, headline, mm};
 use super::model::{PoseReport, Report};
 use super::plot::*;
 
@@ -18,7 +18,9 @@ const HEADER_HEIGHT: f64 = 78.0;
 const HEADER_LINES: [f64; 3] = [26.0, 46.0, 66.0];
 const HEADER_TITLE_SIZE: f64 = 18.0;
 const HEADER_SUMMARY_SIZE: f64 = 12.5;
-pub const POSE_CHART_HEIGHT: f64 = 330.0;
+/// Height of the pose chart without the room its pose names take
+/// ([`pose_chart_height`] adds that).
+pub const POSE_CHART_HEIGHT: f64 = 312.0;
 pub const SMALL_CHART_HEIGHT: f64 = 310.0;
 /// Room left of the plot area for tick labels and the rotated axis label.
 pub(super) const MARGIN_LEFT: f64 = 66.0;
@@ -26,8 +28,16 @@ pub(super) const MARGIN_RIGHT: f64 = 24.0;
 /// Room above the plot area for the title and legend.
 const MARGIN_TOP: f64 = 54.0;
 const MARGIN_BOTTOM: f64 = 50.0;
-/// Extra room under the pose chart for rotated pose ids.
-const POSE_LABEL_ROOM: f64 = 18.0;
+/// Most characters of a pose name under the pose axis; longer names lose
+/// their middle (a 36-character id or a long file name would run into the
+/// charts below).
+const CHART_NAME_CHARS: usize = 18;
+/// Pose names are written slanted, reading upwards to their tick.
+const POSE_NAME_ANGLE_DEG: f64 = -60.0;
+/// Average advance of a character of the chart font (sans-serif, 11 px).
+const CHAR_WIDTH: f64 = FONT_SIZE * 0.6;
+/// Gaps above and below the slanted names.
+const POSE_NAME_PADDING: f64 = 8.0;
 /// Room right of the pose chart for the mean labels.
 const MEAN_LABEL_ROOM: f64 = 70.0;
 pub(super) const TITLE_Y: f64 = 20.0;
@@ -35,8 +45,11 @@ pub(super) const LEGEND_Y: f64 = 40.0;
 const DOT_RADIUS: f64 = 3.6;
 /// Dots shrink to this fraction of the per-pose band when poses are many.
 const DOT_BAND_FRACTION: f64 = 0.3;
-/// Most pose ids written under the pose axis before thinning them out.
+/// Most pose names written under the pose axis before thinning them out.
 const MAX_POSE_LABELS: usize = 40;
+/// Least horizontal distance between two slanted names (they would
+/// overlap closer than one line height across their slant).
+const MIN_POSE_LABEL_SPACING: f64 = FONT_SIZE * 1.35;
 pub(super) const SMALL_FONT: f64 = 9.5;
 
 /// The whole report as one standalone SVG document.
@@ -44,13 +57,9 @@ pub fn render_svg(report: &Report) -> String {
     let mut sheet = Svg::default();
     header(&mut sheet, report);
     let mut y = HEADER_HEIGHT;
-    place(
-        &mut sheet,
-        0.0,
-        y,
-        &pose_chart(report, SHEET_WIDTH, POSE_CHART_HEIGHT),
-    );
-    y += POSE_CHART_HEIGHT;
+    let pose_h = pose_chart_height(report);
+    place(&mut sheet, 0.0, y, &pose_chart(report, SHEET_WIDTH, pose_h));
+    y += pose_h;
     place(
         &mut sheet,
         0.0,
@@ -80,11 +89,12 @@ pub fn render_svg(report: &Report) -> String {
 
 /// Standalone chart documents, for embedding one by one in the HTML page.
 pub fn pose_errors_svg(report: &Report) -> String {
+    let h = pose_chart_height(report);
     standalone(
         SHEET_WIDTH,
-        POSE_CHART_HEIGHT,
+        h,
         "3-D position error per pose",
-        &pose_chart(report, SHEET_WIDTH, POSE_CHART_HEIGHT).body,
+        &pose_chart(report, SHEET_WIDTH, h).body,
     )
 }
 pub fn histogram_svg(report: &Report) -> String {
@@ -191,6 +201,37 @@ pub(super) fn no_data(svg: &mut Svg, area: Area, text: &str) {
     );
 }
 
+/// A pose's name as written under the pose axis.
+fn chart_name(pose: &PoseReport) -> String {
+    ellipsize(pose.name(), CHART_NAME_CHARS)
+}
+
+/// Room under the pose axis for the slanted names: as deep as the longest
+/// name written reaches.
+fn pose_label_room(report: &Report) -> f64 {
+    let longest = judged_poses(report)
+        .0
+        .iter()
+        .map(|p| chart_name(p).chars().count())
+        .max()
+        .unwrap_or(0);
+    let slant = POSE_NAME_ANGLE_DEG.to_radians().sin().abs();
+    TICK_LENGTH + 2.0 * POSE_NAME_PADDING + longest as f64 * CHAR_WIDTH * slant
+}
+
+/// Height of the pose chart with room for its pose names.
+pub fn pose_chart_height(report: &Report) -> f64 {
+    POSE_CHART_HEIGHT + pose_label_room(report)
+}
+
+/// Every how many poses a name is written: at most [`MAX_POSE_LABELS`]
+/// names, never closer than [`MIN_POSE_LABEL_SPACING`].
+fn label_every(poses: usize, band: f64) -> usize {
+    let by_count = poses.div_ceil(MAX_POSE_LABELS);
+    let by_spacing = (MIN_POSE_LABEL_SPACING / band).ceil() as usize;
+    by_count.max(by_spacing).max(1)
+}
+
 /// Dumbbell plot: before and after error of each judged pose joined by a
 /// line, with both means as dashed lines.
 fn pose_chart(report: &Report, width: f64, height: f64) -> Svg {
@@ -215,7 +256,7 @@ fn pose_chart(report: &Report, width: f64, height: f64) -> Svg {
             (Mark::Dash(MUTED_COLOR), "mean"),
         ],
     );
-    let area = plot_area(width, height, POSE_LABEL_ROOM, MEAN_LABEL_ROOM);
+    let area = plot_area(width, height, pose_label_room(report), MEAN_LABEL_ROOM);
     if poses.is_empty() {
         no_data(&mut svg, area, "no poses in this report");
         return svg;
@@ -239,7 +280,7 @@ fn pose_chart(report: &Report, width: f64, height: f64) -> Svg {
     );
     let band = area.w / poses.len() as f64;
     let radius = DOT_RADIUS.min(band * DOT_BAND_FRACTION);
-    let label_every = poses.len().div_ceil(MAX_POSE_LABELS);
+    let label_every = label_every(poses.len(), band);
     for (i, pose) in poses.iter().enumerate() {
         let x = area.x + band * (i as f64 + 0.5);
         let (yb, ya) = (scale.map(pose.before_mm), scale.map(pose.after_mm));
@@ -255,8 +296,8 @@ fn pose_chart(report: &Report, width: f64, height: f64) -> Svg {
             1.0,
         );
         if i % label_every == 0 {
-            let y = area.bottom() + TICK_LENGTH + 4.0;
-            svg.rotated_text(x + 3.0, y, -60.0, "end", &pose.pose_id);
+            let y = area.bottom() + TICK_LENGTH + POSE_NAME_PADDING / 2.0;
+            svg.rotated_text(x + 3.0, y, POSE_NAME_ANGLE_DEG, "end", &chart_name(pose));
         }
     }
     let stats = [
@@ -285,14 +326,18 @@ fn pose_chart(report: &Report, width: f64, height: f64) -> Svg {
             );
         }
     }
-    let x_label = "pose id";
+    let x_label = if label_every > 1 {
+        format!("pose (one name per {label_every} poses; all names in the table)")
+    } else {
+        "pose".to_string()
+    };
     svg.text(
         area.x + area.w / 2.0,
         height - 8.0,
         "middle",
         FONT_SIZE,
         TEXT_COLOR,
-        x_label,
+        &x_label,
     );
     svg
 }
@@ -300,7 +345,7 @@ fn pose_chart(report: &Report, width: f64, height: f64) -> Svg {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::report::sample::{sample_report, sample_tracker_report};
+    use crate::report::sample::{sample_report, sample_report_sized, sample_tracker_report};
     use crate::report::xml_check::check_balanced;
     use crate::report::ErrorStats;
 
@@ -312,11 +357,9 @@ mod tests {
         assert!(svg.starts_with("<svg xmlns=\"http://www.w3.org/2000/svg\""));
         assert!(!svg.contains("href") && !svg.contains("url(") && !svg.contains("<image"));
         for pose in report.per_pose.iter().filter(|p| p.set == "val") {
-            assert!(
-                svg.contains(&format!(">{}</text>", pose.pose_id)),
-                "{}",
-                pose.pose_id
-            );
+            let name = chart_name(pose);
+            assert!(svg.contains(&format!(">{name}</text>")), "{name}");
+            assert!(name.ends_with("_pose_") || name.ends_with(".png"), "{name}");
         }
         // One before and one after dot per validation pose.
         let dots = |color: &str| {
@@ -343,11 +386,76 @@ mod tests {
         }
     }
 
+    /// The slanted pose names of the pose chart: (x, y, text).
+    fn pose_names(chart: &Svg) -> Vec<(f64, f64, String)> {
+        let attr = |line: &str, name: &str| -> f64 {
+            let start = line.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
+            line[start..].split('"').next().unwrap().parse().unwrap()
+        };
+        chart
+            .body
+            .lines()
+            .filter(|l| l.contains(&format!("rotate({POSE_NAME_ANGLE_DEG} ")))
+            .map(|l| {
+                let text = l.rsplit_once("\">").unwrap().1.trim_end_matches("</text>");
+                (attr(l, "x"), attr(l, "y"), text.to_string())
+            })
+            .collect()
+    }
+
+    #[test]
+    fn pose_names_stay_inside_the_chart_and_apart_from_5_to_200_poses() {
+        let slant = POSE_NAME_ANGLE_DEG.to_radians();
+        for poses in [5, 61, 200] {
+            for stored_before_labels in [false, true] {
+                let mut report = sample_report_sized(poses - poses / 2, poses / 2);
+                if stored_before_labels {
+                    // Old reports: 36-character ids only.
+                    report.per_pose.iter_mut().for_each(|p| p.label.clear());
+                }
+                let height = pose_chart_height(&report);
+                let chart = pose_chart(&report, SHEET_WIDTH, height);
+                let names = pose_names(&chart);
+                let case = format!("{poses} poses, labels cleared: {stored_before_labels}");
+                assert!(
+                    !names.is_empty() && names.len() <= MAX_POSE_LABELS,
+                    "{case}"
+                );
+                for pair in names.windows(2) {
+                    assert!(pair[1].0 - pair[0].0 >= MIN_POSE_LABEL_SPACING, "{case}");
+                }
+                for (x, y, text) in &names {
+                    let chars = text.chars().count();
+                    assert!(chars <= CHART_NAME_CHARS, "{case}: {text}");
+                    let length = chars as f64 * CHAR_WIDTH;
+                    // Above the axis title, right of the sheet's edge.
+                    assert!(
+                        y + length * slant.sin().abs() < height - FONT_SIZE - 8.0,
+                        "{case}"
+                    );
+                    assert!(x - length * slant.cos() > 0.0, "{case}: {text}");
+                }
+                let judged = judged_poses(&report).0;
+                let area = plot_area(
+                    SHEET_WIDTH,
+                    height,
+                    pose_label_room(&report),
+                    MEAN_LABEL_ROOM,
+                );
+                let every = label_every(judged.len(), area.w / judged.len() as f64);
+                let expected: Vec<String> =
+                    judged.into_iter().step_by(every).map(chart_name).collect();
+                let named: Vec<&str> = names.iter().map(|n| n.2.as_str()).collect();
+                assert_eq!(named, expected, "{case}");
+            }
+        }
+    }
+
     #[test]
     fn hostile_serial_and_pose_ids_are_escaped() {
         let mut report = sample_report();
         report.serial = "<script>alert('x')</script>".into();
-        report.per_pose.last_mut().unwrap().pose_id = "a&b<\"c\">".into();
+        report.per_pose.last_mut().unwrap().label = "a&b<\"c\">".into();
         let svg = render_svg(&report);
         assert!(!svg.contains("<script"));
         assert!(svg.contains("&lt;script&gt;alert(&#39;x&#39;)&lt;/script&gt;"));

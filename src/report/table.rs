@@ -3,7 +3,8 @@
 //! that a hostile serial cannot drive the terminal.
 
 use super::format::{
-    decimals_for_std, fixed, headline, mm, significant, with_precision_of, NOT_AVAILABLE, STAT_ROWS,
+    decimals_for_std, ellipsize, fixed, headline, mm, significant, with_precision_of,
+    NOT_AVAILABLE, STAT_ROWS, TABLE_NAME_CHARS,
 };
 use super::model::Report;
 use std::fmt::Write;
@@ -249,7 +250,7 @@ fn camera(out: &mut String, report: &Report) {
         let _ = writeln!(
             out,
             "{INDENT}  {}: {}",
-            printable(&v.pose_id),
+            printable(&ellipsize(v.name(), TABLE_NAME_CHARS)),
             printable(warning)
         );
     }
@@ -263,7 +264,7 @@ fn camera(out: &mut String, report: &Report) {
             let _ = writeln!(
                 out,
                 "{INDENT}  {} not used: {}",
-                printable(&f.pose_id),
+                printable(&ellipsize(f.name(), TABLE_NAME_CHARS)),
                 printable(&f.reason)
             );
         }
@@ -338,7 +339,7 @@ fn per_pose(out: &mut String, report: &Report) {
             .reprojection_rms_px
             .map_or("-".to_string(), |r| fixed(r, 3));
         t.row(vec![
-            p.pose_id.clone(),
+            ellipsize(p.name(), TABLE_NAME_CHARS),
             p.set.clone(),
             fixed(p.before_mm, 3),
             fixed(p.after_mm, 3),
@@ -363,15 +364,15 @@ mod tests {
         for pose in &report.per_pose {
             assert!(
                 text.lines()
-                    .any(|l| l.trim_start().starts_with(&pose.pose_id)),
+                    .any(|l| l.trim_start().starts_with(&pose.label)),
                 "{}",
-                pose.pose_id
+                pose.label
             );
         }
         // Every row of the per-pose table has the same width (right-aligned last column).
         let rows: Vec<&str> = text
             .lines()
-            .filter(|l| l.trim_start().starts_with('p') && l.contains("val"))
+            .filter(|l| l.trim_start().starts_with("IRB2400_") && l.contains("val"))
             .collect();
         assert_eq!(rows.len(), report.after.norm.n);
         assert!(rows

@@ -7,8 +7,7 @@ use super::{Checker, FieldError, MAX_ANGLE_DEG, MAX_LENGTH_MM};
 
 /// Most joints a robot may have.
 pub const MAX_JOINTS: usize = 12;
-/// Longest serial number.
-pub const MAX_SERIAL_LEN: usize = 64;
+pub use crate::domain::MAX_SERIAL_LEN;
 /// Longest model name.
 pub const MAX_MODEL_LEN: usize = 200;
 
@@ -92,20 +91,11 @@ pub struct RobotBody {
     pub preset: Option<Preset>,
 }
 
+/// A serial as the domain type accepts it ([`crate::domain::Serial`]).
 pub fn check_serial(serial: &str) -> Result<(), Vec<FieldError>> {
-    let ok = !serial.is_empty()
-        && serial.len() <= MAX_SERIAL_LEN
-        && serial
-            .chars()
-            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'));
-    if ok {
-        Ok(())
-    } else {
-        Err(vec![FieldError::new(
-            "serial",
-            format!("1 to {MAX_SERIAL_LEN} characters of A-Z a-z 0-9 - _ ."),
-        )])
-    }
+    crate::domain::Serial::parse(serial)
+        .map(|_| ())
+        .map_err(|e| vec![FieldError::new("serial", e.to_string())])
 }
 
 impl RobotBody {

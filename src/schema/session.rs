@@ -178,6 +178,11 @@ pub struct PoseJsonBody {
     pub measured_position_mm: Option<[f64; 3]>,
     #[serde(default)]
     pub measured_pose: Option<PoseDoc>,
+    /// What the pose is called in reports (e.g. the photo's file name); 1
+    /// to 200 characters. Absent: the pose is numbered (`#12`).
+    #[serde(default)]
+    #[schema(max_length = 200)]
+    pub label: Option<String>,
 }
 
 /// Checks a joint vector against the robot's joint count.
@@ -205,6 +210,9 @@ impl PoseJsonBody {
     ) -> Result<(), Vec<FieldError>> {
         let mut c = Checker::default();
         check_joints(&mut c, "joints_deg", &self.joints_deg, joint_count);
+        if let Some(Err(rule)) = self.label.as_deref().map(crate::domain::check_label) {
+            c.fail("label", rule);
+        }
         match instrument {
             Instrument::Camera => {
                 if self.measured_position_mm.is_some() || self.measured_pose.is_some() {

@@ -39,6 +39,10 @@ pub trait Backend: Send + Sync + 'static {
     /// Takes the serial's next parameter-set version (`$1` = serial) inside
     /// the writing transaction; returns it as column `version`.
     const NEXT_VERSION: &'static str;
+    /// Forgets the serial's version counter (`$1` = serial) when its robot
+    /// is deleted, so a robot re-created under the serial starts again at
+    /// version 1; `None` where versions are counted from the sets themselves.
+    const FORGET_VERSIONS: Option<&'static str> = None;
 
     fn pool(&self) -> &Pool<Self::Db>;
 

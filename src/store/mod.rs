@@ -48,7 +48,10 @@ pub trait RobotStore: Send + Sync {
     async fn put_robot(&self, robot: &RobotRecord) -> StoreResult<bool>;
     async fn get_robot(&self, serial: &str) -> StoreResult<Option<RobotRecord>>;
     async fn list_robots(&self, limit: i64, after: Option<&str>) -> StoreResult<Page<RobotRecord>>;
-    /// Deletes the robot with its sessions, poses and jobs; `false` if absent.
+    /// Deletes the robot with everything it had: sessions, poses, jobs
+    /// (with their results), parameter sets with their reports, and the
+    /// images no other pose names. A robot created later under the same
+    /// serial starts empty. `false` if absent.
     async fn delete_robot(&self, serial: &str) -> StoreResult<bool>;
 }
 
@@ -68,10 +71,21 @@ pub trait SessionStore: Send + Sync {
         limit: i64,
         after: Option<&str>,
     ) -> StoreResult<Page<SessionRecord>>;
-    /// Stores image bytes under their sha256 (idempotent); durable on return.
+    /// Stores image bytes under their sha256 (idempotent); durable on
+    /// return. Storing again renews the image's grace against
+    /// [`collect_blobs`](Self::collect_blobs).
     async fn put_blob(&self, meta: &ImageMeta, data: &[u8]) -> StoreResult<()>;
+    /// Deletes those of `sha256s` that no pose names (the images of an
+    /// upload that was refused, or of deleted poses); returns how many.
+    async fn discard_blobs(&self, sha256s: &[String]) -> StoreResult<u64>;
+    /// Deletes every image no pose names that was last stored before
+    /// `touched_before_ms` (unix ms); returns how many. The grace keeps the
+    /// images of uploads in progress, stored but not yet attached to poses.
+    async fn collect_blobs(&self, touched_before_ms: i64) -> StoreResult<u64>;
     async fn get_blob(&self, sha256: &str) -> StoreResult<Option<Vec<u8>>>;
     /// Inserts all poses in one transaction (all or none), in order.
+    /// `Conflict` when an image was collected meanwhile (the only other
+    /// poses naming it were deleted): the client uploads it again.
     async fn add_poses(&self, session_id: &str, poses: &[NewPose]) -> StoreResult<Vec<PoseRecord>>;
     async fn get_pose(&self, session_id: &str, pose_id: &str) -> StoreResult<Option<PoseRecord>>;
     async fn list_poses(

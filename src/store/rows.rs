@@ -100,6 +100,7 @@ pub fn pose(row: &impl Columns) -> StoreResult<PoseRecord> {
         image,
         points: json(row.str("points"))?,
         measured: opt_json(row.opt_str("measured"))?,
+        label: row.opt_string("label"),
         detection: opt_json(row.opt_str("detection"))?,
         created_at: row.string("created_at"),
     })

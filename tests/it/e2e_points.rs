@@ -233,6 +233,18 @@ async fn detected_points_residuals_and_a_reused_camera_through_the_service() {
     assert_eq!(one["points"], poses[3]["points"]);
     let set1 = json_of(&app, "/v1/robots/PUMA-PTS/parameter-sets/1").await;
     assert_eq!(set1["camera_mode"], "refined", "{set1}");
+    // Each pose is named by its image's path in the archive, in the API
+    // and on every pose of the report.
+    for (pose, entry) in poses.iter().zip(&entries) {
+        assert_eq!(pose["label"], entry.image.as_str());
+    }
+    let report1 = json_of(&app, "/v1/robots/PUMA-PTS/parameter-sets/1/report").await;
+    let per_pose = report1["per_pose"].as_array().unwrap();
+    assert_eq!(per_pose.len(), VAL_POSES);
+    for p in per_pose {
+        let pose = poses.iter().find(|q| q["id"] == p["pose_id"]).unwrap();
+        assert_eq!(p["label"], pose["label"], "{p}");
+    }
 
     // Job 2 on the same session, the paper's camera: the rows now show
     // job 2's points (the same centres: the detector is deterministic) and

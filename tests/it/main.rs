@@ -14,6 +14,7 @@ pub(crate) mod ops;
 pub(crate) mod poses;
 pub(crate) mod restart;
 pub(crate) mod robots;
+pub(crate) mod storage;
 pub(crate) mod store_ops;
 pub(crate) mod support;
 pub(crate) mod test_db;

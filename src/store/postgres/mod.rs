@@ -47,6 +47,11 @@ const MIGRATIONS: &[Embedded] = &[
         "pose detection",
         include_str!("../../../migrations/postgres/0002_pose_detection.sql"),
     ),
+    (
+        4,
+        "labels and storage",
+        include_str!("../../../migrations/postgres/0004_labels_and_storage.sql"),
+    ),
 ];
 
 /// Connections per replica. Each worker holds at most one while it claims or
@@ -106,6 +111,8 @@ impl Backend for PgStore {
          ON CONFLICT (serial) DO UPDATE
            SET last_version = parameter_set_counters.last_version + 1
          RETURNING last_version AS version";
+    const FORGET_VERSIONS: Option<&'static str> =
+        Some("DELETE FROM parameter_set_counters WHERE serial = $1");
 
     fn pool(&self) -> &PgPool {
         &self.pool

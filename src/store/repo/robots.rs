@@ -3,9 +3,9 @@ use async_trait::async_trait;
 use super::page_cursor;
 use crate::domain::{Page, RobotRecord};
 use crate::store::backend::Backend;
-use crate::store::rows::robot;
+use crate::store::rows::{robot, Columns};
 use crate::store::statement::query;
-use crate::store::{RobotStore, StoreResult};
+use crate::store::{RobotStore, SessionStore, StoreResult};
 
 const COLUMNS: &str = "serial, model, preset, kinematics, created_at, updated_at";
 
@@ -48,10 +48,47 @@ impl<B: Backend> RobotStore for B {
     }
 
     async fn delete_robot(&self, serial: &str) -> StoreResult<bool> {
+        let mut tx = self.begin_write().await?;
+        let images: Vec<String> = query(
+            "SELECT DISTINCT p.image_sha256 AS sha256 FROM poses p
+             JOIN sessions s ON s.id = p.session_id
+             WHERE s.serial = $1 AND p.image_sha256 IS NOT NULL",
+        )
+        .bind(serial)
+        .fetch_all(&mut tx)
+        .await?
+        .iter()
+        .map(|r| r.string("sha256"))
+        .collect();
+        // Jobs first, as `finish_job` locks them (job, then poses, then the
+        // version counter): the same order, so the two cannot deadlock, and
+        // a job finishing after this commit finds its lease gone and writes
+        // nothing.
+        query("DELETE FROM jobs WHERE session_id IN (SELECT id FROM sessions WHERE serial = $1)")
+            .bind(serial)
+            .execute(&mut tx)
+            .await?;
+        // Sessions and poses go with the robot (ON DELETE CASCADE).
         let deleted = query("DELETE FROM robots WHERE serial = $1")
             .bind(serial)
-            .execute(self.pool())
+            .execute(&mut tx)
             .await?;
+        // Parameter sets name the serial, not the robot row: without this a
+        // robot re-created under the serial would serve them as its own.
+        query("DELETE FROM parameter_sets WHERE serial = $1")
+            .bind(serial)
+            .execute(&mut tx)
+            .await?;
+        if let Some(forget) = B::FORGET_VERSIONS {
+            query(forget).bind(serial).execute(&mut tx).await?;
+        }
+        tx.commit().await?;
+        // Best effort after the commit: an image another upload is about to
+        // attach may be refused by the database here; the periodic
+        // collection takes whatever this leaves.
+        if let Err(e) = self.discard_blobs(&images).await {
+            tracing::warn!(error = %e, serial, "images of the deleted robot left for the periodic collection");
+        }
         Ok(deleted > 0)
     }
 }

@@ -2,7 +2,9 @@ use async_trait::async_trait;
 use serde_json::Value;
 
 use super::page_cursor;
-use crate::domain::{new_id, now_rfc3339, ImageMeta, NewPose, Page, PoseRecord, SessionRecord};
+use crate::domain::{
+    new_id, now_rfc3339, now_unix_ms, ImageMeta, NewPose, Page, PoseRecord, SessionRecord,
+};
 use crate::store::backend::{is_foreign_key_violation, Backend};
 use crate::store::rows::{pose, session, Columns};
 use crate::store::statement::query;
@@ -11,7 +13,7 @@ use crate::store::{SessionStore, StoreError, StoreResult};
 const SESSION_COLUMNS: &str = "s.id, s.serial, s.instrument, s.spec, s.created_at,
     (SELECT count(*) FROM poses p WHERE p.session_id = s.id) AS pose_count";
 const POSE_COLUMNS: &str =
-    "id, session_id, joints_deg, pose_set, image_meta, points, measured, detection, created_at";
+    "id, session_id, joints_deg, pose_set, image_meta, points, measured, label, detection, created_at";
 
 #[async_trait]
 impl<B: Backend> SessionStore for B {
@@ -83,19 +85,45 @@ impl<B: Backend> SessionStore for B {
 
     async fn put_blob(&self, meta: &ImageMeta, data: &[u8]) -> StoreResult<()> {
         // Two writers storing the same image: the second waits for the
-        // first's commit on the primary key, then does nothing.
+        // first's commit on the primary key, then only renews `touched_ms`.
         query(
-            "INSERT INTO blobs (sha256, size_bytes, content_type, data, created_at)
-             VALUES ($1, $2, $3, $4, $5) ON CONFLICT (sha256) DO NOTHING",
+            "INSERT INTO blobs (sha256, size_bytes, content_type, data, created_at, touched_ms)
+             VALUES ($1, $2, $3, $4, $5, $6)
+             ON CONFLICT (sha256) DO UPDATE SET touched_ms = excluded.touched_ms",
         )
         .bind(&meta.sha256)
         .bind(meta.size_bytes)
         .bind(&meta.content_type)
         .bind(data)
         .bind(now_rfc3339())
+        .bind(now_unix_ms())
         .execute(self.pool())
         .await?;
         Ok(())
+    }
+
+    async fn discard_blobs(&self, sha256s: &[String]) -> StoreResult<u64> {
+        let mut deleted = 0;
+        for sha in sha256s {
+            deleted += query(
+                "DELETE FROM blobs WHERE sha256 = $1
+                 AND NOT EXISTS (SELECT 1 FROM poses WHERE image_sha256 = $1)",
+            )
+            .bind(sha)
+            .execute(self.pool())
+            .await?;
+        }
+        Ok(deleted)
+    }
+
+    async fn collect_blobs(&self, touched_before_ms: i64) -> StoreResult<u64> {
+        Ok(query(
+            "DELETE FROM blobs WHERE touched_ms < $1
+             AND NOT EXISTS (SELECT 1 FROM poses WHERE image_sha256 = blobs.sha256)",
+        )
+        .bind(touched_before_ms)
+        .execute(self.pool())
+        .await?)
     }
 
     async fn get_blob(&self, sha256: &str) -> StoreResult<Option<Vec<u8>>> {
@@ -129,13 +157,14 @@ impl<B: Backend> SessionStore for B {
                 image: p.image.clone(),
                 points: p.points.clone(),
                 measured: p.measured.clone(),
+                label: p.label.clone(),
                 detection: None,
                 created_at: now_rfc3339(),
             };
             query(
                 "INSERT INTO poses (id, session_id, joints_deg, pose_set, image_sha256,
-                   image_meta, points, measured, created_at)
-                 VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9)",
+                   image_meta, points, measured, label, created_at)
+                 VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10)",
             )
             .bind(&record.id)
             .bind(session_id)
@@ -151,9 +180,19 @@ impl<B: Backend> SessionStore for B {
             )
             .bind(record.points.to_string())
             .bind(record.measured.as_ref().map(|m| m.to_string()))
+            .bind(record.label.as_deref())
             .bind(&record.created_at)
             .execute(&mut tx)
-            .await?;
+            .await
+            .map_err(|e| match &record.image {
+                // The session row is held, so the missing parent is the image.
+                Some(image) if is_foreign_key_violation(&e) => StoreError::Conflict(format!(
+                    "image {} was removed meanwhile (the robot whose poses named it was \
+                     deleted); upload it again",
+                    image.sha256
+                )),
+                _ => e.into(),
+            })?;
             out.push(record);
         }
         tx.commit().await?;

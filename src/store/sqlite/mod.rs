@@ -33,6 +33,11 @@ const MIGRATIONS: &[Embedded] = &[
         "pose detection",
         include_str!("../../../migrations/sqlite/0002_pose_detection.sql"),
     ),
+    (
+        4,
+        "labels and storage",
+        include_str!("../../../migrations/sqlite/0004_labels_and_storage.sql"),
+    ),
 ];
 
 /// How long a statement waits for a competing writer before giving up.
