@@ -17,6 +17,7 @@ pub mod config;
 pub mod dataset;
 pub mod domain;
 pub mod evaluate;
+pub mod imaging;
 pub mod jobs;
 pub mod metrics;
 pub mod pipeline;

@@ -101,6 +101,7 @@ pub fn pose(row: &impl Columns) -> StoreResult<PoseRecord> {
         points: json(row.str("points"))?,
         measured: opt_json(row.opt_str("measured"))?,
         detection: opt_json(row.opt_str("detection"))?,
+        image_detection: opt_json(row.opt_str("image_detection"))?,
         created_at: row.string("created_at"),
     })
 }

@@ -140,6 +140,7 @@ fn detection(pose_id: &str, job: &str, x: f64) -> PoseDetection {
         pose_id: pose_id.to_string(),
         detection: json!({"job_id": job, "source": "image_points",
             "points": [{"row": 0, "col": 0, "x": x, "y": 2.0}]}),
+        image_detection: None,
     }
 }
 

@@ -51,6 +51,7 @@ fn pose(sha: Option<&ImageMeta>) -> NewPose {
         image: sha.cloned(),
         points: json!([{"row": 0, "col": 1, "x": 1.5, "y": 2.25}]),
         measured: None,
+        image_detection: None,
     }
 }
 

@@ -47,6 +47,11 @@ const MIGRATIONS: &[Embedded] = &[
         "pose detection",
         include_str!("../../../migrations/postgres/0002_pose_detection.sql"),
     ),
+    (
+        3,
+        "image detection",
+        include_str!("../../../migrations/postgres/0003_image_detection.sql"),
+    ),
 ];
 
 /// Connections per replica. Each worker holds at most one while it claims or

@@ -11,7 +11,7 @@ use crate::store::{SessionStore, StoreError, StoreResult};
 const SESSION_COLUMNS: &str = "s.id, s.serial, s.instrument, s.spec, s.created_at,
     (SELECT count(*) FROM poses p WHERE p.session_id = s.id) AS pose_count";
 const POSE_COLUMNS: &str =
-    "id, session_id, joints_deg, pose_set, image_meta, points, measured, detection, created_at";
+    "id, session_id, joints_deg, pose_set, image_meta, points, measured, detection, image_detection, created_at";
 
 #[async_trait]
 impl<B: Backend> SessionStore for B {
@@ -130,12 +130,13 @@ impl<B: Backend> SessionStore for B {
                 points: p.points.clone(),
                 measured: p.measured.clone(),
                 detection: None,
+                image_detection: p.image_detection.clone(),
                 created_at: now_rfc3339(),
             };
             query(
                 "INSERT INTO poses (id, session_id, joints_deg, pose_set, image_sha256,
-                   image_meta, points, measured, created_at)
-                 VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9)",
+                   image_meta, points, measured, image_detection, created_at)
+                 VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10)",
             )
             .bind(&record.id)
             .bind(session_id)
@@ -151,6 +152,7 @@ impl<B: Backend> SessionStore for B {
             )
             .bind(record.points.to_string())
             .bind(record.measured.as_ref().map(|m| m.to_string()))
+            .bind(record.image_detection.as_ref().map(|d| d.to_string()))
             .bind(&record.created_at)
             .execute(&mut tx)
             .await?;

@@ -33,6 +33,11 @@ const MIGRATIONS: &[Embedded] = &[
         "pose detection",
         include_str!("../../../migrations/sqlite/0002_pose_detection.sql"),
     ),
+    (
+        3,
+        "image detection",
+        include_str!("../../../migrations/sqlite/0003_image_detection.sql"),
+    ),
 ];
 
 /// How long a statement waits for a competing writer before giving up.
