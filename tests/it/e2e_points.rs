@@ -280,6 +280,7 @@ async fn wrong_target_is_named_at_upload_and_for_the_session(
     let expected = format!(
         "no image shows the session's 7x9 target: {TOO_FEW_POSES} of {TOO_FEW_POSES} images"
     );
+    eprintln!("wrong target: {error}");
     assert!(error.contains(&expected), "{error}");
 }
 
