@@ -16,7 +16,7 @@ use robocal_calib::vision::TargetSpec;
 use serde::{Deserialize, Serialize};
 use serde_json::json;
 
-use crate::pipeline::{self, Input, PoseInput};
+use crate::pipeline::{self, Input, PoseImage, PoseInput};
 use crate::report::Report;
 use crate::schema::job::CalibrationOptions;
 use crate::schema::robot::RobotBody;
@@ -222,8 +222,20 @@ pub fn run_local_with(
     let kinematics = body.resolve().map_err(|e| format!("{e:?}"))?;
     let mut poses = Vec::with_capacity(entries.len());
     for (i, entry) in entries.iter().enumerate() {
-        let image =
-            std::fs::read(dir.join(&entry.image)).map_err(|e| format!("{}: {e}", entry.image))?;
+        // The header only: the detect stage reads each image when it
+        // detects it and drops it then, so no image is held for the job.
+        let path = dir.join(&entry.image);
+        let (width, height) = image::ImageReader::open(&path)
+            .and_then(|r| r.with_guessed_format())
+            .map_err(|e| e.to_string())
+            .and_then(|r| r.into_dimensions().map_err(|e| e.to_string()))
+            .map_err(|e| format!("{}: {e}", entry.image))?;
+        let image = PoseImage {
+            key: path.to_string_lossy().into_owned(),
+            width,
+            height,
+            detection: None,
+        };
         poses.push(PoseInput {
             id: format!("p{:03}", i + 1),
             label: entry.image.clone(),
@@ -247,8 +259,21 @@ pub fn run_local_with(
         poses,
         options,
         fixed_camera: None,
+        images: local_images(),
         test_stage_delay: std::time::Duration::ZERO,
         validate_only: false,
     };
     pipeline::run(&input, &|_, _, _| {}, &AtomicBool::new(false)).map_err(|e| e.to_string())
+}
+
+/// Reads a campaign's images from disk (keys are paths), one decode per
+/// core at a time.
+fn local_images() -> pipeline::ImageSource {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    pipeline::ImageSource {
+        read: std::sync::Arc::new(|path: &str| {
+            std::fs::read(path).map_err(|e| format!("{path}: {e}"))
+        }),
+        gate: std::sync::Arc::new(crate::imaging::DecodeGate::new(cores)),
+    }
 }

@@ -65,6 +65,11 @@ pub struct PoseRecord {
     /// What the last calibration job measured on this pose (see
     /// [`PoseDetection`]); `None` before any job ran its detect stage.
     pub detection: Option<Value>,
+    /// What the dot detector found on the image, measured once (at upload,
+    /// or by the first job for older poses): `{"points":[..]}` with raw
+    /// centres, or `{"points":[],"error","error_kind"}`. `None` for JSON
+    /// poses and image poses never detected.
+    pub image_detection: Option<Value>,
     pub created_at: String,
 }
 
@@ -77,6 +82,9 @@ pub struct PoseRecord {
 pub struct PoseDetection {
     pub pose_id: String,
     pub detection: Value,
+    /// The detector's outcome when this job was the first to detect the
+    /// pose's image (stored as the pose's `image_detection` if it has none).
+    pub image_detection: Option<Value>,
 }
 
 /// A pose to insert; its image blob must already be stored (`put_blob`).
@@ -91,6 +99,8 @@ pub struct NewPose {
     /// dataset archive) or a JSON pose's `label`, so the pose can be traced
     /// back to its photo; `None`: reports number the pose (`#12`).
     pub label: Option<String>,
+    /// The detector's outcome on `image`, measured at upload.
+    pub image_detection: Option<Value>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

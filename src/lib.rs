@@ -18,6 +18,7 @@ pub mod dataset;
 pub mod domain;
 pub mod evaluate;
 pub mod housekeeping;
+pub mod imaging;
 pub mod jobs;
 pub mod metrics;
 pub mod pipeline;

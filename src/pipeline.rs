@@ -11,6 +11,7 @@
 //! a later stage fails.
 
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 use std::time::Duration;
 
 use robocal_calib::camera::Intrinsics;
@@ -21,11 +22,13 @@ mod detections;
 mod identify_stage;
 mod measure;
 pub mod results;
+mod session_cause;
 mod validate;
 
-pub use validate::{check_image, validate};
+pub use validate::validate;
 
 use crate::domain::{NewParameterSet, PoseDetection};
+use crate::imaging::{DecodeGate, ImageDetection};
 use crate::schema::job::CalibrationOptions;
 use crate::schema::robot::KinematicsDoc;
 use crate::schema::session::{ImagePointDoc, Instrument, PoseSet, SessionBody};
@@ -34,8 +37,6 @@ use crate::schema::{FieldError, PoseDoc};
 /// Fewest calibration poses a job accepts. Identification needs more
 /// observations than unknowns; the identification stage refines this check.
 pub const MIN_CALIBRATION_POSES: usize = 3;
-/// Memory a single image decode may use, bytes.
-pub const MAX_DECODE_ALLOC_BYTES: u64 = 1 << 30;
 
 /// The stages a job goes through, in order.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -76,6 +77,8 @@ pub struct Input {
     /// The session's `camera_calibration_id`, resolved: intrinsics the
     /// camera stage holds fixed instead of estimating them.
     pub fixed_camera: Option<FixedCamera>,
+    /// Reads the images of poses without a stored detection.
+    pub images: ImageSource,
     /// Test hook (`ROBOCAL_TEST_STAGE_DELAY_MS`): sleep per pose in validation.
     pub test_stage_delay: Duration,
     /// Test hook (`ROBOCAL_TEST_VALIDATE_ONLY`): stop after validation.
@@ -90,11 +93,55 @@ pub struct PoseInput {
     pub label: String,
     pub joints_deg: Vec<f64>,
     pub set: PoseSet,
-    /// Encoded PNG/JPEG bytes when the pose was uploaded with an image.
-    pub image: Option<Vec<u8>>,
+    /// The pose's image, when it was uploaded with one: a reference, never
+    /// the bytes (a job holds no images; the detect stage reads, decodes and
+    /// drops the ones without a stored detection, one at a time per thread).
+    pub image: Option<PoseImage>,
     pub image_points: Vec<ImagePointDoc>,
     pub measured_position_mm: Option<[f64; 3]>,
     pub measured_pose: Option<PoseDoc>,
+}
+
+/// A pose's image as a job sees it.
+#[derive(Debug, Clone)]
+pub struct PoseImage {
+    /// What [`Input::images`] reads it by (the blob's sha256 in the service,
+    /// the file's path for `calibrate-local`).
+    pub key: String,
+    pub width: u32,
+    pub height: u32,
+    /// What the detector found on it at upload (or in an earlier job):
+    /// reused as is, the image is then never decoded.
+    pub detection: Option<ImageDetection>,
+}
+
+/// Reads an image's bytes by [`PoseImage::key`].
+pub type ReadImage = dyn Fn(&str) -> Result<Vec<u8>, String> + Send + Sync;
+
+/// Where the detect stage gets the images it must decode, and the gate all
+/// decodes of the process share.
+#[derive(Clone)]
+pub struct ImageSource {
+    pub read: Arc<ReadImage>,
+    pub gate: Arc<DecodeGate>,
+}
+
+impl std::fmt::Debug for ImageSource {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ImageSource")
+            .field("gate", &self.gate)
+            .finish_non_exhaustive()
+    }
+}
+
+impl ImageSource {
+    /// No images to read (sessions of image points or tracker measurements).
+    pub fn none() -> ImageSource {
+        ImageSource {
+            read: Arc::new(|key: &str| Err(format!("image {key} is not available"))),
+            gate: Arc::new(DecodeGate::new(1)),
+        }
+    }
 }
 
 /// Intrinsics of an earlier calibration, reused and held fixed (the paper
@@ -179,6 +226,20 @@ pub fn run_observed(
     detected: &dyn Fn(Vec<PoseDetection>),
     cancel: &AtomicBool,
 ) -> Result<Output, PipelineError> {
+    let mut cause = None;
+    run_stages(input, progress, detected, cancel, &mut cause)
+        .map_err(|e| session_cause::name_in(e, cause))
+}
+
+/// [`run_observed`]'s stages; `cause` receives the session-level cause of
+/// the detection failures when most images failed for one reason.
+fn run_stages(
+    input: &Input,
+    progress: &dyn Fn(Stage, &str, f64),
+    detected: &dyn Fn(Vec<PoseDetection>),
+    cancel: &AtomicBool,
+    cause: &mut Option<String>,
+) -> Result<Output, PipelineError> {
     let within = |stage: Stage, message: &str, fraction: f64| {
         let (lo, hi) = stage_span(stage);
         progress(stage, message, lo + (hi - lo) * fraction.clamp(0.0, 1.0));
@@ -218,11 +279,16 @@ pub fn run_observed(
             let measured = measure::measure(
                 &input.poses,
                 target,
+                &input.images,
                 &|message, fraction| within(Stage::Detect, message, fraction),
                 cancel,
             )?;
             check_cancel()?;
             detected(detections::detected(&input.poses, &measured));
+            *cause = session_cause::of(&measured, target);
+            if let Some(c) = cause.as_ref() {
+                notes.push(format!("{c}."));
+            }
             within(
                 Stage::CalibrateCamera,
                 "Tsai start and joint refinement",

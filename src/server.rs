@@ -9,6 +9,7 @@ use tokio::task::JoinHandle;
 
 use crate::api::{self, AppState, QUEUE_FULL_RETRY_AFTER_SECS};
 use crate::config::ServeConfig;
+use crate::imaging::DecodeGate;
 use crate::jobs::pool::{PoolConfig, WorkerPool};
 use crate::jobs::queue::QueuePolicy;
 use crate::metrics::Metrics;
@@ -72,6 +73,8 @@ pub async fn start(config: ServeConfig) -> Result<RunningServer, StartError> {
     let wake = Arc::new(Notify::new());
     // Cross-process wake-ups (PostgreSQL LISTEN/NOTIFY); polling stays as the fallback.
     let listening = store.watch_jobs(wake.clone(), shutdown_rx.clone());
+    // One decode per worker at a time, uploads and jobs together.
+    let decode_gate = Arc::new(DecodeGate::new(config.worker_count()));
     let pool = WorkerPool::start(
         store.clone(),
         PoolConfig {
@@ -82,6 +85,7 @@ pub async fn start(config: ServeConfig) -> Result<RunningServer, StartError> {
             test_stage_delay: Duration::from_millis(config.test_stage_delay_ms),
             test_parameter_sets: config.test_parameter_sets,
             test_validate_only: config.test_validate_only,
+            decode_gate: decode_gate.clone(),
         },
         wake.clone(),
         shutdown_rx.clone(),
@@ -97,6 +101,7 @@ pub async fn start(config: ServeConfig) -> Result<RunningServer, StartError> {
         metrics: Arc::new(Metrics::default()),
         wake,
         workers_alive: pool.alive.clone(),
+        decode_gate,
     };
     let app = api::app(state);
     let mut rx = shutdown_rx;

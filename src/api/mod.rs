@@ -53,6 +53,8 @@ pub struct AppState {
     /// Wakes an idle worker when a job is enqueued here.
     pub wake: Arc<Notify>,
     pub workers_alive: Arc<AtomicUsize>,
+    /// Bounds concurrent image decodes (uploads and jobs share it).
+    pub decode_gate: Arc<crate::imaging::DecodeGate>,
 }
 
 #[derive(OpenApi)]

@@ -14,7 +14,9 @@ use utoipa_axum::routes;
 use super::error::{ApiError, ApiResult, Problem};
 use super::extract::{is_json, parse_json, read_limited, Paging};
 use super::sessions::find_session;
-use super::upload::{ingest_image, read_field_limited, robot_joint_count, session_spec};
+use super::upload::{
+    ingest_image, read_field_limited, robot_joint_count, session_spec, ImageCheck,
+};
 use super::AppState;
 use crate::domain::{label_from_file_name, ImageMeta, NewPose, PoseRecord};
 use crate::schema::session::{check_joints, Instrument, PoseJsonBody, PoseSet};
@@ -38,12 +40,21 @@ pub struct PoseOut {
     pub set: PoseSet,
     /// `image`, `image_points` or `measured`.
     pub source: String,
-    /// Number of image points (uploaded, or detected once detection ran).
+    /// Number of image points: uploaded, or found by the dot detector on
+    /// the image (at upload, and again by the last calibration job). 0 for
+    /// an image whose board was not found (`detection_error` says why).
     pub detected_points: usize,
-    /// The image points: as uploaded, or as the last calibration job
-    /// detected them (then with residuals once that job succeeded).
+    /// The image points: as uploaded, or as the detector found them at
+    /// upload, or as the last calibration job measured them (then with the
+    /// perspective-bias-corrected centres as `x`, `y`, the raw ones as
+    /// `raw_x`, `raw_y`, and residuals once that job succeeded).
     #[schema(value_type = Vec<PoseImagePoint>)]
     pub points: Vec<Value>,
+    /// Why the dot detector found no board on this pose's image (at upload,
+    /// or in the last calibration job). The image is kept either way; a
+    /// job leaves such poses out.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub detection_error: Option<String>,
     /// Which job measured `points`, and how well the model fits them;
     /// absent until a calibration job ran its detect stage on the session.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -67,9 +78,19 @@ pub struct PoseOut {
 pub struct PoseImagePoint {
     pub row: u32,
     pub col: u32,
-    /// Dot centre in the image (px): uploaded, or as the detector found it.
+    /// Dot centre in the image (px): uploaded or as the detector found it
+    /// (the raw ellipse centre); after a calibration job measured the pose,
+    /// the centre corrected for perspective bias by the calibrated camera
+    /// model (what the fits use), the raw one then in `raw_x`, `raw_y`.
     pub x: f64,
     pub y: f64,
+    /// The raw centre (px), as detected or uploaded, when `x`, `y` are
+    /// the bias-corrected one (after a calibration job; absent for the
+    /// origin marker, which the fits leave out).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub raw_x: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub raw_y: Option<f64>,
     /// `[dx, dy]` (px) after a successful calibration: the observed centre
     /// (corrected for perspective bias) minus the calibrated model's
     /// projection of the dot. Absent for points the fit leaves out (the
@@ -101,11 +122,17 @@ pub struct PoseList {
 
 impl From<PoseRecord> for PoseOut {
     fn from(p: PoseRecord) -> PoseOut {
-        let detected = p.detection.as_ref().and_then(|d| d["points"].as_array());
+        // The last job's measurement, else the detector's at upload, else
+        // the uploaded points.
+        let detected = p.detection.as_ref().or(p.image_detection.as_ref());
         let points = detected
+            .and_then(|d| d["points"].as_array())
             .or_else(|| p.points.as_array())
             .cloned()
             .unwrap_or_default();
+        let detection_error = detected
+            .and_then(|d| d["error"].as_str())
+            .map(str::to_string);
         let detection = p
             .detection
             .and_then(|d| serde_json::from_value::<PoseDetectionOut>(d).ok());
@@ -125,6 +152,7 @@ impl From<PoseRecord> for PoseOut {
             source: source.into(),
             detected_points: points.len(),
             points,
+            detection_error,
             detection,
             image: p.image,
             measured_position_mm: serde_json::from_value(measured["measured_position_mm"].clone())
@@ -147,10 +175,10 @@ impl From<PoseRecord> for PoseOut {
         (PoseJsonBody = "application/json"),
         (Object = "multipart/form-data"),
     )),
-    responses((status = 201, body = PoseOut),
+    responses((status = 201, body = PoseOut, description = "The stored pose. An image is checked (header against the session camera before any decode), decoded once and searched for the session's target at upload: `detected_points` and `points` show the dots found, `detection_error` why none were; the image is kept either way."),
               (status = 404, body = Problem, content_type = "application/problem+json"),
               (status = 413, body = Problem, content_type = "application/problem+json"),
-              (status = 422, body = Problem, content_type = "application/problem+json")))]
+              (status = 422, body = Problem, content_type = "application/problem+json", description = "A part or field is invalid; for an image, not PNG/JPEG, not the session camera's size, or not decodable (the error names the part).")))]
 async fn add_pose(
     State(state): State<AppState>,
     Path(id): Path<String>,
@@ -178,7 +206,7 @@ async fn add_pose(
         multipart_pose(
             &state,
             multipart,
-            spec.camera.as_ref().map(|c| (c.width, c.height)),
+            &ImageCheck::of(&state, &spec),
             joint_count,
         )
         .await?
@@ -210,13 +238,14 @@ fn json_pose(body: PoseJsonBody) -> NewPose {
         points: serde_json::to_value(body.image_points.unwrap_or_default()).unwrap_or(json!([])),
         measured,
         label: body.label,
+        image_detection: None,
     }
 }
 
 async fn multipart_pose(
     state: &AppState,
     mut multipart: Multipart,
-    camera_size: Option<(u32, u32)>,
+    check: &ImageCheck,
     joint_count: usize,
 ) -> ApiResult<NewPose> {
     let malformed = |e: axum::extract::multipart::MultipartError| {
@@ -257,14 +286,15 @@ async fn multipart_pose(
     let mut c = Checker::default();
     check_joints(&mut c, "joints_deg", &joints, joint_count);
     c.finish()?;
-    let meta = ingest_image(state, image, camera_size, "image").await?;
+    let ingested = ingest_image(state, image, check, "image").await?;
     Ok(NewPose {
         joints_deg: joints,
         set: set.as_str().to_string(),
-        image: Some(meta),
+        image: Some(ingested.meta),
         points: json!([]),
         measured: None,
         label,
+        image_detection: ingested.detection.map(|d| d.to_value()),
     })
 }
 

@@ -1,7 +1,10 @@
 //! Uploads: image ingestion shared by the pose routes, and the streamed
 //! dataset archive `POST /v1/sessions/{id}/dataset`. Bodies are streamed to
 //! a temporary file (never whole in memory) under the configured limits;
-//! images are decoded off the async runtime before they are stored.
+//! images are checked (header first), decoded once and detected off the
+//! async runtime before they are stored.
+
+use std::sync::Arc;
 
 use axum::extract::multipart::Field;
 use axum::extract::{Path, Request, State};
@@ -22,7 +25,8 @@ use super::staged_images::StagedImages;
 use super::AppState;
 use crate::dataset::{DatasetError, DatasetLimits, DatasetReader};
 use crate::domain::{label_from_archive_path, ImageMeta, NewPose, SessionRecord};
-use crate::schema::session::{check_joints, Instrument, SessionBody};
+use crate::imaging::{self, DecodeGate, ImageDetection};
+use crate::schema::session::{check_joints, Instrument, SessionBody, TargetDoc};
 use crate::schema::Checker;
 
 pub fn router() -> OpenApiRouter<AppState> {
@@ -34,6 +38,9 @@ pub struct DatasetOut {
     pub session_id: String,
     pub poses_created: usize,
     pub pose_ids: Vec<String>,
+    /// Dots the detector found on each image at upload, in `pose_ids` order
+    /// (0 where the board was not found; the pose's `detection_error` says why).
+    pub detected_points: Vec<usize>,
 }
 
 pub fn session_spec(session: &SessionRecord) -> ApiResult<SessionBody> {
@@ -72,36 +79,69 @@ pub async fn read_field_limited(
     Ok(buf)
 }
 
-/// Checks an image off the runtime (decodable PNG/JPEG of the camera's size)
-/// and stores it; returns its metadata once it is durable.
+/// An accepted image: its metadata and what the detector found on it.
+pub struct Ingested {
+    pub meta: ImageMeta,
+    /// `None` when the session has no target to look for.
+    pub detection: Option<ImageDetection>,
+}
+
+/// What an upload needs to check and detect an image: the session camera's
+/// size and target, and the process's decode gate.
+#[derive(Clone)]
+pub struct ImageCheck {
+    pub camera_size: Option<(u32, u32)>,
+    pub target: Option<TargetDoc>,
+    pub gate: Arc<DecodeGate>,
+}
+
+impl ImageCheck {
+    pub fn of(state: &AppState, spec: &SessionBody) -> ImageCheck {
+        ImageCheck {
+            camera_size: spec.camera.as_ref().map(|c| (c.width, c.height)),
+            target: spec.target.clone(),
+            gate: state.decode_gate.clone(),
+        }
+    }
+}
+
+/// Checks an image on a blocking thread (header against the camera before
+/// any decode, then one bounded decode under the gate and the dot
+/// detector), and stores it; returns it once it is durable. A board not
+/// found is no error: the image is kept and the reason returned.
 pub async fn ingest_image(
     state: &AppState,
     bytes: Vec<u8>,
-    camera_size: Option<(u32, u32)>,
+    check: &ImageCheck,
     field: &str,
-) -> ApiResult<ImageMeta> {
-    let (meta, bytes) = tokio::task::spawn_blocking(move || {
-        check_and_hash(&bytes, camera_size).map(|meta| (meta, bytes))
+) -> ApiResult<Ingested> {
+    let check = check.clone();
+    let (ingested, bytes) = tokio::task::spawn_blocking(move || {
+        inspect_and_hash(&bytes, &check).map(|ingested| (ingested, bytes))
     })
     .await
     .map_err(ApiError::internal)?
     .map_err(|message| ApiError::invalid(field, message))?;
-    state.store.put_blob(&meta, &bytes).await?;
-    Ok(meta)
+    state.store.put_blob(&ingested.meta, &bytes).await?;
+    Ok(ingested)
 }
 
-fn check_and_hash(bytes: &[u8], camera_size: Option<(u32, u32)>) -> Result<ImageMeta, String> {
-    let (width, height) = crate::pipeline::check_image(bytes, camera_size)?;
+/// Blocking: see [`ingest_image`].
+fn inspect_and_hash(bytes: &[u8], check: &ImageCheck) -> Result<Ingested, String> {
+    let inspected = imaging::inspect(bytes, check.camera_size, check.target.as_ref(), &check.gate)?;
     let content_type = match image::guess_format(bytes) {
         Ok(image::ImageFormat::Jpeg) => "image/jpeg",
         _ => "image/png",
     };
-    Ok(ImageMeta {
-        sha256: hex::encode(Sha256::digest(bytes)),
-        size_bytes: bytes.len() as i64,
-        content_type: content_type.into(),
-        width,
-        height,
+    Ok(Ingested {
+        meta: ImageMeta {
+            sha256: hex::encode(Sha256::digest(bytes)),
+            size_bytes: bytes.len() as i64,
+            content_type: content_type.into(),
+            width: inspected.width,
+            height: inspected.height,
+        },
+        detection: inspected.detection,
     })
 }
 
@@ -121,7 +161,7 @@ impl From<DatasetError> for ApiError {
 #[utoipa::path(post, path = "/v1/sessions/{id}/dataset", tag = "poses",
     params(("id" = String, Path, description = "Session id")),
     request_body(content = Vec<u8>, content_type = "application/zip"),
-    responses((status = 201, body = DatasetOut),
+    responses((status = 201, body = DatasetOut, description = "All poses stored, each image searched for the session's target at upload (`detected_points`)."),
               (status = 400, body = Problem, content_type = "application/problem+json"),
               (status = 404, body = Problem, content_type = "application/problem+json"),
               (status = 413, body = Problem, content_type = "application/problem+json"),
@@ -175,19 +215,20 @@ async fn upload_dataset(
         );
     }
     c.finish()?;
-    let camera_size = spec.camera.as_ref().map(|k| (k.width, k.height));
+    let check = ImageCheck::of(&state, &spec);
     let mut staged = StagedImages::new(state.store.clone());
     let mut poses = Vec::with_capacity(reader.manifest.len());
     for i in 0..reader.manifest.len() {
         let doc = reader.manifest[i].clone();
         let field = format!("poses.json[{i}].image");
+        let check = check.clone();
         let (back, result) = tokio::task::spawn_blocking(move || {
             let result = reader
                 .read_image(&doc.image)
                 .map_err(ApiError::from)
                 .and_then(|bytes| {
-                    check_and_hash(&bytes, camera_size)
-                        .map(|meta| (meta, bytes))
+                    inspect_and_hash(&bytes, &check)
+                        .map(|ingested| (ingested, bytes))
                         .map_err(|m| ApiError::invalid(field, m))
                 });
             (reader, result)
@@ -195,22 +236,23 @@ async fn upload_dataset(
         .await
         .map_err(ApiError::internal)?;
         reader = back;
-        let (meta, bytes) = match result {
+        let (ingested, bytes) = match result {
             Ok(ok) => ok,
             Err(e) => {
                 staged.discard().await;
                 return Err(e);
             }
         };
-        state.store.put_blob(&meta, &bytes).await?;
-        staged.stored(&meta.sha256);
+        state.store.put_blob(&ingested.meta, &bytes).await?;
+        staged.stored(&ingested.meta.sha256);
         poses.push(NewPose {
             joints_deg: reader.manifest[i].joints_deg.clone(),
             set: reader.manifest[i].set.as_str().to_string(),
-            image: Some(meta),
+            image: Some(ingested.meta),
             points: serde_json::json!([]),
             measured: None,
             label: label_from_archive_path(&reader.manifest[i].image),
+            image_detection: ingested.detection.map(|d| d.to_value()),
         });
     }
     let stored = match state.store.add_poses(&session.id, &poses).await {
@@ -227,9 +269,20 @@ async fn upload_dataset(
         Json(DatasetOut {
             session_id: session.id,
             poses_created: stored.len(),
+            detected_points: stored
+                .iter()
+                .map(|p| found_points(p.image_detection.as_ref()).len())
+                .collect(),
             pose_ids: stored.into_iter().map(|p| p.id).collect(),
         }),
     ))
+}
+
+/// The points of a stored `image_detection` document (none when absent).
+pub fn found_points(doc: Option<&serde_json::Value>) -> Vec<serde_json::Value> {
+    doc.and_then(|d| d["points"].as_array())
+        .cloned()
+        .unwrap_or_default()
 }
 
 /// Streams the request body into a temporary file, stopping at `max_archive_bytes`.

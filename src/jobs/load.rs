@@ -1,10 +1,12 @@
 //! Loads a claimed job's inputs from the store into a [`pipeline::Input`].
 
+use std::sync::Arc;
 use std::time::Duration;
 
 use crate::camera_reuse::{self, ReuseError};
 use crate::domain::{label_or_number, ClaimedJob};
-use crate::pipeline::{Input, PoseInput};
+use crate::imaging::{DecodeGate, ImageDetection};
+use crate::pipeline::{ImageSource, Input, PoseImage, PoseInput};
 use crate::schema::job::CalibrationOptions;
 use crate::schema::robot::KinematicsDoc;
 use crate::schema::session::{ImagePointDoc, PoseSet, SessionBody};
@@ -27,6 +29,7 @@ pub async fn load_input(
     store: &DynStore,
     job: &ClaimedJob,
     test_stage_delay: Duration,
+    gate: Arc<DecodeGate>,
 ) -> Result<Input, LoadError> {
     let session = store
         .get_session(&job.session_id)
@@ -60,12 +63,17 @@ pub async fn load_input(
             .list_poses(&session.id, PAGE, cursor.as_deref())
             .await?;
         for p in page.items {
-            let image = match &p.image {
-                Some(meta) => Some(store.get_blob(&meta.sha256).await?.ok_or_else(|| {
-                    LoadError::Gone(format!("image {} of pose {} missing", meta.sha256, p.id))
-                })?),
-                None => None,
-            };
+            // A reference only: the detect stage reuses the stored detection,
+            // or reads the image itself when it has none.
+            let image = p.image.as_ref().map(|meta| PoseImage {
+                key: meta.sha256.clone(),
+                width: meta.width,
+                height: meta.height,
+                detection: p
+                    .image_detection
+                    .clone()
+                    .and_then(|d| serde_json::from_value::<ImageDetection>(d).ok()),
+            });
             let image_points: Vec<ImagePointDoc> =
                 serde_json::from_value(p.points).map_err(|e| bad("points", e))?;
             let measured = p.measured.unwrap_or_default();
@@ -101,7 +109,22 @@ pub async fn load_input(
         poses,
         options,
         fixed_camera,
+        images: store_images(store, gate),
         test_stage_delay,
         validate_only: false,
     })
+}
+
+/// Reads images from the store's blobs, from the job's blocking thread.
+fn store_images(store: &DynStore, gate: Arc<DecodeGate>) -> ImageSource {
+    let (store, runtime) = (store.clone(), tokio::runtime::Handle::current());
+    ImageSource {
+        read: Arc::new(move |sha256: &str| {
+            runtime
+                .block_on(store.get_blob(sha256))
+                .map_err(|e| format!("reading image {sha256}: {e}"))?
+                .ok_or_else(|| format!("image {sha256} is missing from the store"))
+        }),
+        gate,
+    }
 }

@@ -15,6 +15,7 @@ use tokio::time::Instant;
 use super::load::{load_input, LoadError};
 use super::queue::{claim_next, Lease, QueuePolicy};
 use crate::domain::{JobOutcome, LeaseStatus, PoseDetection};
+use crate::imaging::DecodeGate;
 use crate::pipeline::{self, PipelineError, Stage};
 use crate::store::DynStore;
 
@@ -30,6 +31,8 @@ pub struct PoolConfig {
     pub test_parameter_sets: bool,
     /// Test hook (`--test-validate-only`): jobs run the validation stage only.
     pub test_validate_only: bool,
+    /// The process's image decode gate (shared with upload detection).
+    pub decode_gate: Arc<DecodeGate>,
 }
 
 pub struct WorkerPool {
@@ -120,7 +123,14 @@ impl Worker {
         let _enter = span.enter();
         tracing::info!("job claimed");
         drop(_enter);
-        let input = match load_input(&self.store, &lease.job, self.config.test_stage_delay).await {
+        let input = match load_input(
+            &self.store,
+            &lease.job,
+            self.config.test_stage_delay,
+            self.config.decode_gate.clone(),
+        )
+        .await
+        {
             Ok(mut input) => {
                 input.validate_only = self.config.test_validate_only;
                 input

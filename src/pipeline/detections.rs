@@ -27,8 +27,15 @@ use crate::domain::PoseDetection;
 struct PointDoc {
     row: u32,
     col: u32,
+    /// The centre the fits use: after a successful camera stage corrected
+    /// for perspective bias, else as detected (or uploaded).
     x: f64,
     y: f64,
+    /// The raw centre, as detected or uploaded, when `x`, `y` are corrected.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    raw_x: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    raw_y: Option<f64>,
     /// `[dx, dy]`, observed minus predicted (px); absent for points the
     /// fits leave out (the origin marker).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -65,15 +72,24 @@ fn plain(p: &GridPoint) -> PointDoc {
         col: p.col,
         x: p.x,
         y: p.y,
+        raw_x: None,
+        raw_y: None,
         residual_px: None,
         outlier: false,
     }
 }
 
-fn stored(pose: &PoseInput, doc: &PoseDoc) -> PoseDetection {
+fn stored(pose: &PoseInput, doc: &PoseDoc, measured: &Measured, i: usize) -> PoseDetection {
+    let fresh = measured.detected_now.get(i).copied().unwrap_or(false);
     PoseDetection {
         pose_id: pose.id.clone(),
         detection: serde_json::to_value(doc).unwrap_or_default(),
+        image_detection: measured
+            .detections
+            .get(i)
+            .and_then(Option::as_ref)
+            .filter(|_| fresh)
+            .map(|d| d.to_value()),
     }
 }
 
@@ -82,14 +98,15 @@ pub fn detected(poses: &[PoseInput], measured: &Measured) -> Vec<PoseDetection> 
     poses
         .iter()
         .zip(&measured.points)
-        .map(|(pose, points)| {
+        .enumerate()
+        .map(|(i, (pose, points))| {
             let doc = PoseDoc {
                 source: source(pose),
                 points: points.iter().flatten().map(plain).collect(),
                 error: points.is_none().then(|| failure(measured, &pose.id)),
                 residual_rms_px: None,
             };
-            stored(pose, &doc)
+            stored(pose, &doc, measured, i)
         })
         .collect()
 }
@@ -102,9 +119,10 @@ fn failure(measured: &Measured, pose_id: &str) -> String {
         .map_or_else(|| "no dots detected".to_string(), |f| f.reason.clone())
 }
 
-/// The final points: [`detected`] plus, when the job identified full poses
-/// (`full_pose`), every point's residual under the calibrated `model` and
-/// `intrinsics`.
+/// The final points: [`detected`] with the camera stage's bias-corrected
+/// centres as `x`, `y` (the raw ones kept as `raw_x`, `raw_y`) plus, when
+/// the job identified full poses (`full_pose`), every point's residual
+/// under the calibrated `model` and `intrinsics`.
 pub fn with_residuals(
     poses: &[PoseInput],
     measured: &Measured,
@@ -114,14 +132,12 @@ pub fn with_residuals(
     full_pose: bool,
 ) -> Vec<PoseDetection> {
     let mut out = detected(poses, measured);
-    if !full_pose {
-        return out;
-    }
     for (view, &i) in step.view_pose.iter().enumerate() {
         let pose = &poses[i];
         let joints_rad: Vec<f64> = pose.joints_deg.iter().map(|d| d.to_radians()).collect();
-        let Ok(target_to_camera) = model.world_to_tool(&joints_rad) else {
-            continue;
+        let target_to_camera = match model.world_to_tool(&joints_rad) {
+            Ok(t) if full_pose => Some(t),
+            _ => None,
         };
         let outliers: Vec<(u32, u32)> = step
             .calibration
@@ -130,14 +146,30 @@ pub fn with_residuals(
             .filter(|o| o.view == view)
             .map(|o| (o.row, o.col))
             .collect();
-        let residuals = residuals_of(step, view, &target_to_camera.inverse(), intrinsics);
-        let points = measured.points[i].iter().flatten().map(|p| PointDoc {
-            residual_px: residuals
-                .iter()
-                .find(|(grid, _)| *grid == (p.row, p.col))
-                .map(|(_, r)| *r),
-            outlier: outliers.contains(&(p.row, p.col)),
-            ..plain(p)
+        let residuals = target_to_camera
+            .map(|t| residuals_of(step, view, &t.inverse(), intrinsics))
+            .unwrap_or_default();
+        // Paper mode fits the raw centres: nothing corrected to serve.
+        let corrected = if step.calibration.paper_mode {
+            Vec::new()
+        } else {
+            corrected_of(step, view)
+        };
+        let points = measured.points[i].iter().flatten().map(|p| {
+            let at = (p.row, p.col);
+            let fitted = corrected.iter().find(|(grid, _)| *grid == at);
+            PointDoc {
+                residual_px: residuals
+                    .iter()
+                    .find(|(grid, _)| *grid == at)
+                    .map(|(_, r)| *r),
+                outlier: outliers.contains(&at),
+                x: fitted.map_or(p.x, |(_, c)| c[0]),
+                y: fitted.map_or(p.y, |(_, c)| c[1]),
+                raw_x: fitted.map(|_| p.x),
+                raw_y: fitted.map(|_| p.y),
+                ..plain(p)
+            }
         });
         let points: Vec<PointDoc> = points.collect();
         let used: Vec<[f64; 2]> = points
@@ -153,9 +185,19 @@ pub fn with_residuals(
             error: None,
             residual_rms_px: (!used.is_empty()).then_some(rms),
         };
-        out[i] = stored(pose, &doc);
+        out[i] = stored(pose, &doc, measured, i);
     }
     out
+}
+
+/// `((row, col), [x, y])`: the bias-corrected centre of every dot the
+/// camera stage used in `view` (the origin marker is not among them).
+fn corrected_of(step: &CameraStep, view: usize) -> Vec<((u32, u32), [f64; 2])> {
+    step.grid[view]
+        .iter()
+        .zip(&step.observations[view])
+        .map(|(&grid, (_, px))| (grid, [px.x, px.y]))
+        .collect()
 }
 
 /// `((row, col), [dx, dy])` of every dot the camera stage used in `view`.

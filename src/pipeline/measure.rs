@@ -1,20 +1,26 @@
 //! Stage "detect": every camera pose's image points, from its image (the
 //! dot detector, method.md §1) or as uploaded (`image_points`).
 //!
-//! Images are decoded and detected on scoped threads, one per core, so a
-//! lone job uses the machine; the worker pool bounds how many jobs run.
-//! The detector's own perspective-bias estimate is switched off: the camera
-//! stage corrects the raw ellipse centres from the calibrated model, which
-//! is more exact (method.md §4 **beyond**), and correcting twice would bias.
+//! An image's detector outcome is normally stored at upload and reused
+//! here, the image never read. Images without one (uploaded before uploads
+//! detected) are read, decoded and detected on scoped threads, one per
+//! core, each dropped before the next is read: a job holds no images, so
+//! its memory does not grow with the campaign. Every decode holds a slot
+//! of the process's decode gate. The raw ellipse centres are kept: the
+//! camera stage corrects them from the calibrated model (method.md §4
+//! **beyond**).
 
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Mutex;
 
-use robocal_calib::vision::{self, DecodeLimits, DetectOptions, TargetSpec};
-
-use super::{PipelineError, PoseInput, Stage};
+use super::{ImageSource, PipelineError, PoseImage, PoseInput, Stage};
+use crate::imaging::{self, ImageDetection};
 use crate::report::DetectionFailure;
-use crate::schema::session::TargetDoc;
+use crate::schema::session::{ImagePointDoc, TargetDoc};
+
+/// A pose's outcome: `None` for uploaded image points, else the detector's
+/// and whether it ran in this job.
+type Outcome = Option<(ImageDetection, bool)>;
 
 /// How often the detection stage reports progress.
 const PROGRESS_INTERVAL: std::time::Duration = std::time::Duration::from_millis(50);
@@ -36,42 +42,42 @@ pub struct Measured {
     pub failures: Vec<DetectionFailure>,
     /// Whether the target's ordering is unique (it has an origin marker).
     pub ordering_unique: bool,
+    /// Per pose, the detector's outcome on its image (`None` for poses of
+    /// uploaded image points).
+    pub detections: Vec<Option<ImageDetection>>,
+    /// Per pose, whether this job ran the detector (no stored outcome):
+    /// the outcome is then stored on the pose for later jobs.
+    pub detected_now: Vec<bool>,
 }
 
-pub fn target_spec(doc: &TargetDoc) -> TargetSpec {
-    TargetSpec {
-        rows: doc.rows as usize,
-        cols: doc.cols as usize,
-        pitch_mm: doc.pitch_mm,
-        dot_diameter_mm: doc.dot_diameter_mm,
-        origin_marker_diameter_mm: Some(doc.origin_marker_diameter_mm),
+/// The detector's outcome on one pose's image: the stored one, or (for
+/// images never detected) read, decoded under the gate, detected and
+/// dropped here. The second value says whether it was detected now.
+fn detect_pose(
+    image: &PoseImage,
+    target: &TargetDoc,
+    images: &ImageSource,
+) -> (ImageDetection, bool) {
+    if let Some(stored) = &image.detection {
+        return (stored.clone(), false);
     }
-}
-
-/// One image's dots, or why there are none.
-type DetectOutcome = Result<Vec<GridPoint>, String>;
-
-fn detect_one(bytes: &[u8], target: &TargetSpec) -> DetectOutcome {
-    let image = vision::decode_image(bytes, &DecodeLimits::default()).map_err(|e| e.to_string())?;
-    let options = DetectOptions {
-        correct_perspective_bias: false,
-        ..DetectOptions::default()
+    let bytes = match images.read.as_ref()(&image.key) {
+        Ok(bytes) => bytes,
+        // Not the image's fault (a store error): not stored on the pose.
+        Err(e) => return (ImageDetection::failed(e, "read", false), false),
     };
-    let detection = vision::detect_with(&image, target, &options).map_err(|e| e.to_string())?;
-    Ok(detection
-        .dots
-        .iter()
-        .map(|d| GridPoint {
-            row: d.row as u32,
-            col: d.col as u32,
-            x: d.ellipse.cx,
-            y: d.ellipse.cy,
-        })
-        .collect())
+    let found = Ok(bytes).and_then(|bytes| {
+        let permit = images.gate.acquire();
+        let gray = imaging::decode_checked(&bytes, Some((image.width, image.height)), &permit)
+            .map_err(|e| ImageDetection::failed(e, "decode", false))?;
+        drop(bytes);
+        Ok(imaging::detect(&gray, target))
+    });
+    (found.unwrap_or_else(|failed| failed), true)
 }
 
-fn uploaded_points(pose: &PoseInput) -> Vec<GridPoint> {
-    pose.image_points
+fn grid_points(points: &[ImagePointDoc]) -> Vec<GridPoint> {
+    points
         .iter()
         .map(|p| GridPoint {
             row: p.row,
@@ -86,16 +92,16 @@ fn uploaded_points(pose: &PoseInput) -> Vec<GridPoint> {
 pub fn measure(
     poses: &[PoseInput],
     target: &TargetDoc,
+    images: &ImageSource,
     progress: &dyn Fn(&str, f64),
     cancel: &AtomicBool,
 ) -> Result<Measured, PipelineError> {
-    let spec = target_spec(target);
+    let spec = imaging::target_spec(target);
     spec.validate().map_err(|e| PipelineError::Numerical {
         stage: Stage::Detect.as_str(),
         message: e.to_string(),
     })?;
-    let results: Vec<Mutex<Option<DetectOutcome>>> =
-        poses.iter().map(|_| Mutex::new(None)).collect();
+    let results: Vec<Mutex<Option<Outcome>>> = poses.iter().map(|_| Mutex::new(None)).collect();
     let next = AtomicUsize::new(0);
     let done = AtomicUsize::new(0);
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
@@ -107,10 +113,10 @@ pub fn measure(
                     break;
                 }
                 let pose = &poses[i];
-                let outcome = match &pose.image {
-                    Some(bytes) => detect_one(bytes, &spec),
-                    None => Ok(uploaded_points(pose)),
-                };
+                let outcome = pose
+                    .image
+                    .as_ref()
+                    .map(|image| detect_pose(image, target, images));
                 *results[i].lock().expect("no panics while held") = Some(outcome);
                 done.fetch_add(1, Ordering::Relaxed);
             });
@@ -140,18 +146,121 @@ pub fn measure(
         ..Measured::default()
     };
     for (pose, slot) in poses.iter().zip(results) {
-        match slot.into_inner().expect("no panics while held") {
-            Some(Ok(points)) => measured.points.push(Some(points)),
-            Some(Err(reason)) => {
+        let outcome = slot
+            .into_inner()
+            .expect("no panics while held")
+            .ok_or(PipelineError::Cancelled)?;
+        let Some((found, now)) = outcome else {
+            measured.points.push(Some(grid_points(&pose.image_points)));
+            measured.detections.push(None);
+            measured.detected_now.push(false);
+            continue;
+        };
+        match &found.error {
+            None => measured.points.push(Some(grid_points(&found.points))),
+            Some(reason) => {
                 measured.failures.push(DetectionFailure {
                     pose_id: pose.id.clone(),
                     label: pose.label.clone(),
-                    reason,
+                    reason: reason.clone(),
                 });
                 measured.points.push(None);
             }
-            None => return Err(PipelineError::Cancelled),
         }
+        measured.detections.push(Some(found));
+        measured.detected_now.push(now);
     }
     Ok(measured)
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+    use std::sync::Arc;
+
+    use super::*;
+    use crate::imaging::DecodeGate;
+    use crate::schema::session::PoseSet;
+
+    fn target() -> TargetDoc {
+        serde_json::from_value(serde_json::json!({
+            "rows": 7, "cols": 9, "pitch_mm": 20.0, "dot_diameter_mm": 8.0,
+            "origin_marker_diameter_mm": 12.0
+        }))
+        .unwrap()
+    }
+
+    fn pose(id: &str, detection: Option<ImageDetection>) -> PoseInput {
+        PoseInput {
+            id: id.into(),
+            label: id.into(),
+            joints_deg: vec![0.0; 6],
+            set: PoseSet::Cal,
+            image: Some(PoseImage {
+                key: id.into(),
+                width: 64,
+                height: 48,
+                detection,
+            }),
+            image_points: vec![],
+            measured_position_mm: None,
+            measured_pose: None,
+        }
+    }
+
+    /// Stored detections are reused (the image is never read); an image
+    /// without one is read once, its outcome marked for storing.
+    #[test]
+    fn stored_detections_are_reused_and_others_read_once() {
+        let stored = ImageDetection {
+            points: vec![ImagePointDoc {
+                row: 1,
+                col: 2,
+                x: 3.5,
+                y: 4.5,
+            }],
+            error: None,
+            error_kind: None,
+            target_missing: false,
+        };
+        let reads = Arc::new(AtomicUsize::new(0));
+        let counted = reads.clone();
+        let images = ImageSource {
+            read: Arc::new(move |key: &str| {
+                counted.fetch_add(1, Ordering::SeqCst);
+                assert_eq!(key, "fresh", "a stored detection's image was read");
+                Ok(b"not an image".to_vec())
+            }),
+            gate: Arc::new(DecodeGate::new(1)),
+        };
+        let poses = [pose("kept", Some(stored.clone())), pose("fresh", None)];
+        let m = measure(
+            &poses,
+            &target(),
+            &images,
+            &|_, _| {},
+            &AtomicBool::new(false),
+        )
+        .unwrap();
+        assert_eq!(reads.load(Ordering::SeqCst), 1);
+        assert_eq!(m.detected_now, [false, true]);
+        assert_eq!(m.detections[0].as_ref(), Some(&stored));
+        assert_eq!(
+            m.points[0].as_deref(),
+            Some(
+                &[GridPoint {
+                    row: 1,
+                    col: 2,
+                    x: 3.5,
+                    y: 4.5
+                }][..]
+            )
+        );
+        assert_eq!(m.points[1], None);
+        assert_eq!(m.failures.len(), 1);
+        assert_eq!(
+            m.detections[1].as_ref().unwrap().error_kind.as_deref(),
+            Some("decode")
+        );
+    }
 }

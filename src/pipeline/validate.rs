@@ -1,13 +1,12 @@
 //! Stage "validate": enough poses, joint vectors matching the robot, images
-//! decodable at the session camera's size, before any numerics run.
+//! of the session camera's size, before any numerics run.
 
-use std::io::Cursor;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use serde_json::json;
 
-use super::{Input, PipelineError, Stage, MAX_DECODE_ALLOC_BYTES, MIN_CALIBRATION_POSES};
+use super::{Input, PipelineError, Stage, MIN_CALIBRATION_POSES};
 use crate::schema::job::Validation;
 use crate::schema::session::{Instrument, PoseSet};
 use crate::schema::FieldError;
@@ -60,9 +59,20 @@ pub fn validate(
         }
         match input.session.instrument {
             Instrument::Camera => match &pose.image {
-                Some(bytes) => {
-                    if let Err(message) = check_image(bytes, camera.map(|c| (c.width, c.height))) {
-                        errors.push(FieldError::new(field("image"), message));
+                // Decodability was proven at upload (or is the detect
+                // stage's to find out): only the stored size is checked, no
+                // image is read here.
+                Some(image) => {
+                    if let Some(c) =
+                        camera.filter(|c| (c.width, c.height) != (image.width, image.height))
+                    {
+                        errors.push(FieldError::new(
+                            field("image"),
+                            format!(
+                                "image is {}x{}, the session camera is {}x{}",
+                                image.width, image.height, c.width, c.height
+                            ),
+                        ));
                     }
                 }
                 None if pose.image_points.is_empty() => errors.push(FieldError::new(
@@ -103,31 +113,4 @@ fn sleep_cancellable(total: Duration, cancel: &AtomicBool) -> Result<(), Pipelin
         slept += step;
     }
     Ok(())
-}
-
-/// Decodes an image (PNG or JPEG only, bounded memory) and checks its size
-/// against the session camera's. Returns `(width, height)`.
-pub fn check_image(bytes: &[u8], expected: Option<(u32, u32)>) -> Result<(u32, u32), String> {
-    let format = image::guess_format(bytes).map_err(|_| "not a PNG or JPEG image".to_string())?;
-    if !matches!(format, image::ImageFormat::Png | image::ImageFormat::Jpeg) {
-        return Err(format!(
-            "{format:?} images are not accepted; send PNG or JPEG"
-        ));
-    }
-    let mut reader = image::ImageReader::with_format(Cursor::new(bytes), format);
-    let mut limits = image::Limits::default();
-    limits.max_alloc = Some(MAX_DECODE_ALLOC_BYTES);
-    limits.max_image_width = Some(crate::schema::session::MAX_IMAGE_SIDE);
-    limits.max_image_height = Some(crate::schema::session::MAX_IMAGE_SIDE);
-    reader.limits(limits);
-    let img = reader
-        .decode()
-        .map_err(|e| format!("cannot decode image: {e}"))?;
-    let (w, h) = (img.width(), img.height());
-    if let Some((ew, eh)) = expected {
-        if (w, h) != (ew, eh) {
-            return Err(format!("image is {w}x{h}, the session camera is {ew}x{eh}"));
-        }
-    }
-    Ok((w, h))
 }

@@ -102,6 +102,7 @@ pub fn pose(row: &impl Columns) -> StoreResult<PoseRecord> {
         measured: opt_json(row.opt_str("measured"))?,
         label: row.opt_string("label"),
         detection: opt_json(row.opt_str("detection"))?,
+        image_detection: opt_json(row.opt_str("image_detection"))?,
         created_at: row.string("created_at"),
     })
 }

@@ -140,6 +140,7 @@ fn detection(pose_id: &str, job: &str, x: f64) -> PoseDetection {
         pose_id: pose_id.to_string(),
         detection: json!({"job_id": job, "source": "image_points",
             "points": [{"row": 0, "col": 0, "x": x, "y": 2.0}]}),
+        image_detection: None,
     }
 }
 
@@ -193,17 +194,23 @@ async fn detections_are_written_whole_and_only_by_the_lease_holder() {
 
     // The holder writes every pose; a second write replaces the first
     // whole: a pose it does not list shows no stale points.
-    let all: Vec<PoseDetection> = ids.iter().map(|id| detection(id, &job.id, 1.0)).collect();
+    // A pose the job detected first keeps the detector's outcome as its
+    // image_detection (issue 12), never overwritten by a later job.
+    let first_seen = json!({"points": [], "error": "first"});
+    let mut all: Vec<PoseDetection> = ids.iter().map(|id| detection(id, &job.id, 1.0)).collect();
+    all[0].image_detection = Some(first_seen.clone());
     assert_eq!(
         s.record_detections(&job.id, "W", &all).await.unwrap(),
         LeaseStatus::Held
     );
     let p = s.get_pose(&session, &ids[2]).await.unwrap().unwrap();
     assert_eq!(p.detection.unwrap()["points"][0]["x"], 1.0);
-    let two = [
+    assert_eq!(p.image_detection, None);
+    let mut two = [
         detection(&ids[0], &job.id, 5.0),
         detection(&ids[1], &job.id, 6.0),
     ];
+    two[0].image_detection = Some(json!({"points": [], "error": "second"}));
     assert_eq!(
         s.record_detections(&job.id, "W", &two).await.unwrap(),
         LeaseStatus::Held
@@ -219,6 +226,7 @@ async fn detections_are_written_whole_and_only_by_the_lease_holder() {
         })
         .collect();
     assert_eq!(xs, vec![Some(5.0), Some(6.0), None]);
+    assert_eq!(page.items[0].image_detection, Some(first_seen));
     // The uploaded points stay as uploaded.
     assert_eq!(page.items[0].points, uploaded);
 

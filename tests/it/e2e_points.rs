@@ -64,8 +64,25 @@ async fn poses_of(app: &TestApp, session: &str) -> Vec<Value> {
     list["items"].as_array().unwrap().clone()
 }
 
-/// `(row, col) -> (x, y, residual)` of a served pose.
-type Points = BTreeMap<(u64, u64), (f64, f64, Option<[f64; 2]>)>;
+/// One served point: `x`, `y`, the raw centre (`raw_x`, `raw_y`, when
+/// `x`, `y` are bias-corrected) and the residual.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Served {
+    x: f64,
+    y: f64,
+    raw: Option<(f64, f64)>,
+    residual: Option<[f64; 2]>,
+}
+
+impl Served {
+    /// The centre as detected: the same for every job on one image.
+    fn detected(&self) -> (f64, f64) {
+        self.raw.unwrap_or((self.x, self.y))
+    }
+}
+
+/// `(row, col) -> point` of a served pose.
+type Points = BTreeMap<(u64, u64), Served>;
 
 fn points_of(pose: &Value) -> Points {
     pose["points"]
@@ -73,12 +90,20 @@ fn points_of(pose: &Value) -> Points {
         .unwrap()
         .iter()
         .map(|p| {
-            let r = p
+            let residual = p
                 .get("residual_px")
                 .map(|r| [r[0].as_f64().unwrap(), r[1].as_f64().unwrap()]);
+            let raw = p
+                .get("raw_x")
+                .map(|x| (x.as_f64().unwrap(), p["raw_y"].as_f64().unwrap()));
             (
                 (p["row"].as_u64().unwrap(), p["col"].as_u64().unwrap()),
-                (p["x"].as_f64().unwrap(), p["y"].as_f64().unwrap(), r),
+                Served {
+                    x: p["x"].as_f64().unwrap(),
+                    y: p["y"].as_f64().unwrap(),
+                    raw,
+                    residual,
+                },
             )
         })
         .collect()
@@ -92,8 +117,11 @@ fn check_points(
     truth: &Truth,
     pitch_mm: f64,
     max_rms_px: f64,
+    corrected: bool,
 ) -> Vec<Points> {
     let mut squares = (0.0, 0usize);
+    // Squared distances to the true projections: served x, y and raw.
+    let (mut served_sq, mut raw_sq, mut compared) = (0.0, 0.0, 0usize);
     let mut out = Vec::new();
     for (i, pose) in poses.iter().enumerate() {
         assert_eq!(pose["source"], "image");
@@ -106,10 +134,23 @@ fn check_points(
         let camera = pose_from_matrix_rows(&truth.target_to_camera[i])
             .unwrap()
             .inverse();
-        for (&(row, col), &(x, y, residual)) in &points {
+        for (&(row, col), point) in &points {
+            let (x, y, residual) = (point.x, point.y, point.residual);
             let dot = Point3::new(col as f64 * pitch_mm, row as f64 * pitch_mm, 0.0);
             let truth_px = truth.intrinsics.project(&(camera * dot)).unwrap();
             let error = ((x - truth_px.x).powi(2) + (y - truth_px.y).powi(2)).sqrt();
+            // Corrected centres (all but the origin marker, which the fits
+            // leave out) come with the raw ones.
+            assert_eq!(
+                point.raw.is_some(),
+                corrected && (row, col) != (0, 0),
+                "pose {i} dot ({row},{col})"
+            );
+            if let Some((rx, ry)) = point.raw {
+                served_sq += error * error;
+                raw_sq += (rx - truth_px.x).powi(2) + (ry - truth_px.y).powi(2);
+                compared += 1;
+            }
             assert!(
                 error < MAX_DETECTION_ERROR_PX,
                 "pose {i} dot ({row},{col}): detected ({x}, {y}), true ({}, {})",
@@ -129,6 +170,14 @@ fn check_points(
     }
     let rms = (squares.0 / squares.1 as f64).sqrt();
     eprintln!("job {job}: residual rms {rms} px");
+    if corrected {
+        // Issue 12: the served x, y are the bias-corrected centres, closer
+        // to the truth than the raw ellipse centres.
+        let served = (served_sq / compared as f64).sqrt();
+        let raw = (raw_sq / compared as f64).sqrt();
+        eprintln!("job {job}: served centres {served} px from the truth, raw {raw} px");
+        assert!(served < raw, "served {served} px, raw {raw} px");
+    }
     assert!(rms < max_rms_px, "residual rms {rms} px");
     assert_eq!(squares.1, poses.len() * (DOTS - 1));
     out
@@ -147,9 +196,35 @@ async fn failed_job_leaves_detected_points(
         .create_session("PUMA-PTS", session_body)
         .await
         .unwrap();
-    for (i, entry) in entries.iter().take(TOO_FEW_POSES).enumerate() {
+    upload_images(app, &session, dir, entries, TOO_FEW_POSES).await;
+    let job = client
+        .start_calibration(&session, &json!({}))
+        .await
+        .unwrap();
+    let done = app.wait_job(&job, WAIT, is_finished).await;
+    assert_eq!(done["state"], "failed", "{done}");
+    for pose in poses_of(app, &session).await {
+        assert_eq!(pose["detection"]["job_id"], job.as_str(), "{pose}");
+        assert!(pose["detection"].get("residual_rms_px").is_none());
+        let points = points_of(&pose);
+        assert_eq!(points.len(), DOTS);
+        assert!(points.values().all(|p| p.residual.is_none()));
+    }
+}
+
+/// Uploads `count` of the campaign's images to `session` (3 cal, the rest
+/// val), returning each 201 body.
+async fn upload_images(
+    app: &TestApp,
+    session: &str,
+    dir: &std::path::Path,
+    entries: &[PoseEntry],
+    count: usize,
+) -> Vec<Value> {
+    let mut out = Vec::new();
+    for (i, entry) in entries.iter().take(count).enumerate() {
         let bytes = std::fs::read(dir.join(&entry.image)).unwrap();
-        let set = if i + 1 < TOO_FEW_POSES { "cal" } else { "val" };
+        let set = if i + 1 < count { "cal" } else { "val" };
         let form = Form::new()
             .text(
                 "joints_deg",
@@ -171,6 +246,29 @@ async fn failed_job_leaves_detected_points(
             .await
             .unwrap();
         assert_eq!(r.status(), 201);
+        out.push(r.json().await.unwrap());
+    }
+    out
+}
+
+/// Issue 12: a session whose target (7x9) is not the board in the images
+/// (9x9): each upload is kept but says the board was not found, and the
+/// failed job names that cause for the session, not a symptom on one pose.
+async fn wrong_target_is_named_at_upload_and_for_the_session(
+    app: &TestApp,
+    client: &Client,
+    dir: &std::path::Path,
+    entries: &[PoseEntry],
+    session_body: &Value,
+) {
+    let mut body = session_body.clone();
+    body["target"]["rows"] = json!(7);
+    let session = client.create_session("PUMA-PTS", &body).await.unwrap();
+    let created = upload_images(app, &session, dir, entries, TOO_FEW_POSES).await;
+    for pose in &created {
+        assert_eq!(pose["detected_points"], 0, "{pose}");
+        assert!(pose["points"].as_array().unwrap().is_empty());
+        assert!(pose["detection_error"].is_string(), "{pose}");
     }
     let job = client
         .start_calibration(&session, &json!({}))
@@ -178,13 +276,12 @@ async fn failed_job_leaves_detected_points(
         .unwrap();
     let done = app.wait_job(&job, WAIT, is_finished).await;
     assert_eq!(done["state"], "failed", "{done}");
-    for pose in poses_of(app, &session).await {
-        assert_eq!(pose["detection"]["job_id"], job.as_str(), "{pose}");
-        assert!(pose["detection"].get("residual_rms_px").is_none());
-        let points = points_of(&pose);
-        assert_eq!(points.len(), DOTS);
-        assert!(points.values().all(|(_, _, r)| r.is_none()));
-    }
+    let error = done["error"].as_str().unwrap();
+    let expected = format!(
+        "no image shows the session's 7x9 target: {TOO_FEW_POSES} of {TOO_FEW_POSES} images"
+    );
+    eprintln!("wrong target: {error}");
+    assert!(error.contains(&expected), "{error}");
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -204,23 +301,35 @@ async fn detected_points_residuals_and_a_reused_camera_through_the_service() {
         .await
         .unwrap();
 
-    // Before any job: no points on an image pose.
+    // Before any job: the dots found at upload (issue 12), raw centres.
     let before = poses_of(&app, &session).await;
     assert_eq!(before.len(), entries.len());
-    assert_eq!(before[0]["detected_points"], 0);
-    assert!(before[0].get("detection").is_none());
+    for pose in &before {
+        assert_eq!(pose["detected_points"], DOTS, "{pose}");
+        assert!(pose.get("detection").is_none());
+        assert!(pose.get("detection_error").is_none());
+        assert!(points_of(pose).values().all(|p| p.raw.is_none()));
+    }
 
     let file: CampaignFile =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("campaign.json")).unwrap())
             .unwrap();
     let session_body = serde_json::to_value(&file.session).unwrap();
     failed_job_leaves_detected_points(&app, &client, dir.path(), &entries, &session_body).await;
+    wrong_target_is_named_at_upload_and_for_the_session(
+        &app,
+        &client,
+        dir.path(),
+        &entries,
+        &session_body,
+    )
+    .await;
 
     // Job 1 (defaults): detected points with residuals on every pose.
     let job1 = run_job(&app, &client, &session, json!({})).await;
     let job1_id = job1["id"].as_str().unwrap();
     let poses = poses_of(&app, &session).await;
-    let first = check_points(&poses, job1_id, &truth, pitch_mm, MAX_RESIDUAL_RMS_PX);
+    let first = check_points(&poses, job1_id, &truth, pitch_mm, MAX_RESIDUAL_RMS_PX, true);
     // One pose read alone serves the same.
     let one = json_of(
         &app,
@@ -253,13 +362,21 @@ async fn detected_points_residuals_and_a_reused_camera_through_the_service() {
     let job2_id = job2["id"].as_str().unwrap();
     assert_eq!(job2["result"]["version"], 2);
     let poses = poses_of(&app, &session).await;
-    let second = check_points(&poses, job2_id, &truth, pitch_mm, MAX_PAPER_RESIDUAL_RMS_PX);
+    // Paper mode fits the raw centres: served as x, y, no raw_x.
+    let second = check_points(
+        &poses,
+        job2_id,
+        &truth,
+        pitch_mm,
+        MAX_PAPER_RESIDUAL_RMS_PX,
+        false,
+    );
     let mut residuals_changed = false;
     for (a, b) in first.iter().zip(&second) {
-        for (key, (x1, y1, r1)) in a {
-            let (x2, y2, r2) = b[key];
-            assert_eq!((*x1, *y1), (x2, y2));
-            residuals_changed |= *r1 != r2;
+        for (key, p1) in a {
+            let p2 = b[key];
+            assert_eq!(p1.detected(), p2.detected());
+            residuals_changed |= p1.residual != p2.residual;
         }
     }
     assert!(residuals_changed, "job 2 left job 1's residuals");
@@ -315,7 +432,7 @@ async fn detected_points_residuals_and_a_reused_camera_through_the_service() {
     assert!(improvement >= MIN_IMPROVEMENT, "{}", report3["after"]);
     let job3_id = job3["id"].as_str().unwrap();
     let poses = poses_of(&app, &reuse).await;
-    check_points(&poses, job3_id, &truth, pitch_mm, MAX_RESIDUAL_RMS_PX);
+    check_points(&poses, job3_id, &truth, pitch_mm, MAX_RESIDUAL_RMS_PX, true);
 }
 
 /// A set worse than the nominal model says so in its report, with what to do.

@@ -203,3 +203,83 @@ async fn hostile_uploads_get_4xx_and_server_keeps_serving() {
         .unwrap();
     assert_eq!(session["pose_count"], 0, "nothing hostile was stored");
 }
+
+/// A PNG of `side` x `side` black pixels at 1 bit per pixel: a few tens of
+/// kB that decode to `side`² bytes (324 MB at 18000) or more.
+fn huge_small_png(side: u32) -> Vec<u8> {
+    let mut out = Vec::new();
+    let mut encoder = png::Encoder::new(&mut out, side, side);
+    encoder.set_color(png::ColorType::Grayscale);
+    encoder.set_depth(png::BitDepth::One);
+    let mut writer = encoder.write_header().unwrap();
+    let mut stream = writer.stream_writer().unwrap();
+    let row = vec![0u8; side.div_ceil(8) as usize];
+    for _ in 0..side {
+        std::io::Write::write_all(&mut stream, &row).unwrap();
+    }
+    stream.finish().unwrap();
+    writer.finish().unwrap();
+    out
+}
+
+/// Peak resident memory of this process so far, kB (`VmHWM`).
+fn peak_rss_kb() -> u64 {
+    std::fs::read_to_string("/proc/self/status")
+        .unwrap()
+        .lines()
+        .find_map(|l| l.strip_prefix("VmHWM:"))
+        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
+        .unwrap()
+}
+
+/// Memory a refused upload may add to the peak (the server runs in this
+/// process), kB: far below the 324 MB a decode of 18000² pixels needs.
+const MAX_REFUSED_UPLOAD_PEAK_KB: u64 = 100_000;
+
+#[tokio::test]
+async fn a_huge_image_in_a_small_file_is_refused_from_its_header() {
+    let side = 18_000;
+    let bytes = huge_small_png(side);
+    assert!(bytes.len() < MAX_IMAGE as usize, "{} bytes", bytes.len());
+    // The same header, its pixel data cut off: a decode would fail first.
+    let cut = {
+        let mut b = bytes.clone();
+        b.truncate(200);
+        b
+    };
+    let app = hostile_app().await;
+    let s = app.robot_and_session("H2").await;
+    let poses = app.url(&format!("/v1/sessions/{s}/poses"));
+    let before = peak_rss_kb();
+    for (name, png) in [("valid", bytes), ("cut", cut)] {
+        let form = Form::new().text("joints_deg", "[0,0,0,0,0,0]").part(
+            "image",
+            Part::bytes(png)
+                .file_name("huge.png")
+                .mime_str("image/png")
+                .unwrap(),
+        );
+        let r = app
+            .client
+            .post(&poses)
+            .multipart(form)
+            .send()
+            .await
+            .unwrap();
+        assert_eq!(r.status(), 422, "{name}");
+        let problem: Value = r.json().await.unwrap();
+        assert_eq!(problem["errors"][0]["field"], "image", "{name}: {problem}");
+        let message = problem["errors"][0]["message"].as_str().unwrap();
+        assert!(
+            message.contains(&format!(
+                "image is {side}x{side}, the session camera is {CAMERA_W}x{CAMERA_H}"
+            )),
+            "{name}: {message}"
+        );
+    }
+    let grown = peak_rss_kb().saturating_sub(before);
+    assert!(
+        grown < MAX_REFUSED_UPLOAD_PEAK_KB,
+        "peak grew by {grown} kB"
+    );
+}

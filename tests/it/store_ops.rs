@@ -52,6 +52,7 @@ fn pose(sha: Option<&ImageMeta>) -> NewPose {
         points: json!([{"row": 0, "col": 1, "x": 1.5, "y": 2.25}]),
         measured: None,
         label: None,
+        image_detection: None,
     }
 }
 

@@ -72,3 +72,40 @@ pub enum DetectError {
     #[error("dots too blurred: {0}")]
     DotsTooBlurred(String),
 }
+
+impl DetectError {
+    /// A stable short name of the failure, so that callers can tell when
+    /// many images fail for one reason although their messages differ in
+    /// the figures they quote.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            DetectError::InvalidTarget(_) => "invalid_target",
+            DetectError::Decode(_) => "decode",
+            DetectError::ImageTooLarge { .. } => "image_too_large",
+            DetectError::ImageTooSmall { .. } => "image_too_small",
+            DetectError::BufferSize { .. } => "buffer_size",
+            DetectError::NoContrast { .. } => "no_contrast",
+            DetectError::NoBoard(_) => "no_board",
+            DetectError::BoardPartlyOutside { .. } => "board_partly_outside",
+            DetectError::GridMismatch(_) => "grid_mismatch",
+            DetectError::AmbiguousBoards(_) => "ambiguous_boards",
+            DetectError::MarkerNotFound(_) => "marker_not_found",
+            DetectError::MarkerAmbiguous(_) => "marker_ambiguous",
+            DetectError::DotsTooSmall { .. } => "dots_too_small",
+            DetectError::DotsTooBlurred(_) => "dots_too_blurred",
+        }
+    }
+
+    /// Whether the failure means the image does not show the target as
+    /// described (another board, or none), rather than a poor image of it.
+    pub fn is_target_missing(&self) -> bool {
+        matches!(
+            self,
+            DetectError::NoBoard(_)
+                | DetectError::GridMismatch(_)
+                | DetectError::BoardPartlyOutside { .. }
+                | DetectError::AmbiguousBoards(_)
+                | DetectError::MarkerNotFound(_)
+        )
+    }
+}

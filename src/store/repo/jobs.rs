@@ -296,12 +296,18 @@ async fn write_detections_tx<B: Backend>(
         .execute(&mut *tx)
         .await?;
     for d in detections {
-        query("UPDATE poses SET detection = $1 WHERE session_id = $2 AND id = $3")
-            .bind(d.detection.to_string())
-            .bind(session_id)
-            .bind(&d.pose_id)
-            .execute(&mut *tx)
-            .await?;
+        // A pose detected for the first time by this job keeps what the
+        // detector found, so later jobs need not decode its image again.
+        query(
+            "UPDATE poses SET detection = $1, image_detection = COALESCE(image_detection, $2)
+             WHERE session_id = $3 AND id = $4",
+        )
+        .bind(d.detection.to_string())
+        .bind(d.image_detection.as_ref().map(|v| v.to_string()))
+        .bind(session_id)
+        .bind(&d.pose_id)
+        .execute(&mut *tx)
+        .await?;
     }
     Ok(())
 }

@@ -13,7 +13,7 @@ use crate::store::{SessionStore, StoreError, StoreResult};
 const SESSION_COLUMNS: &str = "s.id, s.serial, s.instrument, s.spec, s.created_at,
     (SELECT count(*) FROM poses p WHERE p.session_id = s.id) AS pose_count";
 const POSE_COLUMNS: &str =
-    "id, session_id, joints_deg, pose_set, image_meta, points, measured, label, detection, created_at";
+    "id, session_id, joints_deg, pose_set, image_meta, points, measured, label, detection, image_detection, created_at";
 
 #[async_trait]
 impl<B: Backend> SessionStore for B {
@@ -159,12 +159,13 @@ impl<B: Backend> SessionStore for B {
                 measured: p.measured.clone(),
                 label: p.label.clone(),
                 detection: None,
+                image_detection: p.image_detection.clone(),
                 created_at: now_rfc3339(),
             };
             query(
                 "INSERT INTO poses (id, session_id, joints_deg, pose_set, image_sha256,
-                   image_meta, points, measured, label, created_at)
-                 VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10)",
+                   image_meta, points, measured, label, image_detection, created_at)
+                 VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11)",
             )
             .bind(&record.id)
             .bind(session_id)
@@ -181,6 +182,7 @@ impl<B: Backend> SessionStore for B {
             .bind(record.points.to_string())
             .bind(record.measured.as_ref().map(|m| m.to_string()))
             .bind(record.label.as_deref())
+            .bind(record.image_detection.as_ref().map(|d| d.to_string()))
             .bind(&record.created_at)
             .execute(&mut tx)
             .await

@@ -34,6 +34,11 @@ const MIGRATIONS: &[Embedded] = &[
         include_str!("../../../migrations/sqlite/0002_pose_detection.sql"),
     ),
     (
+        3,
+        "image detection",
+        include_str!("../../../migrations/sqlite/0003_image_detection.sql"),
+    ),
+    (
         4,
         "labels and storage",
         include_str!("../../../migrations/sqlite/0004_labels_and_storage.sql"),
