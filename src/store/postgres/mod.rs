@@ -47,6 +47,11 @@ const MIGRATIONS: &[Embedded] = &[
         "pose detection",
         include_str!("../../../migrations/postgres/0002_pose_detection.sql"),
     ),
+    (
+        6,
+        "token lifecycle",
+        include_str!("../../../migrations/postgres/0006_token_lifecycle.sql"),
+    ),
 ];
 
 /// Connections per replica. Each worker holds at most one while it claims or

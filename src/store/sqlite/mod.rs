@@ -33,6 +33,11 @@ const MIGRATIONS: &[Embedded] = &[
         "pose detection",
         include_str!("../../../migrations/sqlite/0002_pose_detection.sql"),
     ),
+    (
+        6,
+        "token lifecycle",
+        include_str!("../../../migrations/sqlite/0006_token_lifecycle.sql"),
+    ),
 ];
 
 /// How long a statement waits for a competing writer before giving up.
