@@ -18,7 +18,9 @@ fn self_signed(dir: &tempfile::TempDir) -> (PathBuf, PathBuf) {
     (cert_path, key_path)
 }
 
-#[tokio::test]
+// Multi-threaded: the CLI runs as a blocking child process while this
+// runtime serves it.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn client_and_cli_reach_an_https_server() {
     let certs = tempfile::tempdir().unwrap();
     let (cert, key) = self_signed(&certs);
