@@ -90,8 +90,12 @@ struct ServerArgs {
 
 impl ServerArgs {
     fn client(&self) -> Result<robocal::client::Client, String> {
-        robocal::client::Client::with_ca_cert(&self.url, self.token.clone(), self.ca_cert.as_deref())
-            .map_err(|e| e.to_string())
+        robocal::client::Client::with_ca_cert(
+            &self.url,
+            self.token.clone(),
+            self.ca_cert.as_deref(),
+        )
+        .map_err(|e| e.to_string())
     }
 }
 
@@ -163,8 +167,7 @@ async fn main() -> ExitCode {
             db,
         }) => {
             let scope = Scope::parse(&scope).unwrap_or(Scope::Read);
-            robocal::api::tokens::create_from_cli(&db.database_url, &name, scope, expires_in)
-                .await
+            robocal::api::tokens::create_from_cli(&db.database_url, &name, scope, expires_in).await
         }
         Command::Token(TokenCommand::List { db }) => {
             robocal::api::tokens::list_from_cli(&db.database_url).await

@@ -97,7 +97,11 @@ pub async fn start(mut config: ServeConfig) -> Result<RunningServer, StartError>
         shutdown_rx.clone(),
     );
     tracing::info!(%addr, backend = store.backend(), workers = config.worker_count(), job_events = listening, "robocal listening");
-    let scheme = if config.tls_enabled() { "https" } else { "http" };
+    let scheme = if config.tls_enabled() {
+        "https"
+    } else {
+        "http"
+    };
     let state = AppState {
         store,
         config: Arc::new(config),

@@ -132,7 +132,11 @@ impl ApiError {
 
     /// 421: the request names a host this service does not answer for.
     pub fn misdirected(detail: impl Into<String>) -> ApiError {
-        ApiError::new(StatusCode::MISDIRECTED_REQUEST, "misdirected-request", detail)
+        ApiError::new(
+            StatusCode::MISDIRECTED_REQUEST,
+            "misdirected-request",
+            detail,
+        )
     }
 
     pub fn queue_full(retry_after_secs: u64) -> ApiError {

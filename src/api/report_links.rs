@@ -88,7 +88,9 @@ fn query_param<'a>(uri: &'a Uri, name: &str) -> Option<&'a str> {
 /// The signature of a link to the report under `set_path`
 /// (`/v1/robots/{serial}/parameter-sets/{n}`) expiring at `expires_unix`.
 pub fn sign(secret: &str, set_path: &str, expires_unix: i64) -> String {
-    let mac = mac_of(secret, set_path, expires_unix).finalize().into_bytes();
+    let mac = mac_of(secret, set_path, expires_unix)
+        .finalize()
+        .into_bytes();
     base64::engine::general_purpose::URL_SAFE_NO_PAD.encode(mac)
 }
 
@@ -126,7 +128,11 @@ pub async fn verify(state: &AppState, method: &Method, uri: &Uri) -> ApiResult<(
         .and_then(|e| e.parse().ok())
         .ok_or_else(|| refuse("`expires` is missing or not a number"))?;
     let sig = query_param(uri, SIG_PARAM)
-        .and_then(|s| base64::engine::general_purpose::URL_SAFE_NO_PAD.decode(s).ok())
+        .and_then(|s| {
+            base64::engine::general_purpose::URL_SAFE_NO_PAD
+                .decode(s)
+                .ok()
+        })
         .ok_or_else(|| refuse("`sig` is not a signature"))?;
     let secret = signing_secret(state).await?;
     mac_of(&secret, set_path, expires)

@@ -57,7 +57,11 @@ async fn anonymous_mode_accepts_only_loopback_host_names() {
         .await
         .unwrap();
     assert_eq!(r.status(), 421);
-    assert_eq!(app.get("/v1/robots/R1").await.status(), 404, "nothing written");
+    assert_eq!(
+        app.get("/v1/robots/R1").await.status(),
+        404,
+        "nothing written"
+    );
 
     // With tokens the token decides, whatever the Host.
     let read = stored_token(&app, Scope::Read, None).await;

@@ -16,7 +16,9 @@ use crate::tokens::stored_token;
 /// Two parameter sets of `RL-1` and one of `RL-2`, each with a drawable report.
 async fn reports(app: &TestApp) {
     for serial in ["RL-1", "RL-2"] {
-        let r = app.put_json(&format!("/v1/robots/{serial}"), &robot_body()).await;
+        let r = app
+            .put_json(&format!("/v1/robots/{serial}"), &robot_body())
+            .await;
         assert_eq!(r.status(), 201);
     }
     let s = store::connect(&app.database_url).await.unwrap();
@@ -61,7 +63,9 @@ async fn report_links_open_one_report_without_a_header_until_they_expire() {
 
     // Without a token the report is closed.
     assert_eq!(
-        app.get("/v1/robots/RL-1/parameter-sets/2/report.html").await.status(),
+        app.get("/v1/robots/RL-1/parameter-sets/2/report.html")
+            .await
+            .status(),
         401
     );
 
@@ -71,7 +75,10 @@ async fn report_links_open_one_report_without_a_header_until_they_expire() {
     let link: Value = r.json().await.unwrap();
     let url = link["url"].as_str().unwrap().to_string();
     assert!(url.starts_with(&app.base), "{url}");
-    assert!(url.contains("/v1/robots/RL-1/parameter-sets/2/report.html?"), "{url}");
+    assert!(
+        url.contains("/v1/robots/RL-1/parameter-sets/2/report.html?"),
+        "{url}"
+    );
     let expires_at = humantime::parse_rfc3339(link["expires_at"].as_str().unwrap()).unwrap();
     let minutes = expires_at
         .duration_since(std::time::SystemTime::now())
@@ -83,7 +90,10 @@ async fn report_links_open_one_report_without_a_header_until_they_expire() {
     // It opens without a header, in each rendering.
     let r = open(&url).await;
     assert_eq!(r.status(), 200);
-    assert!(r.headers()["content-type"].to_str().unwrap().starts_with("text/html"));
+    assert!(r.headers()["content-type"]
+        .to_str()
+        .unwrap()
+        .starts_with("text/html"));
     assert!(r.text().await.unwrap().contains("<html"));
     let r = open(link["svg_url"].as_str().unwrap()).await;
     assert_eq!(r.status(), 200);
@@ -91,7 +101,10 @@ async fn report_links_open_one_report_without_a_header_until_they_expire() {
     let r = open(link["json_url"].as_str().unwrap()).await;
     assert_eq!(r.status(), 200);
     let report: Value = r.json().await.unwrap();
-    assert_eq!((report["serial"].as_str(), report["version"].as_i64()), (Some("RL-1"), Some(2)));
+    assert_eq!(
+        (report["serial"].as_str(), report["version"].as_i64()),
+        (Some("RL-1"), Some(2))
+    );
 
     // Not for another report, another robot, or anything else; not altered.
     let query = url.split_once('?').unwrap().1.to_string();
@@ -120,7 +133,10 @@ async fn report_links_open_one_report_without_a_header_until_they_expire() {
         .send()
         .await
         .unwrap();
-    assert!(matches!(r.status().as_u16(), 401 | 403), "a link never writes");
+    assert!(
+        matches!(r.status().as_u16(), 401 | 403),
+        "a link never writes"
+    );
 
     // Expired: a link signed with the fleet's key whose time has passed.
     let s = store::connect(&app.database_url).await.unwrap();
@@ -155,10 +171,17 @@ async fn report_link_requests_are_checked() {
     reports(&app).await;
     let read = stored_token(&app, Scope::Read, None).await;
     let path = "/v1/robots/RL-1/parameter-sets/1/report-links";
-    for bad in [json!({"expires_in_minutes": 0}), json!({"expires_in_minutes": 10081}), json!({})] {
+    for bad in [
+        json!({"expires_in_minutes": 0}),
+        json!({"expires_in_minutes": 10081}),
+        json!({}),
+    ] {
         let r = create_link(&app, &read, path, bad.clone()).await;
         assert!(matches!(r.status().as_u16(), 400 | 422), "{bad}");
-        assert!(r.text().await.unwrap().contains("expires_in_minutes"), "{bad}");
+        assert!(
+            r.text().await.unwrap().contains("expires_in_minutes"),
+            "{bad}"
+        );
     }
     let r = create_link(
         &app,

@@ -101,7 +101,10 @@ async fn tokens_are_listed_as_items_revoked_and_expire() {
     // At most once a minute: a second use leaves the record as it was.
     assert_eq!(get_as(&app, "/v1/robots", &read).await.status(), 200);
     tokio::time::sleep(Duration::from_millis(200)).await;
-    assert_eq!(by_name(&list(&app, &admin).await, "ci")["last_used_at"], used);
+    assert_eq!(
+        by_name(&list(&app, &admin).await, "ci")["last_used_at"],
+        used
+    );
 
     // An expired token is refused with 401 and listed as expired.
     let expired = stored_token(&app, Scope::Admin, Some(now_unix_ms() - 1000)).await;
@@ -165,7 +168,10 @@ async fn first_token_created_anonymously_says_anonymous_access_ends() {
     let created: Value = r.json().await.unwrap();
     let notice = created["notice"].as_str().expect("a notice");
     assert!(notice.contains("anonymous access has ended"), "{notice}");
-    assert!(notice.contains("admin"), "a read token warns about admin: {notice}");
+    assert!(
+        notice.contains("admin"),
+        "a read token warns about admin: {notice}"
+    );
     // It is so: anonymous is refused, the token works.
     assert_eq!(app.get("/v1/robots").await.status(), 401);
     let token = created["token"].as_str().unwrap();
@@ -233,13 +239,25 @@ async fn cli_creates_lists_and_revokes_tokens() {
     cli(&["tokens", "revoke", &id, "--database-url", &db]);
     assert_eq!(get_as(&app, "/v1/robots", &token).await.status(), 401);
     let (table, _) = cli(&["tokens", "list", "--database-url", &db]);
-    assert!(table.lines().any(|l| l.contains(&id) && l.contains("revoked")), "{table}");
+    assert!(
+        table
+            .lines()
+            .any(|l| l.contains(&id) && l.contains("revoked")),
+        "{table}"
+    );
 
     let out = run_binary(&["tokens", "revoke", "nope", "--database-url", &db]);
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("no token"));
     let out = run_binary(&[
-        "token", "create", "--scope", "read", "--expires-in", "soon", "--database-url", &db,
+        "token",
+        "create",
+        "--scope",
+        "read",
+        "--expires-in",
+        "soon",
+        "--database-url",
+        &db,
     ]);
     assert!(!out.status.success(), "a bad duration is refused");
 }

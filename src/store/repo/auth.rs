@@ -14,8 +14,7 @@ const IDEMPOTENCY_TTL_MS: i64 = 24 * 3600 * 1000;
 /// A pending key older than this belongs to a request that died: reusable.
 const PENDING_STALE_MS: i64 = 10 * 60 * 1000;
 /// The columns [`token`] reads.
-const TOKEN_COLUMNS: &str =
-    "id, name, scope, created_at, expires_ms, revoked_ms, last_used_ms";
+const TOKEN_COLUMNS: &str = "id, name, scope, created_at, expires_ms, revoked_ms, last_used_ms";
 /// A stored response without a status (never written so) replays as 200.
 const DEFAULT_STATUS: i64 = 200;
 
@@ -53,10 +52,12 @@ impl<B: Backend> AuthStore for B {
     }
 
     async fn find_token(&self, token_hash: &str) -> StoreResult<Option<TokenRecord>> {
-        let row = query(format!("SELECT {TOKEN_COLUMNS} FROM tokens WHERE token_hash = $1"))
-            .bind(token_hash)
-            .fetch_optional(self.pool())
-            .await?;
+        let row = query(format!(
+            "SELECT {TOKEN_COLUMNS} FROM tokens WHERE token_hash = $1"
+        ))
+        .bind(token_hash)
+        .fetch_optional(self.pool())
+        .await?;
         row.as_ref().map(token).transpose()
     }
 
