@@ -11,7 +11,7 @@ use crate::report::Report;
 
 #[derive(Debug, thiserror::Error)]
 pub enum ClientError {
-    #[error("cannot reach the server: {0}")]
+    #[error("cannot reach the server: {}", with_causes(.0))]
     Transport(#[from] reqwest::Error),
     #[error("{status}: {title}{}", detail_suffix(.detail, .fields))]
     Problem {
@@ -22,6 +22,19 @@ pub enum ClientError {
     },
     #[error("{0}")]
     Local(String),
+}
+
+/// An error and its causes: reqwest's own message hides why a connection
+/// failed (refused, certificate not trusted...).
+fn with_causes(e: &dyn std::error::Error) -> String {
+    let mut out = e.to_string();
+    let mut source = e.source();
+    while let Some(cause) = source {
+        out.push_str(": ");
+        out.push_str(&cause.to_string());
+        source = cause.source();
+    }
+    out
 }
 
 fn detail_suffix(detail: &str, fields: &[String]) -> String {
@@ -49,9 +62,36 @@ pub struct Client {
 
 impl Client {
     pub fn new(base_url: &str, token: Option<String>) -> Result<Self, ClientError> {
-        let http = reqwest::Client::builder()
-            .timeout(REQUEST_TIMEOUT)
-            .build()?;
+        Self::with_ca_cert(base_url, token, None)
+    }
+
+    /// `ca_cert`: PEM file of certificates trusted for `https://` besides the
+    /// public roots (a private CA or a self-signed server certificate).
+    pub fn with_ca_cert(
+        base_url: &str,
+        token: Option<String>,
+        ca_cert: Option<&Path>,
+    ) -> Result<Self, ClientError> {
+        let mut builder = reqwest::Client::builder()
+            .use_rustls_tls()
+            .timeout(REQUEST_TIMEOUT);
+        if let Some(path) = ca_cert {
+            let pem = std::fs::read(path)
+                .map_err(|e| ClientError::Local(format!("{}: {e}", path.display())))?;
+            let certs = reqwest::Certificate::from_pem_bundle(&pem).map_err(|e| {
+                ClientError::Local(format!("{}: not PEM certificates: {e}", path.display()))
+            })?;
+            if certs.is_empty() {
+                return Err(ClientError::Local(format!(
+                    "{}: holds no PEM certificate",
+                    path.display()
+                )));
+            }
+            for cert in certs {
+                builder = builder.add_root_certificate(cert);
+            }
+        }
+        let http = builder.build()?;
         Ok(Self {
             http,
             base: base_url.trim_end_matches('/').to_string(),

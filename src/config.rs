@@ -69,6 +69,19 @@ pub struct ServeConfig {
     #[arg(long, env = "ROBOCAL_LOG_FORMAT", value_enum, default_value = "text")]
     pub log_format: LogFormat,
 
+    /// Serve `/metrics` without a token. Off by default: once tokens exist a
+    /// scraper needs a `read` token (Prometheus `authorization` setting).
+    #[arg(long, env = "ROBOCAL_PUBLIC_METRICS")]
+    pub public_metrics: bool,
+
+    /// PEM certificate chain: serve HTTPS (with `--tls-key`) instead of HTTP.
+    #[arg(long, env = "ROBOCAL_TLS_CERT", requires = "tls_key")]
+    pub tls_cert: Option<PathBuf>,
+
+    /// PEM private key (PKCS#8, PKCS#1 or SEC1) of `--tls-cert`.
+    #[arg(long, env = "ROBOCAL_TLS_KEY", requires = "tls_cert")]
+    pub tls_key: Option<PathBuf>,
+
     /// Test hook: the validation stage sleeps this long per pose (0 = off).
     #[arg(
         long,
@@ -129,6 +142,9 @@ impl ServeConfig {
                 return Err(format!("--{} must be at least 1", name.replace('_', "-")));
             }
         }
+        if self.tls_cert.is_some() != self.tls_key.is_some() {
+            return Err("--tls-cert and --tls-key go together".into());
+        }
         if self.workers == Some(0) {
             return Err("--workers must be at least 1".into());
         }
@@ -149,6 +165,11 @@ impl ServeConfig {
 
     pub fn upload_dir(&self) -> PathBuf {
         self.upload_dir.clone().unwrap_or_else(std::env::temp_dir)
+    }
+
+    /// HTTPS (`--tls-cert`, `--tls-key`) rather than plain HTTP.
+    pub fn tls_enabled(&self) -> bool {
+        self.tls_cert.is_some()
     }
 
     /// Anonymous requests are possible only when nobody else can reach the socket.

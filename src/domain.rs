@@ -257,6 +257,32 @@ pub struct TokenRecord {
     pub name: String,
     pub scope: Scope,
     pub created_at: String,
+    /// Unix ms after which the token is refused; `None`: never expires.
+    pub expires_ms: Option<i64>,
+    /// Unix ms of its revocation; a revoked token keeps its row.
+    pub revoked_ms: Option<i64>,
+    /// Unix ms of its last accepted use (written at most once a minute).
+    pub last_used_ms: Option<i64>,
+}
+
+/// Why a known token is refused.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TokenRefusal {
+    Revoked,
+    Expired,
+}
+
+impl TokenRecord {
+    /// `Ok` when the token may be used at `now_ms`.
+    pub fn check_usable(&self, now_ms: i64) -> Result<(), TokenRefusal> {
+        if self.revoked_ms.is_some() {
+            return Err(TokenRefusal::Revoked);
+        }
+        match self.expires_ms {
+            Some(expires) if expires <= now_ms => Err(TokenRefusal::Expired),
+            _ => Ok(()),
+        }
+    }
 }
 
 /// A response kept for `Idempotency-Key` replay.
@@ -297,6 +323,12 @@ pub struct Page<T> {
 /// RFC 3339 UTC timestamp with milliseconds, the form every `*_at` field uses.
 pub fn now_rfc3339() -> String {
     humantime::format_rfc3339_millis(std::time::SystemTime::now()).to_string()
+}
+
+/// `ms` (Unix milliseconds) as an RFC 3339 UTC timestamp, like [`now_rfc3339`].
+pub fn rfc3339_of_unix_ms(ms: i64) -> String {
+    let time = std::time::UNIX_EPOCH + std::time::Duration::from_millis(ms.max(0) as u64);
+    humantime::format_rfc3339_millis(time).to_string()
 }
 
 pub fn now_unix_ms() -> i64 {

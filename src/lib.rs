@@ -27,3 +27,4 @@ pub mod robot_model;
 pub mod schema;
 pub mod server;
 pub mod store;
+pub mod tls;

@@ -17,8 +17,8 @@ struct Cli {
 enum Command {
     /// Run the HTTP service and its job workers.
     Serve(ServeConfig),
-    /// Manage bearer tokens.
-    #[command(subcommand)]
+    /// Manage bearer tokens (directly in the server's database).
+    #[command(subcommand, visible_alias = "tokens")]
     Token(TokenCommand),
     /// Print the OpenAPI document (JSON).
     Openapi,
@@ -82,24 +82,57 @@ struct ServerArgs {
     /// Bearer token, when the server has tokens.
     #[arg(long, env = "ROBOCAL_TOKEN")]
     token: Option<String>,
+    /// PEM certificate(s) to trust for an `https://` URL, besides the public
+    /// roots (a private CA, or a self-signed server certificate).
+    #[arg(long, env = "ROBOCAL_CA_CERT")]
+    ca_cert: Option<std::path::PathBuf>,
 }
 
 impl ServerArgs {
     fn client(&self) -> Result<robocal::client::Client, String> {
-        robocal::client::Client::new(&self.url, self.token.clone()).map_err(|e| e.to_string())
+        robocal::client::Client::with_ca_cert(
+            &self.url,
+            self.token.clone(),
+            self.ca_cert.as_deref(),
+        )
+        .map_err(|e| e.to_string())
     }
+}
+
+#[derive(clap::Args)]
+struct DatabaseArg {
+    /// The server's database (as `robocal serve --database-url`).
+    #[arg(long, env = "DATABASE_URL", default_value = "sqlite://robocal.db")]
+    database_url: String,
 }
 
 #[derive(Subcommand)]
 enum TokenCommand {
     /// Create a token, store its hash and print the token once.
     Create {
+        /// `read` (GET, report links), `write` (also uploads, jobs) or `admin` (also tokens).
         #[arg(long, value_parser = ["read", "write", "admin"])]
         scope: String,
+        /// Who or what uses the token (shown by `tokens list`).
         #[arg(long, default_value = "cli")]
         name: String,
-        #[arg(long, env = "DATABASE_URL", default_value = "sqlite://robocal.db")]
-        database_url: String,
+        /// The token stops working after this long, e.g. `30d`, `12h` (default: never).
+        #[arg(long, value_parser = humantime::parse_duration)]
+        expires_in: Option<std::time::Duration>,
+        #[command(flatten)]
+        db: DatabaseArg,
+    },
+    /// List tokens: id, name, scope, state, expiry and last use (never secrets).
+    List {
+        #[command(flatten)]
+        db: DatabaseArg,
+    },
+    /// Revoke a token by id: it is refused from now on.
+    Revoke {
+        /// The token's id (from `tokens list`).
+        id: String,
+        #[command(flatten)]
+        db: DatabaseArg,
     },
 }
 
@@ -130,10 +163,17 @@ async fn main() -> ExitCode {
         Command::Token(TokenCommand::Create {
             scope,
             name,
-            database_url,
+            expires_in,
+            db,
         }) => {
             let scope = Scope::parse(&scope).unwrap_or(Scope::Read);
-            robocal::api::tokens::create_from_cli(&database_url, &name, scope).await
+            robocal::api::tokens::create_from_cli(&db.database_url, &name, scope, expires_in).await
+        }
+        Command::Token(TokenCommand::List { db }) => {
+            robocal::api::tokens::list_from_cli(&db.database_url).await
+        }
+        Command::Token(TokenCommand::Revoke { id, db }) => {
+            robocal::api::tokens::revoke_from_cli(&db.database_url, &id).await
         }
         Command::Openapi => {
             println!("{}", robocal::api::openapi_json());

@@ -33,12 +33,20 @@ pub enum StartError {
 /// A started server; drop-safe, but call [`RunningServer::shutdown`] to stop cleanly.
 pub struct RunningServer {
     pub addr: SocketAddr,
+    /// `https` with `--tls-cert`, else `http`.
+    pub scheme: &'static str,
     shutdown: watch::Sender<bool>,
     handle: JoinHandle<()>,
 }
 
-pub async fn start(config: ServeConfig) -> Result<RunningServer, StartError> {
+pub async fn start(mut config: ServeConfig) -> Result<RunningServer, StartError> {
     config.validate().map_err(StartError::Config)?;
+    let tls = match (&config.tls_cert, &config.tls_key) {
+        (Some(cert), Some(key)) => {
+            Some(crate::tls::server_config(cert, key).map_err(StartError::Config)?)
+        }
+        _ => None,
+    };
     let store = store::connect(&config.database_url).await?;
     let tokens = store.count_tokens().await?;
     if tokens == 0 {
@@ -63,6 +71,8 @@ pub async fn start(config: ServeConfig) -> Result<RunningServer, StartError> {
         addr: config.bind,
         source,
     })?;
+    // The bound port (port 0 asks for any): anonymous mode checks `Host` against it.
+    config.bind = addr;
     let policy = QueuePolicy {
         lease: config.lease(),
         max_attempts: config.max_attempts,
@@ -94,6 +104,11 @@ pub async fn start(config: ServeConfig) -> Result<RunningServer, StartError> {
     let housekeeping =
         crate::housekeeping::spawn(store.clone(), config.upload_dir(), shutdown_rx.clone());
     tracing::info!(%addr, backend = store.backend(), workers = config.worker_count(), job_events = listening, "robocal listening");
+    let scheme = if config.tls_enabled() {
+        "https"
+    } else {
+        "http"
+    };
     let state = AppState {
         store,
         config: Arc::new(config),
@@ -106,10 +121,25 @@ pub async fn start(config: ServeConfig) -> Result<RunningServer, StartError> {
     let app = api::app(state);
     let mut rx = shutdown_rx;
     let handle = tokio::spawn(async move {
-        let serve = axum::serve(listener, app).with_graceful_shutdown(async move {
+        let stopped = async move {
             let _ = rx.wait_for(|stop| *stop).await;
-        });
-        if let Err(e) = serve.await {
+        };
+        let served = match tls {
+            Some(tls) => match crate::tls::TlsListener::new(listener, tls) {
+                Ok(listener) => {
+                    axum::serve(listener, app)
+                        .with_graceful_shutdown(stopped)
+                        .await
+                }
+                Err(e) => Err(e),
+            },
+            None => {
+                axum::serve(listener, app)
+                    .with_graceful_shutdown(stopped)
+                    .await
+            }
+        };
+        if let Err(e) = served {
             tracing::error!(error = %e, "HTTP server failed");
         }
         pool.join().await;
@@ -118,6 +148,7 @@ pub async fn start(config: ServeConfig) -> Result<RunningServer, StartError> {
     });
     Ok(RunningServer {
         addr,
+        scheme,
         shutdown: shutdown_tx,
         handle,
     })
@@ -135,7 +166,7 @@ impl RunningServer {
 /// Runs until SIGTERM or Ctrl-C, then shuts down cleanly.
 pub async fn run(config: ServeConfig) -> Result<(), StartError> {
     let server = start(config).await?;
-    println!("robocal listening on http://{}", server.addr);
+    println!("robocal listening on {}://{}", server.scheme, server.addr);
     wait_for_signal().await;
     tracing::info!("shutdown signal: no new jobs are claimed; running jobs finish or are released");
     server.shutdown().await;

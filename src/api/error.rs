@@ -130,6 +130,15 @@ impl ApiError {
         ApiError::new(StatusCode::FORBIDDEN, "forbidden", detail)
     }
 
+    /// 421: the request names a host this service does not answer for.
+    pub fn misdirected(detail: impl Into<String>) -> ApiError {
+        ApiError::new(
+            StatusCode::MISDIRECTED_REQUEST,
+            "misdirected-request",
+            detail,
+        )
+    }
+
     pub fn queue_full(retry_after_secs: u64) -> ApiError {
         ApiError {
             retry_after_secs: Some(retry_after_secs),

@@ -32,6 +32,7 @@ pub mod idempotency;
 pub mod jobs;
 pub mod ops;
 pub mod poses;
+pub mod report_links;
 pub mod results;
 pub mod robots;
 pub mod sessions;
@@ -90,6 +91,7 @@ fn api_router() -> OpenApiRouter<AppState> {
         .merge(upload::router())
         .merge(jobs::router())
         .merge(results::router())
+        .merge(report_links::router())
         .merge(tokens::router())
 }
 

@@ -79,7 +79,11 @@ fn parse_version(version: &str) -> ApiResult<Option<i64>> {
     }
 }
 
-async fn find(state: &AppState, serial: &str, version: &str) -> ApiResult<ParameterSetRecord> {
+pub(super) async fn find(
+    state: &AppState,
+    serial: &str,
+    version: &str,
+) -> ApiResult<ParameterSetRecord> {
     let v = parse_version(version)?;
     state
         .store

@@ -173,15 +173,41 @@ pub trait ResultStore: Send + Sync {
 
 #[async_trait]
 pub trait AuthStore: Send + Sync {
+    /// A token that never expires.
     async fn create_token(
         &self,
         name: &str,
         token_hash: &str,
         scope: Scope,
+    ) -> StoreResult<TokenRecord> {
+        self.create_token_expiring(name, token_hash, scope, None)
+            .await
+    }
+    /// `expires_ms`: Unix ms after which the token is refused.
+    async fn create_token_expiring(
+        &self,
+        name: &str,
+        token_hash: &str,
+        scope: Scope,
+        expires_ms: Option<i64>,
     ) -> StoreResult<TokenRecord>;
+    /// Any token with this hash, also revoked or expired ones (the caller
+    /// says which, see [`TokenRecord::check_usable`]).
     async fn find_token(&self, token_hash: &str) -> StoreResult<Option<TokenRecord>>;
+    /// Every token, revoked and expired ones included, oldest first.
     async fn list_tokens(&self) -> StoreResult<Vec<TokenRecord>>;
+    /// Tokens ever created, revoked and expired ones included: anonymous
+    /// access ends with the first token and does not come back.
     async fn count_tokens(&self) -> StoreResult<i64>;
+    /// Marks the token revoked (its row stays); `None` when no token has
+    /// this id. Revoking a revoked token keeps the first revocation.
+    async fn revoke_token(&self, id: &str) -> StoreResult<Option<TokenRecord>>;
+    /// Records a use at `now_ms` unless one was recorded after
+    /// `now_ms - min_interval_ms` (so a busy token costs one write a minute).
+    async fn touch_token(&self, id: &str, now_ms: i64, min_interval_ms: i64) -> StoreResult<()>;
+    /// The secret `name`, shared by every replica: the stored one, or
+    /// `fresh` stored now when there is none yet (the first writer wins).
+    async fn server_secret(&self, name: &str, fresh: &str) -> StoreResult<String>;
     /// Registers a key as in flight, or reports it running / done before.
     async fn claim_idempotency(&self, scope: &IdempotencyScope) -> StoreResult<IdempotencyClaim>;
     async fn complete_idempotency(

@@ -115,6 +115,9 @@ pub fn token(row: &impl Columns) -> StoreResult<TokenRecord> {
         scope: Scope::parse(scope)
             .ok_or_else(|| StoreError::Backend(format!("unknown scope {scope:?}")))?,
         created_at: row.string("created_at"),
+        expires_ms: row.opt_int("expires_ms"),
+        revoked_ms: row.opt_int("revoked_ms"),
+        last_used_ms: row.opt_int("last_used_ms"),
     })
 }
 

@@ -1,6 +1,7 @@
 //! One integration-test binary: the real server over HTTP, module per area.
 
 pub(crate) mod accuracy;
+pub(crate) mod anonymous;
 pub(crate) mod auth;
 pub(crate) mod camera_reuse;
 pub(crate) mod e2e;
@@ -12,9 +13,12 @@ pub(crate) mod jobs;
 pub(crate) mod openapi;
 pub(crate) mod ops;
 pub(crate) mod poses;
+pub(crate) mod report_links;
 pub(crate) mod restart;
 pub(crate) mod robots;
 pub(crate) mod storage;
 pub(crate) mod store_ops;
 pub(crate) mod support;
 pub(crate) mod test_db;
+pub(crate) mod tls;
+pub(crate) mod tokens;

@@ -13,6 +13,7 @@ mod it;
 use it::*;
 
 mod fleet;
+mod pg_tls;
 
 use std::net::{TcpStream, ToSocketAddrs};
 use std::time::Duration;

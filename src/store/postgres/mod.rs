@@ -57,6 +57,11 @@ const MIGRATIONS: &[Embedded] = &[
         "labels and storage",
         include_str!("../../../migrations/postgres/0004_labels_and_storage.sql"),
     ),
+    (
+        6,
+        "token lifecycle",
+        include_str!("../../../migrations/postgres/0006_token_lifecycle.sql"),
+    ),
 ];
 
 /// Connections per replica. Each worker holds at most one while it claims or

@@ -13,47 +13,56 @@ use crate::store::{AuthStore, StoreResult};
 const IDEMPOTENCY_TTL_MS: i64 = 24 * 3600 * 1000;
 /// A pending key older than this belongs to a request that died: reusable.
 const PENDING_STALE_MS: i64 = 10 * 60 * 1000;
+/// The columns [`token`] reads.
+const TOKEN_COLUMNS: &str = "id, name, scope, created_at, expires_ms, revoked_ms, last_used_ms";
 /// A stored response without a status (never written so) replays as 200.
 const DEFAULT_STATUS: i64 = 200;
 
 #[async_trait]
 impl<B: Backend> AuthStore for B {
-    async fn create_token(
+    async fn create_token_expiring(
         &self,
         name: &str,
         token_hash: &str,
         scope: Scope,
+        expires_ms: Option<i64>,
     ) -> StoreResult<TokenRecord> {
         let record = TokenRecord {
             id: new_id(),
             name: name.to_string(),
             scope,
             created_at: now_rfc3339(),
+            expires_ms,
+            revoked_ms: None,
+            last_used_ms: None,
         };
         query(
-            "INSERT INTO tokens (id, name, token_hash, scope, created_at)
-             VALUES ($1, $2, $3, $4, $5)",
+            "INSERT INTO tokens (id, name, token_hash, scope, created_at, expires_ms)
+             VALUES ($1, $2, $3, $4, $5, $6)",
         )
         .bind(&record.id)
         .bind(&record.name)
         .bind(token_hash)
         .bind(scope.as_str())
         .bind(&record.created_at)
+        .bind(expires_ms)
         .execute(self.pool())
         .await?;
         Ok(record)
     }
 
     async fn find_token(&self, token_hash: &str) -> StoreResult<Option<TokenRecord>> {
-        let row = query("SELECT id, name, scope, created_at FROM tokens WHERE token_hash = $1")
-            .bind(token_hash)
-            .fetch_optional(self.pool())
-            .await?;
+        let row = query(format!(
+            "SELECT {TOKEN_COLUMNS} FROM tokens WHERE token_hash = $1"
+        ))
+        .bind(token_hash)
+        .fetch_optional(self.pool())
+        .await?;
         row.as_ref().map(token).transpose()
     }
 
     async fn list_tokens(&self) -> StoreResult<Vec<TokenRecord>> {
-        let rows = query("SELECT id, name, scope, created_at FROM tokens ORDER BY id")
+        let rows = query(format!("SELECT {TOKEN_COLUMNS} FROM tokens ORDER BY id"))
             .fetch_all(self.pool())
             .await?;
         rows.iter().map(token).collect()
@@ -64,6 +73,50 @@ impl<B: Backend> AuthStore for B {
             .fetch_one(self.pool())
             .await?;
         Ok(row.int("n"))
+    }
+
+    async fn revoke_token(&self, id: &str) -> StoreResult<Option<TokenRecord>> {
+        query("UPDATE tokens SET revoked_ms = $2 WHERE id = $1 AND revoked_ms IS NULL")
+            .bind(id)
+            .bind(now_unix_ms())
+            .execute(self.pool())
+            .await?;
+        let row = query(format!("SELECT {TOKEN_COLUMNS} FROM tokens WHERE id = $1"))
+            .bind(id)
+            .fetch_optional(self.pool())
+            .await?;
+        row.as_ref().map(token).transpose()
+    }
+
+    async fn touch_token(&self, id: &str, now_ms: i64, min_interval_ms: i64) -> StoreResult<()> {
+        query(
+            "UPDATE tokens SET last_used_ms = $2
+             WHERE id = $1 AND (last_used_ms IS NULL OR last_used_ms <= $3)",
+        )
+        .bind(id)
+        .bind(now_ms)
+        .bind(now_ms - min_interval_ms)
+        .execute(self.pool())
+        .await?;
+        Ok(())
+    }
+
+    async fn server_secret(&self, name: &str, fresh: &str) -> StoreResult<String> {
+        let select = "SELECT value FROM server_secrets WHERE name = $1";
+        if let Some(row) = query(select).bind(name).fetch_optional(self.pool()).await? {
+            return Ok(row.string("value"));
+        }
+        query(
+            "INSERT INTO server_secrets (name, value, created_at) VALUES ($1, $2, $3)
+             ON CONFLICT DO NOTHING",
+        )
+        .bind(name)
+        .bind(fresh)
+        .bind(now_rfc3339())
+        .execute(self.pool())
+        .await?;
+        let row = query(select).bind(name).fetch_one(self.pool()).await?;
+        Ok(row.string("value"))
     }
 
     async fn claim_idempotency(&self, s: &IdempotencyScope) -> StoreResult<IdempotencyClaim> {

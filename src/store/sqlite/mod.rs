@@ -43,6 +43,11 @@ const MIGRATIONS: &[Embedded] = &[
         "labels and storage",
         include_str!("../../../migrations/sqlite/0004_labels_and_storage.sql"),
     ),
+    (
+        6,
+        "token lifecycle",
+        include_str!("../../../migrations/sqlite/0006_token_lifecycle.sql"),
+    ),
 ];
 
 /// How long a statement waits for a competing writer before giving up.
