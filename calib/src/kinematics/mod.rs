@@ -3,6 +3,13 @@
 pub mod identifiability;
 pub mod identify;
 pub mod ik;
+pub mod ik_branches;
+#[cfg(test)]
+mod ik_branches_tests;
+#[cfg(test)]
+mod ik_limits_tests;
+#[cfg(test)]
+mod ik_tests;
 mod image_fit;
 pub mod initial;
 pub mod jacobian;
