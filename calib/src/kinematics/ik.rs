@@ -19,6 +19,10 @@ pub const IK_ROTATION_SCALE_MM: f64 = 1000.0;
 /// A solution whose (scaled) residual exceeds this is out of reach.
 pub const IK_REACH_TOL_MM: f64 = 1e-3;
 const IK_MAX_ITERATIONS: usize = 100;
+/// Compensation's answers are polished to this residual (mm, scaled) ...
+const IK_POLISHED_MM: f64 = 1e-7;
+/// ... by at most this many fresh runs (only near singularities).
+const IK_POLISH_RUNS: usize = 5;
 
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum IkError {
@@ -220,7 +224,11 @@ impl<'a> Search<'a> {
         ) else {
             return false;
         };
-        let mut q: Vec<f64> = report.x.iter().copied().collect();
+        let mut x = report.x;
+        if matches!(self.turns, Turns::TowardReference) {
+            x = self.polish(x);
+        }
+        let mut q: Vec<f64> = x.iter().copied().collect();
         move_by_turns(model, &mut q, self.reference, self.turns);
         let Some((_, e)) = self.problem.error(&DVector::from_column_slice(&q)) else {
             return false;
@@ -250,6 +258,33 @@ impl<'a> Search<'a> {
             ));
         }
         true
+    }
+
+    /// Near a singularity Levenberg–Marquardt stops early (its steps gain
+    /// little); a fresh run from where it stopped (damping reset) goes on.
+    fn polish(&self, mut x: DVector<f64>) -> DVector<f64> {
+        let scaled = |x: &DVector<f64>| {
+            self.problem.error(x).map_or(f64::INFINITY, |(_, e)| {
+                e.rows(0, 3)
+                    .norm()
+                    .max(e.rows(3, 3).norm() * IK_ROTATION_SCALE_MM)
+            })
+        };
+        let mut residual = scaled(&x);
+        for _ in 0..IK_POLISH_RUNS {
+            if residual <= IK_POLISHED_MM || residual > IK_REACH_TOL_MM {
+                break;
+            }
+            let Ok(report) = solve(&self.problem, x.clone(), &self.options) else {
+                break;
+            };
+            let better = scaled(&report.x);
+            if better >= residual {
+                break;
+            }
+            (x, residual) = (report.x, better);
+        }
+        x
     }
 
     fn finish(self) -> Result<IkSolution, IkError> {

@@ -31,6 +31,13 @@ const MIN_LINK_MM: f64 = 1.0;
 /// the calibrated model's two solutions are close while the nominal formula
 /// may give one double root; seeds on either side of it find both.
 const MIN_BRANCH_SPLIT_RAD: f64 = 0.05;
+/// A wrist centre this close (mm) to the shoulder-offset cylinder around
+/// joint 1 is near the shoulder singularity: there the calibrated model's
+/// shoulder angles can lie far from the nominal formula's (millimetres of
+/// deviation turn into tens of degrees), so joint 1 is seeded on a ring.
+const NEAR_SHOULDER_AXIS_MM: f64 = 20.0;
+/// Joint 1 seeds on that ring.
+const SHOULDER_RING: usize = 12;
 
 /// Which side of joint 1 the wrist centre is on, along the arm's own
 /// direction (the x axis of frame 1).
@@ -166,9 +173,10 @@ impl SphericalWristArm {
         (base_to_flange * flange_to_wrist).translation.vector
     }
 
-    /// Up to eight joint vectors (rad, each angle in `(-pi, pi]`) that put
-    /// the flange near `base_to_flange`, one per [`ArmConfiguration`]; exact
-    /// for the nominal structure, a seed for the calibrated model.
+    /// Eight joint vectors (rad, each angle in `(-pi, pi]`) that put the
+    /// flange near `base_to_flange`, one per [`ArmConfiguration`]; exact for
+    /// the nominal structure, a seed for the calibrated model. Near the
+    /// shoulder singularity, four more per joint-1 angle of a ring.
     pub fn branch_seeds(&self, base_to_flange: &Pose) -> Vec<Vec<f64>> {
         let j = &self.robot.joints;
         let off: Vec<f64> = j.iter().map(|l| l.theta_offset_rad).collect();
@@ -180,7 +188,12 @@ impl SphericalWristArm {
         let height = self.upper_arm.z + self.forearm.z;
         let offset = n.dot(&t1) + height - n.z * wc.z;
         let (n_h, wc_h) = (xy(&n), xy(&wc));
-        let shoulders = acos_pair(offset, n_h.norm() * wc_h.norm(), angle(wc_h) - angle(n_h));
+        let radius = n_h.norm() * wc_h.norm();
+        let mut shoulders = acos_pair(offset, radius, angle(wc_h) - angle(n_h)).to_vec();
+        if radius - offset.abs() < NEAR_SHOULDER_AXIS_MM {
+            shoulders
+                .extend((0..SHOULDER_RING).map(|k| k as f64 * 2.0 * PI / SHOULDER_RING as f64));
+        }
         let (upper, fore) = (xy(&self.upper_arm), xy(&self.forearm));
         let mut seeds = Vec::with_capacity(8);
         for theta1 in shoulders {

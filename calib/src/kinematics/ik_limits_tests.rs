@@ -101,3 +101,74 @@ fn one_seed_reaches_puma560_targets_over_the_workspace_within_limits() {
         assert_one_seed_reaches_everything_within_limits("puma560", 31 + seed);
     }
 }
+
+/// Targets whose wrist centre is within this (mm) of joint 1's axis.
+const NEAR_AXIS_MM: f64 = 5.0;
+const NEAR_AXIS_TARGETS: usize = 100;
+
+/// The wrist centre's signed distance from joint 1's axis along the arm.
+fn wrist_ahead_mm(robot: &RobotModel, q: &[f64]) -> f64 {
+    let frames: Vec<Pose> = (0..5)
+        .scan(Pose::identity(), |acc, i| {
+            *acc *= robot.joints[i].link_transform(q[i]);
+            Some(*acc)
+        })
+        .collect();
+    let wc = frames[4].translation.vector;
+    let ahead = frames[0].rotation * nalgebra::Vector3::x();
+    wc.x * ahead.x + wc.y * ahead.y
+}
+
+/// In-limit joints with the wrist centre within [`NEAR_AXIS_MM`] of joint
+/// 1's axis (the shoulder singularity): joint 3 bisected onto the axis.
+fn near_shoulder_axis(robot: &RobotModel, rng: &mut StdRng) -> Vec<f64> {
+    let j3 = robot.joints[2];
+    loop {
+        let mut q = random_in_limits(robot, rng);
+        let mut at = |v: f64| {
+            q[2] = v;
+            wrist_ahead_mm(robot, &q)
+        };
+        let (mut lo, mut hi) = (j3.min_rad, j3.max_rad);
+        if at(lo).signum() == at(hi).signum() {
+            continue;
+        }
+        let sign_lo = at(lo).signum();
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if at(mid).signum() == sign_lo {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        q[2] = lo;
+        let step = rng.random_range(-1.0..=1.0) * NEAR_AXIS_MM;
+        let lever = (wrist_ahead_mm(robot, &{
+            let mut p = q.clone();
+            p[2] += 1e-3;
+            p
+        }) / 1e-3)
+            .abs();
+        q[2] += step / lever.max(1.0);
+        if robot.check_limits(&q).is_ok() && wrist_ahead_mm(robot, &q).abs() <= NEAR_AXIS_MM {
+            return q;
+        }
+    }
+}
+
+#[test]
+fn one_seed_reaches_targets_over_joint_1s_axis_within_limits() {
+    for (preset, seed) in [("irb2400", 41), ("puma560", 42)] {
+        let (model, home) = simulated_model(preset, seed);
+        let mut rng = StdRng::seed_from_u64(seed);
+        for k in 0..NEAR_AXIS_TARGETS {
+            let q_true = near_shoulder_axis(&model.robot, &mut rng);
+            let target = model.world_to_tool(&q_true).unwrap();
+            let sol = nearest_within_limits(&model, &target, &home)
+                .unwrap_or_else(|e| panic!("{preset} target {k} ({q_true:?}): {e}"));
+            model.robot.check_limits(&sol.joints_rad).unwrap();
+            assert!(sol.residual_mm < REACH_MM, "{preset} target {k}: {sol:?}");
+        }
+    }
+}
