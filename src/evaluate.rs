@@ -3,7 +3,8 @@
 //! the stored calibrated model.
 
 use robocal_calib::geometry::Pose;
-use robocal_calib::kinematics::ik::{default_seeds, inverse_kinematics};
+use robocal_calib::kinematics::ik::{default_seeds, nearest_within_limits, IkStart};
+use robocal_calib::kinematics::ik_branches::{self, SphericalWristArm};
 use robocal_calib::kinematics::CalibratedModel;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
@@ -14,6 +15,8 @@ use crate::schema::{Checker, FieldError, PoseDoc};
 
 /// Most rows of one `forward` or `compensate` request.
 pub const MAX_ROWS: usize = 10_000;
+/// Unreachable targets named one by one in a 422; the rest are counted.
+const MAX_TARGET_ERRORS: usize = 50;
 
 #[derive(Debug, Clone, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
@@ -34,6 +37,9 @@ pub struct ForwardPose {
     #[serde(skip_serializing_if = "Option::is_none")]
     #[schema(value_type = Option<Object>)]
     pub tool_in_target: Option<PoseOut>,
+    /// One message per joint outside its limits (the pose is still
+    /// computed: the controller would refuse it). Empty when all are within.
+    pub warnings: Vec<String>,
 }
 
 #[derive(Debug, Clone, Serialize, ToSchema)]
@@ -59,10 +65,83 @@ pub struct CompensateRequest {
     pub seed_joints_deg: Option<Seeds>,
 }
 
+/// Where the solver's run that found a target's joints started.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum SolverStart {
+    /// The seed (`seed_joints_deg`, or mid-range joints without one).
+    Seed,
+    /// A closed-form branch of a spherical-wrist arm: the seed's own branch
+    /// left the joint limits.
+    Branch,
+    /// A grid of starts (arms without a spherical wrist).
+    MultiStart,
+}
+
+impl From<IkStart> for SolverStart {
+    fn from(s: IkStart) -> Self {
+        match s {
+            IkStart::Seed => SolverStart::Seed,
+            IkStart::Branch => SolverStart::Branch,
+            IkStart::MultiStart => SolverStart::MultiStart,
+        }
+    }
+}
+
+/// The arm configuration of a solution (spherical-wrist arms).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, ToSchema)]
+pub struct Configuration {
+    /// The wrist centre's side of joint 1, along the arm.
+    #[schema(schema_with = shoulder_schema)]
+    pub shoulder: ik_branches::Shoulder,
+    /// The elbow above or below the shoulder–wrist line.
+    #[schema(schema_with = elbow_schema)]
+    pub elbow: ik_branches::Elbow,
+    /// The sign of joint 5.
+    #[schema(schema_with = wrist_schema)]
+    pub wrist: ik_branches::Wrist,
+}
+
+/// A string enum schema (the numerics' enums carry no OpenAPI derive).
+fn string_enum(values: [&str; 2], description: &str) -> utoipa::openapi::Object {
+    utoipa::openapi::ObjectBuilder::new()
+        .schema_type(utoipa::openapi::schema::Type::String)
+        .enum_values(Some(values))
+        .description(Some(description))
+        .build()
+}
+
+fn shoulder_schema() -> utoipa::openapi::Object {
+    string_enum(
+        ["front", "back"],
+        "The wrist centre's side of joint 1, along the arm.",
+    )
+}
+
+fn elbow_schema() -> utoipa::openapi::Object {
+    string_enum(
+        ["up", "down"],
+        "The elbow above or below the shoulder–wrist line (in the arm's plane).",
+    )
+}
+
+fn wrist_schema() -> utoipa::openapi::Object {
+    string_enum(
+        ["no_flip", "flip"],
+        "The sign of joint 5 (with its offset).",
+    )
+}
+
 #[derive(Debug, Clone, Serialize, ToSchema)]
 pub struct CompensateResponse {
+    /// Per target: the in-limit joints nearest the seed.
     pub joints_deg: Vec<Vec<f64>>,
     pub residual_mm: Vec<f64>,
+    /// Per target: where the run that found the joints started.
+    pub start: Vec<SolverStart>,
+    /// Per target: the configuration of the joints, null for arms without
+    /// a spherical wrist.
+    pub configuration: Vec<Option<Configuration>>,
 }
 
 /// The calibrated model of a stored parameter set.
@@ -137,6 +216,12 @@ pub fn forward(
             flange_in_base: PoseOut::new(&flange),
             camera_in_target: PoseOut::new(&(world_flange * model.flange_to_tool)),
             tool_in_target: tool.map(|t| PoseOut::new(&(world_flange * t))),
+            warnings: model
+                .robot
+                .limit_violations(&q)
+                .iter()
+                .map(ToString::to_string)
+                .collect(),
         });
     }
     Ok(ForwardResponse { poses })
@@ -176,24 +261,61 @@ pub fn compensate(
     c.finish()?;
     let tool_model = tool.map_or_else(|| model.clone(), |t| model.with_tool(t));
     let rad = |row: &Vec<f64>| row.iter().map(|d| d.to_radians()).collect::<Vec<f64>>();
-    let defaults = default_seeds(&tool_model);
-    let (mut joints_deg, mut residual_mm) = (Vec::new(), Vec::new());
+    // Without a seed: mid-range joints (the first of the default grid).
+    let mid_range = default_seeds(&tool_model).swap_remove(0);
+    let arm = SphericalWristArm::of(&tool_model.robot);
+    let mut answer = CompensateResponse {
+        joints_deg: Vec::new(),
+        residual_mm: Vec::new(),
+        start: Vec::new(),
+        configuration: Vec::new(),
+    };
+    let mut failed = Checker::default();
+    let mut failures = 0;
     for (i, target) in targets.iter().enumerate() {
         let target = target.expect("checked above");
-        let seeds = match &req.seed_joints_deg {
-            Some(Seeds::One(seed)) => vec![rad(seed)],
-            Some(Seeds::PerTarget(rows)) => vec![rad(&rows[i])],
-            None => defaults.clone(),
+        let seed = match &req.seed_joints_deg {
+            Some(Seeds::One(seed)) => rad(seed),
+            Some(Seeds::PerTarget(rows)) => rad(&rows[i]),
+            None => mid_range.clone(),
         };
-        let solution = inverse_kinematics(&tool_model, &target, &seeds)
-            .map_err(|e| vec![FieldError::new(format!("targets[{i}]"), e.to_string())])?;
-        joints_deg.push(solution.joints_rad.iter().map(|r| r.to_degrees()).collect());
-        residual_mm.push(solution.residual_mm);
+        let solution = match nearest_within_limits(&tool_model, &target, &seed) {
+            Ok(s) => s,
+            Err(e) => {
+                failures += 1;
+                if failures <= MAX_TARGET_ERRORS {
+                    failed.fail(format!("targets[{i}]"), e.to_string());
+                }
+                continue;
+            }
+        };
+        let configuration = arm
+            .as_ref()
+            .and_then(|a| a.configuration(&solution.joints_rad));
+        answer
+            .configuration
+            .push(configuration.map(|c| Configuration {
+                shoulder: c.shoulder,
+                elbow: c.elbow,
+                wrist: c.wrist,
+            }));
+        answer
+            .joints_deg
+            .push(solution.joints_rad.iter().map(|r| r.to_degrees()).collect());
+        answer.residual_mm.push(solution.residual_mm);
+        answer.start.push(solution.start.into());
     }
-    Ok(CompensateResponse {
-        joints_deg,
-        residual_mm,
-    })
+    if failures > MAX_TARGET_ERRORS {
+        failed.fail(
+            "targets",
+            format!(
+                "{} more targets have no solution within reach and joint limits",
+                failures - MAX_TARGET_ERRORS
+            ),
+        );
+    }
+    failed.finish()?;
+    Ok(answer)
 }
 
 #[cfg(test)]

@@ -7,6 +7,7 @@
 use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 
+use super::ik_branches::SphericalWristArm;
 use super::jacobian::tool_pose_jacobian;
 use super::model::KinematicsError;
 use super::params::{CalibratedModel, Instrument, ParamLayout, PARAMS_PER_JOINT};
@@ -18,6 +19,10 @@ pub const IK_ROTATION_SCALE_MM: f64 = 1000.0;
 /// A solution whose (scaled) residual exceeds this is out of reach.
 pub const IK_REACH_TOL_MM: f64 = 1e-3;
 const IK_MAX_ITERATIONS: usize = 100;
+/// Compensation's answers are polished to this residual (mm, scaled) ...
+const IK_POLISHED_MM: f64 = 1e-7;
+/// ... by at most this many fresh runs (only near singularities).
+const IK_POLISH_RUNS: usize = 5;
 
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum IkError {
@@ -31,6 +36,19 @@ pub enum IkError {
     Kinematics(#[from] KinematicsError),
 }
 
+/// Where the Levenberg–Marquardt run that found a solution started.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum IkStart {
+    /// The caller's seed (the first one, when several were given).
+    #[default]
+    Seed,
+    /// A closed-form branch seed of a spherical-wrist arm.
+    Branch,
+    /// Another seed of a list, or the grid of [`default_seeds`].
+    MultiStart,
+}
+
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct IkSolution {
     pub joints_rad: Vec<f64>,
@@ -38,6 +56,8 @@ pub struct IkSolution {
     pub residual_mm: f64,
     /// Orientation distance (rad).
     pub residual_rad: f64,
+    #[serde(default)]
+    pub start: IkStart,
 }
 
 struct IkProblem<'a> {
@@ -111,15 +131,169 @@ pub fn default_seeds(model: &CalibratedModel) -> Vec<Vec<f64>> {
         .collect()
 }
 
-/// Bring each angle into its joint's limits by whole turns where possible.
-fn wrap_into_limits(model: &CalibratedModel, q: &mut [f64]) {
-    for (v, j) in q.iter_mut().zip(&model.robot.joints) {
-        let turn = std::f64::consts::TAU;
-        while *v > j.max_rad && *v - turn >= j.min_rad {
-            *v -= turn;
+/// How a solution's angles are moved by whole turns (for joints whose
+/// range exceeds one turn).
+#[derive(Clone, Copy)]
+enum Turns {
+    /// Into the limits where possible, otherwise unchanged (the simulator's
+    /// historical rule: its campaigns stay as they were).
+    IntoLimits,
+    /// The in-limit turn nearest the reference seed, per joint: the joint-
+    /// space distance is a sum over joints, so this is the nearest overall.
+    TowardReference,
+}
+
+fn move_by_turns(model: &CalibratedModel, q: &mut [f64], reference: &[f64], rule: Turns) {
+    let turn = std::f64::consts::TAU;
+    for ((v, j), r) in q.iter_mut().zip(&model.robot.joints).zip(reference) {
+        match rule {
+            Turns::IntoLimits => {
+                while *v > j.max_rad && *v - turn >= j.min_rad {
+                    *v -= turn;
+                }
+                while *v < j.min_rad && *v + turn <= j.max_rad {
+                    *v += turn;
+                }
+            }
+            Turns::TowardReference => {
+                let lowest = *v - ((*v - j.min_rad) / turn).floor() * turn;
+                let mut best = *v;
+                let mut candidate = lowest;
+                while candidate <= j.max_rad {
+                    let outside = best < j.min_rad || best > j.max_rad;
+                    if outside || (candidate - r).abs() < (best - r).abs() {
+                        best = candidate;
+                    }
+                    candidate += turn;
+                }
+                *v = best;
+            }
         }
-        while *v < j.min_rad && *v + turn <= j.max_rad {
-            *v += turn;
+    }
+}
+
+fn squared_distance(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| (x - y).powi(2)).sum()
+}
+
+/// Levenberg–Marquardt runs toward one target from several starts, keeping
+/// the in-limit solution nearest a reference seed.
+struct Search<'a> {
+    problem: IkProblem<'a>,
+    options: LmOptions,
+    reference: &'a [f64],
+    turns: Turns,
+    best_residual: f64,
+    /// The out-of-limit solution nearest the reference, and why.
+    limit_error: Option<(f64, KinematicsError)>,
+    found: Option<(f64, IkSolution)>,
+}
+
+impl<'a> Search<'a> {
+    fn new(
+        model: &'a CalibratedModel,
+        target: &'a Pose,
+        reference: &'a [f64],
+        turns: Turns,
+    ) -> Self {
+        Self {
+            problem: IkProblem {
+                model,
+                layout: ParamLayout::new(&model.robot, Instrument::Camera),
+                target,
+            },
+            options: LmOptions {
+                max_iterations: IK_MAX_ITERATIONS,
+                ..LmOptions::default()
+            },
+            reference,
+            turns,
+            best_residual: f64::INFINITY,
+            limit_error: None,
+            found: None,
+        }
+    }
+
+    /// One run from `start`; true when it reached the target within limits.
+    fn run(&mut self, start: &[f64], how: IkStart) -> bool {
+        let model = self.problem.model;
+        let Ok(report) = solve(
+            &self.problem,
+            DVector::from_column_slice(start),
+            &self.options,
+        ) else {
+            return false;
+        };
+        let mut x = report.x;
+        if matches!(self.turns, Turns::TowardReference) {
+            x = self.polish(x);
+        }
+        let mut q: Vec<f64> = x.iter().copied().collect();
+        move_by_turns(model, &mut q, self.reference, self.turns);
+        let Some((_, e)) = self.problem.error(&DVector::from_column_slice(&q)) else {
+            return false;
+        };
+        let (pos, rot) = (e.rows(0, 3).norm(), e.rows(3, 3).norm());
+        let scaled = pos.max(rot * IK_ROTATION_SCALE_MM);
+        self.best_residual = self.best_residual.min(scaled);
+        if scaled > IK_REACH_TOL_MM {
+            return false;
+        }
+        let distance = squared_distance(&q, self.reference);
+        if let Err(e) = model.robot.check_limits(&q) {
+            if self.limit_error.as_ref().is_none_or(|(d, _)| distance < *d) {
+                self.limit_error = Some((distance, e));
+            }
+            return false;
+        }
+        if self.found.as_ref().is_none_or(|(d, _)| distance < *d) {
+            self.found = Some((
+                distance,
+                IkSolution {
+                    joints_rad: q,
+                    residual_mm: pos,
+                    residual_rad: rot,
+                    start: how,
+                },
+            ));
+        }
+        true
+    }
+
+    /// Near a singularity Levenberg–Marquardt stops early (its steps gain
+    /// little); a fresh run from where it stopped (damping reset) goes on.
+    fn polish(&self, mut x: DVector<f64>) -> DVector<f64> {
+        let scaled = |x: &DVector<f64>| {
+            self.problem.error(x).map_or(f64::INFINITY, |(_, e)| {
+                e.rows(0, 3)
+                    .norm()
+                    .max(e.rows(3, 3).norm() * IK_ROTATION_SCALE_MM)
+            })
+        };
+        let mut residual = scaled(&x);
+        for _ in 0..IK_POLISH_RUNS {
+            if residual <= IK_POLISHED_MM || residual > IK_REACH_TOL_MM {
+                break;
+            }
+            let Ok(report) = solve(&self.problem, x.clone(), &self.options) else {
+                break;
+            };
+            let better = scaled(&report.x);
+            if better >= residual {
+                break;
+            }
+            (x, residual) = (report.x, better);
+        }
+        x
+    }
+
+    fn finish(self) -> Result<IkSolution, IkError> {
+        match (self.found, self.limit_error) {
+            (Some((_, s)), _) => Ok(s),
+            (None, Some((_, e))) => Err(IkError::Limits(e)),
+            (None, None) => Err(IkError::OutOfReach {
+                residual_mm: self.best_residual,
+            }),
         }
     }
 }
@@ -127,131 +301,60 @@ fn wrap_into_limits(model: &CalibratedModel, q: &mut [f64]) {
 /// Joints that put the tool at `world_to_tool` according to `model`,
 /// started from each seed; of the solutions within reach and limits, the
 /// one closest to the first seed. Out of reach and beyond-limit targets are
-/// errors.
+/// errors. The simulator places its stations with this (its home seed's
+/// branch only); compensation uses [`nearest_within_limits`].
 pub fn inverse_kinematics(
     model: &CalibratedModel,
     world_to_tool: &Pose,
     seeds: &[Vec<f64>],
 ) -> Result<IkSolution, IkError> {
-    if seeds.is_empty() {
+    let Some(first) = seeds.first() else {
         return Err(IkError::NoSeed);
-    }
-    let problem = IkProblem {
-        model,
-        layout: ParamLayout::new(&model.robot, Instrument::Camera),
-        target: world_to_tool,
     };
-    let options = LmOptions {
-        max_iterations: IK_MAX_ITERATIONS,
-        ..LmOptions::default()
-    };
-    let mut best_residual = f64::INFINITY;
-    let mut limit_error = None;
-    let mut found: Option<(f64, IkSolution)> = None;
-    for seed in seeds {
+    let mut search = Search::new(model, world_to_tool, first, Turns::IntoLimits);
+    for (k, seed) in seeds.iter().enumerate() {
         model.robot.base_to_flange(seed)?;
-        let Ok(report) = solve(&problem, DVector::from_column_slice(seed), &options) else {
-            continue;
+        let how = if k == 0 {
+            IkStart::Seed
+        } else {
+            IkStart::MultiStart
         };
-        let mut q: Vec<f64> = report.x.iter().copied().collect();
-        wrap_into_limits(model, &mut q);
-        let Some((_, e)) = problem.error(&DVector::from_column_slice(&q)) else {
-            continue;
-        };
-        let (pos, rot) = (e.rows(0, 3).norm(), e.rows(3, 3).norm());
-        let scaled = pos.max(rot * IK_ROTATION_SCALE_MM);
-        best_residual = best_residual.min(scaled);
-        if scaled > IK_REACH_TOL_MM {
-            continue;
-        }
-        if let Err(e) = model.robot.check_limits(&q) {
-            limit_error = Some(e);
-            continue;
-        }
-        let distance: f64 = q.iter().zip(&seeds[0]).map(|(a, b)| (a - b).powi(2)).sum();
-        if found.as_ref().is_none_or(|(d, _)| distance < *d) {
-            found = Some((
-                distance,
-                IkSolution {
-                    joints_rad: q,
-                    residual_mm: pos,
-                    residual_rad: rot,
-                },
-            ));
-        }
+        search.run(seed, how);
     }
-    match (found, limit_error) {
-        (Some((_, s)), _) => Ok(s),
-        (None, Some(e)) => Err(IkError::Limits(e)),
-        (None, None) => Err(IkError::OutOfReach {
-            residual_mm: best_residual,
-        }),
-    }
+    search.finish()
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::kinematics::presets;
-
-    #[test]
-    fn ik_recovers_joints_and_rejects_unreachable_targets() {
-        let model = CalibratedModel {
-            robot: presets::irb2400(),
-            world_to_base: Pose::translation(10.0, 20.0, 30.0),
-            flange_to_tool: Pose::translation(0.0, 0.0, 120.0),
-        };
-        let q_true = [0.2, 0.3, -0.2, 0.5, 0.8, -0.4];
-        let target = model.world_to_tool(&q_true).unwrap();
-        let seed: Vec<f64> = q_true.iter().map(|q| q + 0.1).collect();
-        let sol = inverse_kinematics(&model, &target, std::slice::from_ref(&seed)).unwrap();
-        assert!(sol.residual_mm < 1e-6, "{sol:?}");
-        let reached = model.world_to_tool(&sol.joints_rad).unwrap();
-        assert!((reached.translation.vector - target.translation.vector).norm() < 1e-6);
-        let far = Pose::translation(5000.0, 0.0, 0.0) * target;
-        assert!(matches!(
-            inverse_kinematics(&model, &far, &[seed]),
-            Err(IkError::OutOfReach { .. })
-        ));
-        assert!(matches!(
-            inverse_kinematics(&model, &target, &[]),
-            Err(IkError::NoSeed)
-        ));
+/// Compensation (api.md "compensate"): the in-limit joints nearest `seed`
+/// (joint-space distance, whole turns included) that put the tool at
+/// `world_to_tool`.
+///
+/// The seed's own run answers when it lands within limits: the usual case
+/// costs one Levenberg–Marquardt run. Otherwise every branch is refined —
+/// the closed-form seeds of a spherical-wrist arm, or the [`default_seeds`]
+/// grid for other arms — and the in-limit solution nearest the seed wins.
+/// A target no branch reaches within limits is an error naming the nearest
+/// solution's offending joint.
+pub fn nearest_within_limits(
+    model: &CalibratedModel,
+    world_to_tool: &Pose,
+    seed: &[f64],
+) -> Result<IkSolution, IkError> {
+    model.robot.base_to_flange(seed)?;
+    let mut search = Search::new(model, world_to_tool, seed, Turns::TowardReference);
+    if search.run(seed, IkStart::Seed) {
+        return search.finish();
     }
-
-    #[test]
-    fn default_seeds_find_a_solution_without_a_user_seed() {
-        let model = CalibratedModel {
-            robot: presets::puma560(),
-            world_to_base: Pose::identity(),
-            flange_to_tool: Pose::translation(0.0, 0.0, 100.0),
-        };
-        let seeds = default_seeds(&model);
-        assert_eq!(seeds.len(), 81);
-        let target = model
-            .world_to_tool(&[0.4, 1.2, -2.0, 0.3, 0.9, -0.5])
-            .unwrap();
-        let sol = inverse_kinematics(&model, &target, &seeds).unwrap();
-        assert!(sol.residual_mm < 1e-6);
-        model.robot.check_limits(&sol.joints_rad).unwrap();
+    let (starts, how) = match SphericalWristArm::of(&model.robot) {
+        Some(arm) => {
+            let base_to_flange =
+                model.world_to_base.inverse() * world_to_tool * model.flange_to_tool.inverse();
+            (arm.branch_seeds(&base_to_flange), IkStart::Branch)
+        }
+        None => (default_seeds(model), IkStart::MultiStart),
+    };
+    for mut start in starts {
+        move_by_turns(model, &mut start, seed, Turns::TowardReference);
+        search.run(&start, how);
     }
-
-    #[test]
-    fn targets_needing_joints_beyond_limits_are_errors() {
-        let mut model = CalibratedModel {
-            robot: presets::irb2400(),
-            world_to_base: Pose::identity(),
-            flange_to_tool: Pose::translation(0.0, 0.0, 120.0),
-        };
-        let q = [0.2, 0.3, -0.2, 0.5, 0.8, -0.4];
-        let target = model.world_to_tool(&q).unwrap();
-        model.robot.joints[4].max_rad = 0.5; // joint 5 must reach 0.8
-        assert!(matches!(
-            inverse_kinematics(&model, &target, &[q.to_vec()]),
-            Err(IkError::Limits(KinematicsError::OutsideLimits {
-                joint: 5,
-                ..
-            }))
-        ));
-    }
+    search.finish()
 }

@@ -5,6 +5,13 @@ pub mod identify;
 pub mod identify_error;
 pub mod identify_options;
 pub mod ik;
+pub mod ik_branches;
+#[cfg(test)]
+mod ik_branches_tests;
+#[cfg(test)]
+mod ik_limits_tests;
+#[cfg(test)]
+mod ik_tests;
 mod image_fit;
 pub mod image_pose;
 pub mod initial;

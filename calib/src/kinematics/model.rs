@@ -140,17 +140,27 @@ impl RobotModel {
     /// Every joint within its limits (1-based joint numbers in the error).
     pub fn check_limits(&self, q_rad: &[f64]) -> Result<(), KinematicsError> {
         self.check_input(q_rad)?;
-        for (i, (joint, &q)) in self.joints.iter().zip(q_rad).enumerate() {
-            if q < joint.min_rad || q > joint.max_rad {
-                return Err(KinematicsError::OutsideLimits {
-                    joint: i + 1,
-                    value_deg: q.to_degrees(),
-                    min_deg: joint.min_rad.to_degrees(),
-                    max_deg: joint.max_rad.to_degrees(),
-                });
-            }
+        match self.limit_violations(q_rad).into_iter().next() {
+            Some(e) => Err(e),
+            None => Ok(()),
         }
-        Ok(())
+    }
+
+    /// Each joint outside its limits, in joint order (1-based numbers): what
+    /// `forward` warns about. Values beyond the joint count are ignored.
+    pub fn limit_violations(&self, q_rad: &[f64]) -> Vec<KinematicsError> {
+        self.joints
+            .iter()
+            .zip(q_rad)
+            .enumerate()
+            .filter(|(_, (joint, &q))| q < joint.min_rad || q > joint.max_rad)
+            .map(|(i, (joint, &q))| KinematicsError::OutsideLimits {
+                joint: i + 1,
+                value_deg: q.to_degrees(),
+                min_deg: joint.min_rad.to_degrees(),
+                max_deg: joint.max_rad.to_degrees(),
+            })
+            .collect()
     }
 }
 

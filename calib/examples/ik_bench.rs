@@ -1,0 +1,68 @@
+//! Compensation throughput for BENCHMARKS.md: `nearest_within_limits` from
+//! ONE seed on a simulated (perturbed) robot of each preset, for targets
+//! near the seed (the seed's own run answers) and for targets spread over
+//! every joint's range (the branch seeds run whenever the seed's branch
+//! leaves the limits). Prints targets per second and how often each start
+//! answered.
+//! `cargo run -p robocal-calib --example ik_bench -- [targets]`
+
+use std::time::Instant;
+
+use rand::{rngs::StdRng, Rng, SeedableRng};
+use robocal_calib::geometry::pose_from_xyz_rpy_deg;
+use robocal_calib::kinematics::ik::{nearest_within_limits, IkStart};
+use robocal_calib::kinematics::CalibratedModel;
+use robocal_calib::sim::campaign::{perturb_robot, CampaignSpec};
+
+/// Joint spread (rad) of the "near the seed" targets.
+const NEAR_SPREAD_RAD: f64 = 0.3;
+
+fn main() {
+    let targets: usize = std::env::args()
+        .nth(1)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(20_000);
+    for preset in ["irb2400", "puma560"] {
+        let spec = CampaignSpec::standard(preset, 1).expect("preset");
+        let mut rng = StdRng::seed_from_u64(1);
+        let model = CalibratedModel {
+            robot: perturb_robot(&spec.nominal, &spec, &mut rng),
+            world_to_base: pose_from_xyz_rpy_deg([800.0, -300.0, 40.0], [2.0, -3.0, 170.0])
+                .expect("pose"),
+            flange_to_tool: spec.flange_to_camera_guess,
+        };
+        let seed = spec.home_joints_rad.clone();
+        for (label, spread) in [("near the seed", Some(NEAR_SPREAD_RAD)), ("spread", None)] {
+            let poses: Vec<_> = (0..targets)
+                .map(|_| {
+                    let q: Vec<f64> = model
+                        .robot
+                        .joints
+                        .iter()
+                        .zip(&seed)
+                        .map(|(j, s)| match spread {
+                            Some(d) => (s + rng.random_range(-d..=d)).clamp(j.min_rad, j.max_rad),
+                            None => rng.random_range(j.min_rad..=j.max_rad),
+                        })
+                        .collect();
+                    model.world_to_tool(&q).expect("in-limit joints")
+                })
+                .collect();
+            let (mut seeded, mut branch, mut failed) = (0, 0, 0);
+            let start = Instant::now();
+            for target in &poses {
+                match nearest_within_limits(&model, target, &seed) {
+                    Ok(s) if s.start == IkStart::Seed => seeded += 1,
+                    Ok(_) => branch += 1,
+                    Err(_) => failed += 1,
+                }
+            }
+            let seconds = start.elapsed().as_secs_f64();
+            println!(
+                "{preset} {label}: {targets} targets in {seconds:.3} s = {rate:.0} targets/s; \
+                 answered by the seed {seeded}, by a branch seed {branch}, failed {failed}",
+                rate = targets as f64 / seconds
+            );
+        }
+    }
+}
