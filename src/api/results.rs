@@ -16,6 +16,8 @@ use super::error::{ApiError, ApiResult, Problem};
 use super::extract::{ApiJson, Paging};
 use super::AppState;
 use crate::domain::ParameterSetRecord;
+use crate::pipeline::results::PoseOut;
+use crate::report::schema::IntrinsicsSchema;
 use crate::evaluate;
 use crate::report::{render_html, render_svg, Report};
 
@@ -39,8 +41,41 @@ pub struct ParameterSetOut {
     pub created_at: String,
     /// Kinematics, `target_to_base`, `flange_to_camera`, intrinsics, fixed parameters.
     #[serde(flatten)]
-    #[schema(value_type = Object)]
+    #[schema(value_type = ParameterSetFields)]
     pub parameters: Map<String, Value>,
+}
+
+/// The identified model of a parameter set, as served (the stored
+/// `ParameterSetDoc` with the contract's frame names). Camera sets have
+/// `target_to_base`, `flange_to_camera` and `camera`; tracker sets
+/// `instrument_to_base` and `flange_to_tool`.
+#[derive(ToSchema)]
+#[allow(dead_code)] // a schema only: the answer serialises the stored document
+pub struct ParameterSetFields {
+    /// `camera` or `tracker`.
+    pub instrument: String,
+    /// The session the parameters were identified from.
+    pub session_id: String,
+    /// The identified joint table.
+    pub kinematics: crate::schema::robot::KinematicsDoc,
+    /// The calibration board's frame in the robot base frame (camera sets).
+    pub target_to_base: Option<PoseOut>,
+    /// The camera in the flange frame (camera sets).
+    pub flange_to_camera: Option<PoseOut>,
+    /// The laser tracker's frame in the robot base frame (tracker sets).
+    pub instrument_to_base: Option<PoseOut>,
+    /// The measured tool point in the flange frame (tracker sets).
+    pub flange_to_tool: Option<PoseOut>,
+    /// The calibrated camera intrinsics (camera sets).
+    pub camera: Option<IntrinsicsSchema>,
+    /// How `camera` was obtained: `refined`, `paper` or `fixed`.
+    pub camera_mode: Option<String>,
+    /// The calibration (`"{serial}/{version}"`) whose intrinsics were held fixed.
+    pub camera_calibration_id: Option<String>,
+    /// Parameters held fixed as unidentifiable.
+    pub fixed: Vec<String>,
+    /// Every identified parameter against its nominal value.
+    pub parameters: Vec<crate::report::ParameterReport>,
 }
 
 #[derive(Debug, Serialize, ToSchema)]
@@ -93,7 +128,7 @@ async fn find(state: &AppState, serial: &str, version: &str) -> ApiResult<Parame
     params(("serial" = String, Path, description = "Robot serial number"),
            ("limit" = Option<i64>, Query, description = "Page size, 1 to 1000"),
            ("cursor" = Option<String>, Query, description = "next_cursor of the previous page")),
-    responses((status = 200, body = ParameterSetList), (status = 422, body = Problem, content_type = "application/problem+json")))]
+    responses((status = 200, description = "One page of the robot's parameter sets, newest first (empty for an unknown robot)", body = ParameterSetList), (status = 422, body = Problem, content_type = "application/problem+json")))]
 async fn list_parameter_sets(
     State(state): State<AppState>,
     Path(serial): Path<String>,
@@ -120,7 +155,7 @@ async fn list_parameter_sets(
 #[utoipa::path(get, path = "/v1/robots/{serial}/parameter-sets/{version}", tag = "results",
     params(("serial" = String, Path, description = "Robot serial number"),
            ("version" = String, Path, description = "Version number or `latest`")),
-    responses((status = 200, body = ParameterSetOut), (status = 404, body = Problem, content_type = "application/problem+json")))]
+    responses((status = 200, description = "The parameter set: identified kinematics, frames and camera intrinsics", body = ParameterSetOut), (status = 404, body = Problem, content_type = "application/problem+json")))]
 async fn get_parameter_set(
     State(state): State<AppState>,
     Path((serial, version)): Path<(String, String)>,
@@ -132,7 +167,8 @@ async fn get_parameter_set(
 #[utoipa::path(get, path = "/v1/robots/{serial}/parameter-sets/{version}/report", tag = "results",
     params(("serial" = String, Path, description = "Robot serial number"),
            ("version" = String, Path, description = "Version number or `latest`")),
-    responses((status = 200, body = Object), (status = 404, body = Problem, content_type = "application/problem+json")))]
+    responses((status = 200, description = "The accuracy report: before/after statistics on the validation poses, per-pose errors, identified parameters, camera fit, notes", body = Report),
+              (status = 404, description = "No such robot, parameter set or report", body = Problem, content_type = "application/problem+json")))]
 async fn get_report(
     State(state): State<AppState>,
     Path((serial, version)): Path<(String, String)>,
@@ -167,7 +203,8 @@ async fn typed_report(state: &AppState, serial: &str, version: &str) -> ApiResul
 #[utoipa::path(get, path = "/v1/robots/{serial}/parameter-sets/{version}/report.svg", tag = "results",
     params(("serial" = String, Path, description = "Robot serial number"),
            ("version" = String, Path, description = "Version number or `latest`")),
-    responses((status = 200, content_type = "image/svg+xml", body = String), (status = 404, body = Problem, content_type = "application/problem+json")))]
+    responses((status = 200, description = "The report's charts as one SVG document", content_type = "image/svg+xml", body = String), (status = 404, body = Problem, content_type = "application/problem+json"),
+              (status = 409, description = "The parameter set has no accuracy report to draw", body = Problem, content_type = "application/problem+json")))]
 async fn get_report_svg(
     State(state): State<AppState>,
     Path((serial, version)): Path<(String, String)>,
@@ -183,7 +220,8 @@ async fn get_report_svg(
 #[utoipa::path(get, path = "/v1/robots/{serial}/parameter-sets/{version}/report.html", tag = "results",
     params(("serial" = String, Path, description = "Robot serial number"),
            ("version" = String, Path, description = "Version number or `latest`")),
-    responses((status = 200, content_type = "text/html", body = String), (status = 404, body = Problem, content_type = "application/problem+json")))]
+    responses((status = 200, description = "The report as a self-contained printable HTML page", content_type = "text/html", body = String), (status = 404, body = Problem, content_type = "application/problem+json"),
+              (status = 409, description = "The parameter set has no accuracy report to draw", body = Problem, content_type = "application/problem+json")))]
 async fn get_report_html(
     State(state): State<AppState>,
     Path((serial, version)): Path<(String, String)>,
@@ -203,7 +241,8 @@ async fn model(state: &AppState, serial: &str, version: &str) -> ApiResult<Calib
     params(("serial" = String, Path, description = "Robot serial number"),
            ("version" = String, Path, description = "Version number or `latest`")),
     request_body = evaluate::ForwardRequest,
-    responses((status = 200, body = evaluate::ForwardResponse), (status = 422, body = Problem, content_type = "application/problem+json")))]
+    responses((status = 200, description = "Per row of joints, the flange, camera (and tool) poses", body = evaluate::ForwardResponse), (status = 422, body = Problem, content_type = "application/problem+json"),
+              (status = 409, description = "The parameter set holds no calibrated model", body = Problem, content_type = "application/problem+json")))]
 async fn forward(
     State(state): State<AppState>,
     Path((serial, version)): Path<(String, String)>,
@@ -220,7 +259,8 @@ async fn forward(
     params(("serial" = String, Path, description = "Robot serial number"),
            ("version" = String, Path, description = "Version number or `latest`")),
     request_body = evaluate::CompensateRequest,
-    responses((status = 200, body = evaluate::CompensateResponse), (status = 422, body = Problem, content_type = "application/problem+json")))]
+    responses((status = 200, description = "Per target, the joints and the model's remaining distance to the target", body = evaluate::CompensateResponse), (status = 422, body = Problem, content_type = "application/problem+json"),
+              (status = 409, description = "The parameter set holds no calibrated model", body = Problem, content_type = "application/problem+json")))]
 async fn compensate(
     State(state): State<AppState>,
     Path((serial, version)): Path<(String, String)>,

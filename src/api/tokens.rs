@@ -56,7 +56,7 @@ impl From<TokenRecord> for TokenOut {
 
 /// Create a token (shown once).
 #[utoipa::path(post, path = "/v1/tokens", tag = "tokens", request_body = TokenBody,
-    responses((status = 201, body = TokenCreated), (status = 403, body = Problem, content_type = "application/problem+json")))]
+    responses((status = 201, description = "The token, shown this once (only its hash is stored)", body = TokenCreated), (status = 403, body = Problem, content_type = "application/problem+json")))]
 async fn create_token(
     State(state): State<AppState>,
     ApiJson(body): ApiJson<TokenBody>,
@@ -80,7 +80,7 @@ async fn create_token(
 
 /// List tokens (never their secrets).
 #[utoipa::path(get, path = "/v1/tokens", tag = "tokens",
-    responses((status = 200, body = Vec<TokenOut>), (status = 403, body = Problem, content_type = "application/problem+json")))]
+    responses((status = 200, description = "Every token's name, scope and creation date (never the token)", body = Vec<TokenOut>), (status = 403, body = Problem, content_type = "application/problem+json")))]
 async fn list_tokens(State(state): State<AppState>) -> ApiResult<Json<Vec<TokenOut>>> {
     Ok(Json(
         state

@@ -84,7 +84,7 @@ async fn targets_hold(preset: &str) {
         .await
         .unwrap();
         let serial = format!("{}-ACC-{seed}", preset.to_uppercase());
-        let session = robocal::cli::upload(&client, &serial, dir.path())
+        let session = robocal::cli::upload(&client, &serial, dir.path(), robocal::cli::RobotPolicy::CreateIfMissing)
             .await
             .unwrap();
         let set = served_set(&app, &client, &serial, &session, json!({})).await;

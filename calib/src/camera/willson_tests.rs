@@ -1,4 +1,4 @@
-//! Willson's published Tsai results (shared/data/tsai/README.md).
+//! Willson's published Tsai results (calib/tests/data/tsai/README.md).
 
 use super::*;
 use crate::camera::willson_data::{load, published, INITIAL_CENTRE};
