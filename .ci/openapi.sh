@@ -73,7 +73,7 @@ step "the Python client is generated"
 PYTHONPATH="$work/client" "$venv/bin/python" .ci/client_check.py "$url" "$token" "$work/campaign"
 step "the generated client calibrated and read a typed report"
 
-"$venv/bin/schemathesis" run "$url/openapi.json" --checks all \
+"$venv/bin/schemathesis" --config-file .ci/schemathesis.toml run "$url/openapi.json" --checks all \
   --header "Authorization: Bearer $token" --max-time "$fuzz_secs" --workers 2 \
   --seed 1 --no-color --report junit --report-dir "$work/schemathesis" \
   || { echo "--- server log (tail)" >&2; tail -n 20 "$work/server.log" >&2; exit 1; }

@@ -35,6 +35,10 @@ const MALFORMED: Failure = Failure {
     status: "400",
     description: "The body cannot be read: malformed JSON, multipart or archive (`errors` names the part)",
 };
+const BAD_QUERY: Failure = Failure {
+    status: "400",
+    description: "The query string cannot be read (e.g. a parameter given twice)",
+};
 const NOT_FOUND: Failure = Failure {
     status: "404",
     description: "A resource named in the path does not exist",
@@ -103,8 +107,13 @@ fn failures_of(method: &str, path: &str, operation: &Operation) -> Vec<&'static 
     }
     if operation.request_body.is_some() {
         out.extend([&MALFORMED, &TOO_LARGE, &UNSUPPORTED, &INVALID]);
-    } else if has(ParameterIn::Query) || has(ParameterIn::Path) {
-        out.push(&INVALID);
+    } else {
+        if has(ParameterIn::Query) {
+            out.push(&BAD_QUERY);
+        }
+        if has(ParameterIn::Query) || has(ParameterIn::Path) {
+            out.push(&INVALID);
+        }
     }
     out
 }

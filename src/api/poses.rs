@@ -276,7 +276,7 @@ async fn multipart_pose(
 /// A session's poses, in upload order.
 #[utoipa::path(get, path = "/v1/sessions/{id}/poses", tag = "poses",
     params(("id" = String, Path, description = "Session id"),
-           ("limit" = Option<i64>, Query, description = "Page size, 1 to 1000"),
+           ("limit" = Option<i64>, Query, minimum = 1, maximum = 1000, description = "Page size, 1 to 1000 (default 100)"),
            ("cursor" = Option<String>, Query, description = "next_cursor of the previous page")),
     responses((status = 200, description = "One page of the session's poses, oldest first; `next_cursor` fetches the next", body = PoseList), (status = 404, body = Problem, content_type = "application/problem+json")))]
 async fn list_poses(

@@ -126,7 +126,7 @@ async fn find(state: &AppState, serial: &str, version: &str) -> ApiResult<Parame
 /// A robot's parameter sets, newest first.
 #[utoipa::path(get, path = "/v1/robots/{serial}/parameter-sets", tag = "results",
     params(("serial" = String, Path, description = "Robot serial number"),
-           ("limit" = Option<i64>, Query, description = "Page size, 1 to 1000"),
+           ("limit" = Option<i64>, Query, minimum = 1, maximum = 1000, description = "Page size, 1 to 1000 (default 100)"),
            ("cursor" = Option<String>, Query, description = "next_cursor of the previous page")),
     responses((status = 200, description = "One page of the robot's parameter sets, newest first (empty for an unknown robot)", body = ParameterSetList), (status = 422, body = Problem, content_type = "application/problem+json")))]
 async fn list_parameter_sets(
@@ -154,7 +154,7 @@ async fn list_parameter_sets(
 /// One parameter set (`latest` allowed).
 #[utoipa::path(get, path = "/v1/robots/{serial}/parameter-sets/{version}", tag = "results",
     params(("serial" = String, Path, description = "Robot serial number"),
-           ("version" = String, Path, description = "Version number or `latest`")),
+           ("version" = String, Path, pattern = r"^(latest|[1-9][0-9]{0,17})$", description = "Version number (1, 2, ...) or `latest`")),
     responses((status = 200, description = "The parameter set: identified kinematics, frames and camera intrinsics", body = ParameterSetOut), (status = 404, body = Problem, content_type = "application/problem+json")))]
 async fn get_parameter_set(
     State(state): State<AppState>,
@@ -166,7 +166,7 @@ async fn get_parameter_set(
 /// The accuracy report of a parameter set.
 #[utoipa::path(get, path = "/v1/robots/{serial}/parameter-sets/{version}/report", tag = "results",
     params(("serial" = String, Path, description = "Robot serial number"),
-           ("version" = String, Path, description = "Version number or `latest`")),
+           ("version" = String, Path, pattern = r"^(latest|[1-9][0-9]{0,17})$", description = "Version number (1, 2, ...) or `latest`")),
     responses((status = 200, description = "The accuracy report: before/after statistics on the validation poses, per-pose errors, identified parameters, camera fit, notes", body = Report),
               (status = 404, description = "No such robot, parameter set or report", body = Problem, content_type = "application/problem+json")))]
 async fn get_report(
@@ -202,7 +202,7 @@ async fn typed_report(state: &AppState, serial: &str, version: &str) -> ApiResul
 /// The report drawn as one SVG sheet.
 #[utoipa::path(get, path = "/v1/robots/{serial}/parameter-sets/{version}/report.svg", tag = "results",
     params(("serial" = String, Path, description = "Robot serial number"),
-           ("version" = String, Path, description = "Version number or `latest`")),
+           ("version" = String, Path, pattern = r"^(latest|[1-9][0-9]{0,17})$", description = "Version number (1, 2, ...) or `latest`")),
     responses((status = 200, description = "The report's charts as one SVG document", content_type = "image/svg+xml", body = String), (status = 404, body = Problem, content_type = "application/problem+json"),
               (status = 409, description = "The parameter set has no accuracy report to draw", body = Problem, content_type = "application/problem+json")))]
 async fn get_report_svg(
@@ -219,7 +219,7 @@ async fn get_report_svg(
 /// The report as a self-contained printable page.
 #[utoipa::path(get, path = "/v1/robots/{serial}/parameter-sets/{version}/report.html", tag = "results",
     params(("serial" = String, Path, description = "Robot serial number"),
-           ("version" = String, Path, description = "Version number or `latest`")),
+           ("version" = String, Path, pattern = r"^(latest|[1-9][0-9]{0,17})$", description = "Version number (1, 2, ...) or `latest`")),
     responses((status = 200, description = "The report as a self-contained printable HTML page", content_type = "text/html", body = String), (status = 404, body = Problem, content_type = "application/problem+json"),
               (status = 409, description = "The parameter set has no accuracy report to draw", body = Problem, content_type = "application/problem+json")))]
 async fn get_report_html(
@@ -239,7 +239,7 @@ async fn model(state: &AppState, serial: &str, version: &str) -> ApiResult<Calib
 /// Forward kinematics of the calibrated model.
 #[utoipa::path(post, path = "/v1/robots/{serial}/parameter-sets/{version}/forward", tag = "results",
     params(("serial" = String, Path, description = "Robot serial number"),
-           ("version" = String, Path, description = "Version number or `latest`")),
+           ("version" = String, Path, pattern = r"^(latest|[1-9][0-9]{0,17})$", description = "Version number (1, 2, ...) or `latest`")),
     request_body = evaluate::ForwardRequest,
     responses((status = 200, description = "Per row of joints, the flange, camera (and tool) poses", body = evaluate::ForwardResponse), (status = 422, body = Problem, content_type = "application/problem+json"),
               (status = 409, description = "The parameter set holds no calibrated model", body = Problem, content_type = "application/problem+json")))]
@@ -257,7 +257,7 @@ async fn forward(
 /// Joints that put the tool on each target according to the calibrated model.
 #[utoipa::path(post, path = "/v1/robots/{serial}/parameter-sets/{version}/compensate", tag = "results",
     params(("serial" = String, Path, description = "Robot serial number"),
-           ("version" = String, Path, description = "Version number or `latest`")),
+           ("version" = String, Path, pattern = r"^(latest|[1-9][0-9]{0,17})$", description = "Version number (1, 2, ...) or `latest`")),
     request_body = evaluate::CompensateRequest,
     responses((status = 200, description = "Per target, the joints and the model's remaining distance to the target", body = evaluate::CompensateResponse), (status = 422, body = Problem, content_type = "application/problem+json"),
               (status = 409, description = "The parameter set holds no calibrated model", body = Problem, content_type = "application/problem+json")))]

@@ -127,7 +127,7 @@ async fn delete_robot(
 
 /// Robots by serial, paged with `?limit=&cursor=`.
 #[utoipa::path(get, path = "/v1/robots", tag = "robots",
-    params(("limit" = Option<i64>, Query, description = "Page size, 1 to 1000"),
+    params(("limit" = Option<i64>, Query, minimum = 1, maximum = 1000, description = "Page size, 1 to 1000 (default 100)"),
            ("cursor" = Option<String>, Query, description = "next_cursor of the previous page")),
     responses((status = 200, description = "One page of robots by serial; `next_cursor` fetches the next", body = RobotList)))]
 async fn list_robots(State(state): State<AppState>, paging: Paging) -> ApiResult<Json<RobotList>> {

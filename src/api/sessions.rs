@@ -136,7 +136,7 @@ async fn resolve_camera_calibration(
 /// A robot's sessions, oldest first.
 #[utoipa::path(get, path = "/v1/robots/{serial}/sessions", tag = "sessions",
     params(("serial" = String, Path, description = "Robot serial number"),
-           ("limit" = Option<i64>, Query, description = "Page size, 1 to 1000"),
+           ("limit" = Option<i64>, Query, minimum = 1, maximum = 1000, description = "Page size, 1 to 1000 (default 100)"),
            ("cursor" = Option<String>, Query, description = "next_cursor of the previous page")),
     responses((status = 200, description = "One page of the robot's sessions, oldest first", body = SessionList), (status = 404, body = Problem, content_type = "application/problem+json")))]
 async fn list_sessions(

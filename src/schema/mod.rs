@@ -72,7 +72,9 @@ pub const MAX_ANGLE_DEG: f64 = 720.0;
 #[derive(Debug, Clone, PartialEq, serde::Deserialize, Serialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PoseDoc {
+    #[schema(min_items = 3, max_items = 3)]
     pub translation_mm: [f64; 3],
+    #[schema(min_items = 3, max_items = 3)]
     pub rotation_deg: [f64; 3],
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub matrix: Option<[[f64; 4]; 4]>,

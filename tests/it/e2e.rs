@@ -28,7 +28,7 @@ async fn campaign_through_the_service(preset: &str, serial: &str, seed: u64) {
     let session = robocal::cli::upload(&client, serial, dir.path(), robocal::cli::RobotPolicy::CreateIfMissing)
         .await
         .unwrap();
-    let done = robocal::cli::calibrate(&client, &session, false)
+    let done = robocal::cli::calibrate(&client, serial, &session, false)
         .await
         .unwrap();
     let job = done["job_id"].as_str().unwrap().to_string();
