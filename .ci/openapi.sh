@@ -13,11 +13,23 @@ cd "$(dirname "$0")/.."
 repo=$PWD
 
 venv=${ROBOCAL_CI_VENV:-/tmp/robocal-ci-venv}
+# The newest Python 3 at hand: on 3.11, hypothesis (under schemathesis) can
+# hit CPython's "AST constructor recursion depth mismatch" while describing
+# a strategy, an error of the tool, not of the API.
+python=python3
+candidates=(python3.13 python3.12 "${PYENV_ROOT:-$HOME/.pyenv}"/versions/3.1[2-9]*/bin/python3)
+[ -n "${ROBOCAL_CI_PYTHON:-}" ] && candidates=("$ROBOCAL_CI_PYTHON")
+for candidate in "${candidates[@]}"; do
+  if command -v "$candidate" >/dev/null && "$candidate" -c 'import venv' 2>/dev/null; then
+    python=$candidate
+    break
+  fi
+done
 fuzz_secs=${ROBOCAL_FUZZ_SECS:-120}
 tools=(openapi-spec-validator==0.9.0 openapi-python-client==0.29.1 schemathesis==4.32.5)
 
 if [ ! -x "$venv/bin/schemathesis" ] || ! "$venv/bin/pip" install -q "${tools[@]}" >/dev/null 2>&1; then
-  if ! { python3 -m venv "$venv" && "$venv/bin/pip" install -q "${tools[@]}"; }; then
+  if ! { "$python" -m venv "$venv" && "$venv/bin/pip" install -q "${tools[@]}"; }; then
     echo "openapi.sh: SKIPPED: pip cannot install ${tools[*]} (no package index?)" >&2
     exit 0
   fi
@@ -73,7 +85,8 @@ step "the Python client is generated"
 PYTHONPATH="$work/client" "$venv/bin/python" .ci/client_check.py "$url" "$token" "$work/campaign"
 step "the generated client calibrated and read a typed report"
 
-"$venv/bin/schemathesis" --config-file .ci/schemathesis.toml run "$url/openapi.json" --checks all \
+SCHEMATHESIS_HOOKS=schemathesis_hooks PYTHONPATH="$repo/.ci" \
+  "$venv/bin/schemathesis" --config-file .ci/schemathesis.toml run "$url/openapi.json" --checks all \
   --header "Authorization: Bearer $token" --max-time "$fuzz_secs" --workers 2 \
   --seed 1 --no-color --report junit --report-dir "$work/schemathesis" \
   || { echo "--- server log (tail)" >&2; tail -n 20 "$work/server.log" >&2; exit 1; }

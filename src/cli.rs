@@ -203,7 +203,12 @@ mod tests {
     fn progress_off_a_terminal_is_plain_lines_without_carriage_returns() {
         let mut p = Progress::new(false);
         let mut out = String::new();
-        for (f, stage) in [(0.0, "detect"), (0.0, "detect"), (0.5, "camera"), (1.0, "report")] {
+        for (f, stage) in [
+            (0.0, "detect"),
+            (0.0, "detect"),
+            (0.5, "camera"),
+            (1.0, "report"),
+        ] {
             out.extend(p.line(f, stage));
         }
         assert!(!out.contains('\r'), "{out:?}");
@@ -214,6 +219,9 @@ mod tests {
     fn progress_on_a_terminal_redraws_the_bar_in_place() {
         let mut p = Progress::new(true);
         let line = p.line(0.5, "camera").unwrap();
-        assert!(line.starts_with('\r') && line.contains(" 50% camera"), "{line:?}");
+        assert!(
+            line.starts_with('\r') && line.contains(" 50% camera"),
+            "{line:?}"
+        );
     }
 }

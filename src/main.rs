@@ -200,9 +200,9 @@ async fn main() -> ExitCode {
                     robocal::cli::RobotPolicy::CreateIfMissing
                 },
             )
-                .await
-                .map(|id| println!("{id}"))
-                .map_err(|e| e.to_string()),
+            .await
+            .map(|id| println!("{id}"))
+            .map_err(|e| e.to_string()),
             Err(e) => Err(e),
         },
         Command::Calibrate {

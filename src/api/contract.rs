@@ -33,7 +33,8 @@ const FORBIDDEN: Failure = Failure {
 };
 const MALFORMED: Failure = Failure {
     status: "400",
-    description: "The body cannot be read: malformed JSON, multipart or archive (`errors` names the part)",
+    description:
+        "The body cannot be read: malformed JSON, multipart or archive (`errors` names the part)",
 };
 const BAD_QUERY: Failure = Failure {
     status: "400",
@@ -175,6 +176,71 @@ pub fn add_shared_responses(doc: &mut OpenApi) {
 
 #[cfg(test)]
 mod tests {
+    use std::collections::BTreeSet;
+
+    use serde_json::Value;
+
+    fn resolve<'a>(doc: &'a Value, schema: &'a Value) -> &'a Value {
+        match schema["$ref"].as_str() {
+            Some(r) => {
+                let name = r.trim_start_matches("#/components/schemas/");
+                resolve(doc, &doc["components"]["schemas"][name])
+            }
+            None => schema,
+        }
+    }
+
+    /// Fails when an `allOf` joins a closed schema (`additionalProperties:
+    /// false`) with another that adds properties: no document satisfies both.
+    fn check_satisfiable(doc: &Value, schema: &Value, at: &str, seen: &mut BTreeSet<String>) {
+        if let Some(r) = schema["$ref"].as_str() {
+            if !seen.insert(r.to_string()) {
+                return;
+            }
+        }
+        let schema = resolve(doc, schema);
+        if let Some(parts) = schema["allOf"].as_array() {
+            for part in parts {
+                let closed = resolve(doc, part)["additionalProperties"] == Value::Bool(false);
+                assert!(
+                    !(closed && parts.len() > 1),
+                    "{at}: allOf joins a closed schema {part}"
+                );
+            }
+        }
+        for key in ["allOf", "oneOf", "anyOf"] {
+            for part in schema[key].as_array().into_iter().flatten() {
+                check_satisfiable(doc, part, at, seen);
+            }
+        }
+        for (name, property) in schema["properties"].as_object().into_iter().flatten() {
+            check_satisfiable(doc, property, &format!("{at}.{name}"), seen);
+        }
+        if schema.get("items").is_some() {
+            check_satisfiable(doc, &schema["items"], &format!("{at}[]"), seen);
+        }
+    }
+
+    /// The session answer once reused the request schema (closed by
+    /// `deny_unknown_fields`) and added `id`: no session could validate.
+    #[test]
+    fn every_success_response_schema_can_be_satisfied() {
+        let doc: Value = serde_json::from_str(&super::super::openapi_json()).unwrap();
+        for (path, item) in doc["paths"].as_object().unwrap() {
+            for (method, op) in item.as_object().unwrap() {
+                for (status, response) in op["responses"].as_object().unwrap() {
+                    if !status.starts_with('2') {
+                        continue;
+                    }
+                    for (media, content) in response["content"].as_object().into_iter().flatten() {
+                        let at = format!("{method} {path} {status} {media}");
+                        check_satisfiable(&doc, &content["schema"], &at, &mut BTreeSet::new());
+                    }
+                }
+            }
+        }
+    }
+
     #[test]
     fn every_response_has_a_description_and_routes_their_failures() {
         let doc: serde_json::Value = serde_json::from_str(&super::super::openapi_json()).unwrap();
@@ -186,12 +252,18 @@ mod tests {
                 }
                 if path.starts_with("/v1/") {
                     for status in ["401", "403"] {
-                        assert!(op["responses"].get(status).is_some(), "{method} {path} {status}");
+                        assert!(
+                            op["responses"].get(status).is_some(),
+                            "{method} {path} {status}"
+                        );
                     }
                 }
                 if op.get("requestBody").is_some() {
                     for status in ["400", "413", "415", "422"] {
-                        assert!(op["responses"].get(status).is_some(), "{method} {path} {status}");
+                        assert!(
+                            op["responses"].get(status).is_some(),
+                            "{method} {path} {status}"
+                        );
                     }
                 }
                 if path.contains('{') && method != "put" {

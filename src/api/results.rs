@@ -16,9 +16,9 @@ use super::error::{ApiError, ApiResult, Problem};
 use super::extract::{ApiJson, Paging};
 use super::AppState;
 use crate::domain::ParameterSetRecord;
+use crate::evaluate;
 use crate::pipeline::results::PoseOut;
 use crate::report::schema::IntrinsicsSchema;
-use crate::evaluate;
 use crate::report::{render_html, render_svg, Report};
 
 pub fn router() -> OpenApiRouter<AppState> {

@@ -49,7 +49,11 @@ pub struct CompensateArgs {
     pub set: SetArgs,
     /// One target pose of the tool (default: the camera) in the target
     /// frame, `x,y,z,rx,ry,rz` in mm and degrees (repeat for several).
-    #[arg(long = "target", value_name = "X,Y,Z,RX,RY,RZ", allow_hyphen_values = true)]
+    #[arg(
+        long = "target",
+        value_name = "X,Y,Z,RX,RY,RZ",
+        allow_hyphen_values = true
+    )]
     pub targets: Vec<String>,
     /// Joint angles (degrees) near the wanted solution, one seed for all
     /// targets, comma-separated.
@@ -231,9 +235,18 @@ pub fn forward_table(answer: &Value) -> String {
 
 /// `compensate` as a table: per target the joints and the model's residual.
 pub fn compensate_table(answer: &Value) -> String {
-    let mut out = String::from("target  joints (deg)                                  residual (mm)\n");
-    let residuals = answer["residual_mm"].as_array().cloned().unwrap_or_default();
-    for (i, joints) in answer["joints_deg"].as_array().into_iter().flatten().enumerate() {
+    let mut out =
+        String::from("target  joints (deg)                                  residual (mm)\n");
+    let residuals = answer["residual_mm"]
+        .as_array()
+        .cloned()
+        .unwrap_or_default();
+    for (i, joints) in answer["joints_deg"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .enumerate()
+    {
         let residual = residuals
             .get(i)
             .and_then(Value::as_f64)
@@ -249,7 +262,10 @@ pub fn compensate_table(answer: &Value) -> String {
 
 fn print_answer(set: &SetArgs, answer: &Value, table: fn(&Value) -> String) {
     if set.json {
-        println!("{}", serde_json::to_string_pretty(answer).unwrap_or_default());
+        println!(
+            "{}",
+            serde_json::to_string_pretty(answer).unwrap_or_default()
+        );
     } else {
         print!("{}", table(answer));
     }
@@ -318,7 +334,10 @@ mod tests {
         let out = compensate_body(&args).unwrap();
         assert_eq!(out["tool"], body["tool"]);
         assert_eq!(out["targets"], body["targets"]);
-        assert_eq!(out["seed_joints_deg"], json!([0.0, 10.0, 10.0, 0.0, 60.0, 0.0]));
+        assert_eq!(
+            out["seed_joints_deg"],
+            json!([0.0, 10.0, 10.0, 0.0, 60.0, 0.0])
+        );
     }
 
     #[test]
@@ -353,9 +372,13 @@ mod tests {
             {"camera_in_target": {"translation_mm": [7.0, 8.0, 9.0], "rotation_deg": [0.0, 0.0, 0.0]},
              "tool_in_target": {"translation_mm": [1.5, 0.0, 0.0], "rotation_deg": [0.0, 0.0, 0.0]}}]});
         let t = forward_table(&forward);
-        assert!(t.contains("1.000 2.000 3.000") && t.contains("7.000 8.000 9.000"), "{t}");
+        assert!(
+            t.contains("1.000 2.000 3.000") && t.contains("7.000 8.000 9.000"),
+            "{t}"
+        );
         assert!(t.contains("tool") && t.contains("warning: joint 2"), "{t}");
-        let comp = json!({"joints_deg": [[1.0, 2.0, 3.0, 4.0, 5.0, 6.0]], "residual_mm": [0.00012]});
+        let comp =
+            json!({"joints_deg": [[1.0, 2.0, 3.0, 4.0, 5.0, 6.0]], "residual_mm": [0.00012]});
         let t = compensate_table(&comp);
         assert!(t.contains("1.0000 2.0000") && t.contains("0.0001"), "{t}");
     }

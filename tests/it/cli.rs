@@ -65,14 +65,26 @@ async fn upload_calibrate_forward_and_compensate_through_the_binary() {
     assert_eq!(r.status(), 201);
     let out = robocal(&app, &["upload", "--serial", SERIAL, campaign]).await;
     ok(&out);
-    assert!(text(&out.stderr).contains("--replace-robot"), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stderr).contains("--replace-robot"),
+        "{}",
+        text(&out.stderr)
+    );
     assert_eq!(robot_preset(&app).await, "irb2400");
-    let out = robocal(&app, &["upload", "--serial", SERIAL, "--replace-robot", campaign]).await;
+    let out = robocal(
+        &app,
+        &["upload", "--serial", SERIAL, "--replace-robot", campaign],
+    )
+    .await;
     let session = ok(&out).trim().to_string();
     assert_eq!(robot_preset(&app).await, "puma560");
 
     // --serial is checked against the session's robot.
-    let out = robocal(&app, &["calibrate", "--serial", "OTHER-9", "--session", &session]).await;
+    let out = robocal(
+        &app,
+        &["calibrate", "--serial", "OTHER-9", "--session", &session],
+    )
+    .await;
     assert!(!out.status.success());
     assert!(
         text(&out.stderr).contains(&format!("belongs to robot {SERIAL}")),
@@ -83,7 +95,14 @@ async fn upload_calibrate_forward_and_compensate_through_the_binary() {
     // Progress off a terminal: plain lines, no carriage return.
     let out = robocal(
         &app,
-        &["calibrate", "--serial", SERIAL, "--session", &session, "--wait"],
+        &[
+            "calibrate",
+            "--serial",
+            SERIAL,
+            "--session",
+            &session,
+            "--wait",
+        ],
     )
     .await;
     ok(&out);
@@ -95,10 +114,24 @@ async fn upload_calibrate_forward_and_compensate_through_the_binary() {
     let joints = "0,-20,10,0,40,0";
     let out = robocal(&app, &["forward", "--serial", SERIAL, "--joints", joints]).await;
     let table = ok(&out);
-    assert!(table.lines().any(|l| l.starts_with("1 ") && l.contains("camera")), "{table}");
+    assert!(
+        table
+            .lines()
+            .any(|l| l.starts_with("1 ") && l.contains("camera")),
+        "{table}"
+    );
     let out = robocal(
         &app,
-        &["forward", "--serial", SERIAL, "--version", "1", "--joints", joints, "--json"],
+        &[
+            "forward",
+            "--serial",
+            SERIAL,
+            "--version",
+            "1",
+            "--joints",
+            joints,
+            "--json",
+        ],
     )
     .await;
     let forward: Value = serde_json::from_str(&ok(&out)).unwrap();
@@ -132,9 +165,20 @@ async fn upload_calibrate_forward_and_compensate_through_the_binary() {
     assert!(residual < MAX_RESIDUAL_MM, "{answer}");
     let out = robocal(
         &app,
-        &["compensate", "--serial", SERIAL, "--target", &target.join(","), "--seed", joints],
+        &[
+            "compensate",
+            "--serial",
+            SERIAL,
+            "--target",
+            &target.join(","),
+            "--seed",
+            joints,
+        ],
     )
     .await;
     let table = ok(&out);
-    assert!(table.lines().nth(1).is_some_and(|l| l.starts_with("1 ")), "{table}");
+    assert!(
+        table.lines().nth(1).is_some_and(|l| l.starts_with("1 ")),
+        "{table}"
+    );
 }
