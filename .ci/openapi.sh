@@ -88,6 +88,6 @@ step "the generated client calibrated and read a typed report"
 SCHEMATHESIS_HOOKS=schemathesis_hooks PYTHONPATH="$repo/.ci" \
   "$venv/bin/schemathesis" --config-file .ci/schemathesis.toml run "$url/openapi.json" --checks all \
   --header "Authorization: Bearer $token" --max-time "$fuzz_secs" --workers 2 \
-  --seed 1 --no-color --report junit --report-dir "$work/schemathesis" \
+  --seed 1 --no-color --output-truncate false --report junit --report-dir "$work/schemathesis" \
   || { echo "--- server log (tail)" >&2; tail -n 20 "$work/server.log" >&2; exit 1; }
 step "schemathesis found nothing"

@@ -6,11 +6,9 @@ import schemathesis
 
 
 @schemathesis.serializer("application/zip")
-class ZipSerializer:
-    def as_requests(self, context, value):
-        if isinstance(value, str):
-            value = value.encode("utf-8", "surrogatepass")
-        return {"data": value if isinstance(value, (bytes, bytearray)) else b""}
-
-    def as_werkzeug(self, context, value):
-        return self.as_requests(context, value)
+def zip_bytes(context, value):
+    if isinstance(value, (bytes, bytearray)):
+        return bytes(value)
+    if isinstance(value, str):
+        return value.encode("utf-8", "surrogatepass")
+    return b""
