@@ -110,10 +110,10 @@ enum Command {
 
 #[derive(clap::Args)]
 struct ServerArgs {
-    /// The service's base URL (or ROBOCAL_URL).
+    /// The service's base URL.
     #[arg(long, env = "ROBOCAL_URL", default_value = "http://127.0.0.1:8080")]
     url: String,
-    /// Bearer token (or ROBOCAL_TOKEN), needed once the server has tokens.
+    /// Bearer token, needed once the server has tokens.
     #[arg(long, env = "ROBOCAL_TOKEN")]
     token: Option<String>,
 }
@@ -257,5 +257,28 @@ async fn main() -> ExitCode {
             eprintln!("robocal: {e}");
             ExitCode::FAILURE
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::CommandFactory;
+
+    /// Every argument of every command says what it is (`--help`).
+    #[test]
+    fn every_argument_has_help_text() {
+        fn check(command: &clap::Command, path: &str) {
+            for arg in command.get_arguments() {
+                let id = arg.get_id().as_str();
+                if matches!(id, "help" | "version") {
+                    continue;
+                }
+                assert!(arg.get_help().is_some(), "{path} {id}: no help text");
+            }
+            for sub in command.get_subcommands() {
+                check(sub, &format!("{path} {}", sub.get_name()));
+            }
+        }
+        check(&super::Cli::command(), "robocal");
     }
 }
