@@ -102,9 +102,14 @@ async fn main() {
 
     // 1. One campaign, upload to report.
     let t0 = Instant::now();
-    let session = robocal::cli::upload(&client, "BENCH-1", &campaign)
-        .await
-        .unwrap();
+    let session = robocal::cli::upload(
+        &client,
+        "BENCH-1",
+        &campaign,
+        robocal::cli::RobotPolicy::CreateIfMissing,
+    )
+    .await
+    .unwrap();
     let t_upload = t0.elapsed();
     let job = client
         .start_calibration(&session, &serde_json::json!({}))
@@ -128,12 +133,22 @@ async fn main() {
     );
 
     // 2. Two campaigns calibrating at once; reads timed meanwhile.
-    let s2 = robocal::cli::upload(&client, "BENCH-2", &campaign)
-        .await
-        .unwrap();
-    let s3 = robocal::cli::upload(&client, "BENCH-3", &campaign)
-        .await
-        .unwrap();
+    let s2 = robocal::cli::upload(
+        &client,
+        "BENCH-2",
+        &campaign,
+        robocal::cli::RobotPolicy::CreateIfMissing,
+    )
+    .await
+    .unwrap();
+    let s3 = robocal::cli::upload(
+        &client,
+        "BENCH-3",
+        &campaign,
+        robocal::cli::RobotPolicy::CreateIfMissing,
+    )
+    .await
+    .unwrap();
     let j2 = client
         .start_calibration(&s2, &serde_json::json!({}))
         .await

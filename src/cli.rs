@@ -1,7 +1,10 @@
-//! The client subcommands (`upload`, `calibrate`, `report`): a cell
-//! engineer's view of the service, over [`crate::client`].
+//! The client subcommands (`upload`, `calibrate`, `report`; `forward` and
+//! `compensate` in [`evaluate`]): a cell engineer's view of the service,
+//! over [`crate::client`].
 
-use std::io::Write;
+pub mod evaluate;
+
+use std::io::{IsTerminal, Write};
 use std::path::Path;
 use std::time::Duration;
 
@@ -36,11 +39,41 @@ fn zip_campaign(dir: &Path) -> Result<tempfile::NamedTempFile, String> {
     Ok(file)
 }
 
-/// Creates the robot (from `campaign.json`) and a session, then uploads the
-/// campaign as one archive. Returns the session id.
-pub async fn upload(client: &Client, serial: &str, dir: &Path) -> Result<String, ClientError> {
+/// What `upload` does with the robot of `campaign.json`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RobotPolicy {
+    /// Create it when the serial is unknown; an existing robot keeps its
+    /// kinematics (a campaign must never silently overwrite a robot's
+    /// joint table).
+    CreateIfMissing,
+    /// Replace an existing robot's kinematics with the campaign's.
+    Replace,
+}
+
+/// Creates the robot (from `campaign.json`) when it does not exist (or
+/// replaces it under [`RobotPolicy::Replace`]) and a session, then uploads
+/// the campaign as one archive. Returns the session id.
+pub async fn upload(
+    client: &Client,
+    serial: &str,
+    dir: &Path,
+    robot: RobotPolicy,
+) -> Result<String, ClientError> {
     let (file, _) = campaign::read(dir).map_err(ClientError::Local)?;
-    client.put_robot(serial, &file.robot).await?;
+    let exists = client.get_robot(serial).await?.is_some();
+    match (exists, robot) {
+        (true, RobotPolicy::CreateIfMissing) => eprintln!(
+            "robot {serial} exists: its kinematics are kept (--replace-robot replaces them with the campaign's)"
+        ),
+        (true, RobotPolicy::Replace) => {
+            client.put_robot(serial, &file.robot).await?;
+            eprintln!("robot {serial}: kinematics replaced with the campaign's");
+        }
+        (false, _) => {
+            client.put_robot(serial, &file.robot).await?;
+            eprintln!("robot {serial} created");
+        }
+    }
     let session =
         serde_json::to_value(&file.session).map_err(|e| ClientError::Local(e.to_string()))?;
     let id = client.create_session(serial, &session).await?;
@@ -61,12 +94,77 @@ fn bar(fraction: f64) -> String {
     format!("[{}{}]", "#".repeat(filled), ".".repeat(BAR_WIDTH - filled))
 }
 
-/// Starts a calibration; with `wait`, shows its progress until it ends.
-pub async fn calibrate(client: &Client, session: &str, wait: bool) -> Result<Value, ClientError> {
+/// Refuses a session of another robot: `--serial` names the robot the
+/// user means to calibrate, and a pasted session id of another cell must
+/// not silently produce a parameter set for that other robot.
+async fn check_session_serial(
+    client: &Client,
+    serial: &str,
+    session: &str,
+) -> Result<(), ClientError> {
+    let found = client.get_session(session).await?;
+    match found.get("serial").and_then(Value::as_str) {
+        Some(owner) if owner == serial => Ok(()),
+        Some(owner) => Err(ClientError::Local(format!(
+            "session {session} belongs to robot {owner}, not {serial}"
+        ))),
+        None => Err(ClientError::Local(format!(
+            "the server's session {session} names no robot"
+        ))),
+    }
+}
+
+/// How `calibrate --wait` shows progress: a bar redrawn in place on a
+/// terminal; one plain line per change otherwise (logs, CI), never `\r`.
+struct Progress {
+    terminal: bool,
+    last: Option<(String, u32)>,
+}
+
+impl Progress {
+    fn new(terminal: bool) -> Self {
+        Self {
+            terminal,
+            last: None,
+        }
+    }
+
+    /// The text to write to stderr for this state, if any.
+    fn line(&mut self, fraction: f64, stage: &str) -> Option<String> {
+        let percent = (fraction.clamp(0.0, 1.0) * 100.0).round() as u32;
+        if self.terminal {
+            return Some(format!("\r{} {percent:>3}% {stage:<20}", bar(fraction)));
+        }
+        let key = (stage.to_string(), percent);
+        if self.last.as_ref() == Some(&key) {
+            return None;
+        }
+        self.last = Some(key);
+        Some(format!("{percent:>3}% {stage}\n"))
+    }
+
+    /// Ends the bar's line (a terminal's bar has no newline yet).
+    fn finish(&self) {
+        if self.terminal {
+            eprintln!();
+        }
+    }
+}
+
+/// Starts a calibration of `serial`'s session; with `wait`, shows its
+/// progress until it ends.
+pub async fn calibrate(
+    client: &Client,
+    serial: &str,
+    session: &str,
+    wait: bool,
+) -> Result<Value, ClientError> {
+    check_session_serial(client, serial, session).await?;
     let job = client.start_calibration(session, &json!({})).await?;
     if !wait {
         return Ok(json!({ "job_id": job }));
     }
+    let mut progress = Progress::new(std::io::stderr().is_terminal());
     loop {
         let state = client.job(&job).await?;
         let status = state
@@ -74,16 +172,18 @@ pub async fn calibrate(client: &Client, session: &str, wait: bool) -> Result<Val
             .and_then(Value::as_str)
             .unwrap_or("?")
             .to_string();
-        let progress = state.get("progress").and_then(Value::as_f64).unwrap_or(0.0);
+        let fraction = state.get("progress").and_then(Value::as_f64).unwrap_or(0.0);
         let stage = state.get("stage").and_then(Value::as_str).unwrap_or("");
-        eprint!("\r{} {:>3.0}% {stage:<20}", bar(progress), progress * 100.0);
+        if let Some(text) = progress.line(fraction, stage) {
+            eprint!("{text}");
+        }
         match status.as_str() {
             "succeeded" => {
-                eprintln!();
+                progress.finish();
                 return Ok(state);
             }
             "failed" | "cancelled" => {
-                eprintln!();
+                progress.finish();
                 let error = state
                     .get("error")
                     .and_then(Value::as_str)
@@ -92,5 +192,36 @@ pub async fn calibrate(client: &Client, session: &str, wait: bool) -> Result<Val
             }
             _ => tokio::time::sleep(POLL_INTERVAL).await,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn progress_off_a_terminal_is_plain_lines_without_carriage_returns() {
+        let mut p = Progress::new(false);
+        let mut out = String::new();
+        for (f, stage) in [
+            (0.0, "detect"),
+            (0.0, "detect"),
+            (0.5, "camera"),
+            (1.0, "report"),
+        ] {
+            out.extend(p.line(f, stage));
+        }
+        assert!(!out.contains('\r'), "{out:?}");
+        assert_eq!(out, "  0% detect\n 50% camera\n100% report\n");
+    }
+
+    #[test]
+    fn progress_on_a_terminal_redraws_the_bar_in_place() {
+        let mut p = Progress::new(true);
+        let line = p.line(0.5, "camera").unwrap();
+        assert!(
+            line.starts_with('\r') && line.contains(" 50% camera"),
+            "{line:?}"
+        );
     }
 }

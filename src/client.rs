@@ -152,6 +152,43 @@ impl Client {
         .await
     }
 
+    /// The robot, or `None` when the server has no robot of that serial.
+    pub async fn get_robot(&self, serial: &str) -> Result<Option<Value>, ClientError> {
+        match self
+            .send(self.request(reqwest::Method::GET, &format!("/v1/robots/{serial}")))
+            .await
+        {
+            Ok(robot) => Ok(Some(robot)),
+            Err(ClientError::Problem { status: 404, .. }) => Ok(None),
+            Err(e) => Err(e),
+        }
+    }
+
+    pub async fn get_session(&self, session_id: &str) -> Result<Value, ClientError> {
+        self.send(self.request(reqwest::Method::GET, &format!("/v1/sessions/{session_id}")))
+            .await
+    }
+
+    /// `POST …/parameter-sets/{version}/{operation}` (`forward` or
+    /// `compensate`); `version = None` asks for the latest.
+    pub async fn evaluate(
+        &self,
+        serial: &str,
+        version: Option<i64>,
+        operation: &str,
+        body: &Value,
+    ) -> Result<Value, ClientError> {
+        let version = version.map_or("latest".to_string(), |v| v.to_string());
+        self.send(
+            self.request(
+                reqwest::Method::POST,
+                &format!("/v1/robots/{serial}/parameter-sets/{version}/{operation}"),
+            )
+            .json(body),
+        )
+        .await
+    }
+
     pub async fn create_session(&self, serial: &str, body: &Value) -> Result<String, ClientError> {
         let created = self
             .send(

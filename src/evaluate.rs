@@ -29,13 +29,11 @@ pub struct ForwardRequest {
 
 #[derive(Debug, Clone, Serialize, ToSchema)]
 pub struct ForwardPose {
-    #[schema(value_type = Object)]
     pub flange_in_base: PoseOut,
     /// The camera (or, for tracker sets, the tool point) in the world frame.
-    #[schema(value_type = Object)]
     pub camera_in_target: PoseOut,
+    /// The request's tool in the world frame, when a tool was given.
     #[serde(skip_serializing_if = "Option::is_none")]
-    #[schema(value_type = Option<Object>)]
     pub tool_in_target: Option<PoseOut>,
     /// One message per joint outside its limits (the pose is still
     /// computed: the controller would refuse it). Empty when all are within.

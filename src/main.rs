@@ -25,28 +25,44 @@ enum Command {
     /// Simulate a campaign (robot with perturbed kinematics, flange camera,
     /// rendered images and the truth) into a directory.
     Simulate {
+        /// Robot preset: the IRB-2400 with a 1280x1024 camera, or the
+        /// PUMA-560 with the paper's 752x582 camera.
         #[arg(long, value_parser = ["irb2400", "puma560"], default_value = "irb2400")]
         robot: String,
+        /// Calibration poses (images used for the fit).
         #[arg(long, default_value_t = 60)]
         cal: usize,
+        /// Validation poses (images held out to measure the accuracy).
         #[arg(long, default_value_t = 30)]
         val: usize,
+        /// Random seed of the perturbations, poses and image noise.
         #[arg(long, default_value_t = 1)]
         seed: u64,
+        /// Output directory (campaign.json, poses.json, images/, truth.json).
         dir: std::path::PathBuf,
     },
-    /// Create the robot and a session, and upload a campaign directory.
+    /// Create the robot (when it does not exist) and a session, and upload a
+    /// campaign directory; prints the session id.
     Upload {
+        /// Robot serial number.
         #[arg(long)]
         serial: String,
+        /// Replace an existing robot's kinematics with the campaign's
+        /// (without it an existing robot is left as it is).
+        #[arg(long)]
+        replace_robot: bool,
+        /// Campaign directory (as written by `robocal simulate`).
         dir: std::path::PathBuf,
         #[command(flatten)]
         server: ServerArgs,
     },
-    /// Start a calibration job for a session.
+    /// Start a calibration job for a session; prints the job (id, or its
+    /// final state with --wait).
     Calibrate {
+        /// Robot serial number: the session must belong to this robot.
         #[arg(long)]
         serial: String,
+        /// Session id (printed by `robocal upload`).
         #[arg(long)]
         session: String,
         /// Show progress until the job ends.
@@ -57,6 +73,7 @@ enum Command {
     },
     /// Print a parameter set's accuracy report as a table.
     Report {
+        /// Robot serial number.
         #[arg(long)]
         serial: String,
         /// Version number (default: the latest).
@@ -65,8 +82,25 @@ enum Command {
         #[command(flatten)]
         server: ServerArgs,
     },
+    /// Forward kinematics of a calibrated parameter set: the camera (or
+    /// tool) pose at given joints.
+    Forward {
+        #[command(flatten)]
+        args: robocal::cli::evaluate::ForwardArgs,
+        #[command(flatten)]
+        server: ServerArgs,
+    },
+    /// Compensated joints: the joints that put the tool (default: the
+    /// camera) on each target according to a calibrated parameter set.
+    Compensate {
+        #[command(flatten)]
+        args: robocal::cli::evaluate::CompensateArgs,
+        #[command(flatten)]
+        server: ServerArgs,
+    },
     /// Run the whole pipeline on a campaign directory without a server.
     CalibrateLocal {
+        /// Campaign directory (as written by `robocal simulate`).
         dir: std::path::PathBuf,
         /// Also write the printable report here.
         #[arg(long)]
@@ -79,7 +113,7 @@ struct ServerArgs {
     /// The service's base URL.
     #[arg(long, env = "ROBOCAL_URL", default_value = "http://127.0.0.1:8080")]
     url: String,
-    /// Bearer token, when the server has tokens.
+    /// Bearer token, needed once the server has tokens.
     #[arg(long, env = "ROBOCAL_TOKEN")]
     token: Option<String>,
     /// PEM certificate(s) to trust for an `https://` URL, besides the public
@@ -189,22 +223,32 @@ async fn main() -> ExitCode {
             .map(|_| eprintln!("campaign written to {}", dir.display())),
         Command::Upload {
             serial,
+            replace_robot,
             dir,
             server,
         } => match server.client() {
-            Ok(client) => robocal::cli::upload(&client, &serial, &dir)
-                .await
-                .map(|id| println!("{id}"))
-                .map_err(|e| e.to_string()),
+            Ok(client) => robocal::cli::upload(
+                &client,
+                &serial,
+                &dir,
+                if replace_robot {
+                    robocal::cli::RobotPolicy::Replace
+                } else {
+                    robocal::cli::RobotPolicy::CreateIfMissing
+                },
+            )
+            .await
+            .map(|id| println!("{id}"))
+            .map_err(|e| e.to_string()),
             Err(e) => Err(e),
         },
         Command::Calibrate {
-            serial: _,
+            serial,
             session,
             wait,
             server,
         } => match server.client() {
-            Ok(client) => robocal::cli::calibrate(&client, &session, wait)
+            Ok(client) => robocal::cli::calibrate(&client, &serial, &session, wait)
                 .await
                 .map(|job| println!("{job}"))
                 .map_err(|e| e.to_string()),
@@ -219,6 +263,18 @@ async fn main() -> ExitCode {
                 .report(&serial, version)
                 .await
                 .map(|r| print!("{}", robocal::report::render_table(&r)))
+                .map_err(|e| e.to_string()),
+            Err(e) => Err(e),
+        },
+        Command::Forward { args, server } => match server.client() {
+            Ok(client) => robocal::cli::evaluate::forward(&client, &args)
+                .await
+                .map_err(|e| e.to_string()),
+            Err(e) => Err(e),
+        },
+        Command::Compensate { args, server } => match server.client() {
+            Ok(client) => robocal::cli::evaluate::compensate(&client, &args)
+                .await
                 .map_err(|e| e.to_string()),
             Err(e) => Err(e),
         },
@@ -238,5 +294,28 @@ async fn main() -> ExitCode {
             eprintln!("robocal: {e}");
             ExitCode::FAILURE
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::CommandFactory;
+
+    /// Every argument of every command says what it is (`--help`).
+    #[test]
+    fn every_argument_has_help_text() {
+        fn check(command: &clap::Command, path: &str) {
+            for arg in command.get_arguments() {
+                let id = arg.get_id().as_str();
+                if matches!(id, "help" | "version") {
+                    continue;
+                }
+                assert!(arg.get_help().is_some(), "{path} {id}: no help text");
+            }
+            for sub in command.get_subcommands() {
+                check(sub, &format!("{path} {}", sub.get_name()));
+            }
+        }
+        check(&super::Cli::command(), "robocal");
     }
 }

@@ -4,6 +4,11 @@
 //! set (same metric for our centres and OpenCV's).
 //!
 //! `cargo run --release -p robocal-calib --example detect_photos`
+//!
+//! Unlike the tests (which read the copies in `calib/tests/data/`), this
+//! example needs the project's full data collection checked out beside the
+//! repository (`../shared/data/circles`): the NiftyCal laparoscope sets are
+//! not copied into the repository. No test depends on it.
 
 use std::collections::HashMap;
 

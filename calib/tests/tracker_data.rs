@@ -1,5 +1,5 @@
 //! Real robots, position only (issue 5): the laser-tracker campaigns in
-//! `shared/data/kinematic/` through the tracker-session identification
+//! `calib/tests/data/kinematic/` through the tracker-session identification
 //! (`instrument_to_base` + `flange_to_tool`, 3 rows per pose). Run with
 //! `--nocapture` to print the before/after figures for BENCHMARKS.md.
 
@@ -11,7 +11,7 @@ use robocal_calib::kinematics::identify::{
 use robocal_calib::kinematics::initial::initial_world_to_base;
 use robocal_calib::kinematics::{presets, CalibratedModel, Instrument, ParamLayout, RobotModel};
 
-const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/data/kinematic");
+const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/kinematic");
 /// The UR5 data's nominal tool: its targets are the nominal flange plus
 /// this offset (see presets::ur5).
 const UR5_TOOL_GUESS_MM: [f64; 3] = [0.0, 0.0, 31.0];

@@ -83,10 +83,10 @@ pub struct JobAccepted {
 /// the queue is full (nothing is written then).
 #[utoipa::path(post, path = "/v1/sessions/{id}/calibrations", tag = "jobs",
     params(("id" = String, Path, description = "Session id")),
-    request_body(content = CalibrationOptions, content_type = "application/json", description = "All fields optional; an empty body takes the defaults"),
-    responses((status = 202, body = JobAccepted, headers(("Location" = String, description = "/v1/jobs/{job_id}"))),
+    request_body(content = Option<CalibrationOptions>, content_type = "application/json", description = "Optional: all fields optional, and no body (or an empty one) takes the defaults"),
+    responses((status = 202, description = "The job is queued; `Location` is its URL", body = JobAccepted, headers(("Location" = String, description = "/v1/jobs/{job_id}"))),
               (status = 404, body = Problem, content_type = "application/problem+json"),
-              (status = 429, body = Problem, content_type = "application/problem+json")))]
+              (status = 429, description = "The queue is full (`--max-queued`): retry after `Retry-After` seconds", body = Problem, content_type = "application/problem+json")))]
 async fn start_calibration(
     State(state): State<AppState>,
     Path(id): Path<String>,
@@ -111,7 +111,7 @@ async fn start_calibration(
 /// A job's state, stage, progress and result.
 #[utoipa::path(get, path = "/v1/jobs/{id}", tag = "jobs",
     params(("id" = String, Path, description = "Job id")),
-    responses((status = 200, body = JobOut), (status = 404, body = Problem, content_type = "application/problem+json")))]
+    responses((status = 200, description = "The job: state, stage, progress (0..1) and, once it ended, its result or error", body = JobOut), (status = 404, body = Problem, content_type = "application/problem+json")))]
 async fn get_job(State(state): State<AppState>, Path(id): Path<String>) -> ApiResult<Json<JobOut>> {
     let job = state
         .store
@@ -124,9 +124,9 @@ async fn get_job(State(state): State<AppState>, Path(id): Path<String>) -> ApiRe
 /// Cancel a queued or running job (409 when it has already finished).
 #[utoipa::path(delete, path = "/v1/jobs/{id}", tag = "jobs",
     params(("id" = String, Path, description = "Job id")),
-    responses((status = 200, body = JobOut),
+    responses((status = 200, description = "The job, now cancelled (a running job stops at its next stage boundary)", body = JobOut),
               (status = 404, body = Problem, content_type = "application/problem+json"),
-              (status = 409, body = Problem, content_type = "application/problem+json")))]
+              (status = 409, description = "The job has already ended", body = Problem, content_type = "application/problem+json")))]
 async fn cancel_job(
     State(state): State<AppState>,
     Path(id): Path<String>,

@@ -26,6 +26,7 @@ use crate::metrics::Metrics;
 use crate::store::DynStore;
 
 pub mod auth;
+pub mod contract;
 pub mod error;
 pub mod extract;
 pub mod idempotency;
@@ -95,14 +96,21 @@ fn api_router() -> OpenApiRouter<AppState> {
         .merge(tokens::router())
 }
 
+/// The routes and their OpenAPI document with the shared failure answers.
+fn router_and_doc() -> (Router<AppState>, utoipa::openapi::OpenApi) {
+    let (router, mut doc) = api_router().split_for_parts();
+    contract::add_shared_responses(&mut doc);
+    (router, doc)
+}
+
 /// The OpenAPI document (`robocal openapi`, `/openapi.json`).
 pub fn openapi() -> utoipa::openapi::OpenApi {
-    api_router().split_for_parts().1
+    router_and_doc().1
 }
 
 /// The complete application: routes, docs, auth, idempotency, tracing, metrics.
 pub fn app(state: AppState) -> Router {
-    let (router, doc) = api_router().split_for_parts();
+    let (router, doc) = router_and_doc();
     let router = router
         .merge(SwaggerUi::new("/docs").url("/openapi.json", doc))
         .fallback(not_found)

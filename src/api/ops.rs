@@ -37,7 +37,7 @@ pub struct Readiness {
 }
 
 /// The process is up.
-#[utoipa::path(get, path = "/healthz", tag = "ops", security(()), responses((status = 200, body = Health)))]
+#[utoipa::path(get, path = "/healthz", tag = "ops", security(()), responses((status = 200, description = "The process is alive", body = Health)))]
 async fn healthz() -> Json<Health> {
     Json(Health {
         status: "ok".into(),
@@ -46,7 +46,7 @@ async fn healthz() -> Json<Health> {
 
 /// The database answers and the workers run (503 otherwise).
 #[utoipa::path(get, path = "/readyz", tag = "ops", security(()),
-    responses((status = 200, body = Readiness), (status = 503, body = Readiness)))]
+    responses((status = 200, description = "The database answers and at least one worker runs", body = Readiness), (status = 503, description = "Not ready: the database or the workers are down (the body says which)", body = Readiness)))]
 async fn readyz(State(state): State<AppState>) -> Response {
     let database = match state.store.ping().await {
         Ok(()) => "ok".to_string(),

@@ -102,6 +102,20 @@ pub struct PoseImagePoint {
     pub outlier: Option<bool>,
 }
 
+/// The `multipart/form-data` pose upload (its schema; the parts are read
+/// one by one in `add_pose`).
+#[derive(ToSchema)]
+#[allow(dead_code)] // a schema only
+pub struct PoseImageUpload {
+    /// JSON array of the joint angles in degrees, e.g. `[0, -10, 20, 0, 30, 0]`.
+    pub joints_deg: String,
+    /// `cal` (default) or `val`.
+    pub set: Option<PoseSet>,
+    /// The photo of the board, PNG or JPEG.
+    #[schema(value_type = String, format = Binary)]
+    pub image: Vec<u8>,
+}
+
 /// How a pose's points were measured by the last calibration job.
 #[derive(Debug, Serialize, Deserialize, ToSchema)]
 pub struct PoseDetectionOut {
@@ -173,7 +187,7 @@ impl From<PoseRecord> for PoseOut {
     params(("id" = String, Path, description = "Session id")),
     request_body(content(
         (PoseJsonBody = "application/json"),
-        (Object = "multipart/form-data"),
+        (PoseImageUpload = "multipart/form-data"),
     )),
     responses((status = 201, body = PoseOut, description = "The stored pose. An image is checked (header against the session camera before any decode), decoded once and searched for the session's target at upload: `detected_points` and `points` show the dots found, `detection_error` why none were; the image is kept either way."),
               (status = 404, body = Problem, content_type = "application/problem+json"),
@@ -301,9 +315,9 @@ async fn multipart_pose(
 /// A session's poses, in upload order.
 #[utoipa::path(get, path = "/v1/sessions/{id}/poses", tag = "poses",
     params(("id" = String, Path, description = "Session id"),
-           ("limit" = Option<i64>, Query, description = "Page size, 1 to 1000"),
+           ("limit" = Option<i64>, Query, minimum = 1, maximum = 1000, description = "Page size, 1 to 1000 (default 100)"),
            ("cursor" = Option<String>, Query, description = "next_cursor of the previous page")),
-    responses((status = 200, body = PoseList), (status = 404, body = Problem, content_type = "application/problem+json")))]
+    responses((status = 200, description = "One page of the session's poses, oldest first; `next_cursor` fetches the next", body = PoseList), (status = 404, body = Problem, content_type = "application/problem+json")))]
 async fn list_poses(
     State(state): State<AppState>,
     Path(id): Path<String>,
@@ -332,7 +346,7 @@ async fn find_pose(state: &AppState, id: &str, pose_id: &str) -> ApiResult<PoseR
 /// One pose with its image points.
 #[utoipa::path(get, path = "/v1/sessions/{id}/poses/{pose_id}", tag = "poses",
     params(("id" = String, Path, description = "Session id"), ("pose_id" = String, Path, description = "Pose id")),
-    responses((status = 200, body = PoseOut), (status = 404, body = Problem, content_type = "application/problem+json")))]
+    responses((status = 200, description = "The pose with its image points (and residuals after a calibration)", body = PoseOut), (status = 404, body = Problem, content_type = "application/problem+json")))]
 async fn get_pose(
     State(state): State<AppState>,
     Path((id, pose_id)): Path<(String, String)>,

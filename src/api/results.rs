@@ -17,6 +17,8 @@ use super::extract::{ApiJson, Paging, SerialPath};
 use super::AppState;
 use crate::domain::ParameterSetRecord;
 use crate::evaluate;
+use crate::pipeline::results::PoseOut;
+use crate::report::schema::IntrinsicsSchema;
 use crate::report::{render_html, render_svg, Report};
 
 pub fn router() -> OpenApiRouter<AppState> {
@@ -39,8 +41,41 @@ pub struct ParameterSetOut {
     pub created_at: String,
     /// Kinematics, `target_to_base`, `flange_to_camera`, intrinsics, fixed parameters.
     #[serde(flatten)]
-    #[schema(value_type = Object)]
+    #[schema(value_type = ParameterSetFields)]
     pub parameters: Map<String, Value>,
+}
+
+/// The identified model of a parameter set, as served (the stored
+/// `ParameterSetDoc` with the contract's frame names). Camera sets have
+/// `target_to_base`, `flange_to_camera` and `camera`; tracker sets
+/// `instrument_to_base` and `flange_to_tool`.
+#[derive(ToSchema)]
+#[allow(dead_code)] // a schema only: the answer serialises the stored document
+pub struct ParameterSetFields {
+    /// `camera` or `tracker`.
+    pub instrument: String,
+    /// The session the parameters were identified from.
+    pub session_id: String,
+    /// The identified joint table.
+    pub kinematics: crate::schema::robot::KinematicsDoc,
+    /// The calibration board's frame in the robot base frame (camera sets).
+    pub target_to_base: Option<PoseOut>,
+    /// The camera in the flange frame (camera sets).
+    pub flange_to_camera: Option<PoseOut>,
+    /// The laser tracker's frame in the robot base frame (tracker sets).
+    pub instrument_to_base: Option<PoseOut>,
+    /// The measured tool point in the flange frame (tracker sets).
+    pub flange_to_tool: Option<PoseOut>,
+    /// The calibrated camera intrinsics (camera sets).
+    pub camera: Option<IntrinsicsSchema>,
+    /// How `camera` was obtained: `refined`, `paper` or `fixed`.
+    pub camera_mode: Option<String>,
+    /// The calibration (`"{serial}/{version}"`) whose intrinsics were held fixed.
+    pub camera_calibration_id: Option<String>,
+    /// Parameters held fixed as unidentifiable.
+    pub fixed: Vec<String>,
+    /// Every identified parameter against its nominal value.
+    pub parameters: Vec<crate::report::ParameterReport>,
 }
 
 #[derive(Debug, Serialize, ToSchema)]
@@ -95,9 +130,9 @@ pub(super) async fn find(
 /// A robot's parameter sets, newest first.
 #[utoipa::path(get, path = "/v1/robots/{serial}/parameter-sets", tag = "results",
     params(("serial" = String, Path, description = "Robot serial number"),
-           ("limit" = Option<i64>, Query, description = "Page size, 1 to 1000"),
+           ("limit" = Option<i64>, Query, minimum = 1, maximum = 1000, description = "Page size, 1 to 1000 (default 100)"),
            ("cursor" = Option<String>, Query, description = "next_cursor of the previous page")),
-    responses((status = 200, body = ParameterSetList), (status = 422, body = Problem, content_type = "application/problem+json")))]
+    responses((status = 200, description = "One page of the robot's parameter sets, newest first (empty for an unknown robot)", body = ParameterSetList), (status = 422, body = Problem, content_type = "application/problem+json")))]
 async fn list_parameter_sets(
     State(state): State<AppState>,
     SerialPath(serial): SerialPath,
@@ -123,8 +158,8 @@ async fn list_parameter_sets(
 /// One parameter set (`latest` allowed).
 #[utoipa::path(get, path = "/v1/robots/{serial}/parameter-sets/{version}", tag = "results",
     params(("serial" = String, Path, description = "Robot serial number"),
-           ("version" = String, Path, description = "Version number or `latest`")),
-    responses((status = 200, body = ParameterSetOut), (status = 404, body = Problem, content_type = "application/problem+json")))]
+           ("version" = String, Path, pattern = r"^(latest|[1-9][0-9]{0,17})$", description = "Version number (1, 2, ...) or `latest`")),
+    responses((status = 200, description = "The parameter set: identified kinematics, frames and camera intrinsics", body = ParameterSetOut), (status = 404, body = Problem, content_type = "application/problem+json")))]
 async fn get_parameter_set(
     State(state): State<AppState>,
     SerialPath(serial): SerialPath,
@@ -136,8 +171,9 @@ async fn get_parameter_set(
 /// The accuracy report of a parameter set.
 #[utoipa::path(get, path = "/v1/robots/{serial}/parameter-sets/{version}/report", tag = "results",
     params(("serial" = String, Path, description = "Robot serial number"),
-           ("version" = String, Path, description = "Version number or `latest`")),
-    responses((status = 200, body = Object), (status = 404, body = Problem, content_type = "application/problem+json")))]
+           ("version" = String, Path, pattern = r"^(latest|[1-9][0-9]{0,17})$", description = "Version number (1, 2, ...) or `latest`")),
+    responses((status = 200, description = "The accuracy report: before/after statistics on the validation poses, per-pose errors, identified parameters, camera fit, notes", body = Report),
+              (status = 404, description = "No such robot, parameter set or report", body = Problem, content_type = "application/problem+json")))]
 async fn get_report(
     State(state): State<AppState>,
     SerialPath(serial): SerialPath,
@@ -172,8 +208,9 @@ async fn typed_report(state: &AppState, serial: &str, version: &str) -> ApiResul
 /// The report drawn as one SVG sheet.
 #[utoipa::path(get, path = "/v1/robots/{serial}/parameter-sets/{version}/report.svg", tag = "results",
     params(("serial" = String, Path, description = "Robot serial number"),
-           ("version" = String, Path, description = "Version number or `latest`")),
-    responses((status = 200, content_type = "image/svg+xml", body = String), (status = 404, body = Problem, content_type = "application/problem+json")))]
+           ("version" = String, Path, pattern = r"^(latest|[1-9][0-9]{0,17})$", description = "Version number (1, 2, ...) or `latest`")),
+    responses((status = 200, description = "The report's charts as one SVG document", content_type = "image/svg+xml", body = String), (status = 404, body = Problem, content_type = "application/problem+json"),
+              (status = 409, description = "The parameter set has no accuracy report to draw", body = Problem, content_type = "application/problem+json")))]
 async fn get_report_svg(
     State(state): State<AppState>,
     SerialPath(serial): SerialPath,
@@ -189,8 +226,9 @@ async fn get_report_svg(
 /// The report as a self-contained printable page.
 #[utoipa::path(get, path = "/v1/robots/{serial}/parameter-sets/{version}/report.html", tag = "results",
     params(("serial" = String, Path, description = "Robot serial number"),
-           ("version" = String, Path, description = "Version number or `latest`")),
-    responses((status = 200, content_type = "text/html", body = String), (status = 404, body = Problem, content_type = "application/problem+json")))]
+           ("version" = String, Path, pattern = r"^(latest|[1-9][0-9]{0,17})$", description = "Version number (1, 2, ...) or `latest`")),
+    responses((status = 200, description = "The report as a self-contained printable HTML page", content_type = "text/html", body = String), (status = 404, body = Problem, content_type = "application/problem+json"),
+              (status = 409, description = "The parameter set has no accuracy report to draw", body = Problem, content_type = "application/problem+json")))]
 async fn get_report_html(
     State(state): State<AppState>,
     SerialPath(serial): SerialPath,
@@ -209,9 +247,10 @@ async fn model(state: &AppState, serial: &str, version: &str) -> ApiResult<Calib
 /// Forward kinematics of the calibrated model.
 #[utoipa::path(post, path = "/v1/robots/{serial}/parameter-sets/{version}/forward", tag = "results",
     params(("serial" = String, Path, description = "Robot serial number"),
-           ("version" = String, Path, description = "Version number or `latest`")),
+           ("version" = String, Path, pattern = r"^(latest|[1-9][0-9]{0,17})$", description = "Version number (1, 2, ...) or `latest`")),
     request_body = evaluate::ForwardRequest,
-    responses((status = 200, body = evaluate::ForwardResponse), (status = 422, body = Problem, content_type = "application/problem+json")))]
+    responses((status = 200, description = "Per row of joints, the flange, camera (and tool) poses", body = evaluate::ForwardResponse), (status = 422, body = Problem, content_type = "application/problem+json"),
+              (status = 409, description = "The parameter set holds no calibrated model", body = Problem, content_type = "application/problem+json")))]
 async fn forward(
     State(state): State<AppState>,
     SerialPath(serial): SerialPath,
@@ -227,9 +266,10 @@ async fn forward(
 /// Joints that put the tool on each target according to the calibrated model.
 #[utoipa::path(post, path = "/v1/robots/{serial}/parameter-sets/{version}/compensate", tag = "results",
     params(("serial" = String, Path, description = "Robot serial number"),
-           ("version" = String, Path, description = "Version number or `latest`")),
+           ("version" = String, Path, pattern = r"^(latest|[1-9][0-9]{0,17})$", description = "Version number (1, 2, ...) or `latest`")),
     request_body = evaluate::CompensateRequest,
-    responses((status = 200, body = evaluate::CompensateResponse), (status = 422, body = Problem, content_type = "application/problem+json")))]
+    responses((status = 200, description = "Per target, the joints and the model's remaining distance to the target", body = evaluate::CompensateResponse), (status = 422, body = Problem, content_type = "application/problem+json"),
+              (status = 409, description = "The parameter set holds no calibrated model", body = Problem, content_type = "application/problem+json")))]
 async fn compensate(
     State(state): State<AppState>,
     SerialPath(serial): SerialPath,

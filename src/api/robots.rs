@@ -96,7 +96,7 @@ async fn put_robot(
 /// One robot.
 #[utoipa::path(get, path = "/v1/robots/{serial}", tag = "robots",
     params(("serial" = String, Path, description = "Robot serial number")),
-    responses((status = 200, body = RobotOut), (status = 404, body = Problem, content_type = "application/problem+json"),
+    responses((status = 200, description = "The robot with its joint table", body = RobotOut), (status = 404, body = Problem, content_type = "application/problem+json"),
               (status = 422, description = "Not a valid serial", body = Problem, content_type = "application/problem+json")))]
 async fn get_robot(
     State(state): State<AppState>,
@@ -130,9 +130,9 @@ async fn delete_robot(
 
 /// Robots by serial, paged with `?limit=&cursor=`.
 #[utoipa::path(get, path = "/v1/robots", tag = "robots",
-    params(("limit" = Option<i64>, Query, description = "Page size, 1 to 1000"),
+    params(("limit" = Option<i64>, Query, minimum = 1, maximum = 1000, description = "Page size, 1 to 1000 (default 100)"),
            ("cursor" = Option<String>, Query, description = "next_cursor of the previous page")),
-    responses((status = 200, body = RobotList)))]
+    responses((status = 200, description = "One page of robots by serial; `next_cursor` fetches the next", body = RobotList)))]
 async fn list_robots(State(state): State<AppState>, paging: Paging) -> ApiResult<Json<RobotList>> {
     let page = state
         .store

@@ -13,7 +13,8 @@ use super::extract::{ApiJson, Paging, SerialPath};
 use super::AppState;
 use crate::camera_reuse::{self, ReuseError};
 use crate::domain::SessionRecord;
-use crate::schema::session::{Instrument, SessionBody};
+use crate::schema::session::{CameraDoc, Instrument, SessionBody, TargetDoc};
+use crate::schema::PoseDoc;
 
 pub fn router() -> OpenApiRouter<AppState> {
     OpenApiRouter::new()
@@ -21,14 +22,33 @@ pub fn router() -> OpenApiRouter<AppState> {
         .routes(routes!(get_session))
 }
 
+/// A session as served: its identity and the specification it was created
+/// with.
 #[derive(Debug, Serialize, ToSchema)]
 pub struct SessionOut {
     pub id: String,
     pub serial: String,
     pub pose_count: i64,
     pub created_at: String,
+    /// Served with the request's fields but documented as [`SessionSpecOut`]:
+    /// the request schema forbids unknown fields, which this answer's `id`
+    /// and others would violate.
     #[serde(flatten)]
+    #[schema(value_type = SessionSpecOut)]
     pub spec: SessionBody,
+}
+
+/// The fields of [`SessionBody`] as they appear in a served session (its
+/// response schema: open to the session's identity fields).
+#[derive(Debug, ToSchema)]
+#[allow(dead_code)] // a schema only: the answer serialises `SessionBody`
+pub struct SessionSpecOut {
+    pub instrument: Instrument,
+    pub target: Option<TargetDoc>,
+    pub camera: Option<CameraDoc>,
+    pub flange_to_camera_guess: Option<PoseDoc>,
+    /// The reused camera calibration, `latest` resolved to its version.
+    pub camera_calibration_id: Option<String>,
 }
 
 #[derive(Debug, Serialize, ToSchema)]
@@ -63,7 +83,7 @@ pub async fn find_session(state: &AppState, id: &str) -> ApiResult<SessionRecord
 #[utoipa::path(post, path = "/v1/robots/{serial}/sessions", tag = "sessions",
     params(("serial" = String, Path, description = "Robot serial number")),
     request_body = SessionBody,
-    responses((status = 201, body = SessionOut),
+    responses((status = 201, description = "The created session", body = SessionOut),
               (status = 404, description = "No such robot, or no parameter set `camera_calibration_id`", body = Problem, content_type = "application/problem+json"),
               (status = 422, body = Problem, content_type = "application/problem+json")))]
 async fn create_session(
@@ -116,9 +136,9 @@ async fn resolve_camera_calibration(
 /// A robot's sessions, oldest first.
 #[utoipa::path(get, path = "/v1/robots/{serial}/sessions", tag = "sessions",
     params(("serial" = String, Path, description = "Robot serial number"),
-           ("limit" = Option<i64>, Query, description = "Page size, 1 to 1000"),
+           ("limit" = Option<i64>, Query, minimum = 1, maximum = 1000, description = "Page size, 1 to 1000 (default 100)"),
            ("cursor" = Option<String>, Query, description = "next_cursor of the previous page")),
-    responses((status = 200, body = SessionList), (status = 404, body = Problem, content_type = "application/problem+json")))]
+    responses((status = 200, description = "One page of the robot's sessions, oldest first", body = SessionList), (status = 404, body = Problem, content_type = "application/problem+json")))]
 async fn list_sessions(
     State(state): State<AppState>,
     SerialPath(serial): SerialPath,
@@ -144,7 +164,7 @@ async fn list_sessions(
 /// One session.
 #[utoipa::path(get, path = "/v1/sessions/{id}", tag = "sessions",
     params(("id" = String, Path, description = "Session id")),
-    responses((status = 200, body = SessionOut), (status = 404, body = Problem, content_type = "application/problem+json")))]
+    responses((status = 200, description = "The session", body = SessionOut), (status = 404, body = Problem, content_type = "application/problem+json")))]
 async fn get_session(
     State(state): State<AppState>,
     Path(id): Path<String>,

@@ -155,13 +155,20 @@ impl From<DatasetError> for ApiError {
     }
 }
 
+/// A zip archive's bytes (the dataset upload's body schema).
+#[derive(ToSchema)]
+#[schema(value_type = String, format = Binary)]
+#[allow(dead_code)] // a schema only: the body is streamed
+pub struct ZipArchive(Vec<u8>);
+
 /// Upload a whole campaign: a zip with `poses.json`
 /// (`[{"joints_deg","image","set"}]`) and the images it names. All poses are
 /// stored in one transaction, or none.
 #[utoipa::path(post, path = "/v1/sessions/{id}/dataset", tag = "poses",
     params(("id" = String, Path, description = "Session id")),
-    request_body(content = Vec<u8>, content_type = "application/zip"),
-    responses((status = 201, body = DatasetOut, description = "All poses stored, each image searched for the session's target at upload (`detected_points`)."),
+    request_body(content = ZipArchive, content_type = "application/zip",
+        description = "A zip with `poses.json` (`[{\"joints_deg\", \"image\", \"set\"}]`) and the images it names"),
+    responses((status = 201, body = DatasetOut, description = "Every pose of the archive was stored, each image searched for the session's target at upload (`detected_points`)."),
               (status = 400, body = Problem, content_type = "application/problem+json"),
               (status = 404, body = Problem, content_type = "application/problem+json"),
               (status = 413, body = Problem, content_type = "application/problem+json"),

@@ -21,8 +21,10 @@ use crate::schema::robot::KinematicsDoc;
 /// Most residual arrows kept in a report (the plot averages them anyway).
 const MAX_RESIDUAL_SAMPLES: usize = 6000;
 
-/// A pose in the contract's form plus its exact matrix.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+/// A pose in the contract's form plus its exact matrix: translation in mm,
+/// fixed-axis X-Y-Z angles in degrees, the 4x4 row-major matrix.
+#[derive(Debug, Clone, Serialize, Deserialize, utoipa::ToSchema)]
+#[schema(as = FramePose)]
 pub struct PoseOut {
     pub translation_mm: [f64; 3],
     pub rotation_deg: [f64; 3],

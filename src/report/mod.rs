@@ -12,6 +12,7 @@ mod html_sections;
 pub mod model;
 mod plot;
 pub mod sample;
+pub mod schema;
 pub mod svg;
 mod svg_writer;
 mod table;

@@ -3,6 +3,9 @@
 //! sibling modules. Lengths in mm, angles in degrees, image data in pixels.
 
 use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+use super::schema::{AccuracySummarySchema, IntrinsicsSchema, IntrinsicsStdSchema};
 
 /// Error statistics (method.md §7): the numerics' own types, so the
 /// report carries exactly what the identification computed. `AccuracySummary`
@@ -10,7 +13,7 @@ use serde::{Deserialize, Serialize};
 pub use robocal_calib::stats::{AccuracyStats as AccuracySummary, ErrorStats};
 
 /// One camera view's fit.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 pub struct ViewReport {
     pub pose_id: String,
     /// The pose's label (see [`PoseReport::label`]).
@@ -23,7 +26,7 @@ pub struct ViewReport {
     pub warning: Option<String>,
 }
 
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 pub struct CameraReport {
     /// "refined" (default), "paper" (`refine_intrinsics: false`) or
     /// "fixed" (reused from `camera_calibration_id`).
@@ -36,9 +39,11 @@ pub struct CameraReport {
     pub image_height: u32,
     /// `fx, fy, cx, cy, k1, k2, p1, p2, k3`, flattened into the report.
     #[serde(flatten)]
+    #[schema(value_type = IntrinsicsSchema)]
     pub intrinsics: Intrinsics,
     /// Standard deviations in the same units, when estimated.
     #[serde(skip_serializing_if = "Option::is_none")]
+    #[schema(value_type = Option<IntrinsicsStdSchema>)]
     pub std: Option<CameraStd>,
     pub reprojection_rms_px: f64,
     pub outliers_dropped: usize,
@@ -60,7 +65,7 @@ pub use robocal_calib::camera::Intrinsics;
 /// The camera step's (or joint refinement's) intrinsics uncertainty.
 pub use robocal_calib::camera::IntrinsicsStdDev as CameraStd;
 
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 pub struct DetectionFailure {
     pub pose_id: String,
     /// The pose's label (see [`PoseReport::label`]).
@@ -69,7 +74,7 @@ pub struct DetectionFailure {
     pub reason: String,
 }
 
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, ToSchema)]
 pub struct DetectionReport {
     pub images: usize,
     pub images_detected: usize,
@@ -79,7 +84,7 @@ pub struct DetectionReport {
 
 /// Per pose: position error at that pose before (nominal kinematics, only
 /// base and hand–eye fitted) and after calibration, world frame, mm.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 pub struct PoseReport {
     pub pose_id: String,
     /// What the pose is called: the uploaded image's file name, a JSON
@@ -127,7 +132,7 @@ impl DetectionFailure {
 }
 
 /// One identified parameter against its nominal value.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 pub struct ParameterReport {
     /// E.g. "joint2.a_mm", "joint3.beta_deg", "target_to_base.tx_mm".
     pub name: String,
@@ -139,7 +144,7 @@ pub struct ParameterReport {
     pub fixed: bool,
 }
 
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, ToSchema)]
 pub struct IdentifiabilityReport {
     pub parameters: usize,
     pub rank: usize,
@@ -150,7 +155,7 @@ pub struct IdentifiabilityReport {
 
 /// A reprojection residual at an image point (observed minus predicted),
 /// for the residual-field plot.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
 pub struct ResidualSample {
     pub x_px: f64,
     pub y_px: f64,
@@ -158,7 +163,7 @@ pub struct ResidualSample {
     pub dy_px: f64,
 }
 
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 pub struct Report {
     pub serial: String,
     pub version: i64,
@@ -174,7 +179,9 @@ pub struct Report {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub detection: Option<DetectionReport>,
     /// Validation-pose statistics before and after calibration.
+    #[schema(value_type = AccuracySummarySchema)]
     pub before: AccuracySummary,
+    #[schema(value_type = AccuracySummarySchema)]
     pub after: AccuracySummary,
     pub per_pose: Vec<PoseReport>,
     pub parameters: Vec<ParameterReport>,

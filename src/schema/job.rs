@@ -21,6 +21,8 @@ pub enum ValidationNamed {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Holdout {
+    /// The share of poses held out for validation, strictly between 0 and 1.
+    #[schema(exclusive_minimum = 0.0, exclusive_maximum = 1.0)]
     pub holdout_fraction: f64,
 }
 

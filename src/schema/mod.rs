@@ -72,10 +72,31 @@ pub const MAX_ANGLE_DEG: f64 = 720.0;
 #[derive(Debug, Clone, PartialEq, serde::Deserialize, Serialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PoseDoc {
+    #[schema(min_items = 3, max_items = 3)]
     pub translation_mm: [f64; 3],
+    #[schema(min_items = 3, max_items = 3)]
     pub rotation_deg: [f64; 3],
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(schema_with = matrix4_schema)]
     pub matrix: Option<[[f64; 4]; 4]>,
+}
+
+/// The schema of an optional 4x4 row-major matrix: four rows of four
+/// numbers (serde reads fixed-size arrays, any other length is refused).
+fn matrix4_schema() -> utoipa::openapi::schema::Array {
+    use utoipa::openapi::schema::{ArrayBuilder, ObjectBuilder, SchemaType, Type};
+    const SIDE: usize = 4;
+    let row = ArrayBuilder::new()
+        .items(ObjectBuilder::new().schema_type(Type::Number))
+        .min_items(Some(SIDE))
+        .max_items(Some(SIDE));
+    ArrayBuilder::new()
+        .schema_type(SchemaType::from_iter([Type::Array, Type::Null]))
+        .items(row)
+        .min_items(Some(SIDE))
+        .max_items(Some(SIDE))
+        .description(Some("4x4 row-major homogeneous matrix (optional)"))
+        .build()
 }
 
 impl PoseDoc {

@@ -84,6 +84,8 @@ impl Preset {
 #[derive(Debug, Clone, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RobotBody {
+    /// The robot model's name, 1 to 200 characters, not only spaces.
+    #[schema(min_length = 1, max_length = 200, pattern = r"\S")]
     pub model: String,
     #[serde(default)]
     pub kinematics: Option<KinematicsDoc>,

@@ -175,6 +175,7 @@ pub struct PoseJsonBody {
     #[serde(default)]
     pub image_points: Option<Vec<ImagePointDoc>>,
     #[serde(default)]
+    #[schema(min_items = 3, max_items = 3)]
     pub measured_position_mm: Option<[f64; 3]>,
     #[serde(default)]
     pub measured_pose: Option<PoseDoc>,

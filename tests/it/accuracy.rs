@@ -84,9 +84,14 @@ async fn targets_hold(preset: &str) {
         .await
         .unwrap();
         let serial = format!("{}-ACC-{seed}", preset.to_uppercase());
-        let session = robocal::cli::upload(&client, &serial, dir.path())
-            .await
-            .unwrap();
+        let session = robocal::cli::upload(
+            &client,
+            &serial,
+            dir.path(),
+            robocal::cli::RobotPolicy::CreateIfMissing,
+        )
+        .await
+        .unwrap();
         let set = served_set(&app, &client, &serial, &session, json!({})).await;
         let two = served_set(
             &app,

@@ -25,10 +25,15 @@ async fn campaign_through_the_service(preset: &str, serial: &str, seed: u64) {
     robocal::campaign::simulate(preset, dir.path(), CAL_POSES, VAL_POSES, seed).unwrap();
     let app = spawn_app_with(|c| c.test_validate_only = false).await;
     let client = Client::new(&app.base, None).unwrap();
-    let session = robocal::cli::upload(&client, serial, dir.path())
-        .await
-        .unwrap();
-    let done = robocal::cli::calibrate(&client, &session, false)
+    let session = robocal::cli::upload(
+        &client,
+        serial,
+        dir.path(),
+        robocal::cli::RobotPolicy::CreateIfMissing,
+    )
+    .await
+    .unwrap();
+    let done = robocal::cli::calibrate(&client, serial, &session, false)
         .await
         .unwrap();
     let job = done["job_id"].as_str().unwrap().to_string();

@@ -297,9 +297,14 @@ async fn detected_points_residuals_and_a_reused_camera_through_the_service() {
     let pitch_mm = campaign::simulated_target().pitch_mm;
     let app = spawn_app_with(|c| c.test_validate_only = false).await;
     let client = Client::new(&app.base, None).unwrap();
-    let session = robocal::cli::upload(&client, "PUMA-PTS", dir.path())
-        .await
-        .unwrap();
+    let session = robocal::cli::upload(
+        &client,
+        "PUMA-PTS",
+        dir.path(),
+        robocal::cli::RobotPolicy::CreateIfMissing,
+    )
+    .await
+    .unwrap();
 
     // Before any job: the dots found at upload (issue 12), raw centres.
     let before = poses_of(&app, &session).await;
@@ -405,9 +410,14 @@ async fn detected_points_residuals_and_a_reused_camera_through_the_service() {
     let mut file = file;
     file.session.camera_calibration_id = Some("PUMA-PTS/1".into());
     std::fs::write(&path, serde_json::to_string(&file).unwrap()).unwrap();
-    let reuse = robocal::cli::upload(&client, "PUMA-B", dir.path())
-        .await
-        .unwrap();
+    let reuse = robocal::cli::upload(
+        &client,
+        "PUMA-B",
+        dir.path(),
+        robocal::cli::RobotPolicy::CreateIfMissing,
+    )
+    .await
+    .unwrap();
     let job3 = run_job(&app, &client, &reuse, json!({})).await;
     assert_eq!(job3["result"]["serial"], "PUMA-B");
     let set3 = json_of(&app, "/v1/robots/PUMA-B/parameter-sets/1").await;

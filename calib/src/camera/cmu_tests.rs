@@ -1,4 +1,4 @@
-//! Real dot-grid photographs (shared/data/circles/cmu_datta_10x7): calibrate
+//! Real dot-grid photographs (calib/tests/data/circles/cmu_datta_10x7): calibrate
 //! from OpenCV's detected centres and compare with OpenCV's own
 //! `calibrateCamera` on the same points (derived_opencv5/README).
 
@@ -11,7 +11,7 @@ use crate::camera::observations::DotObservation;
 
 const CENTRES: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
-    "/../../shared/data/circles/cmu_datta_10x7/derived_opencv5/centers_findCirclesGrid.csv"
+    "/tests/data/circles/cmu_datta_10x7/derived_opencv5/centers_findCirclesGrid.csv"
 );
 /// Dot spacing (dataset README).
 const PITCH_MM: f64 = 23.0;

@@ -59,7 +59,7 @@ pub fn puma560() -> RobotModel {
 /// and dynamics" (universal-robots.com support article): d1 89.159,
 /// a2 -425, a3 -392.25, d4 109.15, d5 94.65, d6 82.3 mm; alpha 90, 0, 0,
 /// 90, -90, 0 deg; joint ranges +-360 deg. Checked against the Jacobi 2025
-/// laser-tracker data (`shared/data/kinematic/ur5_wam_jacobi2025`): its
+/// laser-tracker data (`calib/tests/data/kinematic/ur5_wam_jacobi2025`): its
 /// nominal targets are this model's flange plus a 31 mm tool, to 0.007 mm.
 /// Links 2 and 3 (parallel axes 2-3-4) become Hayati.
 pub fn ur5() -> RobotModel {

@@ -1,6 +1,7 @@
-//! Detector properties on simulated views with known truth (issue 3) and on
-//! the real photographs in shared/data/circles. The full 500-view run is the
-//! `detect_bench` example (BENCHMARKS.md, "Detection").
+//! Detector properties on simulated views with known truth (issue 3); the
+//! real photographs (calib/tests/data/circles) are in real_data_tests.rs.
+//! The full 500-view run is the `detect_bench` example (BENCHMARKS.md,
+//! "Detection").
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 use rand::{rngs::StdRng, Rng, SeedableRng};

@@ -1,4 +1,4 @@
-//! The detector on real photographs (shared/data/circles/cmu_datta_10x7):
+//! The detector on real photographs (calib/tests/data/circles/cmu_datta_10x7):
 //! 20 images of a 10x7 symmetric grid without marker, strong barrel
 //! distortion; cross-checked against OpenCV 5 findCirclesGrid centres.
 
@@ -8,7 +8,7 @@ use super::*;
 
 const CMU_DIR: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
-    "/../../shared/data/circles/cmu_datta_10x7"
+    "/tests/data/circles/cmu_datta_10x7"
 );
 /// Largest accepted median distance to OpenCV's blob centroids, px (both are
 /// uncorrected centres of ~45 px dots; OpenCV's are coarser).

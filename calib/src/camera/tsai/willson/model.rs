@@ -1,5 +1,5 @@
 //! Tsai's own camera model as in Reg Willson's reference implementation
-//! (release 3.0b3; shared/data/tsai/README.md): focal length `f` in mm, one
+//! (release 3.0b3; calib/tests/data/tsai/README.md): focal length `f` in mm, one
 //! radial coefficient `kappa1` defined distorted -> undistorted, horizontal
 //! scale `sx`, sensor pitch `dpx, dpy`, Euler angles `(Rx, Ry, Rz)`;
 //! projection inverts the distortion cubic in closed form (Cardan). The full

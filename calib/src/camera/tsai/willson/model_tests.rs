@@ -1,4 +1,4 @@
-//! Willson's published Tsai results (shared/data/tsai/README.md).
+//! Willson's published Tsai results (calib/tests/data/tsai/README.md).
 
 use super::*;
 use crate::camera::tsai::willson::fit::{calibrate_tsai_full, full_optimisation_cost};

@@ -1,6 +1,6 @@
 //! "Willson mode": Tsai's calibration with full optimisation replayed stage
 //! by stage as Reg Willson's release 3.0b3 runs it (`ccal_fo`, `nccal_fo`;
-//! shared/data/tsai/README.md), to reproduce his published cameras.
+//! calib/tests/data/tsai/README.md), to reproduce his published cameras.
 //!
 //! Every non-linear stage is MINPACK `lmdif` (`willson_minpack.rs`)
 //! with Willson's settings (`ftol = 1e-5`, `xtol = 1e-7`, `gtol = 0`,

@@ -1,4 +1,4 @@
-//! Willson mode against Willson's published runs (shared/data/tsai/README.md:
+//! Willson mode against Willson's published runs (calib/tests/data/tsai/README.md:
 //! `ccal.log`, `nccal.log`, `cc_cpcc.dat`, `ncc_cpcc.dat`).
 //!
 //! What is reproduced, and why not every printed digit: the published

@@ -1,11 +1,11 @@
 //! Willson's sample data and published camera files
-//! (`shared/data/tsai/willson_v3.0b3/`), shared by the Tsai tests.
+//! (`calib/tests/data/tsai/willson_v3.0b3/`), shared by the Tsai tests.
 
 use super::model::{parse_points, TsaiModel, TsaiPoint};
 
 const DATA: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
-    "/../../shared/data/tsai/willson_v3.0b3/"
+    "/tests/data/tsai/willson_v3.0b3/"
 );
 /// Willson's initial image-centre guess for the Photometrics Star I (px).
 pub(crate) const INITIAL_CENTRE: (f64, f64) = (258.0, 204.0);

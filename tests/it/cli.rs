@@ -1,0 +1,184 @@
+//! The `robocal` client commands, run as the real binary against a server:
+//! `upload` keeps an existing robot unless `--replace-robot`, `calibrate`
+//! checks `--serial` and logs plain progress lines off a terminal,
+//! `forward` and `compensate` print tables or JSON.
+
+use std::process::Output;
+
+use serde_json::{json, Value};
+
+use crate::support::{run_binary, spawn_app_with, TestApp};
+
+/// A small rendered PUMA-560 campaign: enough rows to identify the model.
+const CAL_POSES: usize = 16;
+const VAL_POSES: usize = 6;
+const SEED: u64 = 21;
+const SERIAL: &str = "CLI-1";
+/// Compensated joints reproduce the forward pose to well below a micron.
+const MAX_RESIDUAL_MM: f64 = 1e-3;
+
+/// `robocal <args> --url <server>` off the async runtime (the server runs
+/// in this process).
+async fn robocal(app: &TestApp, args: &[&str]) -> Output {
+    let mut all: Vec<String> = args.iter().map(|a| a.to_string()).collect();
+    all.extend(["--url".to_string(), app.base.clone()]);
+    tokio::task::spawn_blocking(move || {
+        run_binary(&all.iter().map(String::as_str).collect::<Vec<_>>())
+    })
+    .await
+    .unwrap()
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+fn ok(out: &Output) -> String {
+    assert!(out.status.success(), "stderr: {}", text(&out.stderr));
+    text(&out.stdout)
+}
+
+async fn robot_preset(app: &TestApp) -> Value {
+    let r: Value = app
+        .get(&format!("/v1/robots/{SERIAL}"))
+        .await
+        .json()
+        .await
+        .unwrap();
+    r["preset"].clone()
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn upload_calibrate_forward_and_compensate_through_the_binary() {
+    let app = spawn_app_with(|c| c.test_validate_only = false).await;
+    let dir = tempfile::tempdir().unwrap();
+    robocal::campaign::simulate("puma560", dir.path(), CAL_POSES, VAL_POSES, SEED).unwrap();
+    let campaign = dir.path().to_str().unwrap();
+
+    // An existing robot keeps its kinematics unless --replace-robot.
+    let r = app
+        .put_json(
+            &format!("/v1/robots/{SERIAL}"),
+            &json!({"model": "IRB 2400/16", "preset": "irb2400"}),
+        )
+        .await;
+    assert_eq!(r.status(), 201);
+    let out = robocal(&app, &["upload", "--serial", SERIAL, campaign]).await;
+    ok(&out);
+    assert!(
+        text(&out.stderr).contains("--replace-robot"),
+        "{}",
+        text(&out.stderr)
+    );
+    assert_eq!(robot_preset(&app).await, "irb2400");
+    let out = robocal(
+        &app,
+        &["upload", "--serial", SERIAL, "--replace-robot", campaign],
+    )
+    .await;
+    let session = ok(&out).trim().to_string();
+    assert_eq!(robot_preset(&app).await, "puma560");
+
+    // --serial is checked against the session's robot.
+    let out = robocal(
+        &app,
+        &["calibrate", "--serial", "OTHER-9", "--session", &session],
+    )
+    .await;
+    assert!(!out.status.success());
+    assert!(
+        text(&out.stderr).contains(&format!("belongs to robot {SERIAL}")),
+        "{}",
+        text(&out.stderr)
+    );
+
+    // Progress off a terminal: plain lines, no carriage return.
+    let out = robocal(
+        &app,
+        &[
+            "calibrate",
+            "--serial",
+            SERIAL,
+            "--session",
+            &session,
+            "--wait",
+        ],
+    )
+    .await;
+    ok(&out);
+    let log = text(&out.stderr);
+    assert!(!log.contains('\r'), "{log:?}");
+    assert!(log.lines().any(|l| l.contains('%')), "{log:?}");
+
+    // forward: a table and JSON.
+    let joints = "0,-20,10,0,40,0";
+    let out = robocal(&app, &["forward", "--serial", SERIAL, "--joints", joints]).await;
+    let table = ok(&out);
+    assert!(
+        table
+            .lines()
+            .any(|l| l.starts_with("1 ") && l.contains("camera")),
+        "{table}"
+    );
+    let out = robocal(
+        &app,
+        &[
+            "forward",
+            "--serial",
+            SERIAL,
+            "--version",
+            "1",
+            "--joints",
+            joints,
+            "--json",
+        ],
+    )
+    .await;
+    let forward: Value = serde_json::from_str(&ok(&out)).unwrap();
+    let camera = &forward["poses"][0]["camera_in_target"];
+    let number = |v: &Value| v.as_f64().unwrap().to_string();
+    let target: Vec<String> = camera["translation_mm"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .chain(camera["rotation_deg"].as_array().unwrap())
+        .map(number)
+        .collect();
+
+    // compensate: the forward pose back to (near) the same joints.
+    let out = robocal(
+        &app,
+        &[
+            "compensate",
+            "--serial",
+            SERIAL,
+            "--target",
+            &target.join(","),
+            "--seed",
+            joints,
+            "--json",
+        ],
+    )
+    .await;
+    let answer: Value = serde_json::from_str(&ok(&out)).unwrap();
+    let residual = answer["residual_mm"][0].as_f64().unwrap();
+    assert!(residual < MAX_RESIDUAL_MM, "{answer}");
+    let out = robocal(
+        &app,
+        &[
+            "compensate",
+            "--serial",
+            SERIAL,
+            "--target",
+            &target.join(","),
+            "--seed",
+            joints,
+        ],
+    )
+    .await;
+    let table = ok(&out);
+    assert!(
+        table.lines().nth(1).is_some_and(|l| l.starts_with("1 ")),
+        "{table}"
+    );
+}
