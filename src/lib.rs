@@ -18,6 +18,7 @@ pub mod dataset;
 pub mod domain;
 pub mod evaluate;
 pub mod jobs;
+pub mod listen;
 pub mod metrics;
 pub mod pipeline;
 pub mod report;

@@ -11,6 +11,7 @@ use crate::api::{self, AppState, QUEUE_FULL_RETRY_AFTER_SECS};
 use crate::config::ServeConfig;
 use crate::jobs::pool::{PoolConfig, WorkerPool};
 use crate::jobs::queue::QueuePolicy;
+use crate::listen;
 use crate::metrics::Metrics;
 use crate::store::{self, StoreError};
 
@@ -95,15 +96,13 @@ pub async fn start(config: ServeConfig) -> Result<RunningServer, StartError> {
         wake,
         workers_alive: pool.alive.clone(),
     };
+    let limits = listen::Limits {
+        header_timeout: state.config.header_timeout(),
+        max_connections: state.config.max_connections,
+    };
     let app = api::app(state);
-    let mut rx = shutdown_rx;
     let handle = tokio::spawn(async move {
-        let serve = axum::serve(listener, app).with_graceful_shutdown(async move {
-            let _ = rx.wait_for(|stop| *stop).await;
-        });
-        if let Err(e) = serve.await {
-            tracing::error!(error = %e, "HTTP server failed");
-        }
+        listen::serve(listener, app, limits, shutdown_rx).await;
         pool.join().await;
         tracing::info!("robocal stopped");
     });

@@ -47,6 +47,11 @@ const MIGRATIONS: &[Embedded] = &[
         "pose detection",
         include_str!("../../../migrations/postgres/0002_pose_detection.sql"),
     ),
+    (
+        5,
+        "idempotency fingerprint",
+        include_str!("../../../migrations/postgres/0005_idempotency_fingerprint.sql"),
+    ),
 ];
 
 /// Connections per replica. Each worker holds at most one while it claims or

@@ -33,6 +33,11 @@ const MIGRATIONS: &[Embedded] = &[
         "pose detection",
         include_str!("../../../migrations/sqlite/0002_pose_detection.sql"),
     ),
+    (
+        5,
+        "idempotency fingerprint",
+        include_str!("../../../migrations/sqlite/0005_idempotency_fingerprint.sql"),
+    ),
 ];
 
 /// How long a statement waits for a competing writer before giving up.
