@@ -38,8 +38,8 @@ pub struct ServeConfig {
     pub max_queued: i64,
 
     /// Lease length in seconds of a running job and of a request in flight
-    /// under an `Idempotency-Key`; the holder renews it while working, so
-    /// after a crash (kill -9) the job or key is free again within this time.
+    /// under an `Idempotency-Key` (at least 5 s); the holder renews it while
+    /// working, so after a crash (kill -9) the job or key is free again then.
     #[arg(long, env = "ROBOCAL_LEASE_SECS", default_value_t = 30)]
     pub lease_secs: u64,
 

@@ -29,6 +29,9 @@ const MAX_KEY_LEN: usize = 255;
 const MAX_STORED_BODY: usize = 16 * 1024 * 1024;
 /// Response headers worth replaying.
 const KEPT_HEADERS: [&str; 3] = ["content-type", "location", "retry-after"];
+/// Shortest lease on a key in flight: renewals cost a write each, and a
+/// lease lapsing under a slow database would let a retry run twice.
+const MIN_LEASE: Duration = Duration::from_secs(5);
 /// Renewals of the key's lease per lease length, so one late renewal does not lose it.
 const LEASE_RENEWALS: u32 = 3;
 const MIN_RENEW_INTERVAL: Duration = Duration::from_millis(100);
@@ -74,7 +77,7 @@ pub async fn layer(State(state): State<AppState>, req: Request, next: Next) -> R
         key,
         holder: new_id(),
     };
-    let lease = state.config.lease();
+    let lease = state.config.lease().max(MIN_LEASE);
     let (parts, body) = req.into_parts();
     let fingerprint = Fingerprinter::new(&parts);
     match state

@@ -218,8 +218,9 @@ async fn a_key_in_flight_at_kill_9_is_free_after_restart() {
     drop(stuck);
 
     let mut second = spawn_binary(&args, &[]);
-    // The dead holder's lease (1 s) lapses; the retry then runs.
-    let deadline = std::time::Instant::now() + Duration::from_secs(5);
+    // The dead holder's lease (5 s, the shortest for keys) lapses; the retry
+    // then runs (before: 409 for 10 minutes).
+    let deadline = std::time::Instant::now() + Duration::from_secs(15);
     let answer = loop {
         let r = put(&second.base).await.unwrap();
         if r.status() != 409 || std::time::Instant::now() > deadline {
