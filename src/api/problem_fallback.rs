@@ -32,11 +32,17 @@ pub async fn layer(req: Request, next: Next) -> Response {
         detail = status.canonical_reason().unwrap_or("error").to_string();
     }
     let error = if status == StatusCode::BAD_REQUEST {
-        ApiError::malformed("request", detail)
+        ApiError::malformed(named_field(&detail).unwrap_or("request"), detail.clone())
     } else if status.is_server_error() {
         ApiError::internal(detail)
     } else {
         ApiError::new(status, "rejected", detail)
     };
     error.into_response()
+}
+
+/// The parameter an axum rejection names in backquotes ("Invalid UTF-8 in `id`").
+fn named_field(text: &str) -> Option<&str> {
+    let (_, rest) = text.split_once(" in `")?;
+    rest.split('`').next().filter(|f| !f.is_empty())
 }
