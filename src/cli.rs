@@ -195,6 +195,44 @@ pub async fn calibrate(
     }
 }
 
+/// `robocal jobs`: the newest `limit` jobs as a table, newest first.
+pub async fn jobs(client: &Client, limit: u32) -> Result<String, ClientError> {
+    let page = client.jobs(limit, None).await?;
+    let items = page
+        .get("items")
+        .and_then(Value::as_array)
+        .cloned()
+        .unwrap_or_default();
+    Ok(jobs_table(&items))
+}
+
+/// One line per job: id, state, progress, serial, session, creation time.
+fn jobs_table(items: &[Value]) -> String {
+    let text = |v: &Value, key: &str| {
+        v.get(key)
+            .and_then(Value::as_str)
+            .unwrap_or("-")
+            .to_string()
+    };
+    let mut out = format!(
+        "{:<36}  {:<9}  {:>4}  {:<16}  {:<36}  {}\n",
+        "JOB", "STATE", "DONE", "SERIAL", "SESSION", "CREATED"
+    );
+    for job in items {
+        let progress = job.get("progress").and_then(Value::as_f64).unwrap_or(0.0);
+        out.push_str(&format!(
+            "{:<36}  {:<9}  {:>3.0}%  {:<16}  {:<36}  {}\n",
+            text(job, "id"),
+            text(job, "state"),
+            progress * 100.0,
+            text(job, "serial"),
+            text(job, "session_id"),
+            text(job, "created_at"),
+        ));
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

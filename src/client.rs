@@ -248,6 +248,16 @@ impl Client {
             .await
     }
 
+    /// One page of `GET /v1/jobs` (newest first).
+    pub async fn jobs(&self, limit: u32, cursor: Option<&str>) -> Result<Value, ClientError> {
+        let mut query = vec![("limit", limit.to_string())];
+        if let Some(cursor) = cursor {
+            query.push(("cursor", cursor.to_string()));
+        }
+        self.send(self.request(reqwest::Method::GET, "/v1/jobs").query(&query))
+            .await
+    }
+
     /// `version = None` asks for the latest.
     pub async fn report(&self, serial: &str, version: Option<i64>) -> Result<Report, ClientError> {
         let version = version.map_or("latest".to_string(), |v| v.to_string());

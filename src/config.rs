@@ -37,7 +37,9 @@ pub struct ServeConfig {
     #[arg(long, env = "ROBOCAL_MAX_QUEUED", default_value_t = 64)]
     pub max_queued: i64,
 
-    /// Job lease length in seconds; a worker renews it while working.
+    /// Lease length in seconds of a running job and of a request in flight
+    /// under an `Idempotency-Key` (at least 5 s); the holder renews it while
+    /// working, so after a crash (kill -9) the job or key is free again then.
     #[arg(long, env = "ROBOCAL_LEASE_SECS", default_value_t = 30)]
     pub lease_secs: u64,
 
@@ -56,6 +58,20 @@ pub struct ServeConfig {
     /// Largest accepted JSON request body, bytes.
     #[arg(long, env = "ROBOCAL_MAX_JSON_BYTES", default_value_t = 8 * MIB)]
     pub max_json_bytes: u64,
+
+    /// Seconds a client may take to send a request's head (request line and
+    /// headers); the connection is closed after that. Also the keep-alive idle limit.
+    #[arg(long, env = "ROBOCAL_HEADER_TIMEOUT_SECS", default_value_t = 15)]
+    pub header_timeout_secs: u64,
+
+    /// Seconds a request body may go without sending a byte before the
+    /// request is answered 408 and the connection closed.
+    #[arg(long, env = "ROBOCAL_BODY_IDLE_TIMEOUT_SECS", default_value_t = 30)]
+    pub body_idle_timeout_secs: u64,
+
+    /// Connections served at once; one more is answered 503 and closed.
+    #[arg(long, env = "ROBOCAL_MAX_CONNECTIONS", default_value_t = 256)]
+    pub max_connections: usize,
 
     /// Directory for streamed uploads being checked (default: the system temp dir).
     #[arg(long, env = "ROBOCAL_UPLOAD_DIR")]
@@ -136,6 +152,9 @@ impl ServeConfig {
                 "max_json_bytes",
                 self.max_json_bytes.min(i64::MAX as u64) as i64,
             ),
+            ("header_timeout_secs", self.header_timeout_secs as i64),
+            ("body_idle_timeout_secs", self.body_idle_timeout_secs as i64),
+            ("max_connections", self.max_connections as i64),
         ];
         for (name, value) in positive {
             if value < 1 {
@@ -161,6 +180,14 @@ impl ServeConfig {
 
     pub fn lease(&self) -> Duration {
         Duration::from_secs(self.lease_secs)
+    }
+
+    pub fn header_timeout(&self) -> Duration {
+        Duration::from_secs(self.header_timeout_secs)
+    }
+
+    pub fn body_idle_timeout(&self) -> Duration {
+        Duration::from_secs(self.body_idle_timeout_secs)
     }
 
     pub fn upload_dir(&self) -> PathBuf {

@@ -296,21 +296,30 @@ pub struct StoredResponse {
 /// State of an idempotency key when a request first looks at it.
 #[derive(Debug, Clone)]
 pub enum IdempotencyClaim {
-    /// First use: the caller runs the request and then stores the response.
+    /// First use: the caller holds the key (under a lease it renews), runs
+    /// the request and then stores the response or abandons the key.
     Fresh,
-    /// Another request with this key is running.
+    /// Another request with this key is running (its holder's lease is live).
     InFlight,
-    /// Done before: replay this.
-    Replay(StoredResponse),
+    /// The key belongs to a request with another method or path.
+    OtherRequest { method: String, path: String },
+    /// Done before: replay `response` if this request has the same
+    /// `fingerprint` (`None`: stored without one, replayed for any body).
+    Done {
+        fingerprint: Option<String>,
+        response: StoredResponse,
+    },
 }
 
-/// Identifies the owner and target of an idempotency key.
+/// Identifies the owner and target of an idempotency key, and the one
+/// request (`holder`, unique per attempt) that may complete or renew it.
 #[derive(Debug, Clone)]
 pub struct IdempotencyScope {
     pub principal: String,
     pub method: String,
     pub path: String,
     pub key: String,
+    pub holder: String,
 }
 
 /// A page of a listing, ordered by key; `next_cursor` is the last key when more may follow.

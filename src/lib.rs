@@ -20,6 +20,7 @@ pub mod evaluate;
 pub mod housekeeping;
 pub mod imaging;
 pub mod jobs;
+pub mod listen;
 pub mod metrics;
 pub mod pipeline;
 pub mod report;

@@ -71,6 +71,14 @@ enum Command {
         #[command(flatten)]
         server: ServerArgs,
     },
+    /// List jobs, newest first.
+    Jobs {
+        /// How many jobs to show (1 to 1000).
+        #[arg(long, default_value_t = 20, value_parser = clap::value_parser!(u32).range(1..=1000))]
+        limit: u32,
+        #[command(flatten)]
+        server: ServerArgs,
+    },
     /// Print a parameter set's accuracy report as a table.
     Report {
         /// Robot serial number.
@@ -251,6 +259,13 @@ async fn main() -> ExitCode {
             Ok(client) => robocal::cli::calibrate(&client, &serial, &session, wait)
                 .await
                 .map(|job| println!("{job}"))
+                .map_err(|e| e.to_string()),
+            Err(e) => Err(e),
+        },
+        Command::Jobs { limit, server } => match server.client() {
+            Ok(client) => robocal::cli::jobs(&client, limit)
+                .await
+                .map(|table| print!("{table}"))
                 .map_err(|e| e.to_string()),
             Err(e) => Err(e),
         },

@@ -12,6 +12,7 @@ use crate::config::ServeConfig;
 use crate::imaging::DecodeGate;
 use crate::jobs::pool::{PoolConfig, WorkerPool};
 use crate::jobs::queue::QueuePolicy;
+use crate::listen;
 use crate::metrics::Metrics;
 use crate::store::{self, StoreError};
 
@@ -118,30 +119,13 @@ pub async fn start(mut config: ServeConfig) -> Result<RunningServer, StartError>
         workers_alive: pool.alive.clone(),
         decode_gate,
     };
+    let limits = listen::Limits {
+        header_timeout: state.config.header_timeout(),
+        max_connections: state.config.max_connections,
+    };
     let app = api::app(state);
-    let mut rx = shutdown_rx;
     let handle = tokio::spawn(async move {
-        let stopped = async move {
-            let _ = rx.wait_for(|stop| *stop).await;
-        };
-        let served = match tls {
-            Some(tls) => match crate::tls::TlsListener::new(listener, tls) {
-                Ok(listener) => {
-                    axum::serve(listener, app)
-                        .with_graceful_shutdown(stopped)
-                        .await
-                }
-                Err(e) => Err(e),
-            },
-            None => {
-                axum::serve(listener, app)
-                    .with_graceful_shutdown(stopped)
-                    .await
-            }
-        };
-        if let Err(e) = served {
-            tracing::error!(error = %e, "HTTP server failed");
-        }
+        listen::serve(listener, app, limits, tls, shutdown_rx).await;
         pool.join().await;
         let _ = housekeeping.await;
         tracing::info!("robocal stopped");

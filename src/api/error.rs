@@ -114,6 +114,16 @@ impl ApiError {
         .with_field(limit, format!("limit is {bytes} bytes"))
     }
 
+    /// 413 for a multipart part over its fixed size limit.
+    pub fn part_too_large(part: &str, bytes: u64) -> ApiError {
+        ApiError::new(
+            StatusCode::PAYLOAD_TOO_LARGE,
+            "too-large",
+            format!("the part {part:?} exceeds its limit of {bytes} bytes"),
+        )
+        .with_field(part, format!("at most {bytes} bytes"))
+    }
+
     pub fn unsupported_media(detail: impl Into<String>) -> ApiError {
         ApiError::new(
             StatusCode::UNSUPPORTED_MEDIA_TYPE,

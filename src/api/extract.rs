@@ -118,7 +118,20 @@ pub fn parse_json<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
         let path = err.path().to_string();
         let inner = err.into_inner();
         let message = strip_position(&inner.to_string());
+        // serde_json reports a value of the wrong kind for an enum (a
+        // number, a bool, an array) as the syntax error "expected value";
+        // if the document itself parses, it is the value that is wrong.
+        let wrong_value = inner.classify() == serde_json::error::Category::Syntax
+            && message == "expected value"
+            && serde_json::from_slice::<serde::de::IgnoredAny>(bytes).is_ok();
         match inner.classify() {
+            _ if wrong_value => {
+                let field = if path == "." { "body".into() } else { path };
+                ApiError::invalid(
+                    field,
+                    "invalid type: expected one of the documented strings",
+                )
+            }
             serde_json::error::Category::Data => {
                 let field = missing_field(&message)
                     .map(|m| {

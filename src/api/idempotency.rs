@@ -1,8 +1,15 @@
 //! `Idempotency-Key` on writes: the first request with a key runs and its
-//! response is stored (per principal, method, path and key); a replay gets the
-//! stored response (`Idempotent-Replayed: true`) and changes nothing. A key
-//! whose first request is still running answers 409. Responses that a retry
-//! may improve on (5xx, 429) are not stored.
+//! response is stored with the request's fingerprint (method, path, body
+//! digest: `fingerprint.rs`), per principal and key. A retry of the same
+//! request gets the stored response (`Idempotent-Replayed: true`) and changes
+//! nothing; the key sent with a different request is a 422. A key whose first
+//! request is still running answers 409; the running request holds the key
+//! under a lease it renews, so a key whose process died frees itself.
+//! Responses that a retry may improve on (5xx, 429) are not stored, nor
+//! responses to requests whose body was not read to its end.
+
+use std::future::Future;
+use std::time::Duration;
 
 use axum::body::Body;
 use axum::extract::{Request, State};
@@ -12,8 +19,9 @@ use axum::response::{IntoResponse, Response};
 
 use super::auth::Principal;
 use super::error::ApiError;
+use super::fingerprint::{digest_body, BodyRead, BodyTap, DigestError, Fingerprinter};
 use super::AppState;
-use crate::domain::{IdempotencyClaim, IdempotencyScope, StoredResponse};
+use crate::domain::{new_id, now_unix_ms, IdempotencyClaim, IdempotencyScope, StoredResponse};
 
 pub const HEADER: &str = "idempotency-key";
 const MAX_KEY_LEN: usize = 255;
@@ -21,6 +29,16 @@ const MAX_KEY_LEN: usize = 255;
 const MAX_STORED_BODY: usize = 16 * 1024 * 1024;
 /// Response headers worth replaying.
 const KEPT_HEADERS: [&str; 3] = ["content-type", "location", "retry-after"];
+/// Shortest lease on a key in flight: renewals cost a write each, and a
+/// lease lapsing under a slow database would let a retry run twice.
+const MIN_LEASE: Duration = Duration::from_secs(5);
+/// Renewals of the key's lease per lease length, so one late renewal does not lose it.
+const LEASE_RENEWALS: u32 = 3;
+const MIN_RENEW_INTERVAL: Duration = Duration::from_millis(100);
+/// What is read of a body its handler left unread, to see it end (a
+/// multipart epilogue); a larger remainder leaves the answer unstored.
+const MAX_DRAIN_BYTES: usize = 64 * 1024;
+const MAX_DRAIN_WAIT: Duration = Duration::from_secs(1);
 
 pub async fn layer(State(state): State<AppState>, req: Request, next: Next) -> Response {
     let is_write = matches!(
@@ -57,24 +75,111 @@ pub async fn layer(State(state): State<AppState>, req: Request, next: Next) -> R
         method: req.method().to_string(),
         path: req.uri().path().to_string(),
         key,
+        holder: new_id(),
     };
-    match state.store.claim_idempotency(&scope).await {
+    let lease = state.config.lease().max(MIN_LEASE);
+    let (parts, body) = req.into_parts();
+    let fingerprint = Fingerprinter::new(&parts);
+    match state
+        .store
+        .claim_idempotency(&scope, lease_until(lease))
+        .await
+    {
         Err(e) => ApiError::from(e).into_response(),
-        Ok(IdempotencyClaim::InFlight) => {
-            ApiError::conflict("a request with this Idempotency-Key is still running")
-                .into_response()
+        Ok(IdempotencyClaim::InFlight) => ApiError::conflict(format!(
+            "a request with this Idempotency-Key is still running (if its server died, \
+             the key is free again within {} s)",
+            lease.as_secs()
+        ))
+        .into_response(),
+        Ok(IdempotencyClaim::OtherRequest { method, path }) => {
+            reused(format!("it was used for {method} {path}")).into_response()
         }
-        Ok(IdempotencyClaim::Replay(stored)) => replay(stored),
+        Ok(IdempotencyClaim::Done {
+            fingerprint: None,
+            response,
+        }) => replay(response),
+        Ok(IdempotencyClaim::Done {
+            fingerprint: Some(expected),
+            response,
+        }) => {
+            let limit = state.config.max_archive_bytes;
+            match digest_body(body, fingerprint, limit).await {
+                Ok(actual) if actual == expected => replay(response),
+                Ok(_) => {
+                    reused("it was used for a request with another body".into()).into_response()
+                }
+                Err(DigestError::TooLarge) => {
+                    ApiError::too_large("max_archive_bytes", limit).into_response()
+                }
+                Err(DigestError::Read(e)) => {
+                    ApiError::malformed("body", format!("reading body: {e}")).into_response()
+                }
+            }
+        }
         Ok(IdempotencyClaim::Fresh) => {
-            let response = next.run(req).await;
-            record(&state, &scope, response).await
+            let tap = BodyTap::new(body, fingerprint);
+            let req = Request::from_parts(parts, tap.body());
+            let response = run_holding_lease(&state, &scope, lease, next.run(req)).await;
+            let read = tap.finish(MAX_DRAIN_BYTES, MAX_DRAIN_WAIT).await;
+            record(&state, &scope, read, response).await
         }
     }
 }
 
-async fn record(state: &AppState, scope: &IdempotencyScope, response: Response) -> Response {
+/// 422 for a key that belongs to another request.
+fn reused(why: String) -> ApiError {
+    ApiError::invalid(
+        "Idempotency-Key",
+        format!("{why}; a key identifies one request: send a new key for a new request"),
+    )
+}
+
+fn lease_until(lease: Duration) -> i64 {
+    now_unix_ms() + lease.as_millis() as i64
+}
+
+/// Runs the request while renewing the key's lease, so the key stays held
+/// as long as this process works on it, and no longer if the process dies.
+async fn run_holding_lease(
+    state: &AppState,
+    scope: &IdempotencyScope,
+    lease: Duration,
+    run: impl Future<Output = Response>,
+) -> Response {
+    let every = (lease / LEASE_RENEWALS).max(MIN_RENEW_INTERVAL);
+    let mut tick = tokio::time::interval_at(tokio::time::Instant::now() + every, every);
+    tokio::pin!(run);
+    loop {
+        tokio::select! {
+            response = &mut run => return response,
+            _ = tick.tick() => {
+                if let Err(e) = state.store.renew_idempotency(scope, lease_until(lease)).await {
+                    tracing::warn!(error = %e, "renewing an Idempotency-Key lease failed");
+                }
+            }
+        }
+    }
+}
+
+async fn record(
+    state: &AppState,
+    scope: &IdempotencyScope,
+    read: BodyRead,
+    response: Response,
+) -> Response {
     let status = response.status();
-    let keep = !(status.is_server_error() || status == StatusCode::TOO_MANY_REQUESTS);
+    let retryable = status.is_server_error() || status == StatusCode::TOO_MANY_REQUESTS;
+    // Only an answer to the whole request is its answer: one to a body cut
+    // short (client gone, idle timeout) would refuse the full retry. A
+    // success that left some body unread did act, so it is kept (without a
+    // fingerprint, the body being unknown).
+    let fingerprint = match read {
+        _ if retryable => None,
+        BodyRead::Complete(f) => Some(Some(f)),
+        BodyRead::Incomplete if status.is_success() => Some(None),
+        BodyRead::Incomplete | BodyRead::Failed => None,
+    };
     let (parts, body) = response.into_parts();
     let bytes = match axum::body::to_bytes(body, MAX_STORED_BODY).await {
         Ok(b) => b,
@@ -83,7 +188,7 @@ async fn record(state: &AppState, scope: &IdempotencyScope, response: Response) 
             return ApiError::internal(format!("buffering response: {e}")).into_response();
         }
     };
-    let outcome = if keep {
+    let outcome = if let Some(fingerprint) = fingerprint {
         let headers = KEPT_HEADERS
             .iter()
             .filter_map(|h| {
@@ -99,7 +204,10 @@ async fn record(state: &AppState, scope: &IdempotencyScope, response: Response) 
             headers,
             body: bytes.to_vec(),
         };
-        state.store.complete_idempotency(scope, &stored).await
+        state
+            .store
+            .complete_idempotency(scope, fingerprint.as_deref(), &stored)
+            .await
     } else {
         state.store.abandon_idempotency(scope).await
     };

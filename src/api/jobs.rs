@@ -1,4 +1,5 @@
-//! Calibration jobs: `POST /v1/sessions/{id}/calibrations`, `/v1/jobs/{id}`.
+//! Calibration jobs: `POST /v1/sessions/{id}/calibrations`, `GET /v1/jobs`
+//! (newest first) and `/v1/jobs/{id}`.
 
 use axum::extract::{Path, State};
 use axum::http::{header, StatusCode};
@@ -11,7 +12,7 @@ use utoipa_axum::router::OpenApiRouter;
 use utoipa_axum::routes;
 
 use super::error::{ApiError, ApiResult, Problem};
-use super::extract::OptionalJson;
+use super::extract::{OptionalJson, Paging};
 use super::sessions::find_session;
 use super::AppState;
 use crate::domain::{JobRecord, JobState};
@@ -21,6 +22,7 @@ use crate::schema::job::CalibrationOptions;
 pub fn router() -> OpenApiRouter<AppState> {
     OpenApiRouter::new()
         .routes(routes!(start_calibration))
+        .routes(routes!(list_jobs))
         .routes(routes!(get_job, cancel_job))
 }
 
@@ -72,6 +74,14 @@ impl From<JobRecord> for JobOut {
     }
 }
 
+/// A page of jobs, newest first.
+#[derive(Debug, Serialize, ToSchema)]
+pub struct JobList {
+    pub items: Vec<JobOut>,
+    /// Pass as `cursor` for the next (older) page; `null` on the last page.
+    pub next_cursor: Option<String>,
+}
+
 #[derive(Debug, Serialize, ToSchema)]
 pub struct JobAccepted {
     pub job_id: String,
@@ -106,6 +116,24 @@ async fn start_calibration(
         }),
     )
         .into_response())
+}
+
+/// All jobs of every session, newest first, so one can see what runs.
+#[utoipa::path(get, path = "/v1/jobs", tag = "jobs",
+    params(("limit" = Option<i64>, Query, description = "Page size, 1 to 1000 (default 100)"),
+           ("cursor" = Option<String>, Query, description = "next_cursor of the previous page")),
+    responses((status = 200, body = JobList, description = "A page of jobs, newest first"),
+              (status = 401, body = Problem, content_type = "application/problem+json", description = "No or unknown token"),
+              (status = 422, body = Problem, content_type = "application/problem+json", description = "Invalid limit or cursor")))]
+async fn list_jobs(State(state): State<AppState>, paging: Paging) -> ApiResult<Json<JobList>> {
+    let page = state
+        .store
+        .list_jobs(paging.limit, paging.cursor.as_deref())
+        .await?;
+    Ok(Json(JobList {
+        items: page.items.into_iter().map(JobOut::from).collect(),
+        next_cursor: page.next_cursor,
+    }))
 }
 
 /// A job's state, stage, progress and result.

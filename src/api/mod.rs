@@ -26,13 +26,16 @@ use crate::metrics::Metrics;
 use crate::store::DynStore;
 
 pub mod auth;
+pub mod body_idle;
 pub mod contract;
 pub mod error;
 pub mod extract;
+pub mod fingerprint;
 pub mod idempotency;
 pub mod jobs;
 pub mod ops;
 pub mod poses;
+pub mod problem_fallback;
 pub mod report_links;
 pub mod results;
 pub mod robots;
@@ -119,8 +122,14 @@ pub fn app(state: AppState) -> Router {
             state.clone(),
             idempotency::layer,
         ))
+        // Outside idempotency: a body that timed out is a failed read there.
+        .layer(middleware::from_fn_with_state(
+            state.clone(),
+            body_idle::layer,
+        ))
         .layer(middleware::from_fn_with_state(state.clone(), auth::layer))
         .layer(middleware::from_fn_with_state(state.clone(), observe))
+        .layer(middleware::from_fn(problem_fallback::layer))
         // Uploads stream with their own limits; JSON bodies are limited by the extractors.
         .layer(DefaultBodyLimit::disable())
         .with_state(state);

@@ -24,6 +24,8 @@ use crate::schema::{Checker, PoseDoc};
 
 /// Largest text part of a multipart pose (`joints_deg`, `set`).
 const MAX_TEXT_PART: u64 = 64 * 1024;
+/// Longest part name repeated back in an error, characters.
+const MAX_ECHOED_NAME: usize = 64;
 
 pub fn router() -> OpenApiRouter<AppState> {
     OpenApiRouter::new()
@@ -270,14 +272,14 @@ async fn multipart_pose(
         let name = field.name().unwrap_or("").to_string();
         match name.as_str() {
             "joints_deg" => {
-                let bytes = read_field_limited(&mut field, MAX_TEXT_PART, "max_json_bytes").await?;
+                let bytes = read_text_part(&mut field, "joints_deg").await?;
                 let parsed: Vec<f64> = serde_json::from_slice(&bytes).map_err(|e| {
                     ApiError::invalid("joints_deg", format!("a JSON array of numbers: {e}"))
                 })?;
                 joints = Some(parsed);
             }
             "set" => {
-                let bytes = read_field_limited(&mut field, MAX_TEXT_PART, "max_json_bytes").await?;
+                let bytes = read_text_part(&mut field, "set").await?;
                 let text = String::from_utf8_lossy(&bytes);
                 set = PoseSet::parse(text.trim().trim_matches('"'))
                     .ok_or_else(|| ApiError::invalid("set", "\"cal\" or \"val\""))?;
@@ -289,7 +291,7 @@ async fn multipart_pose(
             }
             other => {
                 return Err(ApiError::invalid(
-                    other.to_string(),
+                    shortened(other),
                     "unknown part (expected joints_deg, set, image)",
                 ))
             }
@@ -310,6 +312,37 @@ async fn multipart_pose(
         label,
         image_detection: ingested.detection.map(|d| d.to_value()),
     })
+}
+
+/// Reads a text part (`joints_deg`, `set`), refusing more than
+/// [`MAX_TEXT_PART`] bytes with a 413 naming the part (a fixed limit, not a
+/// server option).
+async fn read_text_part(
+    field: &mut axum::extract::multipart::Field<'_>,
+    part: &str,
+) -> ApiResult<Vec<u8>> {
+    let mut buf = Vec::new();
+    while let Some(chunk) = field
+        .chunk()
+        .await
+        .map_err(|e| ApiError::malformed("multipart", e.body_text()))?
+    {
+        if (buf.len() + chunk.len()) as u64 > MAX_TEXT_PART {
+            return Err(ApiError::part_too_large(part, MAX_TEXT_PART));
+        }
+        buf.extend_from_slice(&chunk);
+    }
+    Ok(buf)
+}
+
+/// A client-chosen name as it is echoed in an error: at most
+/// [`MAX_ECHOED_NAME`] characters.
+fn shortened(name: &str) -> String {
+    if name.chars().count() <= MAX_ECHOED_NAME {
+        return name.to_string();
+    }
+    let head: String = name.chars().take(MAX_ECHOED_NAME).collect();
+    format!("{head}... ({} bytes)", name.len())
 }
 
 /// A session's poses, in upload order.

@@ -102,6 +102,8 @@ pub trait JobStore: Send + Sync {
     /// (`QueueFull`), atomically.
     async fn enqueue_job(&self, job: &NewJob, max_queued: i64) -> StoreResult<JobRecord>;
     async fn get_job(&self, id: &str) -> StoreResult<Option<JobRecord>>;
+    /// Newest first; `before` is the `next_cursor` (a job id) of the previous page.
+    async fn list_jobs(&self, limit: i64, before: Option<&str>) -> StoreResult<Page<JobRecord>>;
     /// Queued or running -> cancelled. `Conflict` when already finished.
     async fn cancel_job(&self, id: &str) -> StoreResult<Option<JobRecord>>;
     /// Fails running jobs whose lease expired and that have no attempt left.
@@ -208,11 +210,24 @@ pub trait AuthStore: Send + Sync {
     /// The secret `name`, shared by every replica: the stored one, or
     /// `fresh` stored now when there is none yet (the first writer wins).
     async fn server_secret(&self, name: &str, fresh: &str) -> StoreResult<String>;
-    /// Registers a key as in flight, or reports it running / done before.
-    async fn claim_idempotency(&self, scope: &IdempotencyScope) -> StoreResult<IdempotencyClaim>;
+    /// Registers a key as in flight (held by `scope.holder` until
+    /// `lease_until_ms`), or reports it running, used elsewhere or done.
+    async fn claim_idempotency(
+        &self,
+        scope: &IdempotencyScope,
+        lease_until_ms: i64,
+    ) -> StoreResult<IdempotencyClaim>;
+    /// Extends the holder's lease on a pending key.
+    async fn renew_idempotency(
+        &self,
+        scope: &IdempotencyScope,
+        lease_until_ms: i64,
+    ) -> StoreResult<()>;
+    /// Stores the response of the holder's request and its fingerprint.
     async fn complete_idempotency(
         &self,
         scope: &IdempotencyScope,
+        fingerprint: Option<&str>,
         response: &StoredResponse,
     ) -> StoreResult<()>;
     /// Forgets a pending key (the request failed before producing a storable response).

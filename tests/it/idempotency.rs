@@ -1,5 +1,9 @@
-use serde_json::Value;
+use std::time::{Duration, Instant};
 
+use serde_json::Value;
+use tokio::io::AsyncWriteExt;
+
+use crate::raw_http::connect;
 use crate::support::*;
 
 #[tokio::test]
@@ -62,7 +66,7 @@ async fn replayed_writes_return_the_stored_response_and_create_nothing() {
         .unwrap();
     assert_eq!(s["pose_count"], 5);
 
-    // The same key on another route is independent.
+    // A key names one request: the same key on another route is refused.
     let r = c
         .put(app.url("/v1/robots/I2"))
         .header("idempotency-key", "job-1")
@@ -70,6 +74,119 @@ async fn replayed_writes_return_the_stored_response_and_create_nothing() {
         .send()
         .await
         .unwrap();
-    assert_eq!(r.status(), 201);
+    assert_eq!(r.status(), 422);
+    let problem: Value = r.json().await.unwrap();
+    assert_eq!(
+        problem["errors"][0]["field"], "Idempotency-Key",
+        "{problem}"
+    );
+    assert_eq!(app.get("/v1/robots/I2").await.status(), 404);
+}
+
+#[tokio::test]
+async fn a_key_reused_with_another_body_is_422_and_creates_nothing() {
+    let app = spawn_app().await;
+    let session = app.robot_and_session("I3").await;
+    let c = &app.client;
+    let post = |pose: Value| {
+        c.post(app.url(&format!("/v1/sessions/{session}/poses")))
+            .header("idempotency-key", "pose-a")
+            .json(&pose)
+            .send()
+    };
+    let first = post(point_pose(1, "cal")).await.unwrap();
+    assert_eq!(first.status(), 201);
+    let first: Value = first.json().await.unwrap();
+    let other = post(point_pose(2, "val")).await.unwrap();
+    assert_eq!(other.status(), 422);
+    assert!(other.headers().get("idempotent-replayed").is_none());
+    let problem: Value = other.json().await.unwrap();
+    assert_eq!(
+        problem["errors"][0]["field"], "Idempotency-Key",
+        "{problem}"
+    );
+    // The real retry still replays.
+    let again = post(point_pose(1, "cal")).await.unwrap();
+    assert_eq!(again.status(), 201);
+    assert_eq!(again.headers()["idempotent-replayed"], "true");
+    let again: Value = again.json().await.unwrap();
+    assert_eq!(again["id"], first["id"]);
+    let s: Value = app
+        .get(&format!("/v1/sessions/{session}"))
+        .await
+        .json()
+        .await
+        .unwrap();
+    assert_eq!(s["pose_count"], 1);
+}
+
+#[tokio::test]
+async fn a_multipart_retry_with_a_new_boundary_replays_and_another_image_is_422() {
+    let app = spawn_app().await;
+    let session = app.robot_and_session("I4").await;
+    let url = app.url(&format!("/v1/sessions/{session}/poses"));
+    let send = |image: Vec<u8>| {
+        // reqwest draws a new random boundary for every form.
+        let form = reqwest::multipart::Form::new()
+            .text("joints_deg", "[1,2,3,4,5,6]")
+            .part("image", image_part(image, "a.png"));
+        app.client
+            .post(&url)
+            .header("idempotency-key", "upload-1")
+            .multipart(form)
+            .send()
+    };
+    let image = png(CAMERA_W, CAMERA_H, 7);
+    let first = send(image.clone()).await.unwrap();
+    assert_eq!(first.status(), 201);
+    let first: Value = first.json().await.unwrap();
+    let retry = send(image).await.unwrap();
+    assert_eq!(retry.status(), 201);
+    assert_eq!(retry.headers()["idempotent-replayed"], "true");
+    let retry: Value = retry.json().await.unwrap();
+    assert_eq!(retry["id"], first["id"]);
+    let other = send(png(CAMERA_W, CAMERA_H, 8)).await.unwrap();
+    assert_eq!(other.status(), 422);
+}
+
+/// Retries `send` while the key is still held by the dropped request.
+async fn until_not_in_flight(
+    send: impl Fn() -> reqwest::RequestBuilder,
+    wait: Duration,
+) -> reqwest::Response {
+    let deadline = Instant::now() + wait;
+    loop {
+        let r = send().send().await.unwrap();
+        if r.status() != 409 || Instant::now() > deadline {
+            return r;
+        }
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
+}
+
+#[tokio::test]
+async fn a_client_that_drops_mid_upload_does_not_poison_its_key() {
+    let app = spawn_app().await;
+    let body = serde_json::to_vec(&robot_body()).unwrap();
+    let mut dropped = connect(&app.base).await;
+    let head = format!(
+        "PUT /v1/robots/I5 HTTP/1.1\r\nHost: x\r\nIdempotency-Key: robot-i5\r\n\
+         Content-Type: application/json\r\nContent-Length: {}\r\n\r\n",
+        body.len()
+    );
+    dropped.write_all(head.as_bytes()).await.unwrap();
+    dropped.write_all(&body[..body.len() / 2]).await.unwrap();
+    tokio::time::sleep(Duration::from_millis(300)).await;
+    drop(dropped);
+
+    let full = || {
+        app.client
+            .put(app.url("/v1/robots/I5"))
+            .header("idempotency-key", "robot-i5")
+            .json(&robot_body())
+    };
+    let r = until_not_in_flight(full, Duration::from_secs(5)).await;
+    assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
     assert!(r.headers().get("idempotent-replayed").is_none());
+    assert_eq!(app.get("/v1/robots/I5").await.status(), 200);
 }

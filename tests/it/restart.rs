@@ -162,3 +162,73 @@ async fn sigterm_releases_the_running_job_and_exits_cleanly() {
     second.child.kill().unwrap();
     second.child.wait().unwrap();
 }
+
+#[tokio::test]
+async fn a_key_in_flight_at_kill_9_is_free_after_restart() {
+    use tokio::io::AsyncWriteExt;
+
+    let dir = tempfile::tempdir().unwrap();
+    let db = fresh_database(&dir);
+    let args = [
+        "--database-url",
+        &db,
+        "--bind",
+        "127.0.0.1:0",
+        "--lease-secs",
+        "1",
+        "--body-idle-timeout-secs",
+        "60",
+    ];
+    let c = reqwest::Client::new();
+    let mut first = spawn_binary(&args, &[]);
+    // A keyed request whose body never finishes: in flight until the kill.
+    let body = serde_json::to_vec(&robot_body()).unwrap();
+    let mut stuck = crate::raw_http::connect(&first.base).await;
+    let head = format!(
+        "PUT /v1/robots/K9 HTTP/1.1\r\nHost: x\r\nIdempotency-Key: k9\r\n\
+         Content-Type: application/json\r\nContent-Length: {}\r\n\r\n",
+        body.len()
+    );
+    stuck.write_all(head.as_bytes()).await.unwrap();
+    stuck.write_all(&body[..10]).await.unwrap();
+    // Let it claim the key before anything else can.
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    let put = |base: &str| {
+        c.put(format!("{base}/v1/robots/K9"))
+            .header("idempotency-key", "k9")
+            .json(&robot_body())
+            .send()
+    };
+    let deadline = std::time::Instant::now() + WAIT;
+    loop {
+        let r = put(&first.base).await.unwrap();
+        let status = r.status();
+        if status == 409 {
+            break;
+        }
+        let body = r.text().await.unwrap();
+        assert!(
+            std::time::Instant::now() < deadline,
+            "the stuck request never claimed its key: {status} {body}"
+        );
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
+    first.child.kill().unwrap(); // SIGKILL: the key's mark stays behind
+    first.child.wait().unwrap();
+    drop(stuck);
+
+    let mut second = spawn_binary(&args, &[]);
+    // The dead holder's lease (5 s, the shortest for keys) lapses; the retry
+    // then runs (before: 409 for 10 minutes).
+    let deadline = std::time::Instant::now() + Duration::from_secs(15);
+    let answer = loop {
+        let r = put(&second.base).await.unwrap();
+        if r.status() != 409 || std::time::Instant::now() > deadline {
+            break r;
+        }
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    };
+    assert_eq!(answer.status(), 201, "{}", answer.text().await.unwrap());
+    second.child.kill().unwrap();
+    second.child.wait().unwrap();
+}

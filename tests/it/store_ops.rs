@@ -295,28 +295,67 @@ async fn every_store_operation_round_trips() {
         method: "POST".into(),
         path: "/v1/x".into(),
         key: "k1".into(),
+        holder: "request-1".into(),
     };
+    let live = now_unix_ms() + 60_000;
     assert!(matches!(
-        s.claim_idempotency(&key).await.unwrap(),
+        s.claim_idempotency(&key, live).await.unwrap(),
         IdempotencyClaim::Fresh
     ));
     assert!(matches!(
-        s.claim_idempotency(&key).await.unwrap(),
+        s.claim_idempotency(&key, live).await.unwrap(),
         IdempotencyClaim::InFlight
     ));
-    s.abandon_idempotency(&key).await.unwrap();
+    let elsewhere = IdempotencyScope {
+        path: "/v1/y".into(),
+        ..key.clone()
+    };
     assert!(matches!(
-        s.claim_idempotency(&key).await.unwrap(),
+        s.claim_idempotency(&elsewhere, live).await.unwrap(),
+        IdempotencyClaim::OtherRequest { .. }
+    ));
+    s.abandon_idempotency(&key).await.unwrap();
+    // A holder whose lease lapsed (its process died) frees the key.
+    let lapsed = IdempotencyScope {
+        holder: "request-2".into(),
+        ..key.clone()
+    };
+    assert!(matches!(
+        s.claim_idempotency(&lapsed, now_unix_ms() - 1)
+            .await
+            .unwrap(),
         IdempotencyClaim::Fresh
     ));
+    assert!(matches!(
+        s.claim_idempotency(&key, live).await.unwrap(),
+        IdempotencyClaim::Fresh
+    ));
+    // Only the holder completes it.
+    s.complete_idempotency(
+        &lapsed,
+        Some("other"),
+        &StoredResponse {
+            status: 500,
+            headers: vec![],
+            body: vec![],
+        },
+    )
+    .await
+    .unwrap();
     let response = StoredResponse {
         status: 201,
         headers: vec![("location".into(), "/v1/x/1".into())],
         body: b"{\"id\":1}\x00\xff".to_vec(),
     };
-    s.complete_idempotency(&key, &response).await.unwrap();
-    match s.claim_idempotency(&key).await.unwrap() {
-        IdempotencyClaim::Replay(r) => {
+    s.complete_idempotency(&key, Some("fp-1"), &response)
+        .await
+        .unwrap();
+    match s.claim_idempotency(&key, live).await.unwrap() {
+        IdempotencyClaim::Done {
+            fingerprint,
+            response: r,
+        } => {
+            assert_eq!(fingerprint.as_deref(), Some("fp-1"));
             assert_eq!(
                 (r.status, r.headers, r.body),
                 (response.status, response.headers, response.body)
@@ -443,11 +482,16 @@ async fn an_idempotency_key_is_claimed_once_across_replicas() {
         method: "POST".into(),
         path: "/v1/robots/X/sessions".into(),
         key: new_id(),
+        holder: new_id(),
     };
     let claims = join_all((0..12).map(|i| {
         let s = stores[i % 3].clone();
         let key = key.clone();
-        async move { s.claim_idempotency(&key).await.unwrap() }
+        async move {
+            s.claim_idempotency(&key, now_unix_ms() + 60_000)
+                .await
+                .unwrap()
+        }
     }))
     .await;
     let fresh = claims

@@ -58,6 +58,11 @@ const MIGRATIONS: &[Embedded] = &[
         include_str!("../../../migrations/postgres/0004_labels_and_storage.sql"),
     ),
     (
+        5,
+        "idempotency fingerprint",
+        include_str!("../../../migrations/postgres/0005_idempotency_fingerprint.sql"),
+    ),
+    (
         6,
         "token lifecycle",
         include_str!("../../../migrations/postgres/0006_token_lifecycle.sql"),

@@ -11,8 +11,6 @@ use crate::store::{AuthStore, StoreResult};
 
 /// Stored responses are kept this long, then a key may be used afresh.
 const IDEMPOTENCY_TTL_MS: i64 = 24 * 3600 * 1000;
-/// A pending key older than this belongs to a request that died: reusable.
-const PENDING_STALE_MS: i64 = 10 * 60 * 1000;
 /// The columns [`token`] reads.
 const TOKEN_COLUMNS: &str = "id, name, scope, created_at, expires_ms, revoked_ms, last_used_ms";
 /// A stored response without a status (never written so) replays as 200.
@@ -119,46 +117,55 @@ impl<B: Backend> AuthStore for B {
         Ok(row.string("value"))
     }
 
-    async fn claim_idempotency(&self, s: &IdempotencyScope) -> StoreResult<IdempotencyClaim> {
+    async fn claim_idempotency(
+        &self,
+        s: &IdempotencyScope,
+        lease_until_ms: i64,
+    ) -> StoreResult<IdempotencyClaim> {
         let now = now_unix_ms();
         // Housekeeping of other keys, outside the claim: two replicas sweeping
         // the same rows could deadlock, and a failed sweep changes nothing
         // for this request.
         if let Err(e) = query(
             "DELETE FROM idempotency WHERE (state = 'done' AND created_ms < $1)
-                OR (state = 'pending' AND created_ms < $2)",
+                OR (state = 'pending' AND lease_until_ms < $2)",
         )
         .bind(now - IDEMPOTENCY_TTL_MS)
-        .bind(now - PENDING_STALE_MS)
+        .bind(now)
         .execute(self.pool())
         .await
         {
             tracing::debug!(error = %e, "idempotency sweep skipped");
         }
         let mut tx = self.begin_write().await?;
-        // This key, if expired (or abandoned by a dead request), is free again.
+        // This key, if expired (or held by a request whose lease lapsed: its
+        // process died), is free again.
         bind_key(
             query(
-                "DELETE FROM idempotency
-                 WHERE principal = $1 AND method = $2 AND path = $3 AND idem_key = $4
-                   AND ((state = 'done' AND created_ms < $5)
-                        OR (state = 'pending' AND created_ms < $6))",
+                "DELETE FROM idempotency WHERE principal = $1 AND idem_key = $2
+                   AND ((state = 'done' AND created_ms < $3)
+                        OR (state = 'pending' AND lease_until_ms < $4))",
             ),
             s,
         )
         .bind(now - IDEMPOTENCY_TTL_MS)
-        .bind(now - PENDING_STALE_MS)
+        .bind(now)
         .execute(&mut tx)
         .await?;
         // The primary key decides: of writers inserting the same key at once,
         // one inserts and the others wait for its commit, then insert nothing.
         let inserted = bind_key(
             query(
-                "INSERT INTO idempotency (principal, method, path, idem_key, state, created_ms)
-                 VALUES ($1, $2, $3, $4, 'pending', $5) ON CONFLICT DO NOTHING",
+                "INSERT INTO idempotency (principal, idem_key, method, path, state, holder,
+                   lease_until_ms, created_ms)
+                 VALUES ($1, $2, $3, $4, 'pending', $5, $6, $7) ON CONFLICT DO NOTHING",
             ),
             s,
         )
+        .bind(&s.method)
+        .bind(&s.path)
+        .bind(&s.holder)
+        .bind(lease_until_ms)
         .bind(now)
         .execute(&mut tx)
         .await?;
@@ -168,8 +175,8 @@ impl<B: Backend> AuthStore for B {
         }
         let row = bind_key(
             query(
-                "SELECT state, status, headers, body FROM idempotency
-                 WHERE principal = $1 AND method = $2 AND path = $3 AND idem_key = $4",
+                "SELECT method, path, state, fingerprint, status, headers, body FROM idempotency
+                 WHERE principal = $1 AND idem_key = $2",
             ),
             s,
         )
@@ -181,33 +188,65 @@ impl<B: Backend> AuthStore for B {
         let Some(row) = row else {
             return Ok(IdempotencyClaim::InFlight);
         };
+        if row.str("method") != s.method || row.str("path") != s.path {
+            return Ok(IdempotencyClaim::OtherRequest {
+                method: row.str("method").to_string(),
+                path: row.str("path").to_string(),
+            });
+        }
         if row.str("state") == "pending" {
             return Ok(IdempotencyClaim::InFlight);
         }
         let headers: Vec<(String, String)> =
             serde_json::from_str(row.opt_str("headers").unwrap_or("[]"))?;
-        Ok(IdempotencyClaim::Replay(StoredResponse {
-            status: row.opt_int("status").unwrap_or(DEFAULT_STATUS) as u16,
-            headers,
-            body: row.opt_bytes("body").unwrap_or_default(),
-        }))
+        Ok(IdempotencyClaim::Done {
+            fingerprint: row.opt_str("fingerprint").map(str::to_string),
+            response: StoredResponse {
+                status: row.opt_int("status").unwrap_or(DEFAULT_STATUS) as u16,
+                headers,
+                body: row.opt_bytes("body").unwrap_or_default(),
+            },
+        })
+    }
+
+    async fn renew_idempotency(
+        &self,
+        s: &IdempotencyScope,
+        lease_until_ms: i64,
+    ) -> StoreResult<()> {
+        bind_key(
+            query(
+                "UPDATE idempotency SET lease_until_ms = $3
+                 WHERE principal = $1 AND idem_key = $2 AND state = 'pending' AND holder = $4",
+            ),
+            s,
+        )
+        .bind(lease_until_ms)
+        .bind(&s.holder)
+        .execute(self.pool())
+        .await?;
+        Ok(())
     }
 
     async fn complete_idempotency(
         &self,
         s: &IdempotencyScope,
+        fingerprint: Option<&str>,
         response: &StoredResponse,
     ) -> StoreResult<()> {
         bind_key(
             query(
-                "UPDATE idempotency SET state = 'done', status = $5, headers = $6, body = $7
-                 WHERE principal = $1 AND method = $2 AND path = $3 AND idem_key = $4",
+                "UPDATE idempotency SET state = 'done', holder = NULL, fingerprint = $3,
+                   status = $4, headers = $5, body = $6
+                 WHERE principal = $1 AND idem_key = $2 AND state = 'pending' AND holder = $7",
             ),
             s,
         )
+        .bind(fingerprint)
         .bind(response.status as i64)
         .bind(serde_json::to_string(&response.headers)?)
         .bind(&response.body)
+        .bind(&s.holder)
         .execute(self.pool())
         .await?;
         Ok(())
@@ -216,22 +255,20 @@ impl<B: Backend> AuthStore for B {
     async fn abandon_idempotency(&self, s: &IdempotencyScope) -> StoreResult<()> {
         bind_key(
             query(
-                "DELETE FROM idempotency WHERE principal = $1 AND method = $2 AND path = $3
-                   AND idem_key = $4 AND state = 'pending'",
+                "DELETE FROM idempotency WHERE principal = $1 AND idem_key = $2
+                   AND state = 'pending' AND holder = $3",
             ),
             s,
         )
+        .bind(&s.holder)
         .execute(self.pool())
         .await?;
         Ok(())
     }
 }
 
-/// Binds an idempotency key's columns to `$1`..`$4` (principal, method,
-/// path, key), in which order every statement on the table names them.
+/// Binds an idempotency key's columns to `$1`, `$2` (principal, key), in
+/// which order every statement on the table names them.
 fn bind_key<'a>(stmt: Statement<'a>, s: &'a IdempotencyScope) -> Statement<'a> {
-    stmt.bind(&s.principal)
-        .bind(&s.method)
-        .bind(&s.path)
-        .bind(&s.key)
+    stmt.bind(&s.principal).bind(&s.key)
 }

@@ -2,9 +2,10 @@ use async_trait::async_trait;
 use serde_json::json;
 use sqlx::Transaction;
 
+use super::page_cursor;
 use super::results::insert_parameter_set_tx;
 use crate::domain::{
-    new_id, now_rfc3339, ClaimedJob, JobOutcome, JobRecord, JobState, LeaseStatus, NewJob,
+    new_id, now_rfc3339, ClaimedJob, JobOutcome, JobRecord, JobState, LeaseStatus, NewJob, Page,
     PoseDetection,
 };
 use crate::store::backend::{is_foreign_key_violation, Backend};
@@ -55,6 +56,20 @@ impl<B: Backend> JobStore for B {
             .fetch_optional(self.pool())
             .await?;
         row.as_ref().map(job).transpose()
+    }
+
+    async fn list_jobs(&self, limit: i64, before: Option<&str>) -> StoreResult<Page<JobRecord>> {
+        // Ids are UUIDv7: descending id order is newest first.
+        let rows = query(format!(
+            "SELECT {COLUMNS} FROM jobs WHERE ($1 = '' OR id < $1) ORDER BY id DESC LIMIT $2"
+        ))
+        .bind(before.unwrap_or(""))
+        .bind(limit)
+        .fetch_all(self.pool())
+        .await?;
+        let items = rows.iter().map(job).collect::<StoreResult<Vec<_>>>()?;
+        let next_cursor = page_cursor(&items, limit, |j| j.id.clone());
+        Ok(Page { items, next_cursor })
     }
 
     async fn cancel_job(&self, id: &str) -> StoreResult<Option<JobRecord>> {

@@ -1,0 +1,122 @@
+//! Header-read and body-idle timeouts and the connection cap, with raw
+//! clients that send slowly or nothing (short limits configured here).
+
+use std::time::{Duration, Instant};
+
+use tokio::io::AsyncWriteExt;
+
+use crate::raw_http::*;
+use crate::support::*;
+
+/// Longest the server may take to act on a 1 s limit.
+const GRACE: Duration = Duration::from_secs(4);
+
+#[tokio::test]
+async fn a_partial_request_head_is_dropped_after_the_header_timeout() {
+    let app = spawn_app_with(|c| c.header_timeout_secs = 1).await;
+    let mut slow = connect(&app.base).await;
+    slow.write_all(b"GET /healthz HTTP/1.1\r\nHost: x\r\nX-Slow: ")
+        .await
+        .unwrap();
+    let start = Instant::now();
+    assert!(
+        closed_within(&mut slow, GRACE).await,
+        "partial head held open"
+    );
+    assert!(start.elapsed() >= Duration::from_millis(900));
+    // A silent connection (slowloris opening) is dropped as well.
+    let mut silent = connect(&app.base).await;
+    assert!(
+        closed_within(&mut silent, GRACE).await,
+        "silent connection held open"
+    );
+    // And normal requests are still served.
+    assert_eq!(app.get("/healthz").await.status(), 200);
+}
+
+#[tokio::test]
+async fn a_body_that_stops_sending_is_answered_408() {
+    let app = spawn_app_with(|c| c.body_idle_timeout_secs = 1).await;
+    let body = serde_json::to_vec(&robot_body()).unwrap();
+    let mut trickle = connect(&app.base).await;
+    let head = format!(
+        "PUT /v1/robots/T1 HTTP/1.1\r\nHost: x\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n",
+        body.len()
+    );
+    trickle.write_all(head.as_bytes()).await.unwrap();
+    trickle.write_all(&body[..10]).await.unwrap();
+    let start = Instant::now();
+    let answer = read_response(&mut trickle, GRACE)
+        .await
+        .expect("an answer before the grace period");
+    assert!(start.elapsed() >= Duration::from_millis(900));
+    assert_eq!(answer.status, 408, "{answer:?}");
+    let problem = answer.problem();
+    assert!(
+        problem["detail"]
+            .as_str()
+            .unwrap()
+            .contains("--body-idle-timeout-secs"),
+        "{problem}"
+    );
+    assert!(closed_within(&mut trickle, GRACE).await);
+    // Nothing was created.
+    assert_eq!(app.get("/v1/robots/T1").await.status(), 404);
+}
+
+#[tokio::test]
+async fn a_slow_but_steady_body_is_not_timed_out() {
+    let app = spawn_app_with(|c| c.body_idle_timeout_secs = 1).await;
+    let body = serde_json::to_vec(&robot_body()).unwrap();
+    let mut slow = connect(&app.base).await;
+    let head = format!(
+        "PUT /v1/robots/T2 HTTP/1.1\r\nHost: x\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n",
+        body.len()
+    );
+    slow.write_all(head.as_bytes()).await.unwrap();
+    let thirds = body.len() / 3;
+    for part in [
+        &body[..thirds],
+        &body[thirds..2 * thirds],
+        &body[2 * thirds..],
+    ] {
+        tokio::time::sleep(Duration::from_millis(600)).await;
+        slow.write_all(part).await.unwrap();
+    }
+    let answer = read_response(&mut slow, GRACE).await.expect("an answer");
+    assert_eq!(answer.status, 201, "{answer:?}");
+}
+
+#[tokio::test]
+async fn connections_over_the_cap_are_answered_503_and_closed() {
+    let app = spawn_app_with(|c| c.max_connections = 2).await;
+    let mut held = vec![connect(&app.base).await, connect(&app.base).await];
+    // Let the server accept both before the third arrives.
+    tokio::time::sleep(Duration::from_millis(200)).await;
+    let refused = exchange(&app.base, b"GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n").await;
+    assert_eq!(refused.status, 503, "{refused:?}");
+    assert!(refused.header("retry-after").is_some());
+    let problem = refused.problem();
+    assert!(
+        problem["detail"]
+            .as_str()
+            .unwrap()
+            .contains("--max-connections"),
+        "{problem}"
+    );
+    // A held connection is still served, and closing one frees a place.
+    held[0]
+        .write_all(b"GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n")
+        .await
+        .unwrap();
+    let served = read_response(&mut held[0], GRACE).await.expect("served");
+    assert_eq!(served.status, 200);
+    held.truncate(1);
+    tokio::time::sleep(Duration::from_millis(200)).await;
+    let after = exchange(
+        &app.base,
+        b"GET /healthz HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n",
+    )
+    .await;
+    assert_eq!(after.status, 200, "{after:?}");
+}
