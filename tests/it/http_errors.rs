@@ -13,28 +13,36 @@ use crate::support::*;
 async fn requests_hyper_refuses_are_answered_in_problem_json() {
     let app = spawn_app().await;
     let huge_header = format!(
-        "GET /healthz HTTP/1.1\r\nHost: x\r\nX-Big: {}\r\n\r\n",
-        "a".repeat(100_000)
+        "GET /healthz HTTP/1.1\r\nHost: {host}\r\nX-Big: {}\r\n\r\n",
+        "a".repeat(100_000),
+        host = crate::raw_http::addr_of(&app.base)
     );
     let r = exchange(&app.base, huge_header.as_bytes()).await;
     assert_eq!(r.status, 431);
     assert!(r.problem()["detail"].as_str().unwrap().contains("bytes"));
 
     let long_uri = format!(
-        "GET /v1/robots/{} HTTP/1.1\r\nHost: x\r\n\r\n",
-        "a".repeat(70_000)
+        "GET /v1/robots/{} HTTP/1.1\r\nHost: {host}\r\n\r\n",
+        "a".repeat(70_000),
+        host = crate::raw_http::addr_of(&app.base)
     );
     let r = exchange(&app.base, long_uri.as_bytes()).await;
     assert_eq!(r.status, 414, "{r:?}");
     r.problem();
 
-    let bad_header = b"GET /healthz HTTP/1.1\r\nHost: x\r\nno colon here\r\n\r\n";
-    let r = exchange(&app.base, bad_header).await;
+    let bad_header = format!(
+        "GET /healthz HTTP/1.1\r\nHost: {}\r\nno colon here\r\n\r\n",
+        crate::raw_http::addr_of(&app.base)
+    );
+    let r = exchange(&app.base, bad_header.as_bytes()).await;
     assert_eq!(r.status, 400);
     r.problem();
 
-    let bad_line = b"GET\x01 / HTTP/1.1\r\nHost: x\r\n\r\n";
-    let r = exchange(&app.base, bad_line).await;
+    let bad_line = format!(
+        "GET\x01 / HTTP/1.1\r\nHost: {}\r\n\r\n",
+        crate::raw_http::addr_of(&app.base)
+    );
+    let r = exchange(&app.base, bad_line.as_bytes()).await;
     assert_eq!(r.status, 400);
     r.problem();
 
@@ -50,7 +58,10 @@ async fn a_path_segment_that_is_not_utf8_is_a_problem() {
         "/v1/sessions/%C3%28/poses",
         "/v1/jobs/%80",
     ] {
-        let request = format!("GET {path} HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
+        let request = format!(
+            "GET {path} HTTP/1.1\r\nHost: {host}\r\nConnection: close\r\n\r\n",
+            host = crate::raw_http::addr_of(&app.base)
+        );
         let r = exchange(&app.base, request.as_bytes()).await;
         assert_eq!(r.status, 400, "{path}: {r:?}");
         let problem = r.problem();

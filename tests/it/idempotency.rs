@@ -170,9 +170,10 @@ async fn a_client_that_drops_mid_upload_does_not_poison_its_key() {
     let body = serde_json::to_vec(&robot_body()).unwrap();
     let mut dropped = connect(&app.base).await;
     let head = format!(
-        "PUT /v1/robots/I5 HTTP/1.1\r\nHost: x\r\nIdempotency-Key: robot-i5\r\n\
+        "PUT /v1/robots/I5 HTTP/1.1\r\nHost: {host}\r\nIdempotency-Key: robot-i5\r\n\
          Content-Type: application/json\r\nContent-Length: {}\r\n\r\n",
-        body.len()
+        body.len(),
+        host = crate::raw_http::addr_of(&app.base)
     );
     dropped.write_all(head.as_bytes()).await.unwrap();
     dropped.write_all(&body[..body.len() / 2]).await.unwrap();

@@ -185,9 +185,10 @@ async fn a_key_in_flight_at_kill_9_is_free_after_restart() {
     let body = serde_json::to_vec(&robot_body()).unwrap();
     let mut stuck = crate::raw_http::connect(&first.base).await;
     let head = format!(
-        "PUT /v1/robots/K9 HTTP/1.1\r\nHost: x\r\nIdempotency-Key: k9\r\n\
+        "PUT /v1/robots/K9 HTTP/1.1\r\nHost: {host}\r\nIdempotency-Key: k9\r\n\
          Content-Type: application/json\r\nContent-Length: {}\r\n\r\n",
-        body.len()
+        body.len(),
+        host = crate::raw_http::addr_of(&first.base)
     );
     stuck.write_all(head.as_bytes()).await.unwrap();
     stuck.write_all(&body[..10]).await.unwrap();

@@ -15,9 +15,15 @@ const GRACE: Duration = Duration::from_secs(4);
 async fn a_partial_request_head_is_dropped_after_the_header_timeout() {
     let app = spawn_app_with(|c| c.header_timeout_secs = 1).await;
     let mut slow = connect(&app.base).await;
-    slow.write_all(b"GET /healthz HTTP/1.1\r\nHost: x\r\nX-Slow: ")
-        .await
-        .unwrap();
+    slow.write_all(
+        format!(
+            "GET /healthz HTTP/1.1\r\nHost: {}\r\nX-Slow: ",
+            crate::raw_http::addr_of(&app.base)
+        )
+        .as_bytes(),
+    )
+    .await
+    .unwrap();
     let start = Instant::now();
     assert!(
         closed_within(&mut slow, GRACE).await,
@@ -40,9 +46,8 @@ async fn a_body_that_stops_sending_is_answered_408() {
     let body = serde_json::to_vec(&robot_body()).unwrap();
     let mut trickle = connect(&app.base).await;
     let head = format!(
-        "PUT /v1/robots/T1 HTTP/1.1\r\nHost: x\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n",
-        body.len()
-    );
+        "PUT /v1/robots/T1 HTTP/1.1\r\nHost: {host}\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n",
+        body.len(), host = crate::raw_http::addr_of(&app.base));
     trickle.write_all(head.as_bytes()).await.unwrap();
     trickle.write_all(&body[..10]).await.unwrap();
     let start = Instant::now();
@@ -70,9 +75,8 @@ async fn a_slow_but_steady_body_is_not_timed_out() {
     let body = serde_json::to_vec(&robot_body()).unwrap();
     let mut slow = connect(&app.base).await;
     let head = format!(
-        "PUT /v1/robots/T2 HTTP/1.1\r\nHost: x\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n",
-        body.len()
-    );
+        "PUT /v1/robots/T2 HTTP/1.1\r\nHost: {host}\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n",
+        body.len(), host = crate::raw_http::addr_of(&app.base));
     slow.write_all(head.as_bytes()).await.unwrap();
     let thirds = body.len() / 3;
     for part in [
@@ -93,7 +97,15 @@ async fn connections_over_the_cap_are_answered_503_and_closed() {
     let mut held = vec![connect(&app.base).await, connect(&app.base).await];
     // Let the server accept both before the third arrives.
     tokio::time::sleep(Duration::from_millis(200)).await;
-    let refused = exchange(&app.base, b"GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n").await;
+    let refused = exchange(
+        &app.base,
+        format!(
+            "GET /healthz HTTP/1.1\r\nHost: {}\r\n\r\n",
+            crate::raw_http::addr_of(&app.base)
+        )
+        .as_bytes(),
+    )
+    .await;
     assert_eq!(refused.status, 503, "{refused:?}");
     assert!(refused.header("retry-after").is_some());
     let problem = refused.problem();
@@ -106,7 +118,13 @@ async fn connections_over_the_cap_are_answered_503_and_closed() {
     );
     // A held connection is still served, and closing one frees a place.
     held[0]
-        .write_all(b"GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n")
+        .write_all(
+            format!(
+                "GET /healthz HTTP/1.1\r\nHost: {}\r\n\r\n",
+                crate::raw_http::addr_of(&app.base)
+            )
+            .as_bytes(),
+        )
         .await
         .unwrap();
     let served = read_response(&mut held[0], GRACE).await.expect("served");
@@ -115,7 +133,11 @@ async fn connections_over_the_cap_are_answered_503_and_closed() {
     tokio::time::sleep(Duration::from_millis(200)).await;
     let after = exchange(
         &app.base,
-        b"GET /healthz HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n",
+        format!(
+            "GET /healthz HTTP/1.1\r\nHost: {}\r\nConnection: close\r\n\r\n",
+            crate::raw_http::addr_of(&app.base)
+        )
+        .as_bytes(),
     )
     .await;
     assert_eq!(after.status, 200, "{after:?}");
