@@ -253,7 +253,7 @@ pub fn run_local_with(
     let input = Input {
         serial: serial.to_string(),
         session_id: "local".into(),
-        robot: crate::robot_model::doc_to_model(&kinematics),
+        robot: crate::schema::robot::doc_to_model(&kinematics),
         kinematics,
         session: file.session,
         poses,

@@ -24,7 +24,6 @@ pub mod listen;
 pub mod metrics;
 pub mod pipeline;
 pub mod report;
-pub mod robot_model;
 pub mod schema;
 pub mod server;
 pub mod store;

@@ -103,7 +103,7 @@ pub async fn load_input(
     Ok(Input {
         session_id: session.id.clone(),
         serial: session.serial,
-        robot: crate::robot_model::doc_to_model(&kinematics),
+        robot: crate::schema::robot::doc_to_model(&kinematics),
         kinematics,
         session: spec,
         poses,

@@ -15,7 +15,7 @@ use crate::report::{
     CameraStd, DetectionReport, IdentifiabilityReport, ParameterReport, PoseReport, Report,
     ResidualSample,
 };
-use crate::robot_model::model_to_doc;
+use crate::schema::robot::model_to_doc;
 use crate::schema::robot::KinematicsDoc;
 
 /// Most residual arrows kept in a report (the plot averages them anyway).
@@ -74,7 +74,7 @@ impl ParameterSetDoc {
             robocal_calib::geometry::pose_from_matrix_rows(&p.matrix).map_err(|e| e.to_string())
         };
         Ok(CalibratedModel {
-            robot: crate::robot_model::doc_to_model(&self.kinematics),
+            robot: crate::schema::robot::doc_to_model(&self.kinematics),
             world_to_base: from(&self.world_to_base)?,
             flange_to_tool: from(&self.flange_to_tool)?,
         })

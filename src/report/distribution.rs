@@ -1,12 +1,12 @@
 //! The two distribution charts of the report: the before/after histogram
 //! of 3-D errors and the per-axis mean/max errors.
 
+use super::chart_frame::{
+    axis_label, judged_poses, no_data, plot_area, LEGEND_Y, MARGIN_RIGHT, SMALL_FONT, TITLE_Y,
+};
 use super::format::{fixed, mm};
 use super::model::Report;
 use super::plot::*;
-use super::svg::{
-    axis_label, judged_poses, no_data, plot_area, LEGEND_Y, MARGIN_RIGHT, SMALL_FONT, TITLE_Y,
-};
 
 /// Histogram bins per decade on a log axis, and bins on a linear axis.
 const BINS_PER_DECADE: usize = 8;

@@ -5,6 +5,7 @@
 //! of the detection noise; the cells are shaded by their RMS residual.
 
 use super::field_key::{key, principal_point, FieldKey};
+use super::field_marks::{arrow, ramp, MIN_CELL_SAMPLES};
 use super::model::{CameraReport, Report, ResidualSample};
 use super::plot::*;
 
@@ -21,8 +22,6 @@ const CHART_TITLE_Y: f64 = 20.0;
 const NOTE_Y: f64 = 46.0;
 /// Grid cells across the image width when averaging.
 const GRID_COLUMNS: usize = 16;
-/// Cells averaging fewer residuals are shaded but get no arrow (too noisy).
-pub const MIN_CELL_SAMPLES: usize = 4;
 /// Arrow magnification is set by this quantile of arrow lengths, so a
 /// single wild cell cannot shrink all the others to dots.
 const LENGTH_QUANTILE: f64 = 0.95;
@@ -32,13 +31,6 @@ const RAW_ARROW_LIMIT: usize = 400;
 const ARROW_FILL: f64 = 0.9;
 /// Cells overlap by this much so that no anti-aliasing seams show.
 const CELL_OVERLAP: f64 = 0.6;
-pub const ARROW_COLOR: &str = "#111";
-const HEAD_ANGLE_RAD: f64 = 0.45;
-const HEAD_LENGTH: f64 = 4.0;
-/// Shading ramp for the per-cell RMS: light grey to lavender.
-const RAMP_LOW: [f64; 3] = [250.0, 250.0, 250.0];
-const RAMP_HIGH: [f64; 3] = [150.0, 140.0, 205.0];
-
 /// Height of the chart at `width` (image aspect preserved).
 pub fn field_height(report: &Report, width: f64) -> f64 {
     match &report.camera {
@@ -121,38 +113,6 @@ fn magnification(max_residual_px: f64, cell_px: f64) -> f64 {
         .find(|m| m * power <= raw)
         .unwrap_or(1.0);
     (mantissa * power).max(1.0)
-}
-
-pub fn ramp(t: f64) -> String {
-    let t = if t.is_finite() {
-        t.clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let c: Vec<u8> = (0..3)
-        .map(|i| (RAMP_LOW[i] + t * (RAMP_HIGH[i] - RAMP_LOW[i])).round() as u8)
-        .collect();
-    format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2])
-}
-
-pub fn arrow(svg: &mut Svg, x0: f64, y0: f64, x1: f64, y1: f64) {
-    let (dx, dy) = (x1 - x0, y1 - y0);
-    let len = (dx * dx + dy * dy).sqrt();
-    if len < 0.5 {
-        svg.circle(x0, y0, 0.8, ARROW_COLOR);
-        return;
-    }
-    let head = HEAD_LENGTH.min(0.4 * len);
-    let back = dy.atan2(dx) + std::f64::consts::PI;
-    let (ha, hb) = (back + HEAD_ANGLE_RAD, back - HEAD_ANGLE_RAD);
-    let d = format!(
-        "M{x0:.1} {y0:.1}L{x1:.1} {y1:.1}M{:.1} {:.1}L{x1:.1} {y1:.1}L{:.1} {:.1}",
-        x1 + head * ha.cos(),
-        y1 + head * ha.sin(),
-        x1 + head * hb.cos(),
-        y1 + head * hb.sin()
-    );
-    svg.path(&d, ARROW_COLOR, 1.0, "none");
 }
 
 /// The residual field chart, or a note when the session has no camera.

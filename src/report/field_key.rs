@@ -2,7 +2,7 @@
 //! magnification with a reference arrow, the principal point marker, and
 //! the colour bar of the per-cell RMS shading.
 
-use super::field::{arrow, ramp, MIN_CELL_SAMPLES};
+use super::field_marks::{arrow, ramp, MIN_CELL_SAMPLES};
 use super::format::significant;
 use super::model::{CameraReport, ResidualSample};
 use super::plot::*;

@@ -3,14 +3,17 @@
 //! printable self-contained HTML page ([`render_html`]) and a plain-text
 //! terminal table ([`render_table`]).
 
+mod chart_frame;
 mod distribution;
 mod field;
 mod field_key;
+mod field_marks;
 pub mod format;
 mod html;
 mod html_sections;
 pub mod model;
 mod plot;
+mod pose_chart;
 pub mod sample;
 pub mod schema;
 pub mod svg;

@@ -14,12 +14,10 @@
 use std::sync::Arc;
 
 use async_trait::async_trait;
-use futures_util::future::BoxFuture;
-use sqlx::{Database, Pool, Transaction};
+use sqlx::{Pool, Transaction};
 use tokio::sync::{watch, Notify};
 
-use super::rows::Columns;
-use super::statement::Statement;
+use super::statement::Driver;
 use super::StoreResult;
 use crate::domain::RobotRecord;
 
@@ -65,65 +63,6 @@ pub trait Backend: Send + Sync + 'static {
         false
     }
 }
-
-/// A `sqlx` database whose driver runs a [`Statement`] and whose rows read
-/// as [`Columns`]. The three methods read the same for every driver but,
-/// written generically, would need each driver's trait bounds:
-/// [`run_statements!`] writes them in `impl Driver for <database>`.
-pub trait Driver: Database<Row: Columns> {
-    /// Runs `stmt`; returns the number of rows it changed.
-    fn execute_in<'c>(
-        conn: &'c mut Self::Connection,
-        stmt: Statement<'c>,
-    ) -> BoxFuture<'c, sqlx::Result<u64>>;
-    fn fetch_optional_in<'c>(
-        conn: &'c mut Self::Connection,
-        stmt: Statement<'c>,
-    ) -> BoxFuture<'c, sqlx::Result<Option<Self::Row>>>;
-    fn fetch_all_in<'c>(
-        conn: &'c mut Self::Connection,
-        stmt: Statement<'c>,
-    ) -> BoxFuture<'c, sqlx::Result<Vec<Self::Row>>>;
-}
-
-/// The body of `impl Driver for <database>`.
-macro_rules! run_statements {
-    () => {
-        fn execute_in<'c>(
-            conn: &'c mut Self::Connection,
-            stmt: $crate::store::statement::Statement<'c>,
-        ) -> ::futures_util::future::BoxFuture<'c, ::sqlx::Result<u64>> {
-            Box::pin(async move {
-                let $crate::store::statement::Statement { sql, args } = stmt;
-                let q = $crate::store::statement::bind_args!(::sqlx::query(&sql), args);
-                Ok(q.execute(conn).await?.rows_affected())
-            })
-        }
-
-        fn fetch_optional_in<'c>(
-            conn: &'c mut Self::Connection,
-            stmt: $crate::store::statement::Statement<'c>,
-        ) -> ::futures_util::future::BoxFuture<'c, ::sqlx::Result<Option<Self::Row>>> {
-            Box::pin(async move {
-                let $crate::store::statement::Statement { sql, args } = stmt;
-                let q = $crate::store::statement::bind_args!(::sqlx::query(&sql), args);
-                q.fetch_optional(conn).await
-            })
-        }
-
-        fn fetch_all_in<'c>(
-            conn: &'c mut Self::Connection,
-            stmt: $crate::store::statement::Statement<'c>,
-        ) -> ::futures_util::future::BoxFuture<'c, ::sqlx::Result<Vec<Self::Row>>> {
-            Box::pin(async move {
-                let $crate::store::statement::Statement { sql, args } = stmt;
-                let q = $crate::store::statement::bind_args!(::sqlx::query(&sql), args);
-                q.fetch_all(conn).await
-            })
-        }
-    };
-}
-pub(crate) use run_statements;
 
 /// True when `e` is a foreign-key violation (a parent row deleted
 /// concurrently, or never there).

@@ -25,9 +25,10 @@ use sqlx::postgres::{PgConnectOptions, PgPool, PgPoolOptions};
 use sqlx::{Postgres, Transaction};
 use tokio::sync::{watch, Notify};
 
-use super::backend::{run_statements, Backend, Driver};
+use super::backend::Backend;
 use super::migrations::{migrator, Embedded};
 use super::repo::UPSERT_ROBOT;
+use super::statement::{run_statements, Driver};
 use super::{StoreError, StoreResult};
 use crate::domain::RobotRecord;
 

@@ -14,10 +14,11 @@ use sqlx::sqlite::{
 };
 use sqlx::{Sqlite, Transaction};
 
-use super::backend::{run_statements, Backend, Driver};
+use super::backend::Backend;
 use super::migrations::{migrator, Embedded};
 use super::repo::UPSERT_ROBOT;
 use super::statement::query;
+use super::statement::{run_statements, Driver};
 use super::{StoreError, StoreResult};
 use crate::domain::RobotRecord;
 
