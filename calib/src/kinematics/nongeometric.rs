@@ -184,8 +184,15 @@ impl NonGeometric {
             .map_err(|_| NonGeometricError::NoSuchJoint { joint: dof, dof })?;
         for &joint in &options.compliant_joints {
             check(joint)?;
+            // The tool first: a payload's torque is the one every arm has.
+            terms.push(TermKind::ComplianceTool { joint });
+            if options.payload_kg > 0.0 {
+                terms.push(TermKind::CompliancePayload { joint });
+            }
             let mut last = origins[joint];
-            for (point, origin) in origins.iter().enumerate().skip(joint + 1) {
+            // Frame origins beyond the joint, the flange excluded: its mass
+            // is the tool's (the tool point stands for the whole end body).
+            for (point, origin) in origins.iter().enumerate().take(dof).skip(joint + 1) {
                 if (origin - last).norm() >= MIN_POINT_SPACING_MM {
                     terms.push(TermKind::Compliance {
                         joint,
@@ -193,10 +200,6 @@ impl NonGeometric {
                     });
                     last = *origin;
                 }
-            }
-            terms.push(TermKind::ComplianceTool { joint });
-            if options.payload_kg > 0.0 {
-                terms.push(TermKind::CompliancePayload { joint });
             }
         }
         let values = vec![0.0; terms.len()];

@@ -35,8 +35,13 @@ fn gravity_torque_basis_matches_a_hand_computation() {
     let q = [0.0; 6];
     let flange = m.robot.base_to_flange(&q).unwrap();
     let tool = flange * nalgebra::Point3::new(0.0, 0.0, 100.0);
-    let shoulder = m.robot.joints[0].link_transform(0.0).translation.vector;
-    let reach_m = ((tool.x - shoulder.x).powi(2) + (tool.y - shoulder.y).powi(2)).sqrt() / 1000.0;
+    let frame1 = m.robot.joints[0].link_transform(0.0);
+    let axis = frame1.rotation * nalgebra::Vector3::z();
+    // Horizontal lever across the (horizontal) shoulder axis.
+    let mut lever = tool.coords - frame1.translation.vector;
+    lever.z = 0.0;
+    lever -= axis * axis.dot(&lever);
+    let reach_m = lever.norm() / 1000.0;
     let f = t.basis(&q).unwrap()[0];
     assert!(
         (f.abs() - GRAVITY_M_PER_S2 * reach_m).abs() < 1e-9,

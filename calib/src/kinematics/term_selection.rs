@@ -6,7 +6,9 @@
 //!    scaled to unit norm, are projected out of the span of the free
 //!    geometric columns and of the candidates accepted before them; a term
 //!    whose remainder is below [`TERM_IDENTIFIABLE_TOL`] (the sine of its
-//!    angle to that span) is reported as not identifiable and never fitted.
+//!    angle to that span) is reported as not identifiable and never fitted;
+//!    so is every term of a joint whose turning moves the measured point by
+//!    less than [`MIN_LEVER_MM`] per radian (rms over the poses).
 //! 3. **Joint fit + backward elimination**: the identifiable terms are
 //!    fitted jointly with the geometry, base and tool; σ from the Jacobian
 //!    at the solution scaled by the residual variance. The least significant
@@ -23,7 +25,7 @@ use serde::{Deserialize, Serialize};
 use super::identify::{identify, Identification, IdentifyError, IdentifyOptions};
 use super::measurement::Measurement;
 use super::nongeometric::{CandidateOptions, NonGeometric, TermKind};
-use super::params::{CalibratedModel, Instrument};
+use super::params::{CalibratedModel, Instrument, PARAMS_PER_JOINT};
 use super::term_fit::TermFit;
 use super::weights::PoseCovariances;
 use crate::covariance::covariance_from_jacobian;
@@ -32,15 +34,20 @@ use crate::solver::{solve, LeastSquaresProblem, LmOptions};
 /// Sine of a candidate's angle to the span of the geometry and the earlier
 /// candidates below which it is not identifiable from the campaign.
 pub const TERM_IDENTIFIABLE_TOL: f64 = 1e-3;
+/// A joint whose turning moves the measured point less than this (mm/rad,
+/// rms over the poses: a point within a millimetre of its axis) is not seen
+/// turning, so none of its deflection terms is identifiable.
+pub const MIN_LEVER_MM: f64 = 1.0;
 /// Family-wise probability of keeping at least one term on a robot that has
-/// none (issue 19: false positives ≤ 5% of campaigns).
-pub const FAMILY_FALSE_POSITIVE: f64 = 0.05;
+/// none: issue 19 allows 5% of campaigns; 1% leaves room for the
+/// optimism of backward elimination (the survivors' `z` is the largest).
+pub const FAMILY_FALSE_POSITIVE: f64 = 0.01;
 /// Terms below this `|value| / σ` are all dropped in one round (speed only:
 /// they could never reach the threshold).
 const HOPELESS_Z: f64 = 1.0;
 const MAX_ITERATIONS: usize = 500;
 /// How the selection decides, for reports.
-pub const CRITERION: &str = "Bonferroni-corrected Wald test (family-wise 5%) with backward elimination, then BIC against the geometric fit";
+pub const CRITERION: &str = "Bonferroni-corrected Wald test (family-wise 1%) with backward elimination, then BIC against the geometric fit";
 
 /// What happened to one candidate.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -110,9 +117,14 @@ pub fn identify_with_terms(
     let (r_geo, jac) = probe.evaluate(&x0, true).ok_or(IdentifyError::NoPoses)?;
     let mut report: Vec<Option<TermReport>> = vec![None; all.terms.len()];
     let remainders = remainders(&jac, free.len());
+    let levers_mm = joint_levers_mm(&geo.model, &geo.layout, cal)?;
     let mut active = Vec::new();
     for (t, &sine) in remainders.iter().enumerate() {
-        if sine < TERM_IDENTIFIABLE_TOL {
+        let joint = all.terms[t].joint();
+        if levers_mm[joint] < MIN_LEVER_MM {
+            report[t] = Some(line(&all, t, Verdict::NotIdentifiable, 0.0, 0.0,
+                format!("not identifiable from this campaign: turning joint {} moves the measured point {:.1e} mm/rad (rms)", joint + 1, levers_mm[joint])));
+        } else if sine < TERM_IDENTIFIABLE_TOL {
             report[t] = Some(line(&all, t, Verdict::NotIdentifiable, 0.0, 0.0,
                 format!("not identifiable from this campaign: sine {sine:.1e} to the geometry and earlier terms")));
         } else {
@@ -340,4 +352,25 @@ fn erfc(x: f64) -> f64 {
     } else {
         2.0 - r
     }
+}
+
+/// RMS over the poses of the measured point's motion per radian of each
+/// joint (the `dtheta_i` columns of the tool Jacobian, position rows).
+fn joint_levers_mm(
+    model: &CalibratedModel,
+    layout: &super::params::ParamLayout,
+    cal: &[Measurement],
+) -> Result<Vec<f64>, IdentifyError> {
+    let mut sums = vec![0.0; model.robot.dof()];
+    for (pose, m) in cal.iter().enumerate() {
+        let (_, jac) = super::jacobian::tool_pose_jacobian(layout, model, &m.joints_rad)
+            .map_err(|source| IdentifyError::Pose { pose, source })?;
+        for (j, sum) in sums.iter_mut().enumerate() {
+            *sum += jac
+                .fixed_view::<3, 1>(0, j * PARAMS_PER_JOINT)
+                .norm_squared();
+        }
+    }
+    let n = cal.len().max(1) as f64;
+    Ok(sums.into_iter().map(|s| (s / n).sqrt()).collect())
 }
