@@ -17,6 +17,7 @@ pub mod params;
 mod pose_fit;
 pub mod presets;
 pub mod projection;
+mod term_cv;
 mod term_fit;
 pub mod term_selection;
 pub mod term_validate;

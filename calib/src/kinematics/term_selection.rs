@@ -17,7 +17,9 @@
 //!    [`FAMILY_FALSE_POSITIVE`] over the `m` identifiable candidates).
 //! 4. **Information criterion**: the kept set stays only if it lowers the
 //!    Bayesian information criterion `N ln(RSS/N) + k ln N` against the
-//!    geometric fit (same weights); otherwise every term is rejected.
+//!    geometric fit (same weights), and lowers the error on held-out poses
+//!    in a [`FOLDS`]-fold cross-validation ([`super::term_cv`]); otherwise
+//!    every term is rejected.
 
 use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
@@ -26,6 +28,7 @@ use super::identify::{identify, Identification, IdentifyError, IdentifyOptions};
 use super::measurement::Measurement;
 use super::nongeometric::{CandidateOptions, NonGeometric, TermKind};
 use super::params::{CalibratedModel, Instrument, PARAMS_PER_JOINT};
+use super::term_cv::{held_out_costs, FOLDS};
 use super::term_fit::TermFit;
 use super::weights::PoseCovariances;
 use crate::covariance::covariance_from_jacobian;
@@ -47,7 +50,7 @@ pub const FAMILY_FALSE_POSITIVE: f64 = 0.01;
 const HOPELESS_Z: f64 = 1.0;
 const MAX_ITERATIONS: usize = 500;
 /// How the selection decides, for reports.
-pub const CRITERION: &str = "Bonferroni-corrected Wald test (family-wise 1%) with backward elimination, then BIC against the geometric fit";
+pub const CRITERION: &str = "Bonferroni-corrected Wald test (family-wise 1%) with backward elimination, then BIC and 5-fold cross-validation against the geometric fit";
 
 /// What happened to one candidate.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -196,7 +199,21 @@ pub fn identify_with_terms(
     let k = active.len() as f64;
     let bic_geometric = n_res * (cost_geo / n_res).ln();
     let bic_with_terms = n_res * (final_cost / n_res).ln() + k * n_res.ln();
-    let gain = bic_with_terms < bic_geometric;
+    let mut gain = bic_with_terms < bic_geometric;
+    let mut why_not = format!("BIC {bic_with_terms:.1} not below the geometric {bic_geometric:.1}");
+    if gain && !active.is_empty() {
+        let x0 = stack(&x_geo, &DVector::zeros(active.len()));
+        let (cv_geo, cv_terms) =
+            held_out_costs(&geo.layout, &geo.before, &free, &all, &active, &x0, cal, &w)?;
+        if cv_terms >= cv_geo {
+            gain = false;
+            why_not = format!(
+                "{FOLDS}-fold held-out error not lowered: {:.4} vs geometric {:.4} (rms, whitened)",
+                (cv_terms / n_res).sqrt(),
+                (cv_geo / n_res).sqrt()
+            );
+        }
+    }
     let fit = TermFit {
         free_terms: &active,
         ..probe_like(&probe)
@@ -223,7 +240,7 @@ pub fn identify_with_terms(
                 Verdict::NoInformationGain,
                 x_terms[t],
                 final_sd[k],
-                format!("BIC {bic_with_terms:.1} not below the geometric {bic_geometric:.1}"),
+                why_not.clone(),
             )
         });
     }
