@@ -36,7 +36,7 @@ use crate::solver::{solve, LeastSquaresProblem, LmOptions};
 
 /// Sine of a candidate's angle to the span of the geometry and the earlier
 /// candidates below which it is not identifiable from the campaign.
-pub const TERM_IDENTIFIABLE_TOL: f64 = 1e-3;
+pub const TERM_IDENTIFIABLE_TOL: f64 = 3e-2;
 /// A joint whose turning moves the measured point less than this (mm/rad,
 /// rms over the poses: a point within a millimetre of its axis) is not seen
 /// turning, so none of its deflection terms is identifiable.
