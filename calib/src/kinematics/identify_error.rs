@@ -2,6 +2,7 @@
 
 use super::identifiability::IdentifiabilityError;
 use super::model::KinematicsError;
+use super::nongeometric::NonGeometricError;
 use super::params::Instrument;
 use crate::solver::SolverError;
 
@@ -25,6 +26,8 @@ pub enum IdentifyError {
     BadCovariance { pose: usize },
     #[error(transparent)]
     Identifiability(#[from] IdentifiabilityError),
+    #[error(transparent)]
+    NonGeometric(#[from] NonGeometricError),
     #[error("solver: {0}")]
     Solver(#[from] SolverError),
 }

@@ -19,10 +19,15 @@ pub mod jacobian;
 pub mod joint_refine;
 pub mod measurement;
 pub mod model;
+pub mod nongeometric;
 pub mod params;
 mod pose_fit;
 pub mod presets;
 pub mod projection;
+mod term_cv;
+mod term_fit;
+pub mod term_selection;
+pub mod term_validate;
 pub mod weights;
 
 pub use model::{choose_conventions, Convention, Joint, KinematicsError, RobotModel};

@@ -10,6 +10,8 @@ pub mod oracle;
 pub mod point_views;
 pub mod render;
 pub mod start_model;
+/// Laser-tracker campaigns with optional non-geometric errors (issue 19).
+pub mod tracker_campaign;
 /// Board placement and tilt of simulated campaigns (point views).
 pub mod view_layout;
 /// What a simulated camera campaign is made of.

@@ -1,0 +1,393 @@
+//! Non-geometric terms selected, not imposed (issue 19, method.md §6).
+//!
+//! 1. The geometric identification ([`identify`]) fixes the geometric free
+//!    set, the weights and the starting point.
+//! 2. **Identifiability**: the whitened Jacobian columns of every candidate,
+//!    scaled to unit norm, are projected out of the span of the free
+//!    geometric columns and of the candidates accepted before them; a term
+//!    whose remainder is below [`TERM_IDENTIFIABLE_TOL`] (the sine of its
+//!    angle to that span) is reported as not identifiable and never fitted;
+//!    so is every term of a joint whose turning moves the measured point by
+//!    less than [`MIN_LEVER_MM`] per radian (rms over the poses).
+//! 3. **Joint fit + backward elimination**: the identifiable terms are
+//!    fitted jointly with the geometry, base and tool; σ from the Jacobian
+//!    at the solution scaled by the residual variance. The least significant
+//!    term is dropped while its `|value| / σ` is below the Bonferroni
+//!    threshold `z = Φ⁻¹(1 − α / 2m)` (family-wise false-positive rate
+//!    [`FAMILY_FALSE_POSITIVE`] over the `m` identifiable candidates).
+//! 4. **Information criterion**: the kept set stays only if it lowers the
+//!    Bayesian information criterion `N ln(RSS/N) + k ln N` against the
+//!    geometric fit (same weights), and lowers the error on held-out poses
+//!    in a [`FOLDS`]-fold cross-validation ([`super::term_cv`]); otherwise
+//!    every term is rejected.
+
+use nalgebra::{DMatrix, DVector};
+use serde::{Deserialize, Serialize};
+
+use super::identify::{identify, Identification, IdentifyError, IdentifyOptions};
+use super::measurement::Measurement;
+use super::nongeometric::{CandidateOptions, NonGeometric, TermKind};
+use super::params::{CalibratedModel, Instrument, PARAMS_PER_JOINT};
+use super::term_cv::{held_out_costs, FOLDS};
+use super::term_fit::TermFit;
+use super::weights::PoseCovariances;
+use crate::covariance::covariance_from_jacobian;
+use crate::solver::{solve, LeastSquaresProblem, LmOptions};
+
+/// Sine of a candidate's angle to the span of the geometry and the earlier
+/// candidates below which it is not identifiable from the campaign.
+pub const TERM_IDENTIFIABLE_TOL: f64 = 3e-2;
+/// A joint whose turning moves the measured point less than this (mm/rad,
+/// rms over the poses: a point within a millimetre of its axis) is not seen
+/// turning, so none of its deflection terms is identifiable.
+pub const MIN_LEVER_MM: f64 = 1.0;
+/// Family-wise probability of keeping at least one term on a robot that has
+/// none: issue 19 allows 5% of campaigns; 1% leaves room for the
+/// optimism of backward elimination (the survivors' `z` is the largest).
+pub const FAMILY_FALSE_POSITIVE: f64 = 0.01;
+/// Terms below this `|value| / σ` are all dropped in one round (speed only:
+/// they could never reach the threshold).
+const HOPELESS_Z: f64 = 1.0;
+const MAX_ITERATIONS: usize = 500;
+/// How the selection decides, for reports.
+pub const CRITERION: &str = "Bonferroni-corrected Wald test (family-wise 1%) with backward elimination, then BIC and 5-fold cross-validation against the geometric fit";
+
+/// What happened to one candidate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Verdict {
+    Kept,
+    NotIdentifiable,
+    NotSignificant,
+    NoInformationGain,
+}
+
+/// One line of the selection report.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TermReport {
+    pub name: String,
+    pub term: TermKind,
+    pub verdict: Verdict,
+    /// Value when kept, or when last fitted before being rejected.
+    pub value: f64,
+    pub std_dev: f64,
+    pub unit: String,
+    pub why: String,
+}
+
+/// Geometry plus the selected non-geometric terms.
+#[derive(Debug, Clone)]
+pub struct TermIdentification {
+    pub geometric: Identification,
+    /// Geometry, base and tool refitted jointly with the kept terms.
+    pub model: CalibratedModel,
+    /// The kept terms with their values.
+    pub terms: NonGeometric,
+    /// σ of each kept term's value, in `terms` order.
+    pub term_std_devs: Vec<f64>,
+    pub report: Vec<TermReport>,
+    pub z_threshold: f64,
+    pub bic_geometric: f64,
+    pub bic_with_terms: f64,
+}
+
+/// Identify geometry and the candidate terms of `candidates`, keeping only
+/// identifiable and significant ones (see the module doc).
+pub fn identify_with_terms(
+    reference: &CalibratedModel,
+    instrument: Instrument,
+    cal: &[Measurement],
+    options: IdentifyOptions,
+    candidates: &CandidateOptions,
+) -> Result<TermIdentification, IdentifyError> {
+    let geo = identify(reference, instrument, cal, options)?;
+    let all = NonGeometric::candidates(&geo.model, candidates)?;
+    let w = PoseCovariances::new(&geo.layout, &geo.before, cal)?
+        .whitening(geo.joint_sigma_rad, options.mode)?;
+    let free = geo.identifiability.free.clone();
+    let x_geo = DVector::from_iterator(free.len(), free.iter().map(|&i| geo.correction[i]));
+    let every: Vec<usize> = (0..all.terms.len()).collect();
+    let probe = TermFit {
+        layout: &geo.layout,
+        reference: &geo.before,
+        free: &free,
+        terms: &all,
+        free_terms: &every,
+        data: cal,
+        whitening: &w,
+    };
+    let x0 = stack(&x_geo, &DVector::zeros(every.len()));
+    let (r_geo, jac) = probe.evaluate(&x0, true).ok_or(IdentifyError::NoPoses)?;
+    let mut report: Vec<Option<TermReport>> = vec![None; all.terms.len()];
+    let remainders = remainders(&jac, free.len());
+    let levers_mm = joint_levers_mm(&geo.model, &geo.layout, cal)?;
+    let mut active = Vec::new();
+    for (t, &sine) in remainders.iter().enumerate() {
+        let joint = all.terms[t].joint();
+        if levers_mm[joint] < MIN_LEVER_MM {
+            report[t] = Some(line(&all, t, Verdict::NotIdentifiable, 0.0, 0.0,
+                format!("not identifiable from this campaign: turning joint {} moves the measured point {:.1e} mm/rad (rms)", joint + 1, levers_mm[joint])));
+        } else if sine < TERM_IDENTIFIABLE_TOL {
+            report[t] = Some(line(&all, t, Verdict::NotIdentifiable, 0.0, 0.0,
+                format!("not identifiable from this campaign: sine {sine:.1e} to the geometry and earlier terms")));
+        } else {
+            active.push(t);
+        }
+    }
+    let z_threshold = bonferroni_z(FAMILY_FALSE_POSITIVE, active.len().max(1));
+    let lm = LmOptions {
+        max_iterations: MAX_ITERATIONS,
+        ..LmOptions::default()
+    };
+    let n_res = r_geo.len() as f64;
+    let cost_geo = r_geo.norm_squared();
+    let mut x_terms: Vec<f64> = vec![0.0; all.terms.len()];
+    let mut geo_x = x_geo.clone();
+    let (final_x, final_sd, final_cost) = loop {
+        let fit = TermFit {
+            free_terms: &active,
+            ..probe_like(&probe)
+        };
+        let start = stack(
+            &geo_x,
+            &DVector::from_iterator(active.len(), active.iter().map(|&t| x_terms[t])),
+        );
+        let sol = solve(&fit, start, &lm)?;
+        let jac = fit.jacobian(&sol.x).ok_or(IdentifyError::NoPoses)?;
+        let dof = (sol.residuals.len() as f64 - fit.unknowns() as f64).max(1.0);
+        let cov = covariance_from_jacobian(&jac, sol.cost / dof);
+        let sd: Vec<f64> = (0..active.len())
+            .map(|k| cov[(free.len() + k, free.len() + k)].max(0.0).sqrt())
+            .collect();
+        geo_x = sol.x.rows(0, free.len()).into_owned();
+        for (k, &t) in active.iter().enumerate() {
+            x_terms[t] = sol.x[free.len() + k];
+        }
+        let z: Vec<f64> = (0..active.len())
+            .map(|k| x_terms[active[k]].abs() / sd[k].max(f64::MIN_POSITIVE))
+            .collect();
+        let weakest = (0..active.len()).min_by(|&a, &b| z[a].total_cmp(&z[b]));
+        let Some(weakest) = weakest.filter(|&k| z[k] < z_threshold) else {
+            break (sol.x, sd, sol.cost);
+        };
+        let drop: Vec<usize> = if z[weakest] < HOPELESS_Z {
+            (0..active.len()).filter(|&k| z[k] < HOPELESS_Z).collect()
+        } else {
+            vec![weakest]
+        };
+        for &k in &drop {
+            let t = active[k];
+            report[t] = Some(line(
+                &all,
+                t,
+                Verdict::NotSignificant,
+                x_terms[t],
+                sd[k],
+                format!(
+                    "|value|/σ = {:.2} below the threshold {z_threshold:.2}",
+                    z[k]
+                ),
+            ));
+        }
+        active = active
+            .iter()
+            .enumerate()
+            .filter(|(k, _)| !drop.contains(k))
+            .map(|(_, &t)| t)
+            .collect();
+    };
+    let k = active.len() as f64;
+    let bic_geometric = n_res * (cost_geo / n_res).ln();
+    let bic_with_terms = n_res * (final_cost / n_res).ln() + k * n_res.ln();
+    let mut gain = bic_with_terms < bic_geometric;
+    let mut why_not = format!("BIC {bic_with_terms:.1} not below the geometric {bic_geometric:.1}");
+    if gain && !active.is_empty() {
+        let x0 = stack(&x_geo, &DVector::zeros(active.len()));
+        let (cv_geo, cv_terms) =
+            held_out_costs(&geo.layout, &geo.before, &free, &all, &active, &x0, cal, &w)?;
+        if cv_terms >= cv_geo {
+            gain = false;
+            why_not = format!(
+                "{FOLDS}-fold held-out error not lowered: {:.4} vs geometric {:.4} (rms, whitened)",
+                (cv_terms / n_res).sqrt(),
+                (cv_geo / n_res).sqrt()
+            );
+        }
+    }
+    let fit = TermFit {
+        free_terms: &active,
+        ..probe_like(&probe)
+    };
+    let (mut model, terms) = fit.split(&final_x);
+    let mut kept = terms.subset(&active);
+    for (k, &t) in active.iter().enumerate() {
+        report[t] = Some(if gain {
+            line(
+                &all,
+                t,
+                Verdict::Kept,
+                x_terms[t],
+                final_sd[k],
+                format!(
+                    "identifiable, |value|/σ = {:.1}, BIC {bic_with_terms:.1} < {bic_geometric:.1}",
+                    x_terms[t].abs() / final_sd[k]
+                ),
+            )
+        } else {
+            line(
+                &all,
+                t,
+                Verdict::NoInformationGain,
+                x_terms[t],
+                final_sd[k],
+                why_not.clone(),
+            )
+        });
+    }
+    let mut term_std_devs = final_sd;
+    if !gain {
+        model = geo.model.clone();
+        kept = kept.subset(&[]);
+        term_std_devs.clear();
+    }
+    Ok(TermIdentification {
+        model,
+        terms: kept,
+        term_std_devs,
+        report: report.into_iter().flatten().collect(),
+        z_threshold,
+        bic_geometric,
+        bic_with_terms,
+        geometric: geo,
+    })
+}
+
+fn probe_like<'a>(p: &TermFit<'a>) -> TermFit<'a> {
+    TermFit {
+        layout: p.layout,
+        reference: p.reference,
+        free: p.free,
+        terms: p.terms,
+        free_terms: p.free_terms,
+        data: p.data,
+        whitening: p.whitening,
+    }
+}
+
+fn stack(a: &DVector<f64>, b: &DVector<f64>) -> DVector<f64> {
+    DVector::from_iterator(a.len() + b.len(), a.iter().chain(b.iter()).copied())
+}
+
+fn line(
+    all: &NonGeometric,
+    t: usize,
+    verdict: Verdict,
+    value: f64,
+    std_dev: f64,
+    why: String,
+) -> TermReport {
+    let term = all.terms[t];
+    TermReport {
+        name: term.name(),
+        term,
+        verdict,
+        value,
+        std_dev,
+        unit: term.unit().into(),
+        why,
+    }
+}
+
+/// For each column after the first `geometric` ones: the norm of its
+/// unit-scaled copy left after projecting out the geometric columns and the
+/// earlier accepted candidate columns (modified Gram–Schmidt, twice).
+fn remainders(jac: &DMatrix<f64>, geometric: usize) -> Vec<f64> {
+    let mut basis: Vec<DVector<f64>> = Vec::new();
+    let project = |col: DVector<f64>, basis: &mut Vec<DVector<f64>>, accept_tol: f64| {
+        let norm = col.norm();
+        if norm == 0.0 {
+            return 0.0;
+        }
+        let mut v = col / norm;
+        for _ in 0..2 {
+            for b in basis.iter() {
+                let d = b.dot(&v);
+                v -= b * d;
+            }
+        }
+        let rest = v.norm();
+        if rest >= accept_tol {
+            basis.push(v / rest);
+        }
+        rest
+    };
+    for c in 0..geometric {
+        project(jac.column(c).into_owned(), &mut basis, 1e-12);
+    }
+    (geometric..jac.ncols())
+        .map(|c| {
+            project(
+                jac.column(c).into_owned(),
+                &mut basis,
+                TERM_IDENTIFIABLE_TOL,
+            )
+        })
+        .collect()
+}
+
+/// `z` with two-sided normal tail `α / m` (Bonferroni over `m` tests).
+pub fn bonferroni_z(alpha: f64, m: usize) -> f64 {
+    let target = alpha / m as f64;
+    let (mut lo, mut hi) = (0.0_f64, 40.0_f64);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if erfc(mid / std::f64::consts::SQRT_2) > target {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// Complementary error function (Numerical Recipes' Chebyshev fit,
+/// relative error < 1.2e-7 everywhere).
+fn erfc(x: f64) -> f64 {
+    let z = x.abs();
+    let t = 1.0 / (1.0 + 0.5 * z);
+    let poly = -z * z - 1.265_512_23
+        + t * (1.000_023_68
+            + t * (0.374_091_96
+                + t * (0.096_784_18
+                    + t * (-0.186_288_06
+                        + t * (0.278_868_07
+                            + t * (-1.135_203_98
+                                + t * (1.488_515_87 + t * (-0.822_152_23 + t * 0.170_872_77))))))));
+    let r = t * poly.exp();
+    if x >= 0.0 {
+        r
+    } else {
+        2.0 - r
+    }
+}
+
+/// RMS over the poses of the measured point's motion per radian of each
+/// joint (the `dtheta_i` columns of the tool Jacobian, position rows).
+fn joint_levers_mm(
+    model: &CalibratedModel,
+    layout: &super::params::ParamLayout,
+    cal: &[Measurement],
+) -> Result<Vec<f64>, IdentifyError> {
+    let mut sums = vec![0.0; model.robot.dof()];
+    for (pose, m) in cal.iter().enumerate() {
+        let (_, jac) = super::jacobian::tool_pose_jacobian(layout, model, &m.joints_rad)
+            .map_err(|source| IdentifyError::Pose { pose, source })?;
+        for (j, sum) in sums.iter_mut().enumerate() {
+            *sum += jac
+                .fixed_view::<3, 1>(0, j * PARAMS_PER_JOINT)
+                .norm_squared();
+        }
+    }
+    let n = cal.len().max(1) as f64;
+    Ok(sums.into_iter().map(|s| (s / n).sqrt()).collect())
+}
