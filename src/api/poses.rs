@@ -15,7 +15,8 @@ use super::error::{ApiError, ApiResult, Problem};
 use super::extract::{is_json, parse_json, read_limited, Paging};
 use super::sessions::find_session;
 use super::upload::{
-    ingest_image, read_field_limited, robot_joint_count, session_spec, ImageCheck,
+    ingest_image, read_field_capped, read_field_limited, robot_joint_count, session_spec,
+    ImageCheck,
 };
 use super::AppState;
 use crate::domain::{label_from_file_name, ImageMeta, NewPose, PoseRecord};
@@ -321,18 +322,10 @@ async fn read_text_part(
     field: &mut axum::extract::multipart::Field<'_>,
     part: &str,
 ) -> ApiResult<Vec<u8>> {
-    let mut buf = Vec::new();
-    while let Some(chunk) = field
-        .chunk()
-        .await
-        .map_err(|e| ApiError::malformed("multipart", e.body_text()))?
-    {
-        if (buf.len() + chunk.len()) as u64 > MAX_TEXT_PART {
-            return Err(ApiError::part_too_large(part, MAX_TEXT_PART));
-        }
-        buf.extend_from_slice(&chunk);
-    }
-    Ok(buf)
+    read_field_capped(field, MAX_TEXT_PART, || {
+        ApiError::part_too_large(part, MAX_TEXT_PART)
+    })
+    .await
 }
 
 /// A client-chosen name as it is echoed in an error: at most

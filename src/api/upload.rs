@@ -65,6 +65,15 @@ pub async fn read_field_limited(
     limit: u64,
     limit_name: &'static str,
 ) -> ApiResult<Vec<u8>> {
+    read_field_capped(field, limit, || ApiError::too_large(limit_name, limit)).await
+}
+
+/// Reads a multipart field; past `limit` bytes, the error `over` makes.
+pub async fn read_field_capped(
+    field: &mut Field<'_>,
+    limit: u64,
+    over: impl FnOnce() -> ApiError,
+) -> ApiResult<Vec<u8>> {
     let mut buf = Vec::new();
     while let Some(chunk) = field
         .chunk()
@@ -72,7 +81,7 @@ pub async fn read_field_limited(
         .map_err(|e| ApiError::malformed("multipart", e.body_text()))?
     {
         if (buf.len() + chunk.len()) as u64 > limit {
-            return Err(ApiError::too_large(limit_name, limit));
+            return Err(over());
         }
         buf.extend_from_slice(&chunk);
     }
