@@ -85,9 +85,13 @@ step "the Python client is generated"
 PYTHONPATH="$work/client" "$venv/bin/python" .ci/client_check.py "$url" "$token" "$work/campaign"
 step "the generated client calibrated and read a typed report"
 
+# Revoking tokens is left out: schemathesis follows the token list to
+# DELETE /v1/tokens/{id} and revokes its own credentials, after which every
+# operation answers 401 (tests/it/tokens.rs covers revocation).
 SCHEMATHESIS_HOOKS=schemathesis_hooks PYTHONPATH="$repo/.ci" \
   "$venv/bin/schemathesis" --config-file .ci/schemathesis.toml run "$url/openapi.json" --checks all \
   --header "Authorization: Bearer $token" --max-time "$fuzz_secs" --workers 2 \
+  --exclude-name "DELETE /v1/tokens/{id}" \
   --seed 1 --no-color --output-truncate false --report junit --report-dir "$work/schemathesis" \
   || { echo "--- server log (tail)" >&2; tail -n 20 "$work/server.log" >&2; exit 1; }
 step "schemathesis found nothing"

@@ -94,10 +94,15 @@ fn problem_response(description: &str) -> Response {
         .build()
 }
 
+/// The one route outside `/v1/` that may need a token.
+const METRICS_PATH: &str = "/metrics";
+
 /// The failures `operation` on `path` can answer.
 fn failures_of(method: &str, path: &str, operation: &Operation) -> Vec<&'static Failure> {
     let mut out = Vec::new();
-    if path.starts_with("/v1/") {
+    // `/metrics` needs a read token once tokens exist (unless the server
+    // runs with `--public-metrics`).
+    if path.starts_with("/v1/") || path == METRICS_PATH {
         out.extend([&UNAUTHORIZED, &FORBIDDEN]);
     }
     let params = operation.parameters.as_deref().unwrap_or_default();
