@@ -3,12 +3,12 @@
 //! plane-fit reprojection RMS with OpenCV's published intrinsics for the CMU
 //! set (same metric for our centres and OpenCV's).
 //!
-//! `cargo run --release -p robocal-calib --example detect_photos`
+//! `cargo run --release -p robocal-calib --example detect_photos -- DIR`
 //!
-//! Unlike the tests (which read the copies in `calib/tests/data/`), this
-//! example needs the project's full data collection checked out beside the
-//! repository (`../shared/data/circles`): the NiftyCal laparoscope sets are
-//! not copied into the repository. No test depends on it.
+//! `DIR` holds `cmu_datta_10x7/` and `niftycal_laparoscope/` (the project's
+//! data collection, `shared/data/circles`). Unlike the tests, which read the
+//! copies in `calib/tests/data/`, it needs the NiftyCal sets, which are not
+//! copied into the repository; no test depends on it.
 
 use std::collections::HashMap;
 
@@ -17,14 +17,13 @@ use robocal_calib::camera::model::Intrinsics;
 use robocal_calib::vision::homography::Homography;
 use robocal_calib::vision::{decode_image, detect, DecodeLimits, GrayImage, TargetSpec};
 
-const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/data/circles");
 const CMU_PITCH_MM: f64 = 23.0;
 /// Not published; ~15 mm from the images (sets only the bias correction size).
 const CMU_DOT_MM: f64 = 15.0;
 
-fn cmu_camera() -> Intrinsics {
+fn cmu_camera(data: &str) -> Intrinsics {
     let text = std::fs::read_to_string(format!(
-        "{DATA}/cmu_datta_10x7/derived_opencv5/calibrateCamera_results.json"
+        "{data}/cmu_datta_10x7/derived_opencv5/calibrateCamera_results.json"
     ))
     .unwrap();
     let v: serde_json::Value = serde_json::from_str(&text).unwrap();
@@ -65,7 +64,7 @@ fn rms(v: &[f64]) -> f64 {
     (v.iter().sum::<f64>() / v.len().max(1) as f64).sqrt()
 }
 
-fn cmu() {
+fn cmu(data: &str) {
     let target = TargetSpec {
         rows: 7,
         cols: 10,
@@ -73,9 +72,9 @@ fn cmu() {
         dot_diameter_mm: CMU_DOT_MM,
         origin_marker_diameter_mm: None,
     };
-    let cam = cmu_camera();
+    let cam = cmu_camera(data);
     let csv = std::fs::read_to_string(format!(
-        "{DATA}/cmu_datta_10x7/derived_opencv5/centers_findCirclesGrid.csv"
+        "{data}/cmu_datta_10x7/derived_opencv5/centers_findCirclesGrid.csv"
     ))
     .unwrap();
     let mut cv: HashMap<String, Vec<Vector2<f64>>> = HashMap::new();
@@ -90,7 +89,7 @@ fn cmu() {
     let (mut found, mut ours, mut raw, mut theirs, mut diff) = (0, vec![], vec![], vec![], vec![]);
     for name in &names {
         let img = decode_image(
-            &std::fs::read(format!("{DATA}/cmu_datta_10x7/{name}")).unwrap(),
+            &std::fs::read(format!("{data}/cmu_datta_10x7/{name}")).unwrap(),
             &DecodeLimits::default(),
         )
         .unwrap();
@@ -144,7 +143,7 @@ fn y_doubled(img: &GrayImage) -> GrayImage {
     }
 }
 
-fn nifty() {
+fn nifty(data: &str) {
     let files = [
         "tsai_coplanar_10x7/1479224185706804480_left.png",
         "tsai_coplanar_10x7/1479224185706804480_right.png",
@@ -154,7 +153,7 @@ fn nifty() {
     println!("niftycal_laparoscope (1920x540 interlaced; symmetric 10x7 grids, no marker):");
     for f in files {
         let img = decode_image(
-            &std::fs::read(format!("{DATA}/niftycal_laparoscope/{f}")).unwrap(),
+            &std::fs::read(format!("{data}/niftycal_laparoscope/{f}")).unwrap(),
             &DecodeLimits::default(),
         )
         .unwrap();
@@ -182,6 +181,12 @@ fn nifty() {
 }
 
 fn main() {
-    cmu();
-    nifty();
+    let Some(data) = std::env::args().nth(1) else {
+        eprintln!(
+            "usage: detect_photos DIR  (DIR holds cmu_datta_10x7/ and niftycal_laparoscope/)"
+        );
+        std::process::exit(2);
+    };
+    cmu(&data);
+    nifty(&data);
 }
