@@ -5,6 +5,7 @@
 
 pub mod bias;
 pub mod blobs;
+pub mod board_point;
 pub mod detect;
 pub mod ellipse;
 pub mod error;
@@ -15,6 +16,7 @@ pub mod order;
 pub mod target;
 pub mod threshold;
 
+pub use board_point::{BoardDetection, BoardPoint};
 pub use detect::{detect, detect_dynamic, detect_with, DetectOptions, Detection, DotObservation};
 pub use ellipse::{DotQuality, Ellipse};
 pub use error::DetectError;
