@@ -9,6 +9,7 @@
 pub mod camera;
 pub mod covariance;
 pub mod geometry;
+pub mod handeye;
 pub mod kinematics;
 pub mod schur;
 pub mod sim;
