@@ -10,7 +10,7 @@ use super::bundle::{
 };
 use super::error::HandEyeError;
 use super::result::{FlangeCalibration, PoseSigma, PoseVerdict};
-use super::screen::robust_limit;
+use super::robust::robust_limit;
 use super::start::{board_consensus, board_estimates, board_probe, robust_hand_eye};
 use super::view::FlangeView;
 use crate::camera::estimate_pose;

@@ -13,6 +13,7 @@ pub mod bundle;
 pub mod calibrate;
 pub mod error;
 pub mod result;
+pub mod robust;
 pub mod screen;
 pub mod start;
 pub mod view;

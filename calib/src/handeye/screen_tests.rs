@@ -49,6 +49,12 @@ fn lying_flange_poses_are_flagged_and_do_not_bend_the_fit() {
     views[SHIFTED].base_to_flange =
         Translation3::new(SHIFT_MM, 0.0, 0.0) * views[SHIFTED].base_to_flange;
     let fit = calibrate_flange(&views, &sim.options()).unwrap();
+    let rms: Vec<String> = fit
+        .per_pose
+        .iter()
+        .map(|p| format!("{:.2}", p.rms_px))
+        .collect();
+    eprintln!("flange liars: per-pose RMS px {rms:?}");
     assert_eq!(flagged(&fit.per_pose), vec![SWAPPED.0, JOINT_OFF, SHIFTED]);
     for k in flagged(&fit.per_pose) {
         let reason = fit.per_pose[k].reason.as_deref().unwrap();
@@ -104,6 +110,11 @@ fn lying_joint_poses_of_a_kinematic_campaign_are_flagged() {
             .unwrap(),
     };
     let verdicts = screen_joint_poses(&model, &truth.intrinsics, &poses).unwrap();
+    let rms: Vec<String> = verdicts
+        .iter()
+        .map(|p| format!("{:.1}", p.rms_px))
+        .collect();
+    eprintln!("joint liars: per-pose RMS px {rms:?}");
     let mut expected = vec![a, b, JOINT_OFF];
     expected.sort();
     assert_eq!(flagged(&verdicts), expected, "{verdicts:#?}");

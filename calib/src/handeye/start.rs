@@ -9,6 +9,7 @@
 use nalgebra::{DMatrix, DVector, Matrix3, Point3, Vector3};
 
 use super::error::HandEyeError;
+use super::robust::median;
 use crate::geometry::{orthonormalize, rotation_vector, Pose};
 
 /// Reweighting rounds of the robust AX = XB.
@@ -22,21 +23,6 @@ const MIN_AXIS_SPREAD: f64 = 1e-4;
 const TRANSLATION_RCOND: f64 = 1e-8;
 /// Floor of residual scales, so that exact data do not divide by zero.
 const TINY: f64 = 1e-12;
-
-/// Median of a slice (NaN-free); 0 for an empty one.
-pub fn median(values: &[f64]) -> f64 {
-    let mut v: Vec<f64> = values.iter().copied().filter(|x| x.is_finite()).collect();
-    if v.is_empty() {
-        return 0.0;
-    }
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
-}
 
 fn cauchy_weights(residuals: &[f64]) -> Vec<f64> {
     let scale = (IRLS_SCALE_MEDIANS * median(residuals)).max(TINY);
