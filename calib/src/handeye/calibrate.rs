@@ -9,7 +9,7 @@ use super::bundle::{
     fit_bundle, BundleFit, BundleFreedom, BundleModel, Pairs, BUNDLE_INTRINSICS, PINHOLE_INTRINSICS,
 };
 use super::error::HandEyeError;
-use super::result::{FlangeCalibration, PoseSigma, PoseVerdict};
+use super::result::{FlangeCalibration, JackknifeSigma, PoseSigma, PoseVerdict};
 use super::robust::robust_limit;
 use super::start::{board_consensus, board_estimates, board_probe, robust_hand_eye};
 use super::view::FlangeView;
@@ -32,6 +32,9 @@ pub struct FlangeOptions {
     pub start_intrinsics: Intrinsics,
     /// Refine k1, k2, p1, p2 (k3 stays at the guess); else the pinhole only.
     pub distortion: bool,
+    /// Hold every intrinsic at `start_intrinsics` (a camera calibrated from
+    /// the images alone): the robot poses then cannot bend the camera.
+    pub hold_intrinsics: bool,
     /// Refine the board scale (a printed pitch in doubt).
     pub fit_board_scale: bool,
 }
@@ -105,7 +108,9 @@ pub fn calibrate_pairs(
         .filter(|&k| deviation_mm[k] <= limit_mm)
         .collect();
     let freedom = BundleFreedom {
-        intrinsics: if options.distortion {
+        intrinsics: if options.hold_intrinsics {
+            Vec::new()
+        } else if options.distortion {
             (0..BUNDLE_INTRINSICS).collect()
         } else {
             PINHOLE_INTRINSICS.to_vec()
@@ -166,7 +171,68 @@ pub fn calibrate_pairs(
             }
         })
         .collect();
-    Ok(report(&fit, per_pose, rounds))
+    let views: Vec<(Pose, &Pairs)> = inliers.iter().map(|&k| (flanges[k], pairs[k])).collect();
+    let jackknife = jackknife(&views, &fit, &freedom);
+    Ok(report(&fit, per_pose, rounds, jackknife))
+}
+
+/// One leave-one-out refit, relative to the full fit.
+struct LeaveOneOut {
+    flange_to_camera: Vector6<f64>,
+    target_to_base: Vector6<f64>,
+    board_scale: f64,
+}
+
+/// Leave each pose out in turn and refit from the solution (see
+/// [`JackknifeSigma`]); `None` when fewer than `MIN_POSES + 1` poses.
+fn jackknife(
+    views: &[(Pose, &Pairs)],
+    fit: &BundleFit,
+    freedom: &BundleFreedom,
+) -> Option<JackknifeSigma> {
+    let n = views.len();
+    if n <= MIN_POSES {
+        return None;
+    }
+    let mut samples = Vec::with_capacity(n);
+    for drop in 0..n {
+        let kept: Vec<(Pose, &Pairs)> = views
+            .iter()
+            .enumerate()
+            .filter(|(k, _)| *k != drop)
+            .map(|(_, v)| *v)
+            .collect();
+        let m = fit_bundle(&kept, &fit.model, freedom).ok()?.model;
+        let x = pose_error(&m.flange_to_camera, &fit.model.flange_to_camera);
+        let t = pose_error(&m.target_to_base, &fit.model.target_to_base);
+        samples.push(LeaveOneOut {
+            flange_to_camera: x,
+            target_to_base: t,
+            board_scale: m.board_scale,
+        });
+    }
+    let nf = n as f64;
+    let factor = (nf - 1.0) / nf;
+    let spread6 = |pick: &dyn Fn(&LeaveOneOut) -> Vector6<f64>| {
+        let mean = samples.iter().map(pick).sum::<Vector6<f64>>() / nf;
+        let cov = samples
+            .iter()
+            .map(|s| (pick(s) - mean) * (pick(s) - mean).transpose())
+            .sum::<Matrix6<f64>>()
+            * factor;
+        PoseSigma::from_covariance(&cov)
+    };
+    let mean_scale = samples.iter().map(|s| s.board_scale).sum::<f64>() / nf;
+    let var_scale = factor
+        * samples
+            .iter()
+            .map(|s| (s.board_scale - mean_scale).powi(2))
+            .sum::<f64>();
+    Some(JackknifeSigma {
+        flange_to_camera: spread6(&|s| s.flange_to_camera),
+        target_to_base: spread6(&|s| s.target_to_base),
+        board_scale: freedom.board_scale.then(|| var_scale.sqrt()),
+    })
 }
 
 /// Standard deviations of the intrinsics from the bundle's covariance.
@@ -214,7 +280,12 @@ fn inverse_covariance(target_to_base: &Pose, cov: &Matrix6<f64>) -> Matrix6<f64>
     j * cov * j.transpose()
 }
 
-fn report(fit: &BundleFit, per_pose: Vec<PoseVerdict>, rounds: usize) -> FlangeCalibration {
+fn report(
+    fit: &BundleFit,
+    per_pose: Vec<PoseVerdict>,
+    rounds: usize,
+    jackknife: Option<JackknifeSigma>,
+) -> FlangeCalibration {
     let m = &fit.model;
     let t_cov = fit.block6(fit.target_to_base_offset());
     let x_cov = fit.block6(fit.flange_to_camera_offset());
@@ -231,6 +302,7 @@ fn report(fit: &BundleFit, per_pose: Vec<PoseVerdict>, rounds: usize) -> FlangeC
         base_to_target_sigma: PoseSigma::from_covariance(&b_cov),
         board_scale: m.board_scale,
         board_scale_sigma: fit.board_scale_sigma(),
+        jackknife,
         rms_px: fit.rms_px,
         sigma_px: fit.sigma_px,
         points: fit.points,

@@ -81,6 +81,7 @@ fn sigmas_are_honest_by_monte_carlo() {
     let sim = FlangeCampaign::new(12);
     let options = sim.options();
     let mut sum_sq = [0.0; 12];
+    let mut jack_sq = [0.0; 12];
     for run in 0..MC_RUNS {
         let fit = calibrate_flange(&sim.views(Some(1000 + run)), &options).unwrap();
         assert!(fit.per_pose.iter().all(|p| !p.outlier));
@@ -93,10 +94,21 @@ fn sigmas_are_honest_by_monte_carlo() {
             sum_sq[k] += (ex[k] / sx[k]).powi(2);
             sum_sq[6 + k] += (et[k] / st[k]).powi(2);
         }
+        let jack = fit.jackknife.unwrap();
+        let (jx, jt) = (sigmas(&jack.flange_to_camera), sigmas(&jack.target_to_base));
+        for k in 0..6 {
+            jack_sq[k] += (ex[k] / jx[k]).powi(2);
+            jack_sq[6 + k] += (et[k] / jt[k]).powi(2);
+        }
     }
     let z_rms: Vec<f64> = sum_sq.iter().map(|s| (s / MC_RUNS as f64).sqrt()).collect();
+    let z_jack: Vec<f64> = jack_sq
+        .iter()
+        .map(|s| (s / MC_RUNS as f64).sqrt())
+        .collect();
     eprintln!("RMS(error/sigma), hand-eye [t r], board [t r]: {z_rms:.2?}");
-    for (k, z) in z_rms.iter().enumerate() {
+    eprintln!("RMS(error/jackknife sigma), same order: {z_jack:.2?}");
+    for (k, z) in z_rms.iter().chain(&z_jack).enumerate() {
         assert!(
             (Z_RMS_RANGE.0..=Z_RMS_RANGE.1).contains(z),
             "component {k}: RMS(error/sigma) = {z:.2}"
@@ -117,4 +129,59 @@ fn too_few_poses_is_an_error_not_a_panic() {
         v.points.truncate(3);
     }
     assert!(calibrate_flange(&empty, &sim.options()).is_err());
+}
+
+/// Flange-pose noise of a controller that is not exact (mm, deg).
+const FLANGE_NOISE_MM: f64 = 0.3;
+const FLANGE_NOISE_DEG: f64 = 0.03;
+
+/// With noisy flange poses the formal sigmas (white pixel noise) are too
+/// small; the jackknife's stay honest.
+#[test]
+fn jackknife_sigmas_are_honest_with_noisy_flange_poses() {
+    use rand::{rngs::StdRng, SeedableRng};
+    use rand_distr::{Distribution, Normal};
+    let sim = FlangeCampaign::new(14);
+    let options = sim.options();
+    let mut formal_sq = [0.0; 6];
+    let mut jack_sq = [0.0; 6];
+    for run in 0..MC_RUNS {
+        let mut rng = StdRng::seed_from_u64(5000 + run);
+        let (t, r) = (
+            Normal::new(0.0, FLANGE_NOISE_MM).unwrap(),
+            Normal::new(0.0, FLANGE_NOISE_DEG.to_radians()).unwrap(),
+        );
+        let mut views = sim.views(Some(3000 + run));
+        for v in views.iter_mut() {
+            let d = Vector6::from_fn(|i, _| {
+                if i < 3 {
+                    t.sample(&mut rng)
+                } else {
+                    r.sample(&mut rng)
+                }
+            });
+            v.base_to_flange = crate::geometry::perturb_left(&v.base_to_flange, &d);
+        }
+        let fit = calibrate_flange(&views, &options).unwrap();
+        assert!(fit.per_pose.iter().all(|p| !p.outlier));
+        let ex = pose_error(&fit.flange_to_camera, &sim.flange_to_camera);
+        let formal = sigmas(&fit.flange_to_camera_sigma);
+        let jack = sigmas(&fit.jackknife.unwrap().flange_to_camera);
+        for k in 0..6 {
+            formal_sq[k] += (ex[k] / formal[k]).powi(2);
+            jack_sq[k] += (ex[k] / jack[k]).powi(2);
+        }
+    }
+    let z = |s: &[f64; 6]| s.map(|v| (v / MC_RUNS as f64).sqrt());
+    eprintln!(
+        "noisy flange poses, hand-eye RMS(error/sigma): formal {:.2?}, jackknife {:.2?}",
+        z(&formal_sq),
+        z(&jack_sq)
+    );
+    for (k, v) in z(&jack_sq).iter().enumerate() {
+        assert!(
+            (Z_RMS_RANGE.0..=Z_RMS_RANGE.1).contains(v),
+            "component {k}: {v:.2}"
+        );
+    }
 }

@@ -28,6 +28,16 @@ impl PoseSigma {
     }
 }
 
+/// Jackknife standard deviations over the poses in the fit (leave one
+/// pose out, refit): unlike the formal ones they include errors of the
+/// robot poses themselves, which are not white pixel noise.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct JackknifeSigma {
+    pub flange_to_camera: PoseSigma,
+    pub target_to_base: PoseSigma,
+    pub board_scale: Option<f64>,
+}
+
 /// How one pose fared.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PoseVerdict {
@@ -63,6 +73,8 @@ pub struct FlangeCalibration {
     /// True board coordinates / configured ones (1 unless fitted).
     pub board_scale: f64,
     pub board_scale_sigma: Option<f64>,
+    /// Jackknife sigmas; `None` with too few poses to leave one out.
+    pub jackknife: Option<JackknifeSigma>,
     /// RMS reprojection over the inlier poses (px, per point).
     pub rms_px: f64,
     /// Residual standard deviation per image axis (px).

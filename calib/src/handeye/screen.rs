@@ -22,7 +22,8 @@ use crate::kinematics::CalibratedModel;
 /// Screen a joint-based camera campaign: per pose, whether its joints
 /// contradict its image. `model` is the nominal robot with a rough
 /// `world_to_base`/`flange_to_tool` (only the robot's forward kinematics
-/// is used), `intrinsics` the camera stage's result (refined again here).
+/// is used), `intrinsics` the camera stage's result (held: the nominal
+/// kinematics' errors must not bend the camera).
 pub fn screen_joint_poses(
     model: &CalibratedModel,
     intrinsics: &Intrinsics,
@@ -45,6 +46,7 @@ pub fn screen_joint_poses(
     let options = FlangeOptions {
         start_intrinsics: *intrinsics,
         distortion: true,
+        hold_intrinsics: true,
         fit_board_scale: false,
     };
     Ok(calibrate_pairs(&flanges, &pairs, &options)?.per_pose)

@@ -61,6 +61,7 @@ impl FlangeCampaign {
                 t.cy - 10.0,
             ),
             distortion: true,
+            hold_intrinsics: false,
             fit_board_scale: false,
         }
     }
