@@ -66,6 +66,11 @@ pub fn calibrate_pairs(
     let mut reasons: Vec<Option<String>> = vec![None; n];
     let mut cameras: Vec<Option<Pose>> = vec![None; n];
     for k in 0..n {
+        let h = flanges[k].to_homogeneous();
+        if h.iter().any(|v| !v.is_finite()) {
+            reasons[k] = Some("the flange pose is not finite".into());
+            continue;
+        }
         if pairs[k].len() < MIN_DOTS_PER_VIEW {
             reasons[k] = Some(format!(
                 "only {} board points, at least {MIN_DOTS_PER_VIEW} are needed",

@@ -124,6 +124,16 @@ fn too_few_poses_is_an_error_not_a_panic() {
         calibrate_flange(&views[..2], &sim.options()),
         Err(HandEyeError::TooFewPoses { .. })
     ));
+    let mut poisoned = views.clone();
+    poisoned[4].base_to_flange.translation.vector.x = f64::NAN;
+    let fit = calibrate_flange(&poisoned, &sim.options()).unwrap();
+    assert!(fit.per_pose[4].outlier);
+    assert!(fit.per_pose[4]
+        .reason
+        .as_deref()
+        .unwrap()
+        .contains("not finite"));
+    assert_eq!(fit.per_pose.iter().filter(|p| p.outlier).count(), 1);
     let mut empty = views.clone();
     for v in empty.iter_mut().skip(2) {
         v.points.truncate(3);
