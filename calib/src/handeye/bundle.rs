@@ -19,6 +19,7 @@ use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, Point2, Point3, SMatrix, Vect
 use crate::camera::model::Intrinsics;
 use crate::camera::projection_jacobian::so3_left_jacobian;
 use crate::covariance::covariance_from_jacobian;
+use crate::schur::schur_solve;
 use crate::geometry::{perturb_left, Pose};
 use crate::kinematics::projection::{apply_intrinsics, project_with_jacobians, INTRINSIC_NAMES};
 use crate::solver::{solve, LeastSquaresProblem, LmOptions, LmReport, SolverError};
@@ -85,6 +86,21 @@ pub struct BundleFreedom {
     pub intrinsics: Vec<usize>,
     /// Refine the board scale (settles a doubtful printed pitch).
     pub board_scale: bool,
+    /// Errors in the flange poses (errors-in-variables): each pose gets a
+    /// 6-D left correction with a Gaussian prior, whose residual rows are
+    /// `weights .* correction` with `weights = sigma_px / sigma_flange`
+    /// (`[t mm; r rad]`). `None` holds the flange poses exact.
+    pub flange_weights: Option<Vector6<f64>>,
+}
+
+/// Sums of squared residuals (px^2) and redundancies of the residual
+/// groups at the solution, for the variance-component estimate of
+/// [`super::noise`]: dot pixels, flange translation and rotation priors.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VarianceComponents {
+    pub pixel: (f64, f64),
+    pub translation: (f64, f64),
+    pub rotation: (f64, f64),
 }
 
 /// A converged bundle with its covariance.
@@ -102,6 +118,10 @@ pub struct BundleFit {
     pub rms_px: f64,
     pub points: usize,
     pub iterations: usize,
+    /// The fitted flange corrections (zero without `flange_weights`).
+    pub flange_corrections: Vec<Vector6<f64>>,
+    /// Present with `flange_weights`.
+    pub components: Option<VarianceComponents>,
 }
 
 impl BundleFit {
@@ -141,12 +161,46 @@ impl Bundle<'_> {
         self.freedom.intrinsics.len()
     }
 
-    fn params(&self) -> usize {
+    /// Unknowns before the per-pose flange corrections.
+    fn head(&self) -> usize {
         self.ni() + 2 * POSE_PARAMS + usize::from(self.freedom.board_scale)
     }
 
-    fn rows(&self) -> usize {
+    fn corrections(&self) -> usize {
+        match self.freedom.flange_weights {
+            Some(_) => POSE_PARAMS * self.views.len(),
+            None => 0,
+        }
+    }
+
+    fn params(&self) -> usize {
+        self.head() + self.corrections()
+    }
+
+    fn pixel_rows(&self) -> usize {
         2 * self.views.iter().map(|(_, p)| p.len()).sum::<usize>()
+    }
+
+    /// Flange pose of view `k` with its correction in `x` applied.
+    fn flange(&self, x: &DVector<f64>, k: usize) -> Pose {
+        match self.freedom.flange_weights {
+            Some(_) => perturb_left(
+                &self.views[k].0,
+                &Self::delta(x, self.head() + POSE_PARAMS * k),
+            ),
+            None => self.views[k].0,
+        }
+    }
+
+    /// The prior rows `weights .* correction` of every view.
+    fn prior(&self, x: &DVector<f64>) -> Vec<f64> {
+        let Some(w) = self.freedom.flange_weights else {
+            return Vec::new();
+        };
+        let h = self.head();
+        (0..self.corrections())
+            .map(|i| w[i % POSE_PARAMS] * x[h + i])
+            .collect()
     }
 
     fn delta(x: &DVector<f64>, at: usize) -> Vector6<f64> {
@@ -187,10 +241,11 @@ fn block(top_left: Matrix3<f64>, top_right: Matrix3<f64>, bottom: Matrix3<f64>) 
 impl LeastSquaresProblem for Bundle<'_> {
     fn residuals(&self, x: &DVector<f64>) -> Option<DVector<f64>> {
         let model = self.unpack(x);
-        let mut r = Vec::with_capacity(self.rows());
-        for (b, pairs) in self.views {
-            r.extend(model.view_residuals(b, pairs)?);
+        let mut r = Vec::with_capacity(self.pixel_rows() + self.corrections());
+        for (k, (_, pairs)) in self.views.iter().enumerate() {
+            r.extend(model.view_residuals(&self.flange(x, k), pairs)?);
         }
+        r.extend(self.prior(x));
         Some(DVector::from_vec(r))
     }
 
@@ -198,7 +253,9 @@ impl LeastSquaresProblem for Bundle<'_> {
     /// moves `C` by `dt - [C_t - T_t]x dr` and `dr`; moving `X` by
     /// `(dt, dr)` moves `C` by `A_R dt`, `A_R dr` (`A = T B_k`). Rotation
     /// parameters enter through the SO(3) left Jacobian at their current
-    /// value. The board scale moves each target point along itself.
+    /// value. The board scale moves each target point along itself. A flange
+    /// correction `(dt, dr)` moves `C` by `T_R dt - T_R [B_R X_t]x dr` and
+    /// `T_R dr`.
     fn jacobian(&self, x: &DVector<f64>) -> Option<DMatrix<f64>> {
         let model = self.unpack(x);
         let ni = self.ni();
@@ -206,9 +263,18 @@ impl LeastSquaresProblem for Bundle<'_> {
         let rot = |at: usize| so3_left_jacobian(&Vector3::new(x[at + 3], x[at + 4], x[at + 5]));
         let (jl_t, jl_x) = (rot(ot), rot(ox));
         let t_t = model.target_to_base.translation.vector;
-        let mut jac = DMatrix::zeros(self.rows(), self.params());
+        let mut jac = DMatrix::zeros(self.pixel_rows() + self.corrections(), self.params());
+        let t_r = model.target_to_base.rotation.to_rotation_matrix().into_inner();
+        let x_t = model.flange_to_camera.translation.vector;
         let mut row = 0;
-        for (b, pairs) in self.views {
+        for (view, (_, pairs)) in self.views.iter().enumerate() {
+            let b = self.flange(x, view);
+            let ob = self.head() + POSE_PARAMS * view;
+            let m_b = self.freedom.flange_weights.map(|_| {
+                let jl_b = rot(ob);
+                let b_r = b.rotation.to_rotation_matrix().into_inner();
+                block(t_r, -t_r * (b_r * x_t).cross_matrix() * jl_b, t_r * jl_b)
+            });
             let a = model.target_to_base * b;
             let c = a * model.flange_to_camera;
             let a_r = a.rotation.to_rotation_matrix().into_inner();
@@ -233,10 +299,28 @@ impl LeastSquaresProblem for Bundle<'_> {
                     let d = -(jp.fixed_view::<2, 3>(0, 0) * p0.coords);
                     jac.view_mut((row, ox + POSE_PARAMS), (2, 1)).copy_from(&d);
                 }
+                if let Some(m_b) = &m_b {
+                    let jb: SMatrix<f64, 2, 6> = jp * m_b;
+                    jac.view_mut((row, ob), (2, POSE_PARAMS)).copy_from(&jb);
+                }
                 row += 2;
             }
         }
+        if let Some(w) = self.freedom.flange_weights {
+            let h = self.head();
+            for i in 0..self.corrections() {
+                jac[(row + i, h + i)] = w[i % POSE_PARAMS];
+            }
+        }
         Some(jac)
+    }
+
+    /// The flange corrections are block-diagonal: eliminate them.
+    fn solve_normal(&self, a: &DMatrix<f64>, g: &DVector<f64>) -> Option<DVector<f64>> {
+        match self.freedom.flange_weights {
+            Some(_) => schur_solve(a, g, self.head(), POSE_PARAMS),
+            None => None,
+        }
     }
 }
 
@@ -257,10 +341,20 @@ pub fn fit_bundle(
     let n = problem.params();
     let report: LmReport = solve(&problem, DVector::zeros(n), &LmOptions::default())?;
     let model = problem.unpack(&report.x);
-    // Re-linearise about the solution so that the covariance is in the
-    // transforms' own left-perturbation coordinates.
+    let head = problem.head();
+    let flange_corrections: Vec<Vector6<f64>> = (0..problem.corrections() / POSE_PARAMS)
+        .map(|k| Bundle::delta(&report.x, head + POSE_PARAMS * k))
+        .collect();
+    // Re-linearise about the solution (corrected flange poses, zero
+    // corrections) so that the covariance is in the transforms' own
+    // left-perturbation coordinates.
+    let corrected: Vec<(Pose, &Pairs)> = views
+        .iter()
+        .enumerate()
+        .map(|(k, (_, p))| (problem.flange(&report.x, k), *p))
+        .collect();
     let at_solution = Bundle {
-        views,
+        views: &corrected,
         reference: model,
         freedom,
     };
@@ -268,16 +362,51 @@ pub fn fit_bundle(
         .jacobian(&DVector::zeros(n))
         .ok_or(SolverError::NonFinite)?;
     let variance = report.residual_variance();
-    let points = problem.rows() / 2;
+    let pixel_rows = problem.pixel_rows();
+    let pixel_ss = report.residuals.rows(0, pixel_rows).norm_squared();
+    let full_covariance = covariance_from_jacobian(&jac, variance);
+    let components = freedom
+        .flange_weights
+        .map(|_| components(&jac, &report.residuals, pixel_rows, head));
     Ok(BundleFit {
         model,
         freedom: freedom.clone(),
-        covariance: covariance_from_jacobian(&jac, variance),
+        covariance: full_covariance.view((0, 0), (head, head)).into_owned(),
         sigma_px: variance.sqrt(),
-        rms_px: (report.cost / points as f64).sqrt(),
-        points,
+        rms_px: (pixel_ss / (pixel_rows / 2) as f64).sqrt(),
+        points: pixel_rows / 2,
         iterations: report.iterations,
+        flange_corrections,
+        components,
     })
+}
+
+/// Variance components (see [`VarianceComponents`]): the redundancy of a
+/// group of rows `G` is `|G| - tr((J^T J)^-1 J_G^T J_G)`.
+fn components(
+    jac: &DMatrix<f64>,
+    residuals: &DVector<f64>,
+    pixel_rows: usize,
+    head: usize,
+) -> VarianceComponents {
+    let inverse = covariance_from_jacobian(jac, 1.0);
+    let pixels = jac.rows(0, pixel_rows);
+    let hat_pixels = (&inverse * (pixels.transpose() * pixels)).trace();
+    let mut prior = [(0.0, 0.0); 2];
+    for i in 0..jac.ncols() - head {
+        let (row, col) = (pixel_rows + i, head + i);
+        let group = &mut prior[usize::from(i % POSE_PARAMS >= 3)];
+        group.0 += residuals[row].powi(2);
+        group.1 += 1.0 - jac[(row, col)].powi(2) * inverse[(col, col)];
+    }
+    VarianceComponents {
+        pixel: (
+            residuals.rows(0, pixel_rows).norm_squared(),
+            pixel_rows as f64 - hat_pixels,
+        ),
+        translation: prior[0],
+        rotation: prior[1],
+    }
 }
 
 #[cfg(test)]

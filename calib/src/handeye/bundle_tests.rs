@@ -1,4 +1,4 @@
-use nalgebra::{DVector, Point2, Point3};
+use nalgebra::{DVector, Point2, Point3, Vector6};
 
 use super::*;
 use crate::geometry::pose_from_xyz_rpy_deg;
@@ -40,6 +40,7 @@ fn analytic_jacobian_matches_finite_differences_away_from_the_reference() {
     let freedom = BundleFreedom {
         intrinsics: (0..BUNDLE_INTRINSICS).collect(),
         board_scale: true,
+        flange_weights: Some(Vector6::new(0.5, 0.7, 0.9, 300.0, 400.0, 500.0)),
     };
     let problem = Bundle {
         views: &views,

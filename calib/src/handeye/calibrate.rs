@@ -121,6 +121,7 @@ pub fn calibrate_pairs(
             PINHOLE_INTRINSICS.to_vec()
         },
         board_scale: options.fit_board_scale,
+        flange_weights: None,
     };
     let mut model = BundleModel {
         intrinsics: options.start_intrinsics,
