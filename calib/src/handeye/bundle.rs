@@ -18,10 +18,10 @@ use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, Point2, Point3, SMatrix, Vect
 
 use crate::camera::model::Intrinsics;
 use crate::camera::projection_jacobian::so3_left_jacobian;
-use crate::covariance::covariance_from_jacobian;
-use crate::schur::schur_solve;
+use crate::covariance::covariance_from_normal;
 use crate::geometry::{perturb_left, Pose};
 use crate::kinematics::projection::{apply_intrinsics, project_with_jacobians, INTRINSIC_NAMES};
+use crate::schur::schur_solve;
 use crate::solver::{solve, LeastSquaresProblem, LmOptions, LmReport, SolverError};
 
 /// Number of intrinsics the bundle can refine (k3 stays at its start).
@@ -264,7 +264,11 @@ impl LeastSquaresProblem for Bundle<'_> {
         let (jl_t, jl_x) = (rot(ot), rot(ox));
         let t_t = model.target_to_base.translation.vector;
         let mut jac = DMatrix::zeros(self.pixel_rows() + self.corrections(), self.params());
-        let t_r = model.target_to_base.rotation.to_rotation_matrix().into_inner();
+        let t_r = model
+            .target_to_base
+            .rotation
+            .to_rotation_matrix()
+            .into_inner();
         let x_t = model.flange_to_camera.translation.vector;
         let mut row = 0;
         for (view, (_, pairs)) in self.views.iter().enumerate() {
@@ -364,10 +368,14 @@ pub fn fit_bundle(
     let variance = report.residual_variance();
     let pixel_rows = problem.pixel_rows();
     let pixel_ss = report.residuals.rows(0, pixel_rows).norm_squared();
-    let full_covariance = covariance_from_jacobian(&jac, variance);
+    // The symmetric eigendecomposition of J^T J (n <= 21 + 6 per pose)
+    // costs far less than the SVD of the tall J.
+    let normal = jac.transpose() * &jac;
+    let inverse = covariance_from_normal(&normal, 1.0);
+    let full_covariance = &inverse * variance;
     let components = freedom
         .flange_weights
-        .map(|_| components(&jac, &report.residuals, pixel_rows, head));
+        .map(|_| components(&jac, &inverse, &report.residuals, pixel_rows, head));
     Ok(BundleFit {
         model,
         freedom: freedom.clone(),
@@ -385,13 +393,13 @@ pub fn fit_bundle(
 /// group of rows `G` is `|G| - tr((J^T J)^-1 J_G^T J_G)`.
 fn components(
     jac: &DMatrix<f64>,
+    inverse: &DMatrix<f64>,
     residuals: &DVector<f64>,
     pixel_rows: usize,
     head: usize,
 ) -> VarianceComponents {
-    let inverse = covariance_from_jacobian(jac, 1.0);
     let pixels = jac.rows(0, pixel_rows);
-    let hat_pixels = (&inverse * (pixels.transpose() * pixels)).trace();
+    let hat_pixels = (inverse * (pixels.transpose() * pixels)).trace();
     let mut prior = [(0.0, 0.0); 2];
     for i in 0..jac.ncols() - head {
         let (row, col) = (pixel_rows + i, head + i);

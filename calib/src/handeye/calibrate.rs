@@ -9,6 +9,7 @@ use super::bundle::{
     fit_bundle, BundleFit, BundleFreedom, BundleModel, Pairs, BUNDLE_INTRINSICS, PINHOLE_INTRINSICS,
 };
 use super::error::HandEyeError;
+use super::noise::{fit_with_flange_noise, FlangeNoise};
 use super::result::{FlangeCalibration, JackknifeSigma, PoseSigma, PoseVerdict};
 use super::robust::robust_limit;
 use super::start::{board_consensus, board_estimates, board_probe, robust_hand_eye};
@@ -37,6 +38,9 @@ pub struct FlangeOptions {
     pub hold_intrinsics: bool,
     /// Refine the board scale (a printed pitch in doubt).
     pub fit_board_scale: bool,
+    /// Let the flange poses carry noise, estimated from the data
+    /// ([`super::noise`]), in the final fit; else they are exact.
+    pub estimate_flange_noise: bool,
 }
 
 /// Hand–eye, board and intrinsics from controller flange poses.
@@ -178,8 +182,22 @@ pub fn calibrate_pairs(
         })
         .collect();
     let views: Vec<(Pose, &Pairs)> = inliers.iter().map(|&k| (flanges[k], pairs[k])).collect();
+    let (fit, freedom, noise) = if options.estimate_flange_noise {
+        let (fit, noise) = fit_with_flange_noise(
+            &views,
+            &fit.model,
+            &freedom,
+            FlangeNoise::start(fit.sigma_px),
+        )?;
+        let freedom = fit.freedom.clone();
+        (fit, freedom, Some(noise))
+    } else {
+        (fit, freedom, None)
+    };
     let jackknife = jackknife(&views, &fit, &freedom);
-    Ok(report(&fit, per_pose, rounds, jackknife))
+    let mut result = report(&fit, per_pose, rounds, jackknife);
+    result.flange_noise = noise;
+    Ok(result)
 }
 
 /// One leave-one-out refit, relative to the full fit.
@@ -309,6 +327,7 @@ fn report(
         board_scale: m.board_scale,
         board_scale_sigma: fit.board_scale_sigma(),
         jackknife,
+        flange_noise: None,
         rms_px: fit.rms_px,
         sigma_px: fit.sigma_px,
         points: fit.points,

@@ -195,3 +195,63 @@ fn jackknife_sigmas_are_honest_with_noisy_flange_poses() {
         );
     }
 }
+
+/// Noise draws of the errors-in-variables check (each runs the noise
+/// estimation and a jackknife: kept small).
+const EIV_RUNS: u64 = 8;
+
+/// Flange noise estimated from the data: its size is found, and the formal
+/// sigmas (which then include it) are honest.
+#[test]
+fn estimated_flange_noise_makes_formal_sigmas_honest() {
+    use rand::{rngs::StdRng, SeedableRng};
+    use rand_distr::{Distribution, Normal};
+    let sim = FlangeCampaign::new(15);
+    let options = FlangeOptions {
+        estimate_flange_noise: true,
+        ..sim.options()
+    };
+    let mut z_sq = [0.0; 6];
+    let mut noise_t = Vec::new();
+    let mut noise_r = Vec::new();
+    for run in 0..EIV_RUNS {
+        let mut rng = StdRng::seed_from_u64(7000 + run);
+        let (t, r) = (
+            Normal::new(0.0, FLANGE_NOISE_MM).unwrap(),
+            Normal::new(0.0, FLANGE_NOISE_DEG.to_radians()).unwrap(),
+        );
+        let mut views = sim.views(Some(6000 + run));
+        for v in views.iter_mut() {
+            let d = Vector6::from_fn(|i, _| {
+                if i < 3 {
+                    t.sample(&mut rng)
+                } else {
+                    r.sample(&mut rng)
+                }
+            });
+            v.base_to_flange = crate::geometry::perturb_left(&v.base_to_flange, &d);
+        }
+        let fit = calibrate_flange(&views, &options).unwrap();
+        let noise = fit.flange_noise.unwrap();
+        noise_t.push(noise.translation_mm);
+        noise_r.push(noise.rotation_rad.to_degrees());
+        let ex = pose_error(&fit.flange_to_camera, &sim.flange_to_camera);
+        let s = sigmas(&fit.flange_to_camera_sigma);
+        for k in 0..6 {
+            z_sq[k] += (ex[k] / s[k]).powi(2);
+        }
+    }
+    let z = z_sq.map(|v| (v / EIV_RUNS as f64).sqrt());
+    eprintln!(
+        "estimated flange noise: t {noise_t:.3?} mm, r {noise_r:.4?} deg (true {FLANGE_NOISE_MM}, {FLANGE_NOISE_DEG}); hand-eye RMS(error/formal sigma) {z:.2?}"
+    );
+    let median = |v: &[f64]| super::robust::median(v);
+    assert!((median(&noise_t) / FLANGE_NOISE_MM).ln().abs() < 2f64.ln());
+    assert!((median(&noise_r) / FLANGE_NOISE_DEG).ln().abs() < 2f64.ln());
+    for (k, v) in z.iter().enumerate() {
+        assert!(
+            (Z_RMS_RANGE.0..=Z_RMS_RANGE.1).contains(v),
+            "component {k}: {v:.2}"
+        );
+    }
+}

@@ -147,6 +147,7 @@ fn options(fit_board_scale: bool) -> FlangeOptions {
         distortion: true,
         hold_intrinsics: false,
         fit_board_scale,
+        estimate_flange_noise: false,
     }
 }
 
@@ -254,6 +255,19 @@ fn rct_wrist_circles_hand_eye_and_printed_pitch() {
     let (held_figures, held_spread) = pitch_and_hand_eye(&held);
     eprintln!(
         "held: pitch and hand-eye t {held_figures:.3?} mm, jackknife sigma {held_spread:.3?} mm"
+    );
+
+    // The flange poses let carry noise, estimated from the data.
+    let noisy_options = FlangeOptions {
+        estimate_flange_noise: true,
+        ..options(true)
+    };
+    let noisy = calibrate_flange(&configured, &noisy_options).unwrap();
+    summary("joint, pitch fitted, flange noise estimated", &noisy);
+    let (noisy_figures, noisy_spread) = pitch_and_hand_eye(&noisy);
+    eprintln!(
+        "flange noise {:?}: pitch and hand-eye t {noisy_figures:.3?} mm, jackknife sigma {noisy_spread:.3?} mm",
+        noisy.flange_noise
     );
 
     // The pitch the data say, against the configured and the printed one.

@@ -73,6 +73,8 @@ pub struct FlangeCalibration {
     /// True board coordinates / configured ones (1 unless fitted).
     pub board_scale: f64,
     pub board_scale_sigma: Option<f64>,
+    /// The estimated noise when the flange poses were let carry noise.
+    pub flange_noise: Option<super::noise::FlangeNoise>,
     /// Jackknife sigmas; `None` with too few poses to leave one out.
     pub jackknife: Option<JackknifeSigma>,
     /// RMS reprojection over the inlier poses (px, per point).

@@ -48,6 +48,7 @@ pub fn screen_joint_poses(
         distortion: true,
         hold_intrinsics: true,
         fit_board_scale: false,
+        estimate_flange_noise: false,
     };
     Ok(calibrate_pairs(&flanges, &pairs, &options)?.per_pose)
 }

@@ -63,6 +63,7 @@ impl FlangeCampaign {
             distortion: true,
             hold_intrinsics: false,
             fit_board_scale: false,
+            estimate_flange_noise: false,
         }
     }
 
