@@ -16,6 +16,8 @@
 
 use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, Point2, Point3, SMatrix, Vector3, Vector6};
 
+use super::redundancy::components;
+pub use super::redundancy::VarianceComponents;
 use crate::camera::model::Intrinsics;
 use crate::camera::projection_jacobian::so3_left_jacobian;
 use crate::covariance::covariance_from_normal;
@@ -91,16 +93,6 @@ pub struct BundleFreedom {
     /// `weights .* correction` with `weights = sigma_px / sigma_flange`
     /// (`[t mm; r rad]`). `None` holds the flange poses exact.
     pub flange_weights: Option<Vector6<f64>>,
-}
-
-/// Sums of squared residuals (px^2) and redundancies of the residual
-/// groups at the solution, for the variance-component estimate of
-/// [`super::noise`]: dot pixels, flange translation and rotation priors.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct VarianceComponents {
-    pub pixel: (f64, f64),
-    pub translation: (f64, f64),
-    pub rotation: (f64, f64),
 }
 
 /// A converged bundle with its covariance.
@@ -387,34 +379,6 @@ pub fn fit_bundle(
         flange_corrections,
         components,
     })
-}
-
-/// Variance components (see [`VarianceComponents`]): the redundancy of a
-/// group of rows `G` is `|G| - tr((J^T J)^-1 J_G^T J_G)`.
-fn components(
-    jac: &DMatrix<f64>,
-    inverse: &DMatrix<f64>,
-    residuals: &DVector<f64>,
-    pixel_rows: usize,
-    head: usize,
-) -> VarianceComponents {
-    let pixels = jac.rows(0, pixel_rows);
-    let hat_pixels = (inverse * (pixels.transpose() * pixels)).trace();
-    let mut prior = [(0.0, 0.0); 2];
-    for i in 0..jac.ncols() - head {
-        let (row, col) = (pixel_rows + i, head + i);
-        let group = &mut prior[usize::from(i % POSE_PARAMS >= 3)];
-        group.0 += residuals[row].powi(2);
-        group.1 += 1.0 - jac[(row, col)].powi(2) * inverse[(col, col)];
-    }
-    VarianceComponents {
-        pixel: (
-            residuals.rows(0, pixel_rows).norm_squared(),
-            pixel_rows as f64 - hat_pixels,
-        ),
-        translation: prior[0],
-        rotation: prior[1],
-    }
 }
 
 #[cfg(test)]

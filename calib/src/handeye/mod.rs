@@ -13,6 +13,7 @@ pub mod bundle;
 pub mod calibrate;
 pub mod error;
 pub mod noise;
+pub mod redundancy;
 pub mod result;
 pub mod robust;
 pub mod screen;
