@@ -46,8 +46,9 @@ pub struct PoseVerdict {
     pub outlier: bool,
     /// Why it was left out; `None` for a pose in the fit.
     pub reason: Option<String>,
-    /// Reprojection RMS of this pose under the final fit (px, per point),
-    /// predicted from its robot pose; infinite when it cannot be computed.
+    /// Reprojection RMS of this pose under the screening fit (flange poses
+    /// as given; px, per point), predicted from its robot pose; infinite
+    /// when it cannot be computed.
     pub rms_px: f64,
     /// Distance of this pose's own board estimate from the consensus (mm,
     /// largest over the board's corners); NaN without a PnP pose.
