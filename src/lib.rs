@@ -23,6 +23,7 @@ pub mod jobs;
 pub mod listen;
 pub mod metrics;
 pub mod pipeline;
+pub mod print;
 pub mod report;
 pub mod schema;
 pub mod server;

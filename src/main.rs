@@ -22,6 +22,18 @@ enum Command {
     Token(TokenCommand),
     /// Print the OpenAPI document (JSON).
     Openapi,
+    /// Write a printable target page (1:1, scale bar, spec in the margin),
+    /// e.g. `robocal target rows=9 cols=9 pitch_mm=25 dot_diameter_mm=8
+    /// origin_marker_diameter_mm=12 format=pdf --out board.pdf`. The keys are
+    /// those of `GET /v1/targets/render`.
+    Target {
+        /// The target's fields as KEY=VALUE (kind, rows, cols, ..., format).
+        #[arg(required = true)]
+        spec: Vec<String>,
+        /// Output file (standard output when absent).
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+    },
     /// Simulate a campaign (robot with perturbed kinematics, flange camera,
     /// rendered images and the truth) into a directory.
     Simulate {
@@ -217,6 +229,7 @@ async fn main() -> ExitCode {
         Command::Token(TokenCommand::Revoke { id, db }) => {
             robocal::api::tokens::revoke_from_cli(&db.database_url, &id).await
         }
+        Command::Target { spec, out } => robocal::print::render_to(&spec, out.as_deref()),
         Command::Openapi => {
             println!("{}", robocal::api::openapi_json());
             Ok(())

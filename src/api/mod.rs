@@ -41,6 +41,7 @@ pub mod results;
 pub mod robots;
 pub mod sessions;
 pub mod staged_images;
+pub mod targets;
 pub mod tokens;
 pub mod upload;
 
@@ -97,6 +98,7 @@ fn api_router() -> OpenApiRouter<AppState> {
         .merge(results::router())
         .merge(report_links::router())
         .merge(tokens::router())
+        .merge(targets::router())
 }
 
 /// The routes and their OpenAPI document with the shared failure answers.

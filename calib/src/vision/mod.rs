@@ -7,6 +7,7 @@ pub mod bias;
 pub mod blobs;
 pub mod board_point;
 pub mod detect;
+pub mod drawing;
 pub mod ellipse;
 pub mod error;
 pub mod grid;
@@ -18,6 +19,7 @@ pub mod threshold;
 
 pub use board_point::{BoardDetection, BoardPoint};
 pub use detect::{detect, detect_dynamic, detect_with, DetectOptions, Detection, DotObservation};
+pub use drawing::{BoardDrawing, Mark};
 pub use ellipse::{DotQuality, Ellipse};
 pub use error::DetectError;
 pub use image::{decode_image, DecodeLimits, GrayImage};

@@ -1,0 +1,56 @@
+//! `/v1/targets/render`: a printable board at exact scale (issue "Targets
+//! people own"). Pure: nothing is stored, any reader may ask.
+
+use axum::extract::RawQuery;
+use axum::http::header;
+use axum::response::{IntoResponse, Response};
+use utoipa_axum::router::OpenApiRouter;
+use utoipa_axum::routes;
+
+use super::error::{ApiError, ApiResult, Problem};
+use super::AppState;
+use crate::print::{self, Page, PageFormat};
+
+pub fn router() -> OpenApiRouter<AppState> {
+    OpenApiRouter::new().routes(routes!(render_target))
+}
+
+/// A target drawn 1:1 on the smallest ISO sheet that holds it, with a scale
+/// bar and the session `target` spec in the margin.
+#[utoipa::path(get, path = "/v1/targets/render", tag = "targets",
+    params(
+        ("kind" = Option<String>, Query, description = "Target kind: `dots` (default; robocal's dot grid)"),
+        ("rows" = Option<u32>, Query, minimum = 2, maximum = 200, description = "dots: dots along a column"),
+        ("cols" = Option<u32>, Query, minimum = 2, maximum = 200, description = "dots: dots along a row"),
+        ("pitch_mm" = Option<f64>, Query, description = "dots: centre-to-centre spacing, mm"),
+        ("dot_diameter_mm" = Option<f64>, Query, description = "dots: diameter of an ordinary dot, mm (below pitch_mm)"),
+        ("origin_marker_diameter_mm" = Option<f64>, Query, description = "dots: diameter of the larger origin dot, mm; omit for a marker-less grid"),
+        ("format" = Option<String>, Query, description = "`svg` (default) or `pdf`"),
+    ),
+    responses(
+        (status = 200, description = "The page: SVG in millimetres (`format=svg`) or a one-page PDF (`format=pdf`)", content_type = "image/svg+xml", body = String),
+        (status = 422, description = "A parameter is missing or cannot be printed; `errors[].field` names it", body = Problem, content_type = "application/problem+json"),
+    ))]
+async fn render_target(RawQuery(query): RawQuery) -> ApiResult<Response> {
+    let pairs = query_pairs(query.as_deref().unwrap_or(""))?;
+    let request = print::parse_pairs(&pairs).map_err(ApiError::validation)?;
+    let page = Page::layout(&request.target.drawing(), &request.target.spec_lines());
+    let body = match request.format {
+        PageFormat::Svg => print::svg::write_svg(&page).into_bytes(),
+        PageFormat::Pdf => print::pdf::write_pdf(&page),
+    };
+    Ok((
+        [(header::CONTENT_TYPE, request.format.content_type())],
+        body,
+    )
+        .into_response())
+}
+
+fn query_pairs(query: &str) -> ApiResult<Vec<(String, String)>> {
+    let uri: axum::http::Uri = format!("/?{query}")
+        .parse()
+        .map_err(|_| ApiError::malformed("query", "unreadable query string"))?;
+    axum::extract::Query::<Vec<(String, String)>>::try_from_uri(&uri)
+        .map(|q| q.0)
+        .map_err(|e| ApiError::malformed("query", e.body_text()))
+}

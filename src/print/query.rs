@@ -1,0 +1,248 @@
+//! A printable target from flat `key=value` pairs: the query string of
+//! `GET /v1/targets/render` and the arguments of `robocal target`. The keys
+//! are a session target's fields (api.md "sessions"), plus `format`.
+
+use std::collections::BTreeMap;
+
+use robocal_calib::vision::target::MAX_GRID_SIDE;
+use robocal_calib::vision::{BoardDrawing, TargetSpec};
+
+use super::page::PageFormat;
+use crate::schema::{Checker, FieldError};
+
+/// Largest board side printed, mm (an A0 sheet's long side is 1189 mm; a
+/// custom sheet may be a little larger, a wall is not).
+pub const MAX_PRINT_MM: f64 = 2000.0;
+
+/// Keys a dot board takes.
+const DOT_KEYS: [&str; 5] = [
+    "rows",
+    "cols",
+    "pitch_mm",
+    "dot_diameter_mm",
+    "origin_marker_diameter_mm",
+];
+
+/// Why pairs could not be turned into a printable target.
+pub type PrintError = Vec<FieldError>;
+
+/// A target that can be printed, with the page format asked for.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PrintRequest {
+    pub target: PrintableTarget,
+    pub format: PageFormat,
+}
+
+/// The target kinds robocal prints.
+#[derive(Debug, Clone, PartialEq)]
+pub enum PrintableTarget {
+    /// robocal's dot grid (with or without the origin marker).
+    Dots(TargetSpec),
+}
+
+impl PrintableTarget {
+    pub fn drawing(&self) -> BoardDrawing {
+        match self {
+            PrintableTarget::Dots(t) => t.drawing(),
+        }
+    }
+
+    /// The margin text: the spec as a session's `target` JSON, so the sheet
+    /// says how to configure a session for it.
+    pub fn spec_lines(&self) -> Vec<String> {
+        match self {
+            PrintableTarget::Dots(t) => {
+                let marker = t
+                    .origin_marker_diameter_mm
+                    .map(|m| format!(", \"origin_marker_diameter_mm\": {m}"))
+                    .unwrap_or_default();
+                vec![
+                    format!(
+                        "robocal dot grid {} x {}, pitch {} mm, dots {} mm",
+                        t.rows, t.cols, t.pitch_mm, t.dot_diameter_mm
+                    ),
+                    format!(
+                        "session target: {{\"kind\": \"dots\", \"rows\": {}, \"cols\": {}, \"pitch_mm\": {}, \"dot_diameter_mm\": {}{marker}}}",
+                        t.rows, t.cols, t.pitch_mm, t.dot_diameter_mm
+                    ),
+                ]
+            }
+        }
+    }
+}
+
+/// Parses the pairs; every problem is reported with the key it concerns.
+pub fn parse_pairs(pairs: &[(String, String)]) -> Result<PrintRequest, PrintError> {
+    let mut c = Checker::default();
+    let mut map: BTreeMap<&str, &str> = BTreeMap::new();
+    for (k, v) in pairs {
+        if map.insert(k.as_str(), v.as_str()).is_some() {
+            c.fail(k.clone(), "given more than once");
+        }
+    }
+    let format = match map.remove("format") {
+        None | Some("svg") => PageFormat::Svg,
+        Some("pdf") => PageFormat::Pdf,
+        Some(_) => {
+            c.fail("format", "must be svg or pdf");
+            PageFormat::Svg
+        }
+    };
+    let target = match map.remove("kind").unwrap_or("dots") {
+        "dots" => dots(&mut c, &mut map),
+        other => {
+            c.fail(
+                "kind",
+                format!("{other:?} is not a printable target kind (dots)"),
+            );
+            None
+        }
+    };
+    for k in map.keys() {
+        c.fail(*k, "unknown parameter for this kind");
+    }
+    c.finish()?;
+    target
+        .map(|target| PrintRequest { target, format })
+        .ok_or_else(|| vec![FieldError::new("kind", "incomplete target")])
+}
+
+fn dots(c: &mut Checker, map: &mut BTreeMap<&str, &str>) -> Option<PrintableTarget> {
+    let mut got = BTreeMap::new();
+    for key in DOT_KEYS {
+        if let Some(v) = map.remove(key) {
+            got.insert(key, v);
+        }
+    }
+    let side = |c: &mut Checker, key: &str| -> Option<usize> {
+        let v = number(c, &got, key)?;
+        if v.fract() != 0.0 || !(2.0..=MAX_GRID_SIDE as f64).contains(&v) {
+            c.fail(key, format!("must be a whole number 2 to {MAX_GRID_SIDE}"));
+            return None;
+        }
+        Some(v as usize)
+    };
+    let rows = side(c, "rows");
+    let cols = side(c, "cols");
+    let pitch_mm = number(c, &got, "pitch_mm");
+    let dot_diameter_mm = number(c, &got, "dot_diameter_mm");
+    let origin_marker_diameter_mm = match got.get("origin_marker_diameter_mm") {
+        None => None,
+        Some(_) => Some(number(c, &got, "origin_marker_diameter_mm")?),
+    };
+    let (rows, cols, pitch_mm, dot_diameter_mm) = (rows?, cols?, pitch_mm?, dot_diameter_mm?);
+    c.positive("pitch_mm", pitch_mm, MAX_PRINT_MM, "mm");
+    c.positive("dot_diameter_mm", dot_diameter_mm, MAX_PRINT_MM, "mm");
+    if pitch_mm > 0.0 && dot_diameter_mm > 0.0 && dot_diameter_mm >= pitch_mm {
+        c.fail(
+            "dot_diameter_mm",
+            "must be below pitch_mm (dots would touch)",
+        );
+    }
+    if let Some(m) = origin_marker_diameter_mm {
+        if !(m > dot_diameter_mm && m < 2.0 * pitch_mm - dot_diameter_mm) {
+            c.fail(
+                "origin_marker_diameter_mm",
+                "must exceed dot_diameter_mm and stay clear of the neighbouring dots",
+            );
+        }
+    }
+    let spec = TargetSpec {
+        rows,
+        cols,
+        pitch_mm,
+        dot_diameter_mm,
+        origin_marker_diameter_mm,
+    };
+    if (rows.max(cols) + 1) as f64 * pitch_mm > MAX_PRINT_MM {
+        c.fail(
+            "pitch_mm",
+            format!("the board would exceed {MAX_PRINT_MM} mm"),
+        );
+    }
+    Some(PrintableTarget::Dots(spec))
+}
+
+/// A required finite number.
+fn number(c: &mut Checker, got: &BTreeMap<&str, &str>, key: &str) -> Option<f64> {
+    match got.get(key).map(|v| v.trim().parse::<f64>()) {
+        None => {
+            c.fail(key, "required");
+            None
+        }
+        Some(Ok(v)) if v.is_finite() => Some(v),
+        Some(_) => {
+            c.fail(key, "must be a finite number");
+            None
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pairs(s: &str) -> Vec<(String, String)> {
+        s.split('&')
+            .filter(|p| !p.is_empty())
+            .map(|p| {
+                let (k, v) = p.split_once('=').unwrap_or((p, ""));
+                (k.to_string(), v.to_string())
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_production_board_parses_with_kind_omitted() {
+        let r = parse_pairs(&pairs(
+            "rows=9&cols=9&pitch_mm=25&dot_diameter_mm=8&origin_marker_diameter_mm=12&format=pdf",
+        ))
+        .unwrap();
+        assert_eq!(r.target, PrintableTarget::Dots(TargetSpec::robocal_9x9()));
+        assert_eq!(r.format, PageFormat::Pdf);
+    }
+
+    #[test]
+    fn each_bad_field_is_named() {
+        let fields = |q: &str| -> Vec<String> {
+            parse_pairs(&pairs(q))
+                .unwrap_err()
+                .into_iter()
+                .map(|e| e.field)
+                .collect()
+        };
+        assert_eq!(
+            fields("rows=9&cols=9&pitch_mm=-1&dot_diameter_mm=8"),
+            ["pitch_mm"]
+        );
+        assert_eq!(
+            fields("rows=1&cols=9&pitch_mm=25&dot_diameter_mm=8"),
+            ["rows"]
+        );
+        assert_eq!(
+            fields("rows=9&cols=9&pitch_mm=25&dot_diameter_mm=30"),
+            ["dot_diameter_mm"]
+        );
+        assert_eq!(
+            fields("rows=9&cols=9&pitch_mm=25&dot_diameter_mm=8&format=png"),
+            ["format"]
+        );
+        assert_eq!(fields("kind=hexagons"), ["kind"]);
+        assert_eq!(
+            fields("rows=9&cols=9&pitch_mm=25&dot_diameter_mm=8&colour=red"),
+            ["colour"]
+        );
+        assert_eq!(
+            fields("rows=9&cols=9&pitch_mm=NaN&dot_diameter_mm=8"),
+            ["pitch_mm"]
+        );
+        assert_eq!(
+            fields("rows=9&rows=8&cols=9&pitch_mm=25&dot_diameter_mm=8"),
+            ["rows"]
+        );
+        assert_eq!(
+            fields("rows=200&cols=200&pitch_mm=25&dot_diameter_mm=8"),
+            ["pitch_mm"]
+        );
+    }
+}
