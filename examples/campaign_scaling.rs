@@ -90,7 +90,7 @@ fn main() {
     let args = Args::parse();
     if let Some(dir) = args.one {
         let start = Instant::now();
-        let report = robocal::campaign::calibrate_local(&dir, "bench").unwrap();
+        let report = robocal::cli::campaign::calibrate_local(&dir, "bench").unwrap();
         let secs = start.elapsed().as_secs_f64();
         println!(
             "{secs:.2} {:.1} {:.3}",
@@ -109,7 +109,7 @@ fn main() {
         let (cal, val) = split(largest);
         eprintln!("rendering {largest} poses into {} ...", full.display());
         let start = Instant::now();
-        robocal::campaign::simulate(&args.robot, &full, cal, val, SEED).unwrap();
+        robocal::cli::campaign::simulate(&args.robot, &full, cal, val, SEED).unwrap();
         eprintln!("rendered in {:.0} s", start.elapsed().as_secs_f64());
     }
     let exe = std::env::current_exe().unwrap();

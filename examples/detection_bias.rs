@@ -12,7 +12,7 @@
 //! ```
 use nalgebra::{Point2, Point3};
 use rand::{rngs::StdRng, SeedableRng};
-use robocal::campaign::{rendered_spec, simulated_target};
+use robocal::cli::campaign::{rendered_spec, simulated_target};
 use robocal_calib::camera::bias::centre_bias;
 use robocal_calib::sim::campaign::simulate_campaign;
 use robocal_calib::sim::campaign_io::PoseSet;

@@ -14,7 +14,7 @@ use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
 use clap::Parser;
-use robocal::client::Client;
+use robocal::cli::client::Client;
 
 #[derive(Parser)]
 struct Args {
@@ -96,7 +96,7 @@ async fn main() {
     let args = Args::parse();
     let work = tempfile::tempdir().unwrap();
     let campaign = work.path().join("campaign");
-    robocal::campaign::simulate(&args.robot, &campaign, args.cal, args.val, 7).unwrap();
+    robocal::cli::campaign::simulate(&args.robot, &campaign, args.cal, args.val, 7).unwrap();
     let server = start_server(work.path());
     let client = Client::new(&server.base, None).unwrap();
 

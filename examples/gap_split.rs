@@ -19,8 +19,8 @@
 use clap::Parser;
 use nalgebra::Point3;
 use rand::{rngs::StdRng, Rng, SeedableRng};
-use robocal::campaign::{run_local, simulate, simulated_target};
-use robocal::evaluate::model_of;
+use robocal::cli::campaign::{run_local, simulate, simulated_target};
+use robocal::service::evaluate::model_of;
 use robocal_calib::camera::Intrinsics;
 use robocal_calib::kinematics::identify::{validate, JointNoise};
 use robocal_calib::kinematics::joint_refine::{joint_refine, ImageNoise, ImagePose};

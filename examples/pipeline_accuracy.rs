@@ -1,7 +1,7 @@
 //! Issue 5's accuracy targets through the service's own pipeline (issue 6):
 //! rendered campaigns (images, detection, camera step, pose measurement,
 //! identification, joint refinement — exactly what a calibration job runs)
-//! judged against the simulator's truth (`robocal::accuracy`):
+//! judged against the simulator's truth (`robocal::testkit::accuracy`):
 //!
 //! * validation error = predicted vs **true** camera position at the
 //!   validation poses, for the default job, the two-step job
@@ -16,9 +16,9 @@
 //! ```
 
 use clap::Parser;
-use robocal::accuracy::{compare_with_truth, dot_noise_px, oracle_floors};
-use robocal::campaign::{run_local_with, simulate};
+use robocal::cli::campaign::{run_local_with, simulate};
 use robocal::schema::job::CalibrationOptions;
+use robocal::testkit::accuracy::{compare_with_truth, dot_noise_px, oracle_floors};
 
 /// A parameter further than this many sigmas from the truth is a miss.
 const SIGMA_BOUND: f64 = 3.0;

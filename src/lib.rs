@@ -7,16 +7,10 @@
 //! thread, and stores the outcome.
 pub use robocal_calib as calib;
 
-pub mod accuracy;
 pub mod api;
-pub mod camera_reuse;
-pub mod campaign;
 pub mod cli;
-pub mod client;
 pub mod config;
-pub mod dataset;
 pub mod domain;
-pub mod evaluate;
 pub mod housekeeping;
 pub mod imaging;
 pub mod jobs;
@@ -27,5 +21,7 @@ pub mod print;
 pub mod report;
 pub mod schema;
 pub mod server;
+pub mod service;
 pub mod store;
-pub mod tls;
+#[cfg(feature = "testkit")]
+pub mod testkit;

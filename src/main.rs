@@ -143,8 +143,8 @@ struct ServerArgs {
 }
 
 impl ServerArgs {
-    fn client(&self) -> Result<robocal::client::Client, String> {
-        robocal::client::Client::with_ca_cert(
+    fn client(&self) -> Result<robocal::cli::client::Client, String> {
+        robocal::cli::client::Client::with_ca_cert(
             &self.url,
             self.token.clone(),
             self.ca_cert.as_deref(),
@@ -240,7 +240,7 @@ async fn main() -> ExitCode {
             val,
             seed,
             dir,
-        } => robocal::campaign::simulate(&robot, &dir, cal, val, seed)
+        } => robocal::cli::campaign::simulate(&robot, &dir, cal, val, seed)
             .map(|_| eprintln!("campaign written to {}", dir.display())),
         Command::Upload {
             serial,
@@ -306,15 +306,16 @@ async fn main() -> ExitCode {
                 .map_err(|e| e.to_string()),
             Err(e) => Err(e),
         },
-        Command::CalibrateLocal { dir, html } => robocal::campaign::calibrate_local(&dir, "local")
-            .and_then(|report| {
+        Command::CalibrateLocal { dir, html } => {
+            robocal::cli::campaign::calibrate_local(&dir, "local").and_then(|report| {
                 print!("{}", robocal::report::render_table(&report));
                 match html {
                     Some(path) => std::fs::write(&path, robocal::report::render_html(&report))
                         .map_err(|e| format!("{}: {e}", path.display())),
                     None => Ok(()),
                 }
-            }),
+            })
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -44,7 +44,7 @@ pub async fn start(mut config: ServeConfig) -> Result<RunningServer, StartError>
     config.validate().map_err(StartError::Config)?;
     let tls = match (&config.tls_cert, &config.tls_key) {
         (Some(cert), Some(key)) => {
-            Some(crate::tls::server_config(cert, key).map_err(StartError::Config)?)
+            Some(crate::listen::tls::server_config(cert, key).map_err(StartError::Config)?)
         }
         _ => None,
     };

@@ -9,6 +9,7 @@ use serde::Serialize;
 use utoipa::ToSchema;
 
 use crate::schema::FieldError;
+use crate::service::ServiceError;
 use crate::store::StoreError;
 
 pub const PROBLEM_JSON: &str = "application/problem+json";
@@ -182,6 +183,24 @@ impl From<StoreError> for ApiError {
             StoreError::Conflict(detail) => ApiError::conflict(detail),
             StoreError::QueueFull => ApiError::queue_full(crate::api::QUEUE_FULL_RETRY_AFTER_SECS),
             StoreError::Backend(_) => ApiError::internal(e),
+        }
+    }
+}
+
+/// The service layer's errors, mapped to problem+json here and nowhere else.
+impl From<ServiceError> for ApiError {
+    fn from(e: ServiceError) -> ApiError {
+        match e {
+            ServiceError::NotFound { what, id } => ApiError::not_found(what, &id),
+            ServiceError::NotFoundField { field, message } => {
+                ApiError::not_found_field(field, message)
+            }
+            ServiceError::Invalid(errors) => ApiError::validation(errors),
+            ServiceError::Malformed { field, message } => ApiError::malformed(field, message),
+            ServiceError::TooLarge { limit, bytes } => ApiError::too_large(limit, bytes),
+            ServiceError::Conflict(detail) => ApiError::conflict(detail),
+            ServiceError::Store(e) => e.into(),
+            ServiceError::Internal(cause) => ApiError::internal(cause),
         }
     }
 }

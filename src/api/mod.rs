@@ -40,7 +40,6 @@ pub mod report_links;
 pub mod results;
 pub mod robots;
 pub mod sessions;
-pub mod staged_images;
 pub mod targets;
 pub mod tokens;
 pub mod upload;

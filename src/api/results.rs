@@ -10,16 +10,15 @@ use utoipa_axum::routes;
 
 use axum::http::header;
 use axum::response::Html;
-use robocal_calib::kinematics::CalibratedModel;
 
 use super::error::{ApiError, ApiResult, Problem};
 use super::extract::{ApiJson, Paging, SerialPath};
 use super::AppState;
 use crate::domain::ParameterSetRecord;
-use crate::evaluate;
 use crate::pipeline::results::PoseOut;
 use crate::report::schema::IntrinsicsSchema;
 use crate::report::{render_html, render_svg, Report};
+use crate::service::{evaluate, results};
 
 pub fn router() -> OpenApiRouter<AppState> {
     OpenApiRouter::new()
@@ -100,31 +99,12 @@ impl From<ParameterSetRecord> for ParameterSetOut {
     }
 }
 
-/// `latest` or a positive integer.
-fn parse_version(version: &str) -> ApiResult<Option<i64>> {
-    if version == "latest" {
-        return Ok(None);
-    }
-    match version.parse::<i64>() {
-        Ok(v) if v >= 1 => Ok(Some(v)),
-        _ => Err(ApiError::invalid(
-            "version",
-            "a positive integer or \"latest\"",
-        )),
-    }
-}
-
 pub(super) async fn find(
     state: &AppState,
     serial: &str,
     version: &str,
 ) -> ApiResult<ParameterSetRecord> {
-    let v = parse_version(version)?;
-    state
-        .store
-        .get_parameter_set(serial, v)
-        .await?
-        .ok_or_else(|| ApiError::not_found("parameter set", &format!("{serial}/{version}")))
+    Ok(results::find_parameter_set(&state.store, serial, version).await?)
 }
 
 /// A robot's parameter sets, newest first.
@@ -238,12 +218,6 @@ async fn get_report_html(
     Ok(Html(render_html(&report)))
 }
 
-async fn model(state: &AppState, serial: &str, version: &str) -> ApiResult<CalibratedModel> {
-    let set = find(state, serial, version).await?;
-    evaluate::model_of(&set.parameters)
-        .map_err(|_| ApiError::conflict("this parameter set holds no calibrated model"))
-}
-
 /// Forward kinematics of the calibrated model.
 #[utoipa::path(post, path = "/v1/robots/{serial}/parameter-sets/{version}/forward", tag = "results",
     params(("serial" = String, Path, description = "Robot serial number"),
@@ -257,9 +231,8 @@ async fn forward(
     Path((_serial, version)): Path<(String, String)>,
     ApiJson(body): ApiJson<evaluate::ForwardRequest>,
 ) -> ApiResult<Json<evaluate::ForwardResponse>> {
-    let model = model(&state, &serial, &version).await?;
     Ok(Json(
-        evaluate::forward(&model, &body).map_err(ApiError::validation)?,
+        results::forward(&state.store, &serial, &version, &body).await?,
     ))
 }
 
@@ -276,9 +249,7 @@ async fn compensate(
     Path((_serial, version)): Path<(String, String)>,
     ApiJson(body): ApiJson<evaluate::CompensateRequest>,
 ) -> ApiResult<Json<evaluate::CompensateResponse>> {
-    let model = model(&state, &serial, &version).await?;
-    let answer = tokio::task::spawn_blocking(move || evaluate::compensate(&model, &body))
-        .await
-        .map_err(ApiError::internal)?;
-    Ok(Json(answer.map_err(ApiError::validation)?))
+    Ok(Json(
+        results::compensate(&state.store, &serial, &version, body).await?,
+    ))
 }

@@ -11,10 +11,10 @@ use utoipa_axum::routes;
 use super::error::{ApiError, ApiResult, Problem};
 use super::extract::{ApiJson, Paging, SerialPath};
 use super::AppState;
-use crate::camera_reuse::{self, ReuseError};
 use crate::domain::SessionRecord;
 use crate::schema::session::{CameraDoc, Instrument, SessionBody, TargetDoc};
 use crate::schema::PoseDoc;
+use crate::service::camera_reuse;
 
 pub fn router() -> OpenApiRouter<AppState> {
     OpenApiRouter::new()
@@ -72,11 +72,7 @@ impl TryFrom<SessionRecord> for SessionOut {
 
 /// Loads a session or answers 404.
 pub async fn find_session(state: &AppState, id: &str) -> ApiResult<SessionRecord> {
-    state
-        .store
-        .get_session(id)
-        .await?
-        .ok_or_else(|| ApiError::not_found("session", id))
+    Ok(crate::service::intake::find_session(&state.store, id).await?)
 }
 
 /// Open a measurement session for a robot.
@@ -93,7 +89,8 @@ async fn create_session(
 ) -> ApiResult<(StatusCode, Json<SessionOut>)> {
     body.check()?;
     if let Some(id) = &body.camera_calibration_id {
-        body.camera_calibration_id = Some(resolve_camera_calibration(&state, &body, id).await?);
+        body.camera_calibration_id =
+            Some(camera_reuse::resolve_for_session(&state.store, &body, id).await?);
     }
     let spec = serde_json::to_value(&body).map_err(ApiError::internal)?;
     let session = state
@@ -105,32 +102,6 @@ async fn create_session(
             e => e.into(),
         })?;
     Ok((StatusCode::CREATED, Json(session.try_into()?)))
-}
-
-/// Checks `camera_calibration_id` names a camera calibration this session
-/// can reuse; returns it with `latest` resolved, so the session's jobs all
-/// use one calibration.
-async fn resolve_camera_calibration(
-    state: &AppState,
-    body: &SessionBody,
-    id: &str,
-) -> ApiResult<String> {
-    if body.instrument != Instrument::Camera {
-        return Err(ApiError::invalid(
-            camera_reuse::FIELD,
-            "only a camera session reuses camera intrinsics",
-        ));
-    }
-    match camera_reuse::resolve(&state.store, id, body.camera.as_ref()).await {
-        Ok(fixed) => Ok(fixed.calibration_id),
-        Err(ReuseError::NotFound(message)) => {
-            Err(ApiError::not_found_field(camera_reuse::FIELD, message))
-        }
-        Err(ReuseError::Malformed(message) | ReuseError::Unusable(message)) => {
-            Err(ApiError::invalid(camera_reuse::FIELD, message))
-        }
-        Err(ReuseError::Store(e)) => Err(e.into()),
-    }
 }
 
 /// A robot's sessions, oldest first.

@@ -1,10 +1,7 @@
-//! Uploads: image ingestion shared by the pose routes, and the streamed
-//! dataset archive `POST /v1/sessions/{id}/dataset`. Bodies are streamed to
-//! a temporary file (never whole in memory) under the configured limits;
-//! images are checked (header first), decoded once and detected off the
-//! async runtime before they are stored.
-
-use std::sync::Arc;
+//! Uploads at the HTTP edge: multipart parts read under their limits (for
+//! the pose routes), and the dataset archive `POST /v1/sessions/{id}/dataset`
+//! streamed to a temporary file (never whole in memory) under the configured
+//! limit, then handed to [`crate::service::intake`].
 
 use axum::extract::multipart::Field;
 use axum::extract::{Path, Request, State};
@@ -12,7 +9,6 @@ use axum::http::{header, StatusCode};
 use axum::Json;
 use futures_util::StreamExt;
 use serde::Serialize;
-use sha2::{Digest, Sha256};
 use tokio::io::AsyncWriteExt;
 use utoipa::ToSchema;
 use utoipa_axum::router::OpenApiRouter;
@@ -20,14 +16,9 @@ use utoipa_axum::routes;
 
 use super::error::{ApiError, ApiResult, Problem};
 use super::extract::content_length;
-use super::sessions::find_session;
-use super::staged_images::StagedImages;
 use super::AppState;
-use crate::dataset::{DatasetError, DatasetLimits, DatasetReader};
-use crate::domain::{label_from_archive_path, ImageMeta, NewPose, SessionRecord};
-use crate::imaging::{self, DecodeGate, ImageDetection};
-use crate::schema::session::{check_joints, Instrument, SessionBody, TargetDoc};
-use crate::schema::Checker;
+use crate::service::dataset::DatasetLimits;
+use crate::service::intake::PoseIntake;
 
 pub fn router() -> OpenApiRouter<AppState> {
     OpenApiRouter::new().routes(routes!(upload_dataset))
@@ -41,22 +32,6 @@ pub struct DatasetOut {
     /// Dots the detector found on each image at upload, in `pose_ids` order
     /// (0 where the board was not found; the pose's `detection_error` says why).
     pub detected_points: Vec<usize>,
-}
-
-pub fn session_spec(session: &SessionRecord) -> ApiResult<SessionBody> {
-    serde_json::from_value(session.spec.clone()).map_err(ApiError::internal)
-}
-
-pub async fn robot_joint_count(state: &AppState, serial: &str) -> ApiResult<usize> {
-    let robot = state
-        .store
-        .get_robot(serial)
-        .await?
-        .ok_or_else(|| ApiError::not_found("robot", serial))?;
-    Ok(robot.kinematics["joints"]
-        .as_array()
-        .map(Vec::len)
-        .unwrap_or(0))
 }
 
 /// Reads a multipart field, refusing more than `limit` bytes.
@@ -88,82 +63,6 @@ pub async fn read_field_capped(
     Ok(buf)
 }
 
-/// An accepted image: its metadata and what the detector found on it.
-pub struct Ingested {
-    pub meta: ImageMeta,
-    /// `None` when the session has no target to look for.
-    pub detection: Option<ImageDetection>,
-}
-
-/// What an upload needs to check and detect an image: the session camera's
-/// size and target, and the process's decode gate.
-#[derive(Clone)]
-pub struct ImageCheck {
-    pub camera_size: Option<(u32, u32)>,
-    pub target: Option<TargetDoc>,
-    pub gate: Arc<DecodeGate>,
-}
-
-impl ImageCheck {
-    pub fn of(state: &AppState, spec: &SessionBody) -> ImageCheck {
-        ImageCheck {
-            camera_size: spec.camera.as_ref().map(|c| (c.width, c.height)),
-            target: spec.target.clone(),
-            gate: state.decode_gate.clone(),
-        }
-    }
-}
-
-/// Checks an image on a blocking thread (header against the camera before
-/// any decode, then one bounded decode under the gate and the dot
-/// detector), and stores it; returns it once it is durable. A board not
-/// found is no error: the image is kept and the reason returned.
-pub async fn ingest_image(
-    state: &AppState,
-    bytes: Vec<u8>,
-    check: &ImageCheck,
-    field: &str,
-) -> ApiResult<Ingested> {
-    let check = check.clone();
-    let (ingested, bytes) = tokio::task::spawn_blocking(move || {
-        inspect_and_hash(&bytes, &check).map(|ingested| (ingested, bytes))
-    })
-    .await
-    .map_err(ApiError::internal)?
-    .map_err(|message| ApiError::invalid(field, message))?;
-    state.store.put_blob(&ingested.meta, &bytes).await?;
-    Ok(ingested)
-}
-
-/// Blocking: see [`ingest_image`].
-fn inspect_and_hash(bytes: &[u8], check: &ImageCheck) -> Result<Ingested, String> {
-    let inspected = imaging::inspect(bytes, check.camera_size, check.target.as_ref(), &check.gate)?;
-    let content_type = match image::guess_format(bytes) {
-        Ok(image::ImageFormat::Jpeg) => "image/jpeg",
-        _ => "image/png",
-    };
-    Ok(Ingested {
-        meta: ImageMeta {
-            sha256: hex::encode(Sha256::digest(bytes)),
-            size_bytes: bytes.len() as i64,
-            content_type: content_type.into(),
-            width: inspected.width,
-            height: inspected.height,
-        },
-        detection: inspected.detection,
-    })
-}
-
-impl From<DatasetError> for ApiError {
-    fn from(e: DatasetError) -> ApiError {
-        match e {
-            DatasetError::Malformed { field, message } => ApiError::malformed(field, message),
-            DatasetError::Invalid(errors) => ApiError::validation(errors),
-            DatasetError::TooLarge { limit, bytes } => ApiError::too_large(limit, bytes),
-        }
-    }
-}
-
 /// A zip archive's bytes (the dataset upload's body schema).
 #[derive(ToSchema)]
 #[schema(value_type = String, format = Binary)]
@@ -187,15 +86,8 @@ async fn upload_dataset(
     Path(id): Path<String>,
     req: Request,
 ) -> ApiResult<(StatusCode, Json<DatasetOut>)> {
-    let session = find_session(&state, &id).await?;
-    let spec = session_spec(&session)?;
-    if spec.instrument != Instrument::Camera {
-        return Err(ApiError::invalid(
-            "instrument",
-            "datasets of images need a camera session",
-        ));
-    }
-    let joint_count = robot_joint_count(&state, &session.serial).await?;
+    let intake = PoseIntake::open(&state.store, state.decode_gate.clone(), &id).await?;
+    intake.check_takes_dataset()?;
     let content_type = req
         .headers()
         .get(header::CONTENT_TYPE)
@@ -214,76 +106,13 @@ async fn upload_dataset(
         max_image_bytes: state.config.max_image_bytes,
         max_total_bytes: state.config.max_archive_bytes,
     };
-    let path = archive.path().to_path_buf();
-    let mut reader = tokio::task::spawn_blocking(move || DatasetReader::open(&path, limits))
-        .await
-        .map_err(ApiError::internal)??;
-    let mut c = Checker::default();
-    if reader.manifest.is_empty() {
-        c.fail("poses.json", "holds no poses");
-    }
-    for (i, p) in reader.manifest.iter().enumerate() {
-        check_joints(
-            &mut c,
-            &format!("poses.json[{i}].joints_deg"),
-            &p.joints_deg,
-            joint_count,
-        );
-    }
-    c.finish()?;
-    let check = ImageCheck::of(&state, &spec);
-    let mut staged = StagedImages::new(state.store.clone());
-    let mut poses = Vec::with_capacity(reader.manifest.len());
-    for i in 0..reader.manifest.len() {
-        let doc = reader.manifest[i].clone();
-        let field = format!("poses.json[{i}].image");
-        let check = check.clone();
-        let (back, result) = tokio::task::spawn_blocking(move || {
-            let result = reader
-                .read_image(&doc.image)
-                .map_err(ApiError::from)
-                .and_then(|bytes| {
-                    inspect_and_hash(&bytes, &check)
-                        .map(|ingested| (ingested, bytes))
-                        .map_err(|m| ApiError::invalid(field, m))
-                });
-            (reader, result)
-        })
-        .await
-        .map_err(ApiError::internal)?;
-        reader = back;
-        let (ingested, bytes) = match result {
-            Ok(ok) => ok,
-            Err(e) => {
-                staged.discard().await;
-                return Err(e);
-            }
-        };
-        state.store.put_blob(&ingested.meta, &bytes).await?;
-        staged.stored(&ingested.meta.sha256);
-        poses.push(NewPose {
-            joints_deg: reader.manifest[i].joints_deg.clone(),
-            set: reader.manifest[i].set.as_str().to_string(),
-            image: Some(ingested.meta),
-            points: serde_json::json!([]),
-            measured: None,
-            label: label_from_archive_path(&reader.manifest[i].image),
-            image_detection: ingested.detection.map(|d| d.to_value()),
-        });
-    }
-    let stored = match state.store.add_poses(&session.id, &poses).await {
-        Ok(stored) => stored,
-        Err(e) => {
-            staged.discard().await;
-            return Err(e.into());
-        }
-    };
-    staged.keep();
+    let session_id = intake.session.id.clone();
+    let stored = intake.add_dataset(archive.path(), limits).await?;
     drop(archive);
     Ok((
         StatusCode::CREATED,
         Json(DatasetOut {
-            session_id: session.id,
+            session_id,
             poses_created: stored.len(),
             detected_points: stored
                 .iter()

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 
 use serde_json::{json, Value};
 
-use crate::client::{Client, ClientError};
+use super::client::{Client, ClientError};
 
 /// Joint angles of a 6-axis arm, and the six numbers of a target pose.
 const ROW_WIDTH: usize = 6;

@@ -3,7 +3,6 @@
 use std::sync::Arc;
 use std::time::Duration;
 
-use crate::camera_reuse::{self, ReuseError};
 use crate::domain::{label_or_number, ClaimedJob};
 use crate::imaging::{DecodeGate, ImageDetection};
 use crate::pipeline::{ImageSource, Input, PoseImage, PoseInput};
@@ -11,6 +10,7 @@ use crate::schema::job::CalibrationOptions;
 use crate::schema::robot::KinematicsDoc;
 use crate::schema::session::{ImagePointDoc, PoseSet, SessionBody};
 use crate::schema::PoseDoc;
+use crate::service::camera_reuse::{self, ReuseError};
 use crate::store::{DynStore, StoreError};
 
 /// Poses read per store call.

@@ -18,6 +18,7 @@ use tokio::sync::{watch, Semaphore};
 use crate::api::error::{Problem, PROBLEM_JSON};
 
 pub mod problem_io;
+pub mod tls;
 
 use problem_io::ProblemIo;
 

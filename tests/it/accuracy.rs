@@ -2,15 +2,17 @@
 //! campaigns (60 cal + 30 val poses) uploaded, calibrated by the default
 //! job and by the two-step job (`joint_refinement: false`), and the served
 //! parameter sets judged against the simulator's truth and the campaign's
-//! oracle floor (`robocal::accuracy`). Means over a few campaigns keep one
+//! oracle floor (`robocal::testkit::accuracy`). Means over a few campaigns keep one
 //! unlucky draw from deciding; the Monte-Carlo figures come from the
 //! `pipeline_accuracy` example (BENCHMARKS.md "End to end").
 
 use std::time::Duration;
 
-use robocal::accuracy::{compare_with_truth, dot_noise_px, oracle_floors, TruthComparison};
-use robocal::campaign::simulate;
-use robocal::client::Client;
+use robocal::cli::campaign::simulate;
+use robocal::cli::client::Client;
+use robocal::testkit::accuracy::{
+    compare_with_truth, dot_noise_px, oracle_floors, TruthComparison,
+};
 use serde_json::{json, Value};
 
 use crate::e2e_points::assert_warns_iff_worse;

@@ -52,7 +52,7 @@ async fn robot_preset(app: &TestApp) -> Value {
 async fn upload_calibrate_forward_and_compensate_through_the_binary() {
     let app = spawn_app_with(|c| c.test_validate_only = false).await;
     let dir = tempfile::tempdir().unwrap();
-    robocal::campaign::simulate("puma560", dir.path(), CAL_POSES, VAL_POSES, SEED).unwrap();
+    robocal::cli::campaign::simulate("puma560", dir.path(), CAL_POSES, VAL_POSES, SEED).unwrap();
     let campaign = dir.path().to_str().unwrap();
 
     // An existing robot keeps its kinematics unless --replace-robot.

@@ -4,7 +4,7 @@
 
 use std::time::Duration;
 
-use robocal::client::Client;
+use robocal::cli::client::Client;
 use robocal_calib::geometry::pose_from_matrix_rows;
 use robocal_calib::sim::campaign_io::{PoseEntry, PoseSet, Truth};
 use serde_json::{json, Value};
@@ -22,7 +22,7 @@ const MAX_FORWARD_ERROR_MM: f64 = 0.1;
 
 async fn campaign_through_the_service(preset: &str, serial: &str, seed: u64) {
     let dir = tempfile::tempdir().unwrap();
-    robocal::campaign::simulate(preset, dir.path(), CAL_POSES, VAL_POSES, seed).unwrap();
+    robocal::cli::campaign::simulate(preset, dir.path(), CAL_POSES, VAL_POSES, seed).unwrap();
     let app = spawn_app_with(|c| c.test_validate_only = false).await;
     let client = Client::new(&app.base, None).unwrap();
     let session = robocal::cli::upload(

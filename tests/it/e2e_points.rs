@@ -12,8 +12,8 @@ use std::time::Duration;
 
 use nalgebra::Point3;
 use reqwest::multipart::{Form, Part};
-use robocal::campaign::{self, CampaignFile};
-use robocal::client::Client;
+use robocal::cli::campaign::{self, CampaignFile};
+use robocal::cli::client::Client;
 use robocal_calib::geometry::pose_from_matrix_rows;
 use robocal_calib::sim::campaign_io::{PoseEntry, Truth};
 use serde_json::{json, Value};

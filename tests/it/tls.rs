@@ -4,7 +4,7 @@
 
 use std::path::PathBuf;
 
-use robocal::client::{Client, ClientError};
+use robocal::cli::client::{Client, ClientError};
 use robocal::server::{start, StartError};
 
 use crate::support::*;

@@ -1,7 +1,9 @@
 //! The client subcommands (`upload`, `calibrate`, `report`; `forward` and
 //! `compensate` in [`evaluate`]): a cell engineer's view of the service,
-//! over [`crate::client`].
+//! over [`crate::cli::client`].
 
+pub mod campaign;
+pub mod client;
 pub mod evaluate;
 
 use std::io::{IsTerminal, Write};
@@ -10,8 +12,7 @@ use std::time::Duration;
 
 use serde_json::{json, Value};
 
-use crate::campaign;
-use crate::client::{Client, ClientError};
+use client::{Client, ClientError};
 
 /// How often `calibrate --wait` asks for the job's progress.
 const POLL_INTERVAL: Duration = Duration::from_millis(250);

@@ -16,8 +16,8 @@ use robocal_calib::sim::oracle::{
 use robocal_calib::stats::AccuracyStats;
 use serde_json::Value;
 
-use crate::evaluate::model_of;
 use crate::report::ParameterReport;
+use crate::service::evaluate::model_of;
 
 /// A served parameter set against the truth of its campaign.
 #[derive(Debug, Clone)]

@@ -8,8 +8,9 @@
 
 use robocal_calib::camera::Intrinsics;
 
+use super::error::{ServiceError, ServiceResult};
 use crate::pipeline::FixedCamera;
-use crate::schema::session::CameraDoc;
+use crate::schema::session::{CameraDoc, Instrument, SessionBody};
 use crate::store::{DynStore, StoreError};
 
 /// The session field this module resolves (named in every error).
@@ -47,6 +48,33 @@ fn parse(id: &str) -> Result<(&str, Option<i64>), ReuseError> {
             Ok(v) if v >= 1 => Ok((serial, Some(v))),
             _ => Err(malformed()),
         },
+    }
+}
+
+/// Checks a new session's `camera_calibration_id` names a camera
+/// calibration the session can reuse; returns it with `latest` resolved, so
+/// the session's jobs all use one calibration.
+pub async fn resolve_for_session(
+    store: &DynStore,
+    body: &SessionBody,
+    id: &str,
+) -> ServiceResult<String> {
+    if body.instrument != Instrument::Camera {
+        return Err(ServiceError::invalid(
+            FIELD,
+            "only a camera session reuses camera intrinsics",
+        ));
+    }
+    match resolve(store, id, body.camera.as_ref()).await {
+        Ok(fixed) => Ok(fixed.calibration_id),
+        Err(ReuseError::NotFound(message)) => Err(ServiceError::NotFoundField {
+            field: FIELD,
+            message,
+        }),
+        Err(ReuseError::Malformed(message) | ReuseError::Unusable(message)) => {
+            Err(ServiceError::invalid(FIELD, message))
+        }
+        Err(ReuseError::Store(e)) => Err(e.into()),
     }
 }
 

@@ -11,202 +11,31 @@
 //! a later stage fails.
 
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
-use std::time::Duration;
-
-use robocal_calib::camera::Intrinsics;
-use robocal_calib::kinematics::RobotModel;
 
 mod camera_stage;
 mod detections;
 mod identify_stage;
+mod input;
 mod measure;
+mod output;
 pub mod results;
 mod session_cause;
+mod stage;
 mod validate;
 
+pub use input::{FixedCamera, ImageSource, Input, PoseImage, PoseInput, ReadImage};
+pub use output::{Output, PipelineError};
+use stage::stage_span;
+pub use stage::Stage;
 pub use validate::validate;
 
 use crate::domain::{NewParameterSet, PoseDetection};
-use crate::imaging::{DecodeGate, ImageDetection};
-use crate::schema::job::CalibrationOptions;
-use crate::schema::robot::KinematicsDoc;
-use crate::schema::session::{ImagePointDoc, Instrument, PoseSet, SessionBody};
+use crate::schema::session::Instrument;
 use crate::schema::{FieldError, PoseDoc};
 
 /// Fewest calibration poses a job accepts. Identification needs more
 /// observations than unknowns; the identification stage refines this check.
 pub const MIN_CALIBRATION_POSES: usize = 3;
-
-/// The stages a job goes through, in order.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Stage {
-    Validate,
-    Detect,
-    CalibrateCamera,
-    MeasurePoses,
-    Identify,
-    Report,
-}
-
-impl Stage {
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Stage::Validate => "validate",
-            Stage::Detect => "detect",
-            Stage::CalibrateCamera => "calibrate_camera",
-            Stage::MeasurePoses => "measure_poses",
-            Stage::Identify => "identify",
-            Stage::Report => "report",
-        }
-    }
-}
-
-/// Everything a job needs, loaded from the store by the worker.
-#[derive(Debug, Clone)]
-pub struct Input {
-    pub serial: String,
-    pub session_id: String,
-    /// The robot's nominal model, as the numerics take it (radians).
-    pub robot: RobotModel,
-    /// The same joint table as stored and served (degrees, conventions explicit).
-    pub kinematics: KinematicsDoc,
-    pub session: SessionBody,
-    pub poses: Vec<PoseInput>,
-    pub options: CalibrationOptions,
-    /// The session's `camera_calibration_id`, resolved: intrinsics the
-    /// camera stage holds fixed instead of estimating them.
-    pub fixed_camera: Option<FixedCamera>,
-    /// Reads the images of poses without a stored detection.
-    pub images: ImageSource,
-    /// Test hook (`ROBOCAL_TEST_STAGE_DELAY_MS`): sleep per pose in validation.
-    pub test_stage_delay: Duration,
-    /// Test hook (`ROBOCAL_TEST_VALIDATE_ONLY`): stop after validation.
-    pub validate_only: bool,
-}
-
-#[derive(Debug, Clone)]
-pub struct PoseInput {
-    pub id: String,
-    /// What reports call the pose: its stored label (the photo's file
-    /// name), or its number in upload order (`#12`).
-    pub label: String,
-    pub joints_deg: Vec<f64>,
-    pub set: PoseSet,
-    /// The pose's image, when it was uploaded with one: a reference, never
-    /// the bytes (a job holds no images; the detect stage reads, decodes and
-    /// drops the ones without a stored detection, one at a time per thread).
-    pub image: Option<PoseImage>,
-    pub image_points: Vec<ImagePointDoc>,
-    pub measured_position_mm: Option<[f64; 3]>,
-    pub measured_pose: Option<PoseDoc>,
-}
-
-/// A pose's image as a job sees it.
-#[derive(Debug, Clone)]
-pub struct PoseImage {
-    /// What [`Input::images`] reads it by (the blob's sha256 in the service,
-    /// the file's path for `calibrate-local`).
-    pub key: String,
-    pub width: u32,
-    pub height: u32,
-    /// What the detector found on it at upload (or in an earlier job):
-    /// reused as is, the image is then never decoded.
-    pub detection: Option<ImageDetection>,
-}
-
-/// Reads an image's bytes by [`PoseImage::key`].
-pub type ReadImage = dyn Fn(&str) -> Result<Vec<u8>, String> + Send + Sync;
-
-/// Where the detect stage gets the images it must decode, and the gate all
-/// decodes of the process share.
-#[derive(Clone)]
-pub struct ImageSource {
-    pub read: Arc<ReadImage>,
-    pub gate: Arc<DecodeGate>,
-}
-
-impl std::fmt::Debug for ImageSource {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("ImageSource")
-            .field("gate", &self.gate)
-            .finish_non_exhaustive()
-    }
-}
-
-impl ImageSource {
-    /// No images to read (sessions of image points or tracker measurements).
-    pub fn none() -> ImageSource {
-        ImageSource {
-            read: Arc::new(|key: &str| Err(format!("image {key} is not available"))),
-            gate: Arc::new(DecodeGate::new(1)),
-        }
-    }
-}
-
-/// Intrinsics of an earlier calibration, reused and held fixed (the paper
-/// keeps `fx` and `k` once tuned, method.md §4).
-#[derive(Debug, Clone, PartialEq)]
-pub struct FixedCamera {
-    /// Where they come from: `"{serial}/{version}"` of a parameter set.
-    pub calibration_id: String,
-    pub intrinsics: Intrinsics,
-}
-
-#[derive(Debug, Clone)]
-pub struct Output {
-    /// The identified parameter set and its accuracy report, when the job
-    /// identified one (stored as the serial's next version).
-    pub parameter_set: Option<NewParameterSet>,
-    /// A short summary for the job's `result`.
-    pub summary: serde_json::Value,
-    /// Every camera pose's image points with their reprojection residuals
-    /// (empty for tracker sessions and validation-only runs).
-    pub detections: Vec<PoseDetection>,
-}
-
-#[derive(Debug, Clone, thiserror::Error)]
-pub enum PipelineError {
-    /// The session's data cannot be calibrated as it is: not retried.
-    #[error("invalid input: {}", describe(.0))]
-    Invalid(Vec<FieldError>),
-    /// A numerical stage failed (degenerate data): not retried.
-    #[error("{stage}: {message}")]
-    Numerical {
-        stage: &'static str,
-        message: String,
-    },
-    #[error("cancelled")]
-    Cancelled,
-}
-
-fn describe(errors: &[FieldError]) -> String {
-    errors
-        .iter()
-        .map(|e| format!("{}: {}", e.field, e.message))
-        .collect::<Vec<_>>()
-        .join("; ")
-}
-
-/// Fraction of the whole job at which each stage starts (progress bars).
-const STAGE_START: [(Stage, f64); 6] = [
-    (Stage::Validate, 0.0),
-    (Stage::Detect, 0.05),
-    (Stage::CalibrateCamera, 0.55),
-    (Stage::MeasurePoses, 0.7),
-    (Stage::Identify, 0.75),
-    (Stage::Report, 0.97),
-];
-
-fn stage_span(stage: Stage) -> (f64, f64) {
-    let i = STAGE_START
-        .iter()
-        .position(|(s, _)| *s == stage)
-        .unwrap_or(0);
-    let end = STAGE_START.get(i + 1).map_or(1.0, |(_, f)| *f);
-    (STAGE_START[i].1, end)
-}
-
 /// Runs the calibration job: validate, detect, calibrate the camera,
 /// measure the poses, identify, report. `progress(stage, message,
 /// fraction)` is called with `fraction` in `[0, 1]` for the whole job.

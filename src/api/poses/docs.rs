@@ -1,0 +1,160 @@
+//! The pose documents the routes answer: a stored pose as served, its image
+//! points, and the multipart upload's schema. The stored JSON of a pose
+//! (points, detections, measurements) is read here, at the HTTP edge.
+
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+use utoipa::ToSchema;
+
+use crate::domain::{ImageMeta, PoseRecord};
+use crate::schema::session::PoseSet;
+use crate::schema::PoseDoc;
+
+#[derive(Debug, Serialize, ToSchema)]
+pub struct PoseOut {
+    pub id: String,
+    pub session_id: String,
+    pub joints_deg: Vec<f64>,
+    pub set: PoseSet,
+    /// `image`, `image_points` or `measured`.
+    pub source: String,
+    /// Number of image points: uploaded, or found by the dot detector on
+    /// the image (at upload, and again by the last calibration job). 0 for
+    /// an image whose board was not found (`detection_error` says why).
+    pub detected_points: usize,
+    /// The image points: as uploaded, or as the detector found them at
+    /// upload, or as the last calibration job measured them (then with the
+    /// perspective-bias-corrected centres as `x`, `y`, the raw ones as
+    /// `raw_x`, `raw_y`, and residuals once that job succeeded).
+    #[schema(value_type = Vec<PoseImagePoint>)]
+    pub points: Vec<Value>,
+    /// Why the dot detector found no board on this pose's image (at upload,
+    /// or in the last calibration job). The image is kept either way; a
+    /// job leaves such poses out.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub detection_error: Option<String>,
+    /// Which job measured `points`, and how well the model fits them;
+    /// absent until a calibration job ran its detect stage on the session.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub detection: Option<PoseDetectionOut>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub image: Option<ImageMeta>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub measured_position_mm: Option<[f64; 3]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub measured_pose: Option<PoseDoc>,
+    /// What the pose is called: the uploaded image's file name (multipart
+    /// filename, or its path in a dataset archive) or a JSON pose's
+    /// `label`. Absent when none was given; reports then number the pose.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub label: Option<String>,
+    pub created_at: String,
+}
+
+/// One image point of a pose (schema of `points`).
+#[derive(Debug, Serialize, Deserialize, ToSchema)]
+pub struct PoseImagePoint {
+    pub row: u32,
+    pub col: u32,
+    /// Dot centre in the image (px): uploaded or as the detector found it
+    /// (the raw ellipse centre); after a calibration job measured the pose,
+    /// the centre corrected for perspective bias by the calibrated camera
+    /// model (what the fits use), the raw one then in `raw_x`, `raw_y`.
+    pub x: f64,
+    pub y: f64,
+    /// The raw centre (px), as detected or uploaded, when `x`, `y` are
+    /// the bias-corrected one (after a calibration job; absent for the
+    /// origin marker, which the fits leave out).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub raw_x: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub raw_y: Option<f64>,
+    /// `[dx, dy]` (px) after a successful calibration: the observed centre
+    /// (corrected for perspective bias) minus the calibrated model's
+    /// projection of the dot. Absent for points the fit leaves out (the
+    /// origin marker).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub residual_px: Option<[f64; 2]>,
+    /// Dropped by the camera calibration as an outlier.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub outlier: Option<bool>,
+}
+
+/// The `multipart/form-data` pose upload (its schema; the parts are read
+/// one by one in `add_pose`).
+#[derive(ToSchema)]
+#[allow(dead_code)] // a schema only
+pub struct PoseImageUpload {
+    /// JSON array of the joint angles in degrees, e.g. `[0, -10, 20, 0, 30, 0]`.
+    pub joints_deg: String,
+    /// `cal` (default) or `val`.
+    pub set: Option<PoseSet>,
+    /// The photo of the board, PNG or JPEG.
+    #[schema(value_type = String, format = Binary)]
+    pub image: Vec<u8>,
+}
+
+/// How a pose's points were measured by the last calibration job.
+#[derive(Debug, Serialize, Deserialize, ToSchema)]
+pub struct PoseDetectionOut {
+    pub job_id: String,
+    /// Why no dots were detected on this pose's image.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+    /// RMS length of this pose's residuals (px), outliers excluded.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub residual_rms_px: Option<f64>,
+}
+
+#[derive(Debug, Serialize, ToSchema)]
+pub struct PoseList {
+    pub items: Vec<PoseOut>,
+    pub next_cursor: Option<String>,
+}
+
+impl From<PoseRecord> for PoseOut {
+    fn from(p: PoseRecord) -> PoseOut {
+        // The last job's measurement, else the detector's at upload, else
+        // the uploaded points.
+        let detected = p.detection.as_ref().or(p.image_detection.as_ref());
+        let points = detected
+            .and_then(|d| d["points"].as_array())
+            .or_else(|| p.points.as_array())
+            .cloned()
+            .unwrap_or_default();
+        let detection_error = detected
+            .and_then(|d| d["error"].as_str())
+            .map(str::to_string);
+        let detection = p
+            .detection
+            .and_then(|d| serde_json::from_value::<PoseDetectionOut>(d).ok());
+        let measured = p.measured.unwrap_or(Value::Null);
+        let source = if p.image.is_some() {
+            "image"
+        } else if measured.is_null() {
+            "image_points"
+        } else {
+            "measured"
+        };
+        PoseOut {
+            id: p.id,
+            session_id: p.session_id,
+            joints_deg: p.joints_deg,
+            set: PoseSet::parse(&p.set).unwrap_or_default(),
+            source: source.into(),
+            detected_points: points.len(),
+            points,
+            detection_error,
+            detection,
+            image: p.image,
+            measured_position_mm: serde_json::from_value(measured["measured_position_mm"].clone())
+                .ok()
+                .flatten(),
+            measured_pose: serde_json::from_value(measured["measured_pose"].clone())
+                .ok()
+                .flatten(),
+            label: p.label,
+            created_at: p.created_at,
+        }
+    }
+}

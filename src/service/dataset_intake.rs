@@ -1,0 +1,116 @@
+//! A dataset upload: the archive (already spooled to a file by the HTTP
+//! edge) is opened, its manifest checked as a whole, then each image read,
+//! checked, detected and stored one at a time; all poses are stored in one
+//! transaction, or none (and the images stored on the way are discarded).
+
+use std::path::Path;
+
+use serde_json::json;
+
+use super::dataset::{DatasetError, DatasetLimits, DatasetReader};
+use super::error::{ServiceError, ServiceResult};
+use super::images::inspect_and_hash;
+use super::intake::PoseIntake;
+use super::staged_images::StagedImages;
+use crate::domain::{label_from_archive_path, NewPose, PoseRecord};
+use crate::schema::session::{check_joints, Instrument};
+use crate::schema::Checker;
+
+impl From<DatasetError> for ServiceError {
+    fn from(e: DatasetError) -> ServiceError {
+        match e {
+            DatasetError::Malformed { field, message } => {
+                ServiceError::Malformed { field, message }
+            }
+            DatasetError::Invalid(errors) => ServiceError::Invalid(errors),
+            DatasetError::TooLarge { limit, bytes } => ServiceError::TooLarge { limit, bytes },
+        }
+    }
+}
+
+impl PoseIntake {
+    /// Refuses a dataset for a tracker session (checked before the body is read).
+    pub fn check_takes_dataset(&self) -> ServiceResult<()> {
+        if self.spec.instrument != Instrument::Camera {
+            return Err(ServiceError::invalid(
+                "instrument",
+                "datasets of images need a camera session",
+            ));
+        }
+        Ok(())
+    }
+
+    /// Stores every pose of the archive at `archive`, or none.
+    pub async fn add_dataset(
+        self,
+        archive: &Path,
+        limits: DatasetLimits,
+    ) -> ServiceResult<Vec<PoseRecord>> {
+        let path = archive.to_path_buf();
+        let mut reader = tokio::task::spawn_blocking(move || DatasetReader::open(&path, limits))
+            .await
+            .map_err(ServiceError::internal)??;
+        let mut c = Checker::default();
+        if reader.manifest.is_empty() {
+            c.fail("poses.json", "holds no poses");
+        }
+        for (i, p) in reader.manifest.iter().enumerate() {
+            check_joints(
+                &mut c,
+                &format!("poses.json[{i}].joints_deg"),
+                &p.joints_deg,
+                self.joint_count,
+            );
+        }
+        c.finish()?;
+        let check = self.image_check();
+        let mut staged = StagedImages::new(self.store.clone());
+        let mut poses = Vec::with_capacity(reader.manifest.len());
+        for i in 0..reader.manifest.len() {
+            let doc = reader.manifest[i].clone();
+            let field = format!("poses.json[{i}].image");
+            let check = check.clone();
+            let (back, result) = tokio::task::spawn_blocking(move || {
+                let result = reader
+                    .read_image(&doc.image)
+                    .map_err(ServiceError::from)
+                    .and_then(|bytes| {
+                        inspect_and_hash(&bytes, &check)
+                            .map(|ingested| (ingested, bytes))
+                            .map_err(|m| ServiceError::invalid(field, m))
+                    });
+                (reader, result)
+            })
+            .await
+            .map_err(ServiceError::internal)?;
+            reader = back;
+            let (ingested, bytes) = match result {
+                Ok(ok) => ok,
+                Err(e) => {
+                    staged.discard().await;
+                    return Err(e);
+                }
+            };
+            self.store.put_blob(&ingested.meta, &bytes).await?;
+            staged.stored(&ingested.meta.sha256);
+            poses.push(NewPose {
+                joints_deg: reader.manifest[i].joints_deg.clone(),
+                set: reader.manifest[i].set.as_str().to_string(),
+                image: Some(ingested.meta),
+                points: json!([]),
+                measured: None,
+                label: label_from_archive_path(&reader.manifest[i].image),
+                image_detection: ingested.detection.map(|d| d.to_value()),
+            });
+        }
+        let stored = match self.store.add_poses(&self.session.id, &poses).await {
+            Ok(stored) => stored,
+            Err(e) => {
+                staged.discard().await;
+                return Err(e.into());
+            }
+        };
+        staged.keep();
+        Ok(stored)
+    }
+}

@@ -1,0 +1,142 @@
+//! Pose ingestion: a session that takes poses, one at a time (JSON image
+//! points or a tracker measurement, or an image) or as a dataset archive
+//! ([`super::dataset_intake`]). Every pose's joints are checked against the
+//! robot's joint count before anything is stored.
+
+use std::sync::Arc;
+
+use serde_json::json;
+
+use super::error::{ServiceError, ServiceResult};
+use super::images::{ingest_image, ImageCheck};
+use crate::domain::{NewPose, PoseRecord, SessionRecord};
+use crate::imaging::DecodeGate;
+use crate::schema::session::{check_joints, Instrument, PoseJsonBody, PoseSet, SessionBody};
+use crate::schema::Checker;
+use crate::store::DynStore;
+
+/// A session about to take poses: its stored spec and its robot's joint
+/// count, looked up once.
+pub struct PoseIntake {
+    pub store: DynStore,
+    pub gate: Arc<DecodeGate>,
+    pub session: SessionRecord,
+    pub spec: SessionBody,
+    pub joint_count: usize,
+}
+
+/// One image pose as the client sent it (the multipart parts, read).
+pub struct ImagePose {
+    pub joints_deg: Vec<f64>,
+    pub set: PoseSet,
+    pub image: Vec<u8>,
+    /// The image's file name, as a label.
+    pub label: Option<String>,
+}
+
+/// The stored session `id`, or 404.
+pub async fn find_session(store: &DynStore, id: &str) -> ServiceResult<SessionRecord> {
+    store
+        .get_session(id)
+        .await?
+        .ok_or_else(|| ServiceError::not_found("session", id))
+}
+
+/// The session's stored spec (its `SessionBody`).
+pub fn session_spec(session: &SessionRecord) -> ServiceResult<SessionBody> {
+    serde_json::from_value(session.spec.clone()).map_err(ServiceError::internal)
+}
+
+/// Number of joints of the robot `serial` (0 for a joint table that is not a list).
+pub async fn robot_joint_count(store: &DynStore, serial: &str) -> ServiceResult<usize> {
+    let robot = store
+        .get_robot(serial)
+        .await?
+        .ok_or_else(|| ServiceError::not_found("robot", serial))?;
+    Ok(robot.kinematics["joints"]
+        .as_array()
+        .map(Vec::len)
+        .unwrap_or(0))
+}
+
+impl PoseIntake {
+    /// Session `id` ready to take poses (404 when there is no such session).
+    pub async fn open(store: &DynStore, gate: Arc<DecodeGate>, id: &str) -> ServiceResult<Self> {
+        let session = find_session(store, id).await?;
+        let spec = session_spec(&session)?;
+        let joint_count = robot_joint_count(store, &session.serial).await?;
+        Ok(PoseIntake {
+            store: store.clone(),
+            gate,
+            session,
+            spec,
+            joint_count,
+        })
+    }
+
+    /// Refuses images for a tracker session (checked before the body is read).
+    pub fn check_takes_images(&self) -> ServiceResult<()> {
+        if self.spec.instrument != Instrument::Camera {
+            return Err(ServiceError::invalid(
+                "image",
+                "a tracker session takes JSON measurements",
+            ));
+        }
+        Ok(())
+    }
+
+    /// What an image of this session is checked against.
+    pub fn image_check(&self) -> ImageCheck {
+        ImageCheck::of(&self.spec, self.gate.clone())
+    }
+
+    /// Stores one JSON pose (image points or a tracker measurement).
+    pub async fn add_json(self, body: PoseJsonBody) -> ServiceResult<PoseRecord> {
+        body.check(
+            self.spec.instrument,
+            self.spec.camera.as_ref(),
+            self.joint_count,
+        )?;
+        let measured = body
+            .measured_position_mm
+            .map(|p| json!({ "measured_position_mm": p, "measured_pose": body.measured_pose }));
+        let pose = NewPose {
+            joints_deg: body.joints_deg,
+            set: body.set.as_str().to_string(),
+            image: None,
+            points: serde_json::to_value(body.image_points.unwrap_or_default())
+                .unwrap_or(json!([])),
+            measured,
+            label: body.label,
+            image_detection: None,
+        };
+        self.store_one(pose).await
+    }
+
+    /// Checks the joints, then checks, detects and stores the image, then
+    /// the pose.
+    pub async fn add_image(self, upload: ImagePose) -> ServiceResult<PoseRecord> {
+        let mut c = Checker::default();
+        check_joints(&mut c, "joints_deg", &upload.joints_deg, self.joint_count);
+        c.finish()?;
+        let ingested =
+            ingest_image(&self.store, upload.image, &self.image_check(), "image").await?;
+        let pose = NewPose {
+            joints_deg: upload.joints_deg,
+            set: upload.set.as_str().to_string(),
+            image: Some(ingested.meta),
+            points: json!([]),
+            measured: None,
+            label: upload.label,
+            image_detection: ingested.detection.map(|d| d.to_value()),
+        };
+        self.store_one(pose).await
+    }
+
+    async fn store_one(self, pose: NewPose) -> ServiceResult<PoseRecord> {
+        let mut stored = self.store.add_poses(&self.session.id, &[pose]).await?;
+        stored
+            .pop()
+            .ok_or_else(|| ServiceError::internal("pose not stored"))
+    }
+}

@@ -1,0 +1,18 @@
+//! The service layer, between [`crate::api`] (HTTP) and [`crate::store`]
+//! (SQL): what the service does with a request once it is parsed. Functions
+//! here take the store and typed inputs and answer typed outputs or a
+//! [`ServiceError`]; they know neither HTTP nor SQL. Handlers parse, call
+//! one function of this module and map its error in one place
+//! (`api/error.rs`).
+
+pub mod camera_reuse;
+pub mod dataset;
+pub mod dataset_intake;
+pub mod error;
+pub mod evaluate;
+pub mod images;
+pub mod intake;
+pub mod results;
+pub mod staged_images;
+
+pub use error::{ServiceError, ServiceResult};

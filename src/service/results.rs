@@ -1,0 +1,74 @@
+//! Results of a robot: its versioned parameter sets, and the calibrated
+//! model of one of them evaluated (forward kinematics, compensation).
+
+use robocal_calib::kinematics::CalibratedModel;
+
+use super::error::{ServiceError, ServiceResult};
+use super::evaluate::{
+    self, CompensateRequest, CompensateResponse, ForwardRequest, ForwardResponse,
+};
+use crate::domain::ParameterSetRecord;
+use crate::store::DynStore;
+
+/// The path word that names a robot's newest parameter set.
+pub const LATEST: &str = "latest";
+
+/// `latest` (`None`) or a positive integer.
+fn parse_version(version: &str) -> ServiceResult<Option<i64>> {
+    if version == LATEST {
+        return Ok(None);
+    }
+    match version.parse::<i64>() {
+        Ok(v) if v >= 1 => Ok(Some(v)),
+        _ => Err(ServiceError::invalid(
+            "version",
+            "a positive integer or \"latest\"",
+        )),
+    }
+}
+
+/// Parameter set `version` (`latest` allowed) of robot `serial`, or 404.
+pub async fn find_parameter_set(
+    store: &DynStore,
+    serial: &str,
+    version: &str,
+) -> ServiceResult<ParameterSetRecord> {
+    let v = parse_version(version)?;
+    store
+        .get_parameter_set(serial, v)
+        .await?
+        .ok_or_else(|| ServiceError::not_found("parameter set", &format!("{serial}/{version}")))
+}
+
+/// The calibrated model of a parameter set (409 when it holds none).
+async fn model(store: &DynStore, serial: &str, version: &str) -> ServiceResult<CalibratedModel> {
+    let set = find_parameter_set(store, serial, version).await?;
+    evaluate::model_of(&set.parameters)
+        .map_err(|_| ServiceError::Conflict("this parameter set holds no calibrated model".into()))
+}
+
+/// Forward kinematics of a parameter set's calibrated model.
+pub async fn forward(
+    store: &DynStore,
+    serial: &str,
+    version: &str,
+    request: &ForwardRequest,
+) -> ServiceResult<ForwardResponse> {
+    let model = model(store, serial, version).await?;
+    Ok(evaluate::forward(&model, request)?)
+}
+
+/// Joints that put the tool on each target by a parameter set's calibrated
+/// model (inverse kinematics on a blocking thread).
+pub async fn compensate(
+    store: &DynStore,
+    serial: &str,
+    version: &str,
+    request: CompensateRequest,
+) -> ServiceResult<CompensateResponse> {
+    let model = model(store, serial, version).await?;
+    let answer = tokio::task::spawn_blocking(move || evaluate::compensate(&model, &request))
+        .await
+        .map_err(ServiceError::internal)?;
+    Ok(answer?)
+}
