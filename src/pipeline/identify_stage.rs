@@ -15,6 +15,7 @@ use robocal_calib::kinematics::{CalibratedModel, Instrument, RobotModel};
 use robocal_calib::stats::AccuracyStats;
 
 use super::camera_stage::CameraStep;
+use super::screen_stage::Outlier;
 use super::{PipelineError, PoseInput, Stage};
 use crate::schema::job::{Measurement as MeasurementKind, Validation};
 use crate::schema::session::PoseSet;
@@ -44,6 +45,9 @@ pub struct Identified {
     pub after: AccuracyStats,
     /// Per validation pose: position error before and after (mm, world frame).
     pub val_errors: Vec<(usize, Vector3<f64>, Vector3<f64>)>,
+    /// The same for each pose left out by the screening (how far its joints
+    /// and its image disagree), where its image gives a camera pose.
+    pub outlier_errors: Vec<(usize, Vector3<f64>, Vector3<f64>)>,
 }
 
 fn numerical(stage: Stage, message: impl std::fmt::Display) -> PipelineError {
@@ -127,6 +131,7 @@ pub fn identify_robot(
     joint_refinement: bool,
     hold_intrinsics: bool,
     usable: &[usize],
+    outliers: &[Outlier],
 ) -> Result<Identified, PipelineError> {
     let instrument = if camera.is_some() {
         Instrument::Camera
@@ -218,6 +223,24 @@ pub fn identify_robot(
         .zip(before_errors.iter().zip(&after_errors))
         .map(|(&i, (b, a))| (i, *b, *a))
         .collect();
+    let mut outlier_errors = Vec::new();
+    for o in outliers {
+        let measured = measurement_of(
+            &poses[o.pose],
+            o.pose,
+            camera,
+            final_intrinsics.as_ref(),
+            kind,
+        );
+        if let Some(m) = measured {
+            let one = std::slice::from_ref(&m);
+            if let (Ok((_, b)), Ok((_, a))) =
+                (validate(&identification.before, one), validate(&model, one))
+            {
+                outlier_errors.push((o.pose, b[0], a[0]));
+            }
+        }
+    }
     Ok(Identified {
         identification,
         model,
@@ -229,5 +252,6 @@ pub fn identify_robot(
         before,
         after,
         val_errors,
+        outlier_errors,
     })
 }

@@ -19,6 +19,7 @@ mod input;
 mod measure;
 mod output;
 pub mod results;
+mod screen_stage;
 mod session_cause;
 mod stage;
 mod validate;
@@ -150,6 +151,15 @@ fn run_stages(
     let usable: Vec<usize> = (0..input.poses.len())
         .filter(|&i| camera.as_ref().is_none_or(|c| c.view_pose.contains(&i)))
         .collect();
+    let (usable, outliers) = match &camera {
+        Some(step) => {
+            let (kept, outliers, note) =
+                screen_stage::screen_poses(&input.robot, &input.poses, step, &usable);
+            notes.extend(note);
+            (kept, outliers)
+        }
+        None => (usable, Vec::new()),
+    };
     let kind = input
         .options
         .measurement
@@ -175,17 +185,29 @@ fn run_stages(
         });
     }
     within(Stage::Identify, "kinematic identification", 0.0);
-    let identified = identify_stage::identify_robot(
-        &input.robot,
-        &input.poses,
-        camera.as_ref(),
-        guess,
-        kind,
-        input.options.validation,
-        joint_refinement,
-        intrinsics_held,
-        &usable,
-    )?;
+    let identify = |usable: &[usize], outliers: &[screen_stage::Outlier]| {
+        identify_stage::identify_robot(
+            &input.robot,
+            &input.poses,
+            camera.as_ref(),
+            guess,
+            kind,
+            input.options.validation,
+            joint_refinement,
+            intrinsics_held,
+            usable,
+            outliers,
+        )
+    };
+    let mut identified = identify(&usable, &outliers)?;
+    let (back, outliers) = screen_stage::confirm(&identified, &outliers);
+    if !back.is_empty() {
+        let mut usable = usable;
+        usable.extend(back);
+        usable.sort_unstable();
+        identified = identify(&usable, &outliers)?;
+    }
+    notes.extend(screen_stage::note(&input.poses, &outliers));
     if let Some(sigma) = identified.joint_noise_rad {
         notes.push(format!(
             "Joint noise (encoders, repeatability) estimated from the images: {:.1e} deg per joint; the parameter standard deviations include it.",
@@ -218,6 +240,7 @@ fn run_stages(
         poses: &input.poses,
         measured: measured.as_ref(),
         camera: camera.as_ref(),
+        outliers: &outliers,
         notes,
     };
     let set = results::parameter_set(&context, &identified);

@@ -10,6 +10,7 @@ use serde_json::json;
 use super::camera_stage::{camera_mode, camera_report, CameraStep};
 use super::identify_stage::Identified;
 use super::measure::Measured;
+use super::screen_stage::Outlier;
 use super::PoseInput;
 use crate::report::{
     CameraStd, DetectionReport, IdentifiabilityReport, ParameterReport, PoseReport, Report,
@@ -153,6 +154,8 @@ pub struct Context<'a> {
     pub poses: &'a [PoseInput],
     pub measured: Option<&'a Measured>,
     pub camera: Option<&'a CameraStep>,
+    /// Poses the screening left out (`screen_stage`).
+    pub outliers: &'a [Outlier],
     pub notes: Vec<String>,
 }
 
@@ -227,19 +230,33 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSetDoc) -> Report {
         let view = step.view_pose.iter().position(|&p| p == i)?;
         Some(step.calibration.views[view].rms_px)
     };
+    let reason_of = |i: usize| {
+        ctx.outliers
+            .iter()
+            .find(|o| o.pose == i)
+            .map(|o| o.reason.clone())
+    };
     let per_pose = id
         .val_errors
         .iter()
+        .chain(&id.outlier_errors)
         .map(|(i, before, after)| PoseReport {
             pose_id: ctx.poses[*i].id.clone(),
             label: ctx.poses[*i].label.clone(),
-            set: "val".into(),
+            // Validation poses (uploaded or held out) are "val"; an outlier
+            // keeps the set it was uploaded in.
+            set: match reason_of(*i) {
+                Some(_) => ctx.poses[*i].set.as_str().into(),
+                None => "val".into(),
+            },
             joints_deg: ctx.poses[*i].joints_deg.clone(),
             before_error_mm: [before.x, before.y, before.z],
             after_error_mm: [after.x, after.y, after.z],
             before_mm: before.norm(),
             after_mm: after.norm(),
             reprojection_rms_px: per_view_rms(*i),
+            outlier: reason_of(*i).is_some(),
+            reason: reason_of(*i),
         })
         .collect();
     let ident = &id.identification.identifiability;

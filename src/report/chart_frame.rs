@@ -25,14 +25,14 @@ pub fn plot_area(width: f64, height: f64, extra_bottom: f64, margin_right: f64) 
 }
 
 /// The poses the accuracy statistics are about: the validation set, or
-/// every pose when the campaign has none (the title says which).
+/// every pose when the campaign has none (the title says which); never
+/// the poses the screening left out.
 pub fn judged_poses(report: &Report) -> (Vec<&PoseReport>, &'static str) {
-    let val: Vec<&PoseReport> = report.per_pose.iter().filter(|p| p.set == "val").collect();
+    // Outliers were left out of the fit and count in no statistic.
+    let kept = || report.per_pose.iter().filter(|p| !p.outlier);
+    let val: Vec<&PoseReport> = kept().filter(|p| p.set == "val").collect();
     if val.is_empty() {
-        (
-            report.per_pose.iter().collect(),
-            "all poses (no validation set)",
-        )
+        (kept().collect(), "all poses (no validation set)")
     } else {
         (val, "validation poses")
     }

@@ -5,7 +5,7 @@ use super::format::{
     decimals_for_std, ellipsize, escape_xml, fixed, mm, significant, with_precision_of,
     NOT_AVAILABLE, STAT_ROWS, TABLE_NAME_CHARS,
 };
-use super::model::{CameraReport, Report};
+use super::model::{CameraReport, PoseReport, Report};
 use std::fmt::Write;
 
 /// Board-to-image angle range quoted for the views, and the RMS range.
@@ -283,7 +283,7 @@ pub fn per_pose(page: &mut String, report: &Report) {
             page,
             "<tr{row_class}>{}<td>{}</td>",
             name_cell(p.name()),
-            escape_xml(&p.set)
+            escape_xml(&set_cell(p))
         );
         for v in [bx, by, bz] {
             let _ = write!(page, "<td class=\"num\">{}</td>", fixed(v, 3));
@@ -319,4 +319,13 @@ pub fn notes_and_signoff(page: &mut String, report: &Report) {
     page.push_str(
         "<div class=\"signoff\"><div>Checked by (name)</div><div>Date</div><div>Signature</div></div>\n</section>\n",
     );
+}
+
+/// The "set" cell: an outlier says it was left out, and why.
+pub fn set_cell(p: &PoseReport) -> String {
+    match (&p.reason, p.outlier) {
+        (Some(why), true) => format!("{}, left out: {why}", p.set),
+        (None, true) => format!("{}, left out", p.set),
+        _ => p.set.clone(),
+    }
 }

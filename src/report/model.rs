@@ -101,6 +101,14 @@ pub struct PoseReport {
     pub after_mm: f64,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub reprojection_rms_px: Option<f64>,
+    /// Left out of the fit: the pose's joints contradict its image (a wrong
+    /// joint file, a pose recorded before the robot settled). Its errors
+    /// say how far the two disagree; it counts in no statistic.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub outlier: bool,
+    /// Why the pose was left out.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reason: Option<String>,
 }
 
 /// The name a rendering shows for a pose: its label, or its id in reports

@@ -186,6 +186,8 @@ fn sample_poses(rng: &mut SampleRng, calibration: usize, validation: usize) -> V
             before_mm: norm(before_error_mm),
             after_mm: norm(after_error_mm),
             reprojection_rms_px: Some(rng.uniform(0.05, 0.10)),
+            outlier: false,
+            reason: None,
         });
     }
     poses

@@ -340,7 +340,11 @@ fn per_pose(out: &mut String, report: &Report) {
             .map_or("-".to_string(), |r| fixed(r, 3));
         t.row(vec![
             ellipsize(p.name(), TABLE_NAME_CHARS),
-            p.set.clone(),
+            if p.outlier {
+                format!("{} OUTLIER", p.set)
+            } else {
+                p.set.clone()
+            },
             fixed(p.before_mm, 3),
             fixed(p.after_mm, 3),
             x,

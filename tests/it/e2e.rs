@@ -50,7 +50,13 @@ async fn campaign_through_the_service(preset: &str, serial: &str, seed: u64) {
         report.after.norm.mean_mm
     );
     assert_eq!(report.version, 1);
-    assert_eq!(report.per_pose.len(), VAL_POSES);
+    let flagged: Vec<_> = report
+        .per_pose
+        .iter()
+        .filter(|p| p.outlier)
+        .map(|p| (p.label.clone(), p.reason.clone()))
+        .collect();
+    assert_eq!(report.per_pose.len(), VAL_POSES, "{flagged:?}");
 
     // Forward predictions at the validation joints against the truth.
     let truth: Truth =

@@ -16,6 +16,7 @@ pub(crate) mod job_list;
 pub(crate) mod jobs;
 pub(crate) mod openapi;
 pub(crate) mod ops;
+pub(crate) mod outliers;
 pub(crate) mod poses;
 pub(crate) mod raw_http;
 pub(crate) mod report_links;
