@@ -11,6 +11,7 @@ pub mod api;
 pub mod cli;
 pub mod config;
 pub mod domain;
+pub mod export;
 pub mod housekeeping;
 pub mod imaging;
 pub mod jobs;

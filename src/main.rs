@@ -118,6 +118,24 @@ enum Command {
         #[command(flatten)]
         server: ServerArgs,
     },
+    /// A parameter set for the controller or the off-line programming tool:
+    /// URDF, the identified table as JSON (`dh-json`) or CSV.
+    Export {
+        /// Robot serial number.
+        #[arg(long)]
+        serial: String,
+        /// Parameter-set version (default: the latest).
+        #[arg(long)]
+        version: Option<i64>,
+        /// `urdf`, `dh-json` or `csv`.
+        #[arg(long, value_parser = robocal::export::ExportFormat::NAMES)]
+        format: String,
+        /// Output file (standard output when absent).
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+        #[command(flatten)]
+        server: ServerArgs,
+    },
     /// Run the whole pipeline on a campaign directory without a server.
     CalibrateLocal {
         /// Campaign directory (as written by `robocal simulate`).
@@ -229,7 +247,8 @@ async fn main() -> ExitCode {
         Command::Token(TokenCommand::Revoke { id, db }) => {
             robocal::api::tokens::revoke_from_cli(&db.database_url, &id).await
         }
-        Command::Target { spec, out } => robocal::print::render_to(&spec, out.as_deref()),
+        Command::Target { spec, out } => robocal::print::render_args(&spec)
+            .and_then(|bytes| robocal::cli::write_output(out.as_deref(), &bytes)),
         Command::Openapi => {
             println!("{}", robocal::api::openapi_json());
             Ok(())
@@ -304,6 +323,20 @@ async fn main() -> ExitCode {
             Ok(client) => robocal::cli::evaluate::compensate(&client, &args)
                 .await
                 .map_err(|e| e.to_string()),
+            Err(e) => Err(e),
+        },
+        Command::Export {
+            serial,
+            version,
+            format,
+            out,
+            server,
+        } => match server.client() {
+            Ok(client) => client
+                .export(&serial, version, &format)
+                .await
+                .map_err(|e| e.to_string())
+                .and_then(|bytes| robocal::cli::write_output(out.as_deref(), &bytes)),
             Err(e) => Err(e),
         },
         Command::CalibrateLocal { dir, html } => {

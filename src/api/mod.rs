@@ -29,6 +29,7 @@ pub mod auth;
 pub mod body_idle;
 pub mod contract;
 pub mod error;
+pub mod export;
 pub mod extract;
 pub mod fingerprint;
 pub mod idempotency;
@@ -95,6 +96,7 @@ fn api_router() -> OpenApiRouter<AppState> {
         .merge(upload::router())
         .merge(jobs::router())
         .merge(results::router())
+        .merge(export::router())
         .merge(report_links::router())
         .merge(tokens::router())
         .merge(targets::router())

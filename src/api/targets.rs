@@ -9,7 +9,7 @@ use utoipa_axum::routes;
 
 use super::error::{ApiError, ApiResult, Problem};
 use super::AppState;
-use crate::print::{self, Page, PageFormat};
+use crate::print;
 
 pub fn router() -> OpenApiRouter<AppState> {
     OpenApiRouter::new().routes(routes!(render_target))
@@ -34,11 +34,7 @@ pub fn router() -> OpenApiRouter<AppState> {
 async fn render_target(RawQuery(query): RawQuery) -> ApiResult<Response> {
     let pairs = query_pairs(query.as_deref().unwrap_or(""))?;
     let request = print::parse_pairs(&pairs).map_err(ApiError::validation)?;
-    let page = Page::layout(&request.target.drawing(), &request.target.spec_lines());
-    let body = match request.format {
-        PageFormat::Svg => print::svg::write_svg(&page).into_bytes(),
-        PageFormat::Pdf => print::pdf::write_pdf(&page),
-    };
+    let body = print::render(&request);
     Ok((
         [(header::CONTENT_TYPE, request.format.content_type())],
         body,

@@ -258,6 +258,30 @@ impl Client {
             .await
     }
 
+    /// A parameter set exported (`urdf`, `dh-json`, `csv`): the raw bytes.
+    pub async fn export(
+        &self,
+        serial: &str,
+        version: Option<i64>,
+        format: &str,
+    ) -> Result<Vec<u8>, ClientError> {
+        let version = version.map_or("latest".to_string(), |v| v.to_string());
+        let path = format!("/v1/robots/{serial}/parameter-sets/{version}/export");
+        let response = self
+            .request(reqwest::Method::GET, &path)
+            .query(&[("format", format)])
+            .send()
+            .await?;
+        if response.status().is_success() {
+            return Ok(response.bytes().await?.to_vec());
+        }
+        // A refusal is problem+json: read it as every other call does.
+        let again = self
+            .request(reqwest::Method::GET, &path)
+            .query(&[("format", format)]);
+        self.send(again).await.map(|_| Vec::new())
+    }
+
     /// `version = None` asks for the latest.
     pub async fn report(&self, serial: &str, version: Option<i64>) -> Result<Report, ClientError> {
         let version = version.map_or("latest".to_string(), |v| v.to_string());

@@ -264,3 +264,16 @@ mod tests {
         );
     }
 }
+
+/// Writes a command's bytes to `out`, or to standard output.
+pub fn write_output(out: Option<&std::path::Path>, bytes: &[u8]) -> Result<(), String> {
+    match out {
+        Some(path) => std::fs::write(path, bytes).map_err(|e| format!("{}: {e}", path.display())),
+        None => {
+            use std::io::Write;
+            std::io::stdout()
+                .write_all(bytes)
+                .map_err(|e| e.to_string())
+        }
+    }
+}

@@ -299,6 +299,7 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSetDoc) -> Report {
             condition_number: ident.condition_number,
             observability_index: ident.observability_index,
             fixed: ident.fixed.clone(),
+            weak: ident.weak.clone(),
         },
         residual_field: ctx.camera.map(residual_field).unwrap_or_default(),
         notes,

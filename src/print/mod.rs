@@ -12,11 +12,11 @@ pub mod query;
 pub mod svg;
 
 pub use page::{Page, PageFormat};
-pub use query::{parse_pairs, PrintError};
+pub use query::{parse_pairs, PrintError, PrintRequest};
 
-/// `robocal target KEY=VALUE… [--out FILE]`: the page written to `out`, or
-/// to standard output. Errors name the key, as the HTTP route's 422 does.
-pub fn render_to(args: &[String], out: Option<&std::path::Path>) -> Result<(), String> {
+/// `robocal target KEY=VALUE…`: the page's bytes. Errors name the key, as
+/// the HTTP route's 422 does.
+pub fn render_args(args: &[String]) -> Result<Vec<u8>, String> {
     let pairs = args
         .iter()
         .map(|a| {
@@ -32,18 +32,14 @@ pub fn render_to(args: &[String], out: Option<&std::path::Path>) -> Result<(), S
             .collect::<Vec<_>>()
             .join("; ")
     })?;
+    Ok(render(&request))
+}
+
+/// The page of a parsed request in its format.
+pub fn render(request: &PrintRequest) -> Vec<u8> {
     let page = Page::layout(&request.target.drawing(), &request.target.spec_lines());
-    let bytes = match request.format {
+    match request.format {
         PageFormat::Svg => svg::write_svg(&page).into_bytes(),
         PageFormat::Pdf => pdf::write_pdf(&page),
-    };
-    match out {
-        Some(path) => std::fs::write(path, bytes).map_err(|e| format!("{}: {e}", path.display())),
-        None => {
-            use std::io::Write;
-            std::io::stdout()
-                .write_all(&bytes)
-                .map_err(|e| e.to_string())
-        }
     }
 }

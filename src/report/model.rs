@@ -159,6 +159,10 @@ pub struct IdentifiabilityReport {
     pub condition_number: f64,
     pub observability_index: f64,
     pub fixed: Vec<String>,
+    /// The subset of `fixed` this campaign's poses did not determine (the
+    /// rest is structurally redundant): vary the poses to identify them.
+    #[serde(default)]
+    pub weak: Vec<String>,
 }
 
 /// A reprojection residual at an image point (observed minus predicted),

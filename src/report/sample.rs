@@ -331,6 +331,7 @@ fn sample_parameters(rng: &mut SampleRng) -> (Vec<ParameterReport>, Identifiabil
         condition_number: 412.7,
         observability_index: 0.0213,
         fixed,
+        weak: Vec::new(),
     };
     (parameters, identifiability)
 }

@@ -144,6 +144,12 @@ pub struct CompensateResponse {
 
 /// The calibrated model of a stored parameter set.
 pub fn model_of(parameters: &Value) -> Result<CalibratedModel, String> {
+    doc_of(parameters)?.model()
+}
+
+/// A stored parameter set read back into its typed form (the contract's
+/// frame names mapped to the model's).
+pub fn doc_of(parameters: &Value) -> Result<ParameterSetDoc, String> {
     let mut v = parameters.clone();
     if let Some(obj) = v.as_object_mut() {
         for (from, to) in [
@@ -156,9 +162,7 @@ pub fn model_of(parameters: &Value) -> Result<CalibratedModel, String> {
             }
         }
     }
-    let doc: ParameterSetDoc =
-        serde_json::from_value(v).map_err(|e| format!("stored parameter set unreadable: {e}"))?;
-    doc.model()
+    serde_json::from_value(v).map_err(|e| format!("stored parameter set unreadable: {e}"))
 }
 
 fn pose_of(doc: &PoseDoc, field: &str, c: &mut Checker) -> Option<Pose> {

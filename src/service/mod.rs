@@ -10,6 +10,7 @@ pub mod dataset;
 pub mod dataset_intake;
 pub mod error;
 pub mod evaluate;
+pub mod export;
 pub mod images;
 pub mod intake;
 pub mod results;

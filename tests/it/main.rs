@@ -8,6 +8,7 @@ pub(crate) mod cli;
 pub(crate) mod compensate;
 pub(crate) mod e2e;
 pub(crate) mod e2e_points;
+pub(crate) mod export;
 pub(crate) mod hostile;
 pub(crate) mod hostile_uploads;
 pub(crate) mod http_errors;

@@ -1,0 +1,121 @@
+//! The calibrated model as a URDF (metres, radians) whose chain reproduces
+//! `forward` exactly (method.md §5).
+//!
+//! Every link transform factors as `A_i(q) = Rz(q) · A_i(0)` (the joint
+//! offset, `d`, `a`, twist and Hayati tilt all sit in `A_i(0)`), so joint
+//! `i` of the URDF rotates about its parent's z axis at an origin equal to
+//! the previous link's `A_{i-1}(0)`, and the flange hangs off the last
+//! link at `A_n(0)`. URDF joint positions are then the controller's joint
+//! angles, unchanged. The camera (or tracker tool) is a fixed child of the
+//! flange; the board (or tracker) a fixed child of the base.
+
+use std::fmt::Write;
+
+use robocal_calib::geometry::Pose;
+use robocal_calib::kinematics::CalibratedModel;
+
+/// Millimetres per metre.
+const MM_PER_M: f64 = 1000.0;
+/// URDF requires `effort` and `velocity` on a revolute joint's limit;
+/// robocal identifies neither, so these placeholders say "not given"
+/// (ROS tools read 0 as "no limit known"); the controller's values govern.
+const UNKNOWN_EFFORT: f64 = 0.0;
+const UNKNOWN_VELOCITY: f64 = 0.0;
+
+/// Names of the frames at the two ends of the chain.
+#[derive(Debug, Clone, Copy)]
+pub struct FrameNames {
+    /// `camera` (camera sessions) or `tool` (tracker sessions).
+    pub end: &'static str,
+    /// `target` (camera sessions) or `tracker` (tracker sessions).
+    pub world: &'static str,
+}
+
+/// The URDF document of `model`, robot named `name`.
+pub fn write_urdf(name: &str, model: &CalibratedModel, frames: FrameNames) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, r#"<?xml version="1.0"?>"#);
+    let _ = writeln!(
+        s,
+        "<!-- robocal calibrated model of {}: lengths in metres, angles in radians.\n     \
+         Joint positions are the controller's joint angles. -->",
+        xml(name)
+    );
+    let _ = writeln!(s, r#"<robot name="{}">"#, xml(name));
+    let mut links = vec!["base_link".to_string()];
+    links.extend((1..=model.robot.dof()).map(|i| format!("link_{i}")));
+    links.push("flange".into());
+    links.push(frames.end.into());
+    links.push(frames.world.into());
+    for link in &links {
+        let _ = writeln!(s, r#"  <link name="{link}"/>"#);
+    }
+    let mut origin = Pose::identity();
+    for (i, joint) in model.robot.joints.iter().enumerate() {
+        let _ = writeln!(
+            s,
+            r#"  <joint name="joint_{n}" type="revolute">
+    <parent link="{parent}"/>
+    <child link="link_{n}"/>
+{origin}    <axis xyz="0 0 1"/>
+    <limit lower="{lower:e}" upper="{upper:e}" effort="{UNKNOWN_EFFORT}" velocity="{UNKNOWN_VELOCITY}"/>
+  </joint>"#,
+            n = i + 1,
+            parent = links[i],
+            origin = origin_element(&origin),
+            lower = joint.min_rad,
+            upper = joint.max_rad,
+        );
+        origin = joint.link_transform(0.0);
+    }
+    let n = model.robot.dof();
+    fixed(&mut s, "flange_joint", &links[n], "flange", &origin);
+    fixed(
+        &mut s,
+        &format!("{}_joint", frames.end),
+        "flange",
+        frames.end,
+        &model.flange_to_tool,
+    );
+    fixed(
+        &mut s,
+        &format!("{}_joint", frames.world),
+        "base_link",
+        frames.world,
+        &model.world_to_base.inverse(),
+    );
+    let _ = writeln!(s, "</robot>");
+    s
+}
+
+fn fixed(s: &mut String, name: &str, parent: &str, child: &str, pose: &Pose) {
+    let _ = writeln!(
+        s,
+        r#"  <joint name="{name}" type="fixed">
+    <parent link="{parent}"/>
+    <child link="{child}"/>
+{}  </joint>"#,
+        origin_element(pose)
+    );
+}
+
+/// `<origin xyz rpy>`: URDF's rpy is fixed-axis X, then Y, then Z, i.e.
+/// `R = Rz(yaw) Ry(pitch) Rx(roll)`, nalgebra's `euler_angles` order.
+/// Numbers in Rust's shortest round-trip form: nothing is lost.
+fn origin_element(pose: &Pose) -> String {
+    let t = pose.translation.vector / MM_PER_M;
+    let (roll, pitch, yaw) = pose.rotation.euler_angles();
+    format!(
+        "    <origin xyz=\"{:?} {:?} {:?}\" rpy=\"{roll:?} {pitch:?} {yaw:?}\"/>\n",
+        t.x, t.y, t.z
+    )
+}
+
+/// XML attribute and comment escaping of a robot name.
+fn xml(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+        .replace("--", "-&#45;")
+}
