@@ -234,6 +234,19 @@ fn jobs_table(items: &[Value]) -> String {
     out
 }
 
+/// Writes a command's bytes to `out`, or to standard output.
+pub fn write_output(out: Option<&std::path::Path>, bytes: &[u8]) -> Result<(), String> {
+    match out {
+        Some(path) => std::fs::write(path, bytes).map_err(|e| format!("{}: {e}", path.display())),
+        None => {
+            use std::io::Write;
+            std::io::stdout()
+                .write_all(bytes)
+                .map_err(|e| e.to_string())
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -262,18 +275,5 @@ mod tests {
             line.starts_with('\r') && line.contains(" 50% camera"),
             "{line:?}"
         );
-    }
-}
-
-/// Writes a command's bytes to `out`, or to standard output.
-pub fn write_output(out: Option<&std::path::Path>, bytes: &[u8]) -> Result<(), String> {
-    match out {
-        Some(path) => std::fs::write(path, bytes).map_err(|e| format!("{}: {e}", path.display())),
-        None => {
-            use std::io::Write;
-            std::io::stdout()
-                .write_all(bytes)
-                .map_err(|e| e.to_string())
-        }
     }
 }
