@@ -3,6 +3,7 @@
 //! Entry points: [`decode_image`] for untrusted bytes, [`detect`] /
 //! [`detect_with`] for a grey image and a [`TargetSpec`].
 
+pub mod aruco;
 pub mod bias;
 pub mod blobs;
 pub mod board_point;
