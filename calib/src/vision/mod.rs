@@ -7,6 +7,7 @@ pub mod aruco;
 pub mod bias;
 pub mod blobs;
 pub mod board_point;
+pub mod charuco;
 pub mod detect;
 pub mod ellipse;
 pub mod error;
