@@ -96,7 +96,7 @@ impl CharucoSpec {
     /// ≥ 4.6 puts the first marker in square (1, 0); the legacy layout on
     /// boards with an even number of rows starts with one in (0, 0).
     pub fn has_marker(&self, col: usize, row: usize) -> bool {
-        let parity = if self.legacy_layout && self.rows() % 2 == 0 {
+        let parity = if self.legacy_layout && self.rows().is_multiple_of(2) {
             0
         } else {
             1
