@@ -3,5 +3,8 @@
 //! quad's homography, matched with rotation and error correction).
 
 pub mod dictionary;
+pub mod markers;
+pub mod quads;
 
 pub use dictionary::{predefined, predefined_all, predefined_names, Dictionary, Identified};
+pub use markers::{detect_markers, MarkerObservation};
