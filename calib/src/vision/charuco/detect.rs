@@ -9,6 +9,7 @@
 
 use nalgebra::Vector2;
 
+use super::corner_refine::refine_corner;
 use super::layout::{corner_mm, inner_corner_grid, marker_cells, squares_around_corner};
 use super::spec::CharucoSpec;
 use crate::vision::aruco::detect_markers;
@@ -20,8 +21,10 @@ use crate::vision::image::GrayImage;
 /// Markers whose square centre lies within this many squares (Chebyshev)
 /// of an inner corner take part in its local homography.
 pub const NEIGHBOUR_RADIUS_SQUARES: f64 = 2.5;
-/// Refinement window half-size as a fraction of the local square size in the image.
-pub const REFINE_WINDOW_FRACTION: f64 = 0.25;
+/// Refinement window half-size as a fraction of the gap between a corner
+/// and the nearest marker edge in the image (the window must hold only the
+/// four squares' edges, no marker).
+pub const REFINE_WINDOW_FRACTION: f64 = 0.9;
 /// Bounds of the refinement half window, pixels.
 pub const MIN_REFINE_HALF_WINDOW_PX: f64 = 2.0;
 pub const MAX_REFINE_HALF_WINDOW_PX: f64 = 15.0;
@@ -99,7 +102,8 @@ pub fn detect_charuco_with(
                 continue;
             }
             let square_px = (px - p).norm().min((py - p).norm());
-            let half = (REFINE_WINDOW_FRACTION * square_px)
+            let gap_px = square_px * 0.5 * (s - spec.marker_mm) / s;
+            let half = (REFINE_WINDOW_FRACTION * gap_px)
                 .clamp(MIN_REFINE_HALF_WINDOW_PX, MAX_REFINE_HALF_WINDOW_PX);
             let found = match refine {
                 None => Some([p.x, p.y]),
@@ -126,9 +130,10 @@ pub fn detect_charuco_with(
     })
 }
 
-/// Detects the inner corners, predictions only (see `detect_charuco_with`).
+/// Detects the inner corners, refined by the interim saddle fit
+/// (`corner_refine`; see `detect_charuco_with`).
 pub fn detect_charuco(img: &GrayImage, spec: &CharucoSpec) -> Result<BoardDetection, DetectError> {
-    detect_charuco_with(img, spec, None)
+    detect_charuco_with(img, spec, Some(&refine_corner))
 }
 
 #[cfg(test)]

@@ -113,7 +113,7 @@ fn rendered_views_give_every_visible_corner_with_its_identity() {
         );
         assert!(rms <= *max_rms, "{name}: RMS {rms}");
         // A wrong identity would be a whole square (~60 px) off.
-        assert!(worst < 3.0, "{name}: worst {worst}");
+        assert!(worst < 0.5, "{name}: worst {worst}");
     }
 }
 
