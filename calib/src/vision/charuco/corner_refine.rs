@@ -79,8 +79,68 @@ fn fit_once(img: &GrayImage, cx: isize, cy: isize, half: f64) -> Option<Vector2<
     Some(-(hess.try_inverse()? * Vector2::new(c[3], c[4])))
 }
 
-/// Saddle point near `guess_px` within `half_window_px`, or `None`.
+/// Gradient-orthogonality passes (Förstner; OpenCV's `cornerSubPix`
+/// criterion): every edge pixel's gradient is orthogonal to the line from
+/// the corner to it, so the corner solves `sum(g g^T)(q - p) = 0`. Exact for
+/// straight edges whatever the window, which the quadratic model is not.
+const GRADIENT_PASSES: usize = 5;
+/// Gradient weight sigma as a fraction of the half window (edges far from
+/// the corner fix its position as well as near ones).
+const GRADIENT_WEIGHT_SIGMA_FRACTION: f64 = 0.6;
+
+/// One gradient-orthogonality solve around `p` over integer pixels.
+fn gradient_step(img: &GrayImage, p: Vector2<f64>, half: f64) -> Option<Vector2<f64>> {
+    let r = half.ceil() as isize;
+    let (cx, cy) = (p.x.round() as isize, p.y.round() as isize);
+    if cx - r < 1
+        || cy - r < 1
+        || (cx + r + 1) as usize >= img.width
+        || (cy + r + 1) as usize >= img.height
+    {
+        return None;
+    }
+    let sw = GRADIENT_WEIGHT_SIGMA_FRACTION * half;
+    let (mut a, mut b) = (Matrix2::<f64>::zeros(), Vector2::<f64>::zeros());
+    for y in cy - r..=cy + r {
+        for x in cx - r..=cx + r {
+            let (xu, yu) = (x as usize, y as usize);
+            let gx = 0.5 * (img.at(xu + 1, yu) - img.at(xu - 1, yu)) as f64;
+            let gy = 0.5 * (img.at(xu, yu + 1) - img.at(xu, yu - 1)) as f64;
+            let (dx, dy) = (x as f64 - p.x, y as f64 - p.y);
+            let w = (-(dx * dx + dy * dy) / (2.0 * sw * sw)).exp();
+            let g = Matrix2::new(gx * gx, gx * gy, gx * gy, gy * gy) * w;
+            a += g;
+            b += g * Vector2::new(x as f64, y as f64);
+        }
+    }
+    Some(a.try_inverse()? * b)
+}
+
+/// Saddle point near `guess_px` within `half_window_px`, polished by the
+/// gradient criterion, or `None`.
 pub fn refine_corner(img: &GrayImage, guess_px: [f64; 2], half_window_px: f64) -> Option<[f64; 2]> {
+    let saddle = refine_saddle_only(img, guess_px, half_window_px)?;
+    let mut p = Vector2::new(saddle[0], saddle[1]);
+    for _ in 0..GRADIENT_PASSES {
+        let Some(q) = gradient_step(img, p, half_window_px) else {
+            return Some(saddle);
+        };
+        let moved = (q - p).norm();
+        p = q;
+        if moved < CONVERGED_PX {
+            break;
+        }
+    }
+    let guess = Vector2::new(guess_px[0], guess_px[1]);
+    ((p - guess).norm() <= half_window_px).then_some([p.x, p.y])
+}
+
+/// The saddle of the fitted quadratic alone.
+pub fn refine_saddle_only(
+    img: &GrayImage,
+    guess_px: [f64; 2],
+    half_window_px: f64,
+) -> Option<[f64; 2]> {
     let mut p = Vector2::new(guess_px[0], guess_px[1]);
     for _ in 0..MAX_PASSES {
         let (cx, cy) = (p.x.round() as isize, p.y.round() as isize);
