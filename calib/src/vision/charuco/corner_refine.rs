@@ -104,8 +104,10 @@ fn gradient_step(img: &GrayImage, p: Vector2<f64>, half: f64) -> Option<Vector2<
     for y in cy - r..=cy + r {
         for x in cx - r..=cx + r {
             let (xu, yu) = (x as usize, y as usize);
-            let gx = 0.5 * (img.at(xu + 1, yu) - img.at(xu - 1, yu)) as f64;
-            let gy = 0.5 * (img.at(xu, yu + 1) - img.at(xu, yu - 1)) as f64;
+            // Sobel: differences smoothed across, less noise than central ones.
+            let v = |dx: usize, dy: usize| img.at(xu + dx - 1, yu + dy - 1) as f64;
+            let gx = (v(2, 0) + 2.0 * v(2, 1) + v(2, 2)) - (v(0, 0) + 2.0 * v(0, 1) + v(0, 2));
+            let gy = (v(0, 2) + 2.0 * v(1, 2) + v(2, 2)) - (v(0, 0) + 2.0 * v(1, 0) + v(2, 0));
             let (dx, dy) = (x as f64 - p.x, y as f64 - p.y);
             let w = (-(dx * dx + dy * dy) / (2.0 * sw * sw)).exp();
             let g = Matrix2::new(gx * gx, gx * gy, gx * gy, gy * gy) * w;
@@ -119,12 +121,12 @@ fn gradient_step(img: &GrayImage, p: Vector2<f64>, half: f64) -> Option<Vector2<
 /// Saddle point near `guess_px` within `half_window_px`, polished by the
 /// gradient criterion, or `None`.
 pub fn refine_corner(img: &GrayImage, guess_px: [f64; 2], half_window_px: f64) -> Option<[f64; 2]> {
-    let saddle = refine_saddle_only(img, guess_px, half_window_px)?;
-    let mut p = Vector2::new(saddle[0], saddle[1]);
+    // The saddle is the better start; where the quadratic is no saddle
+    // (heavy blur, a window clipped by the image) start from the guess.
+    let start = refine_saddle_only(img, guess_px, half_window_px).unwrap_or(guess_px);
+    let mut p = Vector2::new(start[0], start[1]);
     for _ in 0..GRADIENT_PASSES {
-        let Some(q) = gradient_step(img, p, half_window_px) else {
-            return Some(saddle);
-        };
+        let q = gradient_step(img, p, half_window_px)?;
         let moved = (q - p).norm();
         p = q;
         if moved < CONVERGED_PX {
