@@ -84,8 +84,8 @@ fn cross(o: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
     (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
 }
 
-/// Convex hull (Andrew's monotone chain), counter-clockwise in x-right/y-up
-/// terms, i.e. clockwise as seen with y down... order is fixed later.
+/// Convex hull (Andrew's monotone chain); its orientation does not matter,
+/// `hull_quad` orders the quad clockwise (as seen with y down) itself.
 fn convex_hull(mut pts: Vec<[f64; 2]>) -> Vec<[f64; 2]> {
     pts.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
     pts.dedup();

@@ -131,3 +131,32 @@ fn an_image_without_the_board_is_no_board_and_bad_specs_are_refused() {
         Err(DetectError::InvalidTarget(_))
     ));
 }
+
+#[test]
+fn refinement_beats_the_homography_prediction_several_fold() {
+    let spec = board();
+    let opts = RenderOptions {
+        supersampling: 8,
+        board_margin_mm: 15.0,
+        ..RenderOptions::default()
+    };
+    let mut rng = StdRng::seed_from_u64(7);
+    let iso = pose(620.0, 40.0, 25.0, [0.0, 0.0]);
+    let view = render_charuco(&reference_camera(), &iso, &spec, W, H, &opts, &mut rng).unwrap();
+    let rms = |det: &BoardDetection| {
+        let nx = spec.cols() - 1;
+        let s: f64 = det
+            .points
+            .iter()
+            .map(|p| {
+                let t = view.truth[p.row * nx + p.col];
+                (p.x_px - t.x).powi(2) + (p.y_px - t.y).powi(2)
+            })
+            .sum();
+        (s / det.points.len() as f64).sqrt()
+    };
+    let predicted = rms(&detect_charuco_with(&view.image, &spec, None).unwrap());
+    let refined = rms(&detect_charuco(&view.image, &spec).unwrap());
+    eprintln!("predicted RMS {predicted:.3} px, refined {refined:.3} px");
+    assert!(refined * 3.0 < predicted, "{refined} vs {predicted}");
+}
