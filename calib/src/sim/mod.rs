@@ -9,6 +9,8 @@ pub mod oracle;
 /// Views as point observations (no image): camera-calibration tests.
 pub mod point_views;
 pub mod render;
+/// ChArUco boards through the same camera (issue 14).
+pub mod render_charuco;
 pub mod start_model;
 /// Laser-tracker campaigns with optional non-geometric errors (issue 19).
 pub mod tracker_campaign;

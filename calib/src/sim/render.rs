@@ -144,7 +144,7 @@ impl Scene<'_> {
 }
 
 /// Board-plane point seen at pixel `(u, v)`, or `None` if the ray misses it.
-fn board_point(
+pub(crate) fn board_point(
     camera: &Intrinsics,
     target_to_camera: &Isometry3<f64>,
     u: f64,
@@ -160,7 +160,7 @@ fn board_point(
     (s > 0.0).then(|| Vector2::new(origin.x + s * dir.x, origin.y + s * dir.y))
 }
 
-fn check(opts: &RenderOptions, width: usize, height: usize) -> Result<(), RenderError> {
+pub(crate) fn check(opts: &RenderOptions, width: usize, height: usize) -> Result<(), RenderError> {
     let bad = |s: &str| Err(RenderError::InvalidOptions(s.into()));
     if width == 0 || height == 0 || width > MAX_RENDER_SIDE_PX || height > MAX_RENDER_SIDE_PX {
         return bad("width and height must be 1..=16384");
@@ -253,7 +253,7 @@ fn shade_pixel(scene: &Scene, corners: &[Option<Vector2<f64>>; 4], s: usize) -> 
 }
 
 /// Separable Gaussian blur with clamped borders.
-fn gaussian_blur(data: &mut [f32], w: usize, h: usize, sigma: f64) {
+pub(crate) fn gaussian_blur(data: &mut [f32], w: usize, h: usize, sigma: f64) {
     let r = (BLUR_HALF_WIDTH_SIGMAS * sigma).ceil() as isize;
     let mut k: Vec<f32> = (-r..=r)
         .map(|x| (-(x * x) as f64 / (2.0 * sigma * sigma)).exp() as f32)
@@ -284,7 +284,7 @@ fn gaussian_blur(data: &mut [f32], w: usize, h: usize, sigma: f64) {
 }
 
 /// Vignetting (quadratic fall-off to the corners), noise, 8-bit quantisation.
-fn finish<R: Rng + ?Sized>(
+pub(crate) fn finish<R: Rng + ?Sized>(
     data: &mut [f32],
     w: usize,
     h: usize,

@@ -3,9 +3,11 @@
 //! Entry points: [`decode_image`] for untrusted bytes, [`detect`] /
 //! [`detect_with`] for a grey image and a [`TargetSpec`].
 
+pub mod aruco;
 pub mod bias;
 pub mod blobs;
 pub mod board_point;
+pub mod charuco;
 pub mod detect;
 pub mod drawing;
 pub mod ellipse;
