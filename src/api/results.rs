@@ -18,7 +18,7 @@ use crate::domain::ParameterSetRecord;
 use crate::pipeline::results::PoseOut;
 use crate::report::schema::IntrinsicsSchema;
 use crate::report::{render_html, render_svg, Report};
-use crate::service::{evaluate, results};
+use crate::service::{evaluate, filter, results};
 
 pub fn router() -> OpenApiRouter<AppState> {
     OpenApiRouter::new()
@@ -28,6 +28,7 @@ pub fn router() -> OpenApiRouter<AppState> {
         .routes(routes!(get_report_svg))
         .routes(routes!(get_report_html))
         .routes(routes!(forward))
+        .routes(routes!(filter_targets))
         .routes(routes!(compensate))
 }
 
@@ -233,6 +234,25 @@ async fn forward(
 ) -> ApiResult<Json<evaluate::ForwardResponse>> {
     Ok(Json(
         results::forward(&state.store, &serial, &version, &body).await?,
+    ))
+}
+
+/// Cartesian targets for a controller that runs the nominal model: sent to
+/// it, they make the real robot put the tool on the desired targets.
+#[utoipa::path(post, path = "/v1/robots/{serial}/parameter-sets/{version}/filter", tag = "results",
+    params(("serial" = String, Path, description = "Robot serial number"),
+           ("version" = String, Path, pattern = r"^(latest|[1-9][0-9]{0,17})$", description = "Version number (1, 2, ...) or `latest`")),
+    request_body = filter::FilterRequest,
+    responses((status = 200, description = "Per target, the flange pose for the nominal controller, the joints the robot takes and the replayed residual; unreachable targets in `errors` with their index", body = filter::FilterResponse), (status = 422, body = Problem, content_type = "application/problem+json"),
+              (status = 409, description = "The parameter set holds no calibrated model", body = Problem, content_type = "application/problem+json")))]
+async fn filter_targets(
+    State(state): State<AppState>,
+    SerialPath(serial): SerialPath,
+    Path((_serial, version)): Path<(String, String)>,
+    ApiJson(body): ApiJson<filter::FilterRequest>,
+) -> ApiResult<Json<filter::FilterResponse>> {
+    Ok(Json(
+        results::filter(&state.store, &serial, &version, body).await?,
     ))
 }
 

@@ -165,7 +165,7 @@ pub fn doc_of(parameters: &Value) -> Result<ParameterSetDoc, String> {
     serde_json::from_value(v).map_err(|e| format!("stored parameter set unreadable: {e}"))
 }
 
-fn pose_of(doc: &PoseDoc, field: &str, c: &mut Checker) -> Option<Pose> {
+pub(crate) fn pose_of(doc: &PoseDoc, field: &str, c: &mut Checker) -> Option<Pose> {
     doc.check(c, field);
     let pose = match doc.matrix {
         Some(m) => robocal_calib::geometry::pose_from_matrix_rows(&m),
@@ -182,7 +182,7 @@ fn pose_of(doc: &PoseDoc, field: &str, c: &mut Checker) -> Option<Pose> {
     }
 }
 
-fn check_joints(row: &[f64], dof: usize, field: &str, c: &mut Checker) {
+pub(crate) fn check_joints(row: &[f64], dof: usize, field: &str, c: &mut Checker) {
     if row.len() != dof {
         c.fail(
             field,

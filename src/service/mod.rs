@@ -11,6 +11,7 @@ pub mod dataset_intake;
 pub mod error;
 pub mod evaluate;
 pub mod export;
+pub mod filter;
 pub mod images;
 pub mod intake;
 pub mod results;

@@ -7,7 +7,9 @@ use super::error::{ServiceError, ServiceResult};
 use super::evaluate::{
     self, CompensateRequest, CompensateResponse, ForwardRequest, ForwardResponse,
 };
+use super::filter::{self, FilterRequest, FilterResponse};
 use crate::domain::ParameterSetRecord;
+use crate::schema::robot::{doc_to_model, KinematicsDoc};
 use crate::store::DynStore;
 
 /// The path word that names a robot's newest parameter set.
@@ -68,6 +70,28 @@ pub async fn compensate(
 ) -> ServiceResult<CompensateResponse> {
     let model = model(store, serial, version).await?;
     let answer = tokio::task::spawn_blocking(move || evaluate::compensate(&model, &request))
+        .await
+        .map_err(ServiceError::internal)?;
+    Ok(answer?)
+}
+
+/// Filtered targets for the nominal controller (`filter`), on a blocking
+/// thread: the calibrated model of the set, the robot's nominal chain.
+pub async fn filter(
+    store: &DynStore,
+    serial: &str,
+    version: &str,
+    request: FilterRequest,
+) -> ServiceResult<FilterResponse> {
+    let model = model(store, serial, version).await?;
+    let robot = store
+        .get_robot(serial)
+        .await?
+        .ok_or_else(|| ServiceError::not_found("robot", serial))?;
+    let doc: KinematicsDoc =
+        serde_json::from_value(robot.kinematics).map_err(ServiceError::internal)?;
+    let nominal = doc_to_model(&doc);
+    let answer = tokio::task::spawn_blocking(move || filter::filter(&model, &nominal, &request))
         .await
         .map_err(ServiceError::internal)?;
     Ok(answer?)

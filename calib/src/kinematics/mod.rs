@@ -1,5 +1,6 @@
 //! Robot kinematic model, identification and compensation (method.md §5–8).
 
+pub mod filter;
 pub mod identifiability;
 pub mod identify;
 pub mod identify_error;

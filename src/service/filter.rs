@@ -1,0 +1,116 @@
+//! `POST …/parameter-sets/{version}/filter`: Cartesian targets for a
+//! controller that runs the robot's nominal model (issue "Deploy the
+//! result"), computed exactly by `calib::kinematics::filter`.
+
+use robocal_calib::geometry::Pose;
+use robocal_calib::kinematics::filter::filter_target;
+use robocal_calib::kinematics::ik::default_seeds;
+use robocal_calib::kinematics::{CalibratedModel, RobotModel};
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+use super::evaluate::{check_joints, pose_of, MAX_ROWS};
+use crate::pipeline::results::PoseOut;
+use crate::schema::{Checker, FieldError, PoseDoc};
+
+#[derive(Debug, Clone, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FilterRequest {
+    /// Desired poses of the tool in the target frame (camera sessions) or
+    /// the tracker frame.
+    pub targets: Vec<PoseDoc>,
+    /// The tool in the flange frame (a pose of the flange, not relative to
+    /// the camera).
+    pub tool: PoseDoc,
+    /// Joints (deg) whose branch every solution keeps: the robot's usual
+    /// configuration in the program. Mid-range joints when absent.
+    #[serde(default)]
+    pub seed_joints_deg: Option<Vec<f64>>,
+}
+
+/// One target that could not be filtered; the others are still answered.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct TargetError {
+    /// Index into `targets`.
+    pub index: usize,
+    pub message: String,
+}
+
+/// Per target (same order; `null` where `errors` names the index).
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct FilterResponse {
+    /// The flange pose in the base frame to send to the nominal controller.
+    pub nominal_targets: Vec<Option<PoseOut>>,
+    /// The joints the real robot takes for each target (deg).
+    pub joints_deg: Vec<Option<Vec<f64>>>,
+    /// Where the calibrated model puts the tool when the nominal controller
+    /// solves the filtered target from the seed, distance to the target (mm).
+    pub residual_mm: Vec<Option<f64>>,
+    pub errors: Vec<TargetError>,
+}
+
+/// Filters every target; a target out of reach or beyond the joint limits
+/// is an entry of `errors`, the others are answered. A malformed request
+/// (NaN in a pose, wrong seed length) is refused whole.
+pub fn filter(
+    calibrated: &CalibratedModel,
+    nominal: &RobotModel,
+    req: &FilterRequest,
+) -> Result<FilterResponse, Vec<FieldError>> {
+    let mut c = Checker::default();
+    if req.targets.is_empty() || req.targets.len() > MAX_ROWS {
+        c.fail("targets", format!("1 to {MAX_ROWS} targets"));
+    }
+    let targets: Vec<Option<Pose>> = req
+        .targets
+        .iter()
+        .enumerate()
+        .map(|(i, t)| pose_of(t, &format!("targets[{i}]"), &mut c))
+        .collect();
+    let tool = pose_of(&req.tool, "tool", &mut c);
+    if let Some(seed) = &req.seed_joints_deg {
+        check_joints(seed, calibrated.robot.dof(), "seed_joints_deg", &mut c);
+    }
+    if nominal.dof() != calibrated.robot.dof() {
+        c.fail(
+            "robot",
+            "the robot's joint table no longer matches this parameter set",
+        );
+    }
+    c.finish()?;
+    let model = calibrated.with_tool(tool.expect("checked above"));
+    let seed: Vec<f64> = match &req.seed_joints_deg {
+        Some(deg) => deg.iter().map(|d| d.to_radians()).collect(),
+        None => default_seeds(&model).swap_remove(0),
+    };
+    let mut answer = FilterResponse {
+        nominal_targets: Vec::with_capacity(targets.len()),
+        joints_deg: Vec::with_capacity(targets.len()),
+        residual_mm: Vec::with_capacity(targets.len()),
+        errors: Vec::new(),
+    };
+    for (index, target) in targets.iter().enumerate() {
+        let target = target.expect("checked above");
+        match filter_target(&model, nominal, &target, &seed) {
+            Ok(f) => {
+                answer
+                    .nominal_targets
+                    .push(Some(PoseOut::new(&f.nominal_base_to_flange)));
+                answer
+                    .joints_deg
+                    .push(Some(f.joints_rad.iter().map(|r| r.to_degrees()).collect()));
+                answer.residual_mm.push(Some(f.residual_mm));
+            }
+            Err(e) => {
+                answer.nominal_targets.push(None);
+                answer.joints_deg.push(None);
+                answer.residual_mm.push(None);
+                answer.errors.push(TargetError {
+                    index,
+                    message: e.to_string(),
+                });
+            }
+        }
+    }
+    Ok(answer)
+}
