@@ -17,7 +17,7 @@ use crate::vision::homography::Homography;
 /// Largest marker-corner residual under the board homography, as a fraction
 /// of the median marker side in the image (distortion stays well below;
 /// a marker in the wrong square is off by more than a side).
-pub const MAX_BOARD_RESIDUAL_FRACTION: f64 = 0.3;
+pub const MAX_BOARD_RESIDUAL_FRACTION: f64 = 0.6;
 
 fn side_px(m: &MarkerObservation) -> f64 {
     let c = m.corners_px;

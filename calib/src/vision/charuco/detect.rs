@@ -26,11 +26,6 @@ pub const NEIGHBOUR_RADIUS_SQUARES: f64 = 2.5;
 /// and the nearest marker edge in the image (the window must hold only the
 /// four squares' edges, no marker).
 pub const REFINE_WINDOW_FRACTION: f64 = 0.9;
-/// Largest residual of a marker corner under the local homography, as a
-/// fraction of the local square size: beyond it the markers disagree about
-/// the board (a misread id, or the wrong `legacy_layout`) and the corner is
-/// not trusted.
-pub const MAX_MARKER_RESIDUAL_FRACTION: f64 = 0.1;
 /// Bounds of the refinement half window, pixels.
 pub const MIN_REFINE_HALF_WINDOW_PX: f64 = 2.0;
 pub const MAX_REFINE_HALF_WINDOW_PX: f64 = 15.0;
@@ -60,6 +55,8 @@ pub fn detect_charuco_with(
             dict.name
         )));
     }
+    // Markers that disagree with the board are dropped (or the layout is
+    // refused) before any corner is predicted from them.
     let markers = consistent_markers(spec, markers)?;
     let mut seen_square = vec![None; spec.cols() * spec.rows()];
     for (k, m) in markers.iter().enumerate() {
@@ -109,13 +106,6 @@ pub fn detect_charuco_with(
                 continue;
             }
             let square_px = (px - p).norm().min((py - p).norm());
-            let consistent = plane.iter().zip(&image).all(|(a, b)| {
-                h.apply(a)
-                    .is_some_and(|q| (q - b).norm() <= MAX_MARKER_RESIDUAL_FRACTION * square_px)
-            });
-            if !consistent {
-                continue;
-            }
             let gap_px = square_px * 0.5 * (s - spec.marker_mm) / s;
             let half = (REFINE_WINDOW_FRACTION * gap_px)
                 .clamp(MIN_REFINE_HALF_WINDOW_PX, MAX_REFINE_HALF_WINDOW_PX);
