@@ -166,28 +166,36 @@ fn refinement_beats_the_homography_prediction_several_fold() {
 /// cols) and the spec is refused naming the field, never wrong corners.
 #[test]
 fn legacy_boards_need_the_legacy_flag_and_never_give_wrong_corners_without_it() {
-    let legacy = CharucoSpec {
-        squares: [9, 6],
-        legacy_layout: true,
-        ..board()
-    };
-    let opts = RenderOptions {
-        supersampling: 8,
-        board_margin_mm: 15.0,
-        ..RenderOptions::default()
-    };
-    let iso = pose(600.0, 30.0, 15.0, [0.0, 0.0]);
-    let (found, visible, rms, worst) = score(&legacy, &iso, &opts, 11);
-    assert_eq!(found, visible, "legacy board with the legacy flag");
-    assert!(rms < 0.05 && worst < 0.2, "RMS {rms}, worst {worst}");
-    let mut rng = StdRng::seed_from_u64(11);
-    let view = render_charuco(&reference_camera(), &iso, &legacy, W, H, &opts, &mut rng).unwrap();
-    let current = CharucoSpec {
-        legacy_layout: false,
-        ..legacy.clone()
-    };
-    match detect_charuco(&view.image, &current) {
-        Err(DetectError::GridMismatch(m)) => assert!(m.starts_with("legacy_layout"), "{m}"),
-        other => panic!("current layout on a legacy board: {other:?}"),
+    // Odd and even column counts: with even cols every row of markers
+    // shifts by one square, alternately left and right.
+    for squares in [[9, 6], [8, 6]] {
+        let legacy = CharucoSpec {
+            squares,
+            legacy_layout: true,
+            ..board()
+        };
+        let opts = RenderOptions {
+            supersampling: 8,
+            board_margin_mm: 15.0,
+            ..RenderOptions::default()
+        };
+        let iso = pose(600.0, 30.0, 15.0, [0.0, 0.0]);
+        let (found, visible, rms, worst) = score(&legacy, &iso, &opts, 11);
+        assert_eq!(
+            found, visible,
+            "{squares:?} legacy board with the legacy flag"
+        );
+        assert!(rms < 0.05 && worst < 0.2, "RMS {rms}, worst {worst}");
+        let mut rng = StdRng::seed_from_u64(11);
+        let view =
+            render_charuco(&reference_camera(), &iso, &legacy, W, H, &opts, &mut rng).unwrap();
+        let current = CharucoSpec {
+            legacy_layout: false,
+            ..legacy.clone()
+        };
+        match detect_charuco(&view.image, &current) {
+            Err(DetectError::GridMismatch(m)) => assert!(m.starts_with("legacy_layout"), "{m}"),
+            other => panic!("{squares:?} current layout on a legacy board: {other:?}"),
+        }
     }
 }
