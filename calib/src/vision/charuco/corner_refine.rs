@@ -19,7 +19,7 @@ const WEIGHT_SIGMA_FRACTION: f64 = 0.6;
 /// Least smoothing sigma, pixels.
 const MIN_SMOOTH_SIGMA_PX: f64 = 1.0;
 /// Re-centring passes and the shift that ends them, pixels.
-const MAX_PASSES: usize = 4;
+const MAX_PASSES: usize = 2;
 const CONVERGED_PX: f64 = 0.005;
 /// Gaussian kernel half-width in sigmas.
 const KERNEL_SIGMAS: f64 = 3.0;

@@ -9,6 +9,7 @@
 
 use nalgebra::Vector2;
 
+use super::consistency::consistent_markers;
 use super::corner_refine::refine_corner;
 use super::layout::{corner_mm, inner_corner_grid, marker_cells, squares_around_corner};
 use super::spec::CharucoSpec;
@@ -54,6 +55,9 @@ pub fn detect_charuco_with(
             dict.name
         )));
     }
+    // Markers that disagree with the board are dropped (or the layout is
+    // refused) before any corner is predicted from them.
+    let markers = consistent_markers(spec, markers)?;
     let mut seen_square = vec![None; spec.cols() * spec.rows()];
     for (k, m) in markers.iter().enumerate() {
         let c = &cells[m.id];

@@ -160,3 +160,42 @@ fn refinement_beats_the_homography_prediction_several_fold() {
     eprintln!("predicted RMS {predicted:.3} px, refined {refined:.3} px");
     assert!(refined * 3.0 < predicted, "{refined} vs {predicted}");
 }
+
+/// A legacy board (even rows) is found with `legacy_layout: true`; read
+/// with the current layout its markers disagree about the squares (odd
+/// cols) and the spec is refused naming the field, never wrong corners.
+#[test]
+fn legacy_boards_need_the_legacy_flag_and_never_give_wrong_corners_without_it() {
+    // Odd and even column counts: with even cols every row of markers
+    // shifts by one square, alternately left and right.
+    for squares in [[9, 6], [8, 6]] {
+        let legacy = CharucoSpec {
+            squares,
+            legacy_layout: true,
+            ..board()
+        };
+        let opts = RenderOptions {
+            supersampling: 8,
+            board_margin_mm: 15.0,
+            ..RenderOptions::default()
+        };
+        let iso = pose(600.0, 30.0, 15.0, [0.0, 0.0]);
+        let (found, visible, rms, worst) = score(&legacy, &iso, &opts, 11);
+        assert_eq!(
+            found, visible,
+            "{squares:?} legacy board with the legacy flag"
+        );
+        assert!(rms < 0.05 && worst < 0.2, "RMS {rms}, worst {worst}");
+        let mut rng = StdRng::seed_from_u64(11);
+        let view =
+            render_charuco(&reference_camera(), &iso, &legacy, W, H, &opts, &mut rng).unwrap();
+        let current = CharucoSpec {
+            legacy_layout: false,
+            ..legacy.clone()
+        };
+        match detect_charuco(&view.image, &current) {
+            Err(DetectError::GridMismatch(m)) => assert!(m.starts_with("legacy_layout"), "{m}"),
+            other => panic!("{squares:?} current layout on a legacy board: {other:?}"),
+        }
+    }
+}

@@ -1,6 +1,7 @@
 //! ChArUco boards (issue 14): the spec, OpenCV's two layouts, and detection
 //! (markers → board squares → local homography → inner corners).
 
+pub mod consistency;
 pub mod corner_refine;
 pub mod detect;
 pub mod layout;
