@@ -8,11 +8,13 @@ use serde_json::Value;
 
 mod label;
 mod serial;
+mod target;
 pub use label::{
     check_label, label_from_archive_path, label_from_file_name, label_or_number, LABEL_RULE,
     MAX_LABEL_CHARS,
 };
 pub use serial::{InvalidSerial, Serial, MAX_SERIAL_LEN, SERIAL_RULE};
+pub use target::{FoundPoint, Target};
 
 /// A robot as stored: the kinematics document is the *resolved* joint table
 /// (conventions chosen, presets expanded).

@@ -3,10 +3,11 @@
 //! (the camera stage corrects their perspective bias from the calibrated
 //! model, method.md §4 **beyond**), or why no board was found.
 
-use robocal_calib::vision::{self, DetectOptions, GrayImage, TargetSpec};
+use robocal_calib::vision::GrayImage;
 use serde::{Deserialize, Serialize};
 
-use crate::schema::session::{ImagePointDoc, TargetDoc};
+use crate::domain::Target;
+use crate::schema::session::ImagePointDoc;
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ImageDetection {
@@ -41,34 +42,20 @@ impl ImageDetection {
     }
 }
 
-pub fn target_spec(doc: &TargetDoc) -> TargetSpec {
-    TargetSpec {
-        rows: doc.rows as usize,
-        cols: doc.cols as usize,
-        pitch_mm: doc.pitch_mm,
-        dot_diameter_mm: doc.dot_diameter_mm,
-        origin_marker_diameter_mm: Some(doc.origin_marker_diameter_mm),
-    }
-}
-
-/// Runs the detector on a decoded image. Its own perspective-bias estimate
-/// is off: the camera stage corrects the raw centres from the calibrated
-/// model, which is more exact, and correcting twice would bias.
-pub fn detect(image: &GrayImage, target: &TargetDoc) -> ImageDetection {
-    let options = DetectOptions {
-        correct_perspective_bias: false,
-        ..DetectOptions::default()
-    };
-    match vision::detect_with(image, &target_spec(target), &options) {
+/// Runs the board's detector on a decoded image. For dots it returns the
+/// raw ellipse centres: the camera stage corrects their perspective bias
+/// from the calibrated model, which is more exact, and correcting twice
+/// would bias.
+pub fn detect(image: &GrayImage, target: &Target) -> ImageDetection {
+    match target.detect(image) {
         Ok(found) => ImageDetection {
             points: found
-                .dots
                 .iter()
-                .map(|d| ImagePointDoc {
-                    row: d.row as u32,
-                    col: d.col as u32,
-                    x: d.ellipse.cx,
-                    y: d.ellipse.cy,
+                .map(|p| ImagePointDoc {
+                    row: p.row,
+                    col: p.col,
+                    x: p.x,
+                    y: p.y,
                 })
                 .collect(),
             error: None,

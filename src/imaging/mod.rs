@@ -12,10 +12,11 @@ use std::io::Cursor;
 use image::{ImageFormat, ImageReader};
 use robocal_calib::vision::{self, DecodeLimits, GrayImage};
 
-pub use found::{detect, target_spec, ImageDetection};
+pub use found::{detect, ImageDetection};
 pub use gate::{DecodeGate, DecodePermit};
 
-use crate::schema::session::{TargetDoc, MAX_IMAGE_SIDE};
+use crate::domain::Target;
+use crate::schema::session::MAX_IMAGE_SIDE;
 
 /// Most bytes per pixel any accepted PNG/JPEG decodes to (16-bit RGBA).
 const MAX_BYTES_PER_PIXEL: u64 = 8;
@@ -85,7 +86,7 @@ pub struct Inspected {
 pub fn inspect(
     bytes: &[u8],
     expected: Option<(u32, u32)>,
-    target: Option<&TargetDoc>,
+    target: Option<&Target>,
     gate: &DecodeGate,
 ) -> Result<Inspected, String> {
     let (width, height) = check_header(bytes, expected)?;

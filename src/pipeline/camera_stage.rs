@@ -11,8 +11,9 @@ use robocal_calib::camera::{CameraCalibration, Intrinsics};
 
 use super::measure::{GridPoint, Measured};
 use super::{FixedCamera, PipelineError, PoseInput, Stage};
+use crate::domain::Target;
 use crate::report::{CameraReport, CameraStd, ViewReport};
-use crate::schema::session::{CameraDoc, TargetDoc};
+use crate::schema::session::CameraDoc;
 
 /// The camera step's outcome, per pose where the pose had a usable image.
 pub struct CameraStep {
@@ -44,26 +45,16 @@ impl CameraStep {
     }
 }
 
-fn is_marker(target: &TargetDoc, p: &GridPoint) -> bool {
-    // The larger origin dot's centroid bias differs from the others'; the
-    // bias correction models one diameter, so the marker is left out.
-    target.origin_marker_diameter_mm > target.dot_diameter_mm && p.row == 0 && p.col == 0
-}
-
-fn view_of(points: &[GridPoint], target: &TargetDoc, size: ImageSize) -> ViewObservations {
+fn view_of(points: &[GridPoint], target: &Target, size: ImageSize) -> ViewObservations {
     ViewObservations {
         image_size: size,
         dots: points
             .iter()
-            .filter(|p| !is_marker(target, p))
+            .filter(|p| !target.left_out(p.row, p.col))
             .map(|p| DotObservation {
                 row: p.row,
                 col: p.col,
-                target_mm: Point3::new(
-                    p.col as f64 * target.pitch_mm,
-                    p.row as f64 * target.pitch_mm,
-                    0.0,
-                ),
+                target_mm: Point3::from(target.point_mm(p.row, p.col)),
                 pixel: Point2::new(p.x, p.y),
             })
             .collect(),
@@ -73,7 +64,7 @@ fn view_of(points: &[GridPoint], target: &TargetDoc, size: ImageSize) -> ViewObs
 pub fn calibrate_camera(
     poses: &[PoseInput],
     measured: &Measured,
-    target: &TargetDoc,
+    target: &Target,
     camera: &CameraDoc,
     refine_intrinsics: bool,
     fixed: Option<&FixedCamera>,
@@ -99,7 +90,7 @@ pub fn calibrate_camera(
             CalibrationMode::Paper
         },
         fixed_intrinsics: fixed.map(|f| f.intrinsics),
-        dot_diameter_mm: Some(target.dot_diameter_mm),
+        dot_diameter_mm: target.dot_diameter_mm(),
         ..CalibrationOptions::default()
     };
     let calibration = calibrate(&views, &options).map_err(|e| PipelineError::Numerical {

@@ -13,10 +13,11 @@
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Mutex;
 
-use super::{ImageSource, PipelineError, PoseImage, PoseInput, Stage};
+use super::{ImageSource, PipelineError, PoseImage, PoseInput};
+use crate::domain::Target;
 use crate::imaging::{self, ImageDetection};
 use crate::report::DetectionFailure;
-use crate::schema::session::{ImagePointDoc, TargetDoc};
+use crate::schema::session::ImagePointDoc;
 
 /// A pose's outcome: `None` for uploaded image points, else the detector's
 /// and whether it ran in this job.
@@ -53,11 +54,7 @@ pub struct Measured {
 /// The detector's outcome on one pose's image: the stored one, or (for
 /// images never detected) read, decoded under the gate, detected and
 /// dropped here. The second value says whether it was detected now.
-fn detect_pose(
-    image: &PoseImage,
-    target: &TargetDoc,
-    images: &ImageSource,
-) -> (ImageDetection, bool) {
+fn detect_pose(image: &PoseImage, target: &Target, images: &ImageSource) -> (ImageDetection, bool) {
     if let Some(stored) = &image.detection {
         return (stored.clone(), false);
     }
@@ -91,16 +88,11 @@ fn grid_points(points: &[ImagePointDoc]) -> Vec<GridPoint> {
 /// Runs the detector over every pose, in parallel.
 pub fn measure(
     poses: &[PoseInput],
-    target: &TargetDoc,
+    target: &Target,
     images: &ImageSource,
     progress: &dyn Fn(&str, f64),
     cancel: &AtomicBool,
 ) -> Result<Measured, PipelineError> {
-    let spec = imaging::target_spec(target);
-    spec.validate().map_err(|e| PipelineError::Numerical {
-        stage: Stage::Detect.as_str(),
-        message: e.to_string(),
-    })?;
     let results: Vec<Mutex<Option<Outcome>>> = poses.iter().map(|_| Mutex::new(None)).collect();
     let next = AtomicUsize::new(0);
     let done = AtomicUsize::new(0);
@@ -142,7 +134,7 @@ pub fn measure(
         return Err(PipelineError::Cancelled);
     }
     let mut measured = Measured {
-        ordering_unique: spec.origin_marker_diameter_mm.is_some(),
+        ordering_unique: target.ordering_unique(),
         ..Measured::default()
     };
     for (pose, slot) in poses.iter().zip(results) {
@@ -182,12 +174,13 @@ mod tests {
     use crate::imaging::DecodeGate;
     use crate::schema::session::PoseSet;
 
-    fn target() -> TargetDoc {
-        serde_json::from_value(serde_json::json!({
+    fn target() -> Target {
+        let doc = serde_json::from_value(serde_json::json!({
             "rows": 7, "cols": 9, "pitch_mm": 20.0, "dot_diameter_mm": 8.0,
             "origin_marker_diameter_mm": 12.0
         }))
-        .unwrap()
+        .unwrap();
+        Target::from_doc(&doc).unwrap()
     }
 
     fn pose(id: &str, detection: Option<ImageDetection>) -> PoseInput {

@@ -98,7 +98,10 @@ fn run_stages(
     let (measured, camera) = match input.session.instrument {
         Instrument::Camera => {
             let (target, camera_doc) = match (&input.session.target, &input.session.camera) {
-                (Some(t), Some(c)) => (t, c),
+                (Some(t), Some(c)) => (
+                    crate::domain::Target::from_doc(t).map_err(PipelineError::Invalid)?,
+                    c,
+                ),
                 _ => {
                     return Err(PipelineError::Invalid(vec![FieldError::new(
                         "session",
@@ -108,14 +111,14 @@ fn run_stages(
             };
             let measured = measure::measure(
                 &input.poses,
-                target,
+                &target,
                 &input.images,
                 &|message, fraction| within(Stage::Detect, message, fraction),
                 cancel,
             )?;
             check_cancel()?;
             detected(detections::detected(&input.poses, &measured));
-            *cause = session_cause::of(&measured, target);
+            *cause = session_cause::of(&measured, &target);
             if let Some(c) = cause.as_ref() {
                 notes.push(format!("{c}."));
             }
@@ -127,7 +130,7 @@ fn run_stages(
             let step = camera_stage::calibrate_camera(
                 &input.poses,
                 &measured,
-                target,
+                &target,
                 camera_doc,
                 input.options.refine_intrinsics,
                 input.fixed_camera.as_ref(),

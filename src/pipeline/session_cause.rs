@@ -8,12 +8,12 @@ use std::collections::BTreeMap;
 
 use super::measure::Measured;
 use super::{PipelineError, Stage};
+use crate::domain::Target;
 use crate::imaging::ImageDetection;
-use crate::schema::session::TargetDoc;
 
 /// What the session's images have in common when most of them (more than
 /// half) failed detection for one reason; `None` otherwise.
-pub fn of(measured: &Measured, target: &TargetDoc) -> Option<String> {
+pub fn of(measured: &Measured, target: &Target) -> Option<String> {
     let images: Vec<&ImageDetection> = measured.detections.iter().flatten().collect();
     let total = images.len();
     let mut by_kind: BTreeMap<&str, (usize, &ImageDetection)> = BTreeMap::new();
@@ -26,7 +26,7 @@ pub fn of(measured: &Measured, target: &TargetDoc) -> Option<String> {
         return None;
     }
     let reason = example.error.as_deref().unwrap_or("no dots detected");
-    let board = format!("{}x{}", target.rows, target.cols);
+    let board = target.board_name();
     Some(if example.target_missing {
         let lead = if count == total {
             "no image shows"
@@ -35,8 +35,9 @@ pub fn of(measured: &Measured, target: &TargetDoc) -> Option<String> {
         };
         format!(
             "{lead} the session's {board} target: {count} of {total} images failed detection \
-             (e.g. \"{reason}\"); check the session's target (rows, cols, pitch_mm, dot \
-             diameters) against the board in the images"
+             (e.g. \"{reason}\"); check the session's target ({}) against the board \
+             in the images",
+            target.fields_hint()
         )
     } else {
         format!("{count} of {total} images failed detection for one reason (e.g. \"{reason}\")")
@@ -58,12 +59,13 @@ pub fn name_in(error: PipelineError, cause: Option<String>) -> PipelineError {
 mod tests {
     use super::*;
 
-    fn target() -> TargetDoc {
-        serde_json::from_value(serde_json::json!({
+    fn target() -> Target {
+        let doc = serde_json::from_value(serde_json::json!({
             "rows": 7, "cols": 9, "pitch_mm": 20.0, "dot_diameter_mm": 8.0,
             "origin_marker_diameter_mm": 12.0
         }))
-        .unwrap()
+        .unwrap();
+        Target::from_doc(&doc).unwrap()
     }
 
     fn measured(failed: usize, ok: usize, kind: &str) -> Measured {

@@ -33,15 +33,53 @@ impl Instrument {
     }
 }
 
-/// The dot-grid board.
+/// What board the camera sees (issue 14): robocal's dot grid (`kind`
+/// `"dots"`, the default, may be omitted) or a ChArUco board.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum TargetKind {
+    #[default]
+    Dots,
+    Charuco,
+}
+
+impl TargetKind {
+    fn is_dots(&self) -> bool {
+        *self == TargetKind::Dots
+    }
+}
+
+/// The board. Dots: `rows`, `cols`, `pitch_mm`, `dot_diameter_mm`,
+/// `origin_marker_diameter_mm`. ChArUco (OpenCV's `CharucoBoard`):
+/// `squares` `[cols, rows]`, `square_mm`, `marker_mm`, `dictionary` (an
+/// OpenCV predefined dictionary name, e.g. `DICT_5X5_100`) and
+/// `legacy_layout` (boards made by OpenCV < 4.6; default false). A field of
+/// the other kind is refused.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct TargetDoc {
-    pub rows: u32,
-    pub cols: u32,
-    pub pitch_mm: f64,
-    pub dot_diameter_mm: f64,
-    pub origin_marker_diameter_mm: f64,
+    #[serde(default, skip_serializing_if = "TargetKind::is_dots")]
+    pub kind: TargetKind,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rows: Option<u32>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cols: Option<u32>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pitch_mm: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dot_diameter_mm: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub origin_marker_diameter_mm: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub squares: Option<[u32; 2]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub square_mm: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub marker_mm: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dictionary: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub legacy_layout: Option<bool>,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
@@ -81,24 +119,9 @@ impl SessionBody {
             match &self.target {
                 None => c.fail("target", "required for a camera session"),
                 Some(t) => {
-                    for (name, v) in [("target.rows", t.rows), ("target.cols", t.cols)] {
-                        if !(2..=MAX_GRID_SIDE).contains(&v) {
-                            c.fail(name, format!("must be 2 to {MAX_GRID_SIDE}"));
-                        }
+                    if let Err(errors) = crate::domain::Target::from_doc(t) {
+                        c.errors.extend(errors);
                     }
-                    c.positive("target.pitch_mm", t.pitch_mm, MAX_LENGTH_MM, "mm");
-                    c.positive(
-                        "target.dot_diameter_mm",
-                        t.dot_diameter_mm,
-                        t.pitch_mm.abs(),
-                        "mm",
-                    );
-                    c.positive(
-                        "target.origin_marker_diameter_mm",
-                        t.origin_marker_diameter_mm,
-                        MAX_LENGTH_MM,
-                        "mm",
-                    );
                 }
             }
             match &self.camera {

@@ -9,8 +9,9 @@ use sha2::{Digest, Sha256};
 
 use super::error::{ServiceError, ServiceResult};
 use crate::domain::ImageMeta;
+use crate::domain::Target;
 use crate::imaging::{self, DecodeGate, ImageDetection};
-use crate::schema::session::{SessionBody, TargetDoc};
+use crate::schema::session::SessionBody;
 use crate::store::DynStore;
 
 /// An accepted image: its metadata and what the detector found on it.
@@ -25,7 +26,7 @@ pub struct Ingested {
 #[derive(Clone)]
 pub struct ImageCheck {
     pub camera_size: Option<(u32, u32)>,
-    pub target: Option<TargetDoc>,
+    pub target: Option<Target>,
     pub gate: Arc<DecodeGate>,
 }
 
@@ -33,7 +34,8 @@ impl ImageCheck {
     pub fn of(spec: &SessionBody, gate: Arc<DecodeGate>) -> ImageCheck {
         ImageCheck {
             camera_size: spec.camera.as_ref().map(|c| (c.width, c.height)),
-            target: spec.target.clone(),
+            // Checked when the session was created.
+            target: spec.target.as_ref().and_then(|t| Target::from_doc(t).ok()),
             gate,
         }
     }

@@ -1,0 +1,232 @@
+//! The board a camera session uses, typed once from the session's `target`
+//! (issue 14): robocal's dot grid or a ChArUco board. Everything downstream
+//! (detection at upload, the camera stage) asks this type where a feature
+//! sits on the board and how to find it, never the JSON.
+
+use robocal_calib::vision::charuco::{self, CharucoSpec};
+use robocal_calib::vision::{self, DetectError, DetectOptions, GrayImage, TargetSpec};
+
+use crate::schema::session::{TargetDoc, TargetKind, MAX_GRID_SIDE};
+use crate::schema::{Checker, FieldError, MAX_LENGTH_MM};
+
+/// One identified board feature in an image: its board indices and its
+/// raw image position (px).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FoundPoint {
+    pub row: u32,
+    pub col: u32,
+    pub x: f64,
+    pub y: f64,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum Target {
+    Dots(TargetSpec),
+    Charuco(CharucoSpec),
+}
+
+/// Fields that belong to one kind only, for the "not a field of this kind" check.
+const DOT_FIELDS: [&str; 5] = [
+    "rows",
+    "cols",
+    "pitch_mm",
+    "dot_diameter_mm",
+    "origin_marker_diameter_mm",
+];
+const CHARUCO_FIELDS: [&str; 5] = [
+    "squares",
+    "square_mm",
+    "marker_mm",
+    "dictionary",
+    "legacy_layout",
+];
+
+impl Target {
+    /// The typed board, or every problem named as `target.<field>`.
+    pub fn from_doc(doc: &TargetDoc) -> Result<Target, Vec<FieldError>> {
+        let mut c = Checker::default();
+        let given = |name: &str| match name {
+            "rows" => doc.rows.is_some(),
+            "cols" => doc.cols.is_some(),
+            "pitch_mm" => doc.pitch_mm.is_some(),
+            "dot_diameter_mm" => doc.dot_diameter_mm.is_some(),
+            "origin_marker_diameter_mm" => doc.origin_marker_diameter_mm.is_some(),
+            "squares" => doc.squares.is_some(),
+            "square_mm" => doc.square_mm.is_some(),
+            "marker_mm" => doc.marker_mm.is_some(),
+            "dictionary" => doc.dictionary.is_some(),
+            _ => doc.legacy_layout.is_some(),
+        };
+        let (own, other, kind) = match doc.kind {
+            TargetKind::Dots => (DOT_FIELDS, CHARUCO_FIELDS, "dots"),
+            TargetKind::Charuco => (CHARUCO_FIELDS, DOT_FIELDS, "charuco"),
+        };
+        for name in other.iter().filter(|n| given(n)) {
+            c.fail(
+                format!("target.{name}"),
+                format!("not a field of a {kind} target"),
+            );
+        }
+        let optional = ["legacy_layout"];
+        for name in own.iter().filter(|n| !given(n) && !optional.contains(n)) {
+            c.fail(
+                format!("target.{name}"),
+                format!("required for a {kind} target"),
+            );
+        }
+        c.finish()?;
+        match doc.kind {
+            TargetKind::Dots => dots(doc),
+            TargetKind::Charuco => charuco(doc),
+        }
+    }
+
+    /// Where feature `(row, col)` sits on the board, target frame, mm.
+    pub fn point_mm(&self, row: u32, col: u32) -> [f64; 3] {
+        match self {
+            Target::Dots(t) => t.dot_centre_mm(row as usize, col as usize),
+            Target::Charuco(t) => charuco::corner_mm(t, row as usize, col as usize),
+        }
+    }
+
+    /// Features the camera model leaves out: the dot board's larger origin
+    /// marker, whose centroid bias differs from the ordinary dots' (the bias
+    /// correction models one diameter).
+    pub fn left_out(&self, row: u32, col: u32) -> bool {
+        match self {
+            Target::Dots(t) => {
+                row == 0
+                    && col == 0
+                    && t.origin_marker_diameter_mm
+                        .is_some_and(|m| m > t.dot_diameter_mm)
+            }
+            Target::Charuco(_) => false,
+        }
+    }
+
+    /// The diameter whose ellipse-centre bias the camera stage corrects
+    /// (method.md §4); `None` for corners, which have no such bias.
+    pub fn dot_diameter_mm(&self) -> Option<f64> {
+        match self {
+            Target::Dots(t) => Some(t.dot_diameter_mm),
+            Target::Charuco(_) => None,
+        }
+    }
+
+    /// Every feature found in `image` (raw positions: for dots the ellipse
+    /// centres, whose perspective bias the camera stage corrects from the
+    /// calibrated model).
+    pub fn detect(&self, image: &GrayImage) -> Result<Vec<FoundPoint>, DetectError> {
+        match self {
+            Target::Dots(t) => {
+                let options = DetectOptions {
+                    correct_perspective_bias: false,
+                    ..DetectOptions::default()
+                };
+                let found = vision::detect_with(image, t, &options)?;
+                Ok(found
+                    .dots
+                    .iter()
+                    .map(|d| FoundPoint {
+                        row: d.row as u32,
+                        col: d.col as u32,
+                        x: d.ellipse.cx,
+                        y: d.ellipse.cy,
+                    })
+                    .collect())
+            }
+            Target::Charuco(t) => {
+                let found = charuco::detect_charuco(image, t)?;
+                Ok(found
+                    .points
+                    .iter()
+                    .map(|p| FoundPoint {
+                        row: p.row as u32,
+                        col: p.col as u32,
+                        x: p.x_px,
+                        y: p.y_px,
+                    })
+                    .collect())
+            }
+        }
+    }
+
+    /// Whether every image's features get the same identities (an origin
+    /// marker, or ChArUco's marker ids).
+    pub fn ordering_unique(&self) -> bool {
+        match self {
+            Target::Dots(t) => t.origin_marker_diameter_mm.is_some(),
+            Target::Charuco(_) => true,
+        }
+    }
+
+    /// How reports name the board: `7x9` (dots, rows x cols) or
+    /// `ChArUco 9x7` (squares, cols x rows).
+    pub fn board_name(&self) -> String {
+        match self {
+            Target::Dots(t) => format!("{}x{}", t.rows, t.cols),
+            Target::Charuco(t) => format!("ChArUco {}x{}", t.cols(), t.rows()),
+        }
+    }
+
+    /// The fields to check when many images miss the board.
+    pub fn fields_hint(&self) -> &'static str {
+        match self {
+            Target::Dots(_) => "rows, cols, pitch_mm, dot diameters",
+            Target::Charuco(_) => "squares, square_mm, marker_mm, dictionary, legacy_layout",
+        }
+    }
+}
+
+fn dots(doc: &TargetDoc) -> Result<Target, Vec<FieldError>> {
+    let mut c = Checker::default();
+    let rows = doc.rows.unwrap_or_default();
+    let cols = doc.cols.unwrap_or_default();
+    for (name, v) in [("target.rows", rows), ("target.cols", cols)] {
+        if !(2..=MAX_GRID_SIDE).contains(&v) {
+            c.fail(name, format!("must be 2 to {MAX_GRID_SIDE}"));
+        }
+    }
+    let pitch = doc.pitch_mm.unwrap_or_default();
+    let dot = doc.dot_diameter_mm.unwrap_or_default();
+    let marker = doc.origin_marker_diameter_mm.unwrap_or_default();
+    c.positive("target.pitch_mm", pitch, MAX_LENGTH_MM, "mm");
+    c.positive("target.dot_diameter_mm", dot, pitch.abs(), "mm");
+    c.positive(
+        "target.origin_marker_diameter_mm",
+        marker,
+        MAX_LENGTH_MM,
+        "mm",
+    );
+    c.finish()?;
+    Ok(Target::Dots(TargetSpec {
+        rows: rows as usize,
+        cols: cols as usize,
+        pitch_mm: pitch,
+        dot_diameter_mm: dot,
+        origin_marker_diameter_mm: Some(marker),
+    }))
+}
+
+fn charuco(doc: &TargetDoc) -> Result<Target, Vec<FieldError>> {
+    let squares = doc.squares.unwrap_or_default();
+    let spec = CharucoSpec {
+        squares: [squares[0] as usize, squares[1] as usize],
+        square_mm: doc.square_mm.unwrap_or_default(),
+        marker_mm: doc.marker_mm.unwrap_or_default(),
+        dictionary: doc.dictionary.clone().unwrap_or_default(),
+        legacy_layout: doc.legacy_layout.unwrap_or(false),
+    };
+    // calib names the offending field first: "<field>: why".
+    spec.validate().map_err(|e| {
+        let text = match e {
+            DetectError::InvalidTarget(text) => text,
+            other => other.to_string(),
+        };
+        match text.split_once(": ") {
+            Some((field, why)) => vec![FieldError::new(format!("target.{field}"), why)],
+            None => vec![FieldError::new("target", text)],
+        }
+    })?;
+    Ok(Target::Charuco(spec))
+}
