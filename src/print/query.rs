@@ -4,8 +4,9 @@
 
 use std::collections::BTreeMap;
 
+use robocal_calib::vision::charuco::CharucoSpec;
 use robocal_calib::vision::target::MAX_GRID_SIDE;
-use robocal_calib::vision::{BoardDrawing, TargetSpec};
+use robocal_calib::vision::{BoardDrawing, DetectError, TargetSpec};
 
 use super::page::PageFormat;
 use crate::schema::{Checker, FieldError};
@@ -23,6 +24,15 @@ const DOT_KEYS: [&str; 5] = [
     "origin_marker_diameter_mm",
 ];
 
+/// Keys a ChArUco board takes (`squares` as `cols,rows`).
+const CHARUCO_KEYS: [&str; 5] = [
+    "squares",
+    "square_mm",
+    "marker_mm",
+    "dictionary",
+    "legacy_layout",
+];
+
 /// Why pairs could not be turned into a printable target.
 pub type PrintError = Vec<FieldError>;
 
@@ -38,12 +48,17 @@ pub struct PrintRequest {
 pub enum PrintableTarget {
     /// robocal's dot grid (with or without the origin marker).
     Dots(TargetSpec),
+    /// An OpenCV ChArUco board (validated: it can be drawn).
+    Charuco(CharucoSpec),
 }
 
 impl PrintableTarget {
     pub fn drawing(&self) -> BoardDrawing {
         match self {
             PrintableTarget::Dots(t) => t.drawing(),
+            PrintableTarget::Charuco(t) => {
+                t.drawing().expect("validated when the request was parsed")
+            }
         }
     }
 
@@ -67,6 +82,26 @@ impl PrintableTarget {
                     ),
                 ]
             }
+            PrintableTarget::Charuco(t) => vec![
+                format!(
+                    "ChArUco {} x {} squares of {} mm, markers {} mm, {}{}",
+                    t.cols(),
+                    t.rows(),
+                    t.square_mm,
+                    t.marker_mm,
+                    t.dictionary,
+                    if t.legacy_layout { ", legacy layout (OpenCV < 4.6)" } else { "" }
+                ),
+                format!(
+                    "session target: {{\"kind\": \"charuco\", \"squares\": [{}, {}], \"square_mm\": {}, \"marker_mm\": {}, \"dictionary\": \"{}\", \"legacy_layout\": {}}}",
+                    t.cols(),
+                    t.rows(),
+                    t.square_mm,
+                    t.marker_mm,
+                    t.dictionary,
+                    t.legacy_layout
+                ),
+            ],
         }
     }
 }
@@ -90,10 +125,11 @@ pub fn parse_pairs(pairs: &[(String, String)]) -> Result<PrintRequest, PrintErro
     };
     let target = match map.remove("kind").unwrap_or("dots") {
         "dots" => dots(&mut c, &mut map),
+        "charuco" => charuco(&mut c, &mut map),
         other => {
             c.fail(
                 "kind",
-                format!("{other:?} is not a printable target kind (dots)"),
+                format!("{other:?} is not a printable target kind (dots, charuco)"),
             );
             None
         }
@@ -161,6 +197,72 @@ fn dots(c: &mut Checker, map: &mut BTreeMap<&str, &str>) -> Option<PrintableTarg
         );
     }
     Some(PrintableTarget::Dots(spec))
+}
+
+fn charuco(c: &mut Checker, map: &mut BTreeMap<&str, &str>) -> Option<PrintableTarget> {
+    let mut got = BTreeMap::new();
+    for key in CHARUCO_KEYS {
+        if let Some(v) = map.remove(key) {
+            got.insert(key, v);
+        }
+    }
+    let squares: Option<Vec<usize>> = got.get("squares").map(|v| {
+        v.split(',')
+            .map(|n| n.trim().parse::<usize>().unwrap_or(0))
+            .collect()
+    });
+    let squares = match squares.as_deref() {
+        Some(&[cols, rows]) => [cols, rows],
+        Some(_) => {
+            c.fail("squares", "two whole numbers: cols,rows");
+            return None;
+        }
+        None => {
+            c.fail("squares", "required");
+            return None;
+        }
+    };
+    let square_mm = number(c, &got, "square_mm");
+    let marker_mm = number(c, &got, "marker_mm");
+    let legacy_layout = match got.get("legacy_layout").copied() {
+        None | Some("false") => false,
+        Some("true") => true,
+        Some(_) => {
+            c.fail("legacy_layout", "true or false");
+            false
+        }
+    };
+    let Some(dictionary) = got.get("dictionary") else {
+        c.fail("dictionary", "required");
+        return None;
+    };
+    let spec = CharucoSpec {
+        squares,
+        square_mm: square_mm?,
+        marker_mm: marker_mm?,
+        dictionary: dictionary.to_string(),
+        legacy_layout,
+    };
+    if let Err(e) = spec.validate() {
+        let text = match e {
+            DetectError::InvalidTarget(text) => text,
+            other => other.to_string(),
+        };
+        match text.split_once(": ") {
+            Some((field, why)) => c.fail(field.split('[').next().unwrap_or(field), why),
+            None => c.fail("kind", text),
+        }
+        return None;
+    }
+    let side_mm = squares[0].max(squares[1]) as f64 * spec.square_mm;
+    if side_mm > MAX_PRINT_MM {
+        c.fail(
+            "square_mm",
+            format!("the board would exceed {MAX_PRINT_MM} mm"),
+        );
+        return None;
+    }
+    Some(PrintableTarget::Charuco(spec))
 }
 
 /// A required finite number.

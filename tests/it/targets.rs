@@ -140,3 +140,62 @@ fn cli_writes_the_same_page() {
     assert!(!bad.status.success());
     assert!(String::from_utf8_lossy(&bad.stderr).contains("pitch_mm"));
 }
+
+#[tokio::test]
+async fn printed_charuco_board_is_detected_with_every_corner() {
+    use robocal::calib::vision::charuco::{detect_charuco, CharucoSpec};
+    let app = spawn_app().await;
+    let r = app
+        .get("/v1/targets/render?kind=charuco&squares=10,8&square_mm=20&marker_mm=15&dictionary=DICT_5X5_100")
+        .await;
+    assert_eq!(r.status(), 200);
+    let svg = r.text().await.unwrap();
+    assert!(svg.contains("\"kind\": \"charuco\""), "spec in the margin");
+    let spec = CharucoSpec {
+        squares: [10, 8],
+        square_mm: 20.0,
+        marker_mm: 15.0,
+        dictionary: "DICT_5X5_100".into(),
+        legacy_layout: false,
+    };
+    let found = detect_charuco(&rasterise(&svg), &spec).unwrap();
+    assert_eq!(found.points.len(), 9 * 7, "every inner corner");
+    // Corners 20 mm apart on paper: 200 px at 10 px/mm.
+    let at = |row: usize, col: usize| {
+        found
+            .points
+            .iter()
+            .find(|p| p.row == row && p.col == col)
+            .map(|p| (p.x_px, p.y_px))
+            .unwrap()
+    };
+    for (row, col) in [(0, 0), (3, 4), (6, 7)] {
+        let (a, b) = (at(row, col), at(row, col + 1));
+        let d = (b.0 - a.0).hypot(b.1 - a.1);
+        assert!((d - 200.0).abs() < 0.1, "({row},{col}) spacing {d} px");
+    }
+    for (query, field) in [
+        (
+            "kind=charuco&squares=10,8&square_mm=20&marker_mm=25&dictionary=DICT_5X5_100",
+            "marker_mm",
+        ),
+        (
+            "kind=charuco&squares=10,8&square_mm=20&marker_mm=15&dictionary=DICT_5X5_7",
+            "dictionary",
+        ),
+        (
+            "kind=charuco&squares=30,30&square_mm=20&marker_mm=15&dictionary=DICT_4X4_50",
+            "dictionary",
+        ),
+        (
+            "kind=charuco&squares=10&square_mm=20&marker_mm=15&dictionary=DICT_5X5_100",
+            "squares",
+        ),
+    ] {
+        let r = app.get(&format!("/v1/targets/render?{query}")).await;
+        assert_eq!(r.status(), 422, "{query}");
+        let body: Value = r.json().await.unwrap();
+        assert_eq!(body["errors"][0]["field"], field, "{query}: {body}");
+    }
+    app.shutdown().await;
+}

@@ -4,6 +4,7 @@
 pub mod consistency;
 pub mod corner_refine;
 pub mod detect;
+pub mod drawing;
 pub mod layout;
 pub mod spec;
 
