@@ -15,7 +15,6 @@ use robocal_calib::kinematics::{CalibratedModel, Instrument, RobotModel};
 use robocal_calib::stats::AccuracyStats;
 
 use super::camera_stage::CameraStep;
-use super::screen_stage::Outlier;
 use super::{PipelineError, PoseInput, Stage};
 use crate::schema::job::{Measurement as MeasurementKind, Validation};
 use crate::schema::session::PoseSet;
@@ -131,7 +130,7 @@ pub fn identify_robot(
     joint_refinement: bool,
     hold_intrinsics: bool,
     usable: &[usize],
-    outliers: &[Outlier],
+    outliers: &[usize],
 ) -> Result<Identified, PipelineError> {
     let instrument = if camera.is_some() {
         Instrument::Camera
@@ -224,20 +223,14 @@ pub fn identify_robot(
         .map(|(&i, (b, a))| (i, *b, *a))
         .collect();
     let mut outlier_errors = Vec::new();
-    for o in outliers {
-        let measured = measurement_of(
-            &poses[o.pose],
-            o.pose,
-            camera,
-            final_intrinsics.as_ref(),
-            kind,
-        );
+    for &o in outliers {
+        let measured = measurement_of(&poses[o], o, camera, final_intrinsics.as_ref(), kind);
         if let Some(m) = measured {
             let one = std::slice::from_ref(&m);
             if let (Ok((_, b)), Ok((_, a))) =
                 (validate(&identification.before, one), validate(&model, one))
             {
-                outlier_errors.push((o.pose, b[0], a[0]));
+                outlier_errors.push((o, b[0], a[0]));
             }
         }
     }

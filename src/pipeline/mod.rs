@@ -199,7 +199,7 @@ fn run_stages(
             joint_refinement,
             intrinsics_held,
             usable,
-            outliers,
+            &outliers.iter().map(|o| o.pose).collect::<Vec<_>>(),
         )
     };
     let mut identified = identify(&usable, &outliers)?;
