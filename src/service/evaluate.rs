@@ -182,6 +182,19 @@ pub(crate) fn pose_of(doc: &PoseDoc, field: &str, c: &mut Checker) -> Option<Pos
     }
 }
 
+/// A request's `targets`: 1 to [`MAX_ROWS`] poses, each checked and named
+/// `targets[i]` when it is not a pose.
+pub(crate) fn target_poses(targets: &[PoseDoc], c: &mut Checker) -> Vec<Option<Pose>> {
+    if targets.is_empty() || targets.len() > MAX_ROWS {
+        c.fail("targets", format!("1 to {MAX_ROWS} targets"));
+    }
+    targets
+        .iter()
+        .enumerate()
+        .map(|(i, t)| pose_of(t, &format!("targets[{i}]"), c))
+        .collect()
+}
+
 pub(crate) fn check_joints(row: &[f64], dof: usize, field: &str, c: &mut Checker) {
     if row.len() != dof {
         c.fail(
@@ -234,15 +247,7 @@ pub fn compensate(
     req: &CompensateRequest,
 ) -> Result<CompensateResponse, Vec<FieldError>> {
     let mut c = Checker::default();
-    if req.targets.is_empty() || req.targets.len() > MAX_ROWS {
-        c.fail("targets", format!("1 to {MAX_ROWS} targets"));
-    }
-    let targets: Vec<Option<Pose>> = req
-        .targets
-        .iter()
-        .enumerate()
-        .map(|(i, t)| pose_of(t, &format!("targets[{i}]"), &mut c))
-        .collect();
+    let targets = target_poses(&req.targets, &mut c);
     let tool = req.tool.as_ref().and_then(|t| pose_of(t, "tool", &mut c));
     let dof = model.robot.dof();
     match &req.seed_joints_deg {

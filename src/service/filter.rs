@@ -2,14 +2,13 @@
 //! controller that runs the robot's nominal model (issue "Deploy the
 //! result"), computed exactly by `calib::kinematics::filter`.
 
-use robocal_calib::geometry::Pose;
 use robocal_calib::kinematics::filter::filter_target;
 use robocal_calib::kinematics::ik::default_seeds;
 use robocal_calib::kinematics::{CalibratedModel, RobotModel};
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
-use super::evaluate::{check_joints, pose_of, MAX_ROWS};
+use super::evaluate::{check_joints, pose_of, target_poses};
 use crate::pipeline::results::PoseOut;
 use crate::schema::{Checker, FieldError, PoseDoc};
 
@@ -58,15 +57,7 @@ pub fn filter(
     req: &FilterRequest,
 ) -> Result<FilterResponse, Vec<FieldError>> {
     let mut c = Checker::default();
-    if req.targets.is_empty() || req.targets.len() > MAX_ROWS {
-        c.fail("targets", format!("1 to {MAX_ROWS} targets"));
-    }
-    let targets: Vec<Option<Pose>> = req
-        .targets
-        .iter()
-        .enumerate()
-        .map(|(i, t)| pose_of(t, &format!("targets[{i}]"), &mut c))
-        .collect();
+    let targets = target_poses(&req.targets, &mut c);
     let tool = pose_of(&req.tool, "tool", &mut c);
     if let Some(seed) = &req.seed_joints_deg {
         check_joints(seed, calibrated.robot.dof(), "seed_joints_deg", &mut c);

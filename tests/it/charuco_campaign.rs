@@ -4,10 +4,7 @@
 //! finds the corners, the job calibrates as well as on the dot board, and a
 //! bad ChArUco spec is a 422 naming the field.
 
-use std::time::Duration;
-
 use rand::{rngs::StdRng, SeedableRng};
-use robocal::cli::client::Client;
 use robocal_calib::geometry::pose_from_matrix_rows;
 use robocal_calib::sim::campaign_io::{PoseEntry, Truth};
 use robocal_calib::sim::render::RenderOptions;
@@ -15,9 +12,8 @@ use robocal_calib::sim::render_charuco::render_charuco;
 use robocal_calib::vision::charuco::CharucoSpec;
 use serde_json::{json, Value};
 
-use crate::support::{is_finished, spawn_app, spawn_app_with};
+use crate::support::{spawn_app, spawn_app_with, upload_and_calibrate};
 
-const WAIT: Duration = Duration::from_secs(240);
 const CAL_POSES: usize = 24;
 const VAL_POSES: usize = 8;
 /// Same bar as the dot-board campaign (`e2e.rs`).
@@ -70,16 +66,9 @@ async fn charuco_campaign_calibrates_through_the_service() {
     let dir = tempfile::tempdir().unwrap();
     charuco_campaign(dir.path());
     let app = spawn_app_with(|c| c.test_validate_only = false).await;
-    let client = Client::new(&app.base, None).unwrap();
     let serial = "CHARUCO-1";
-    let session = robocal::cli::upload(
-        &client,
-        serial,
-        dir.path(),
-        robocal::cli::RobotPolicy::CreateIfMissing,
-    )
-    .await
-    .unwrap();
+    let job = upload_and_calibrate(&app, serial, dir.path()).await;
+    let session = job["session_id"].as_str().unwrap();
     let s: Value = app
         .get(&format!("/v1/sessions/{session}"))
         .await
@@ -87,13 +76,6 @@ async fn charuco_campaign_calibrates_through_the_service() {
         .await
         .unwrap();
     assert_eq!(s["target"]["kind"], "charuco", "{s}");
-    let done = robocal::cli::calibrate(&client, serial, &session, false)
-        .await
-        .unwrap();
-    let job = app
-        .wait_job(done["job_id"].as_str().unwrap(), WAIT, is_finished)
-        .await;
-    assert_eq!(job["state"], "succeeded", "{job}");
     let report: Value = app
         .get(&format!("/v1/robots/{serial}/parameter-sets/latest/report"))
         .await

@@ -2,16 +2,13 @@
 //! images, upload it as a zip through the CLI's client, calibrate, and
 //! compare the served parameter set with the simulator's truth.
 
-use std::time::Duration;
-
 use robocal::cli::client::Client;
 use robocal_calib::geometry::pose_from_matrix_rows;
 use robocal_calib::sim::campaign_io::{PoseEntry, PoseSet, Truth};
 use serde_json::{json, Value};
 
-use crate::support::{is_finished, spawn_app_with};
+use crate::support::{spawn_app_with, upload_and_calibrate};
 
-const WAIT: Duration = Duration::from_secs(240);
 /// Poses of the (deliberately small, for CI) campaigns.
 const CAL_POSES: usize = 24;
 const VAL_POSES: usize = 8;
@@ -24,21 +21,8 @@ async fn campaign_through_the_service(preset: &str, serial: &str, seed: u64) {
     let dir = tempfile::tempdir().unwrap();
     robocal::cli::campaign::simulate(preset, dir.path(), CAL_POSES, VAL_POSES, seed).unwrap();
     let app = spawn_app_with(|c| c.test_validate_only = false).await;
+    let job = upload_and_calibrate(&app, serial, dir.path()).await;
     let client = Client::new(&app.base, None).unwrap();
-    let session = robocal::cli::upload(
-        &client,
-        serial,
-        dir.path(),
-        robocal::cli::RobotPolicy::CreateIfMissing,
-    )
-    .await
-    .unwrap();
-    let done = robocal::cli::calibrate(&client, serial, &session, false)
-        .await
-        .unwrap();
-    let job = done["job_id"].as_str().unwrap().to_string();
-    let job = app.wait_job(&job, WAIT, is_finished).await;
-    assert_eq!(job["state"], "succeeded", "{job}");
     assert_eq!(job["result"]["version"], 1, "{job}");
 
     let report = client.report(serial, None).await.unwrap();

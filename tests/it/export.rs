@@ -4,16 +4,13 @@
 //! table with σ and the reasons for held parameters.
 
 use std::collections::HashMap;
-use std::time::Duration;
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use rand::{rngs::StdRng, Rng, SeedableRng};
-use robocal::cli::client::Client;
 use serde_json::{json, Value};
 
-use crate::support::{is_finished, run_binary, spawn_app_with, TestApp};
+use crate::support::{run_binary, spawn_app_with, upload_and_calibrate, TestApp};
 
-const WAIT: Duration = Duration::from_secs(240);
 /// `forward` against the URDF's chain, mm and rad.
 const MAX_POSITION_MM: f64 = 1e-6;
 const MAX_ROTATION_RAD: f64 = 1e-9;
@@ -106,22 +103,7 @@ fn chain_pose(joints: &HashMap<String, UrdfJoint>, link: &str, q_rad: &[f64]) ->
 async fn calibrated(app: &TestApp, serial: &str) {
     let dir = tempfile::tempdir().unwrap();
     robocal::cli::campaign::simulate("irb2400", dir.path(), 20, 6, 31).unwrap();
-    let client = Client::new(&app.base, None).unwrap();
-    let session = robocal::cli::upload(
-        &client,
-        serial,
-        dir.path(),
-        robocal::cli::RobotPolicy::CreateIfMissing,
-    )
-    .await
-    .unwrap();
-    let done = robocal::cli::calibrate(&client, serial, &session, false)
-        .await
-        .unwrap();
-    let job = app
-        .wait_job(done["job_id"].as_str().unwrap(), WAIT, is_finished)
-        .await;
-    assert_eq!(job["state"], "succeeded", "{job}");
+    upload_and_calibrate(app, serial, dir.path()).await;
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]

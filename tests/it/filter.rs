@@ -5,10 +5,7 @@
 //! 0.1 mm mean of the targets; sent unfiltered they miss by the robot's
 //! kinematic error.
 
-use std::time::Duration;
-
 use rand::{rngs::StdRng, Rng, SeedableRng};
-use robocal::cli::client::Client;
 use robocal_calib::geometry::{pose_from_matrix_rows, pose_from_xyz_rpy_deg, Pose};
 use robocal_calib::kinematics::ik::nearest_within_limits;
 use robocal_calib::kinematics::CalibratedModel;
@@ -16,9 +13,8 @@ use robocal_calib::sim::campaign::compliance;
 use robocal_calib::sim::campaign_io::{PoseEntry, Truth};
 use serde_json::{json, Value};
 
-use crate::support::{is_finished, spawn_app_with};
+use crate::support::{spawn_app_with, upload_and_calibrate};
 
-const WAIT: Duration = Duration::from_secs(240);
 const TARGETS: usize = 40;
 /// Mean distance of the tool from the targets on the true robot (issue 15).
 const MAX_MEAN_MM: f64 = 0.1;
@@ -37,23 +33,8 @@ async fn filtered_targets_drive_the_true_robot_onto_the_targets() {
     let dir = tempfile::tempdir().unwrap();
     robocal::cli::campaign::simulate("irb2400", dir.path(), 24, 6, 41).unwrap();
     let app = spawn_app_with(|c| c.test_validate_only = false).await;
-    let client = Client::new(&app.base, None).unwrap();
     let serial = "FILTER-1";
-    let session = robocal::cli::upload(
-        &client,
-        serial,
-        dir.path(),
-        robocal::cli::RobotPolicy::CreateIfMissing,
-    )
-    .await
-    .unwrap();
-    let done = robocal::cli::calibrate(&client, serial, &session, false)
-        .await
-        .unwrap();
-    let job = app
-        .wait_job(done["job_id"].as_str().unwrap(), WAIT, is_finished)
-        .await;
-    assert_eq!(job["state"], "succeeded", "{job}");
+    upload_and_calibrate(&app, serial, dir.path()).await;
 
     let read = |name: &str| std::fs::read_to_string(dir.path().join(name)).unwrap();
     let truth: Truth = serde_json::from_str(&read("truth.json")).unwrap();

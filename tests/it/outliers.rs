@@ -2,15 +2,11 @@
 //! pose recorded 2° off in joint 2 calibrates as well as a clean one; the
 //! three poses are flagged `outlier` with a reason and no good pose is.
 
-use std::time::Duration;
-
-use robocal::cli::client::Client;
 use robocal_calib::sim::campaign_io::PoseEntry;
 use serde_json::Value;
 
-use crate::support::{is_finished, spawn_app_with};
+use crate::support::{spawn_app_with, upload_and_calibrate};
 
-const WAIT: Duration = Duration::from_secs(240);
 const CAL_POSES: usize = 24;
 const VAL_POSES: usize = 8;
 /// Same bar as the clean end-to-end campaign (`e2e.rs`).
@@ -37,22 +33,8 @@ async fn lying_poses_are_flagged_and_left_out() {
     std::fs::write(&path, serde_json::to_string(&entries).unwrap()).unwrap();
 
     let app = spawn_app_with(|c| c.test_validate_only = false).await;
-    let client = Client::new(&app.base, None).unwrap();
     let serial = "LIAR-1";
-    let session = robocal::cli::upload(
-        &client,
-        serial,
-        dir.path(),
-        robocal::cli::RobotPolicy::CreateIfMissing,
-    )
-    .await
-    .unwrap();
-    let done = robocal::cli::calibrate(&client, serial, &session, false)
-        .await
-        .unwrap();
-    let job = done["job_id"].as_str().unwrap().to_string();
-    let job = app.wait_job(&job, WAIT, is_finished).await;
-    assert_eq!(job["state"], "succeeded", "{job}");
+    upload_and_calibrate(&app, serial, dir.path()).await;
 
     let report: Value = app
         .get(&format!("/v1/robots/{serial}/parameter-sets/latest/report"))

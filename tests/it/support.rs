@@ -189,6 +189,32 @@ pub async fn wait_job_at(
     }
 }
 
+/// How long a calibration of a small simulated campaign may take in CI.
+pub const CAMPAIGN_WAIT: Duration = Duration::from_secs(240);
+
+/// Uploads campaign directory `dir` (as `robocal simulate` writes it) as
+/// robot `serial` through the CLI's client, calibrates it and waits; the
+/// job must succeed. Returns the finished job.
+pub async fn upload_and_calibrate(app: &TestApp, serial: &str, dir: &std::path::Path) -> Value {
+    let client = robocal::cli::client::Client::new(&app.base, None).unwrap();
+    let session = robocal::cli::upload(
+        &client,
+        serial,
+        dir,
+        robocal::cli::RobotPolicy::CreateIfMissing,
+    )
+    .await
+    .unwrap();
+    let done = robocal::cli::calibrate(&client, serial, &session, false)
+        .await
+        .unwrap();
+    let job = app
+        .wait_job(done["job_id"].as_str().unwrap(), CAMPAIGN_WAIT, is_finished)
+        .await;
+    assert_eq!(job["state"], "succeeded", "{job}");
+    job
+}
+
 pub fn is_finished(v: &Value) -> bool {
     matches!(
         v["state"].as_str(),
