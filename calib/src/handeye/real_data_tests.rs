@@ -3,9 +3,9 @@
 //! controller's flange poses (`poses/N.yaml`: metres and a quaternion) and
 //! no joints. Provenance and licence: `PROVENANCE.md` of the data folder.
 //!
-//! The fixtures live at `calib/tests/data/rct_wrist_circles_10x10` (added
-//! on their own branch); for development `ROBOCAL_RCT_WRIST_DIR` may point
-//! at another copy. Without either the test says so and passes.
+//! The fixtures live at `calib/tests/data/rct_wrist_circles_10x10` (copied
+//! with their licence and provenance); `ROBOCAL_RCT_WRIST_DIR` may point at
+//! another copy.
 
 use std::path::PathBuf;
 
@@ -214,13 +214,8 @@ fn pitch_and_hand_eye(fit: &FlangeCalibration) -> ([f64; 4], [f64; 4]) {
 
 #[test]
 fn rct_wrist_circles_hand_eye_and_printed_pitch() {
-    let Some(dir) = data_dir() else {
-        eprintln!(
-            "SKIPPED: calib/tests/data/rct_wrist_circles_10x10 is absent \
-             (set ROBOCAL_RCT_WRIST_DIR to a copy of the data)"
-        );
-        return;
-    };
+    let dir =
+        data_dir().expect("calib/tests/data/rct_wrist_circles_10x10 is part of the repository");
     let configured = views(&dir, CONFIGURED_PITCH_MM);
     let detected = configured.iter().filter(|v| v.points.len() == 100).count();
     eprintln!("{detected} of {IMAGES} images detected");
