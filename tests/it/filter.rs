@@ -81,17 +81,13 @@ async fn filtered_targets_drive_the_true_robot_onto_the_targets() {
         })
         .collect();
     let seed_deg = entries[0].joints_deg.clone();
+    let filter_path = format!("/v1/robots/{serial}/parameter-sets/latest/filter");
     let body = json!({
         "targets": targets.iter().map(pose_json).collect::<Vec<_>>(),
         "tool": pose_json(&tool),
         "seed_joints_deg": seed_deg,
     });
-    let r = app
-        .post_json(
-            &format!("/v1/robots/{serial}/parameter-sets/latest/filter"),
-            &body,
-        )
-        .await;
+    let r = app.post_json(&filter_path, &body).await;
     assert_eq!(r.status(), 200);
     let answer: Value = r.json().await.unwrap();
     assert_eq!(answer["errors"], json!([]), "{answer}");
@@ -142,12 +138,7 @@ async fn filtered_targets_drive_the_true_robot_onto_the_targets() {
         "tool": pose_json(&tool),
         "seed_joints_deg": seed_deg,
     });
-    let r = app
-        .post_json(
-            &format!("/v1/robots/{serial}/parameter-sets/latest/filter"),
-            &body,
-        )
-        .await;
+    let r = app.post_json(&filter_path, &body).await;
     assert_eq!(r.status(), 200);
     let answer: Value = r.json().await.unwrap();
     assert_eq!(answer["errors"][0]["index"], 1, "{answer}");
@@ -156,7 +147,7 @@ async fn filtered_targets_drive_the_true_robot_onto_the_targets() {
     // A NaN in the tool is a 422 naming it.
     let r = app
         .post_json(
-            &format!("/v1/robots/{serial}/parameter-sets/latest/filter"),
+            &filter_path,
             &json!({"targets": [pose_json(&targets[0])],
                     "tool": {"translation_mm": ["NaN", 0, 0], "rotation_deg": [0, 0, 0]}}),
         )

@@ -13,17 +13,9 @@ use crate::vision::aruco::Dictionary;
 use crate::vision::charuco::{corner_mm, inner_corner_grid, CharucoSpec};
 use crate::vision::image::GrayImage;
 
-/// Ground truth of one inner chessboard corner.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TruthCorner {
-    pub row: usize,
-    pub col: usize,
-    /// Projection of the corner, pixels (pixel-centre convention).
-    pub x: f64,
-    pub y: f64,
-    /// In front of the camera and inside the image.
-    pub visible: bool,
-}
+/// Ground truth of one inner chessboard corner: the same record as a dot's
+/// (board indices, projection, visibility).
+pub type TruthCorner = super::render::TruthDot;
 
 /// A rendered ChArUco view and its truth (corners in OpenCV id order).
 #[derive(Debug, Clone, PartialEq)]
