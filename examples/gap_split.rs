@@ -20,7 +20,7 @@ use clap::Parser;
 use nalgebra::Point3;
 use rand::{rngs::StdRng, Rng, SeedableRng};
 use robocal::cli::campaign::{run_local, simulate, simulated_target};
-use robocal::service::evaluate::model_of;
+use robocal::domain::ParameterSet;
 use robocal_calib::camera::Intrinsics;
 use robocal_calib::kinematics::identify::{validate, JointNoise};
 use robocal_calib::kinematics::joint_refine::{joint_refine, ImageNoise, ImagePose};
@@ -97,11 +97,11 @@ fn main() -> Result<(), String> {
             let (spec, campaign) = simulate(preset, dir.path(), args.cal, args.val, seed)?;
             let output = run_local(dir.path(), "GAP")?;
             let set = output.parameter_set.ok_or("no parameter set")?;
-            let model = model_of(&set.parameters)?;
-            let intr_pipe: Intrinsics = serde_json::from_value(set.parameters["camera"].clone())
-                .map_err(|e| e.to_string())?;
-            let fixed: Vec<String> =
-                serde_json::from_value(set.parameters["fixed"].clone()).unwrap_or_default();
+            let typed: ParameterSet =
+                serde_json::from_value(set.parameters).map_err(|e| e.to_string())?;
+            let model = typed.model()?;
+            let intr_pipe: Intrinsics = typed.camera.ok_or("no camera intrinsics")?;
+            let fixed = typed.fixed;
             let layout = ParamLayout::new(&model.robot, Instrument::Camera);
             let free: Vec<usize> = (0..layout.len())
                 .filter(|&i| !fixed.contains(&layout.params[i].name))

@@ -17,6 +17,7 @@
 
 use clap::Parser;
 use robocal::cli::campaign::{run_local_with, simulate};
+use robocal::domain::ParameterSet;
 use robocal::schema::job::CalibrationOptions;
 use robocal::testkit::accuracy::{compare_with_truth, dot_noise_px, oracle_floors};
 
@@ -77,13 +78,16 @@ fn main() -> Result<(), String> {
                 refine_intrinsics: false,
                 ..CalibrationOptions::default()
             })?;
-            let pipeline = compare_with_truth(&set.parameters, &campaign)?;
-            let two_step = compare_with_truth(&two_step.parameters, &campaign)?;
-            let paper = compare_with_truth(&paper.parameters, &campaign)?;
-            let sigma_px = dot_noise_px(&set.report)?;
-            let floors = oracle_floors(&spec, &campaign, sigma_px, &pipeline.free, args.draws)?;
+            let typed = |v: &serde_json::Value| -> Result<ParameterSet, String> {
+                serde_json::from_value(v.clone()).map_err(|e| e.to_string())
+            };
+            let pipeline = compare_with_truth(&typed(&set.parameters)?, &campaign)?;
+            let two_step = compare_with_truth(&typed(&two_step.parameters)?, &campaign)?;
+            let paper = compare_with_truth(&typed(&paper.parameters)?, &campaign)?;
             let parsed: robocal::report::Report =
                 serde_json::from_value(set.report.clone()).map_err(|e| e.to_string())?;
+            let sigma_px = dot_noise_px(&parsed)?;
+            let floors = oracle_floors(&spec, &campaign, sigma_px, &pipeline.free, args.draws)?;
             let before = parsed.before.norm.mean_mm;
             let (worst_name, worst_z) = pipeline.worst().cloned().unwrap_or_default();
             let within = worst_z.abs() <= SIGMA_BOUND;

@@ -15,9 +15,9 @@ use super::error::{ApiError, ApiResult, Problem};
 use super::extract::{ApiJson, Paging, SerialPath};
 use super::AppState;
 use crate::domain::ParameterSetRecord;
-use crate::pipeline::results::PoseOut;
 use crate::report::schema::IntrinsicsSchema;
 use crate::report::{render_html, render_svg, Report};
+use crate::schema::PoseOut;
 use crate::service::{evaluate, filter, results};
 
 pub fn router() -> OpenApiRouter<AppState> {

@@ -16,11 +16,13 @@ use robocal_calib::vision::TargetSpec;
 use serde::{Deserialize, Serialize};
 use serde_json::json;
 
+use crate::domain::JointsDeg;
 use crate::pipeline::{self, Input, PoseImage, PoseInput};
 use crate::report::Report;
 use crate::schema::job::CalibrationOptions;
 use crate::schema::robot::RobotBody;
 use crate::schema::session::{PoseSet, SessionBody};
+use crate::schema::Checker;
 
 /// Spreads per-pose noise seeds apart (the golden-ratio constant).
 const NOISE_SEED_STRIDE: u64 = 0x9e37_79b9_7f4a_7c15;
@@ -73,7 +75,7 @@ fn simulated_camera(preset: &str) -> (Intrinsics, (u32, u32), f64) {
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct CampaignFile {
     /// The `PUT /v1/robots/{serial}` body.
-    pub robot: serde_json::Value,
+    pub robot: RobotBody,
     /// The `POST /v1/robots/{serial}/sessions` body.
     pub session: SessionBody,
 }
@@ -155,7 +157,8 @@ pub fn simulate(
         return Err(e.clone());
     }
     let file = CampaignFile {
-        robot: json!({"model": preset.to_uppercase(), "preset": preset}),
+        robot: serde_json::from_value(json!({"model": preset.to_uppercase(), "preset": preset}))
+            .map_err(|e| e.to_string())?,
         session: serde_json::from_value(json!({
             "instrument": "camera",
             "target": {
@@ -218,8 +221,7 @@ pub fn run_local_with(
     options: CalibrationOptions,
 ) -> Result<pipeline::Output, String> {
     let (file, entries) = read(dir)?;
-    let body: RobotBody = serde_json::from_value(file.robot.clone()).map_err(|e| e.to_string())?;
-    let kinematics = body.resolve().map_err(|e| format!("{e:?}"))?;
+    let kinematics = file.robot.resolve().map_err(|e| format!("{e:?}"))?;
     let mut poses = Vec::with_capacity(entries.len());
     for (i, entry) in entries.iter().enumerate() {
         // The header only: the detect stage reads each image when it
@@ -236,10 +238,21 @@ pub fn run_local_with(
             height,
             detection: None,
         };
+        let mut c = Checker::default();
+        let field = format!("poses.json[{i}].joints_deg");
+        let joints = JointsDeg::check(&mut c, &field, &entry.joints_deg, kinematics.joints.len());
+        let joints_deg = joints.ok_or_else(|| {
+            let errors: Vec<String> = c
+                .errors
+                .iter()
+                .map(|e| format!("{}: {}", e.field, e.message))
+                .collect();
+            errors.join("; ")
+        })?;
         poses.push(PoseInput {
             id: format!("p{:03}", i + 1),
             label: entry.image.clone(),
-            joints_deg: entry.joints_deg.clone(),
+            joints_deg,
             set: match entry.set {
                 SimPoseSet::Cal => PoseSet::Cal,
                 SimPoseSet::Val => PoseSet::Val,

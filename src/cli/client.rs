@@ -144,7 +144,11 @@ impl Client {
         })
     }
 
-    pub async fn put_robot(&self, serial: &str, body: &Value) -> Result<Value, ClientError> {
+    pub async fn put_robot(
+        &self,
+        serial: &str,
+        body: &impl serde::Serialize,
+    ) -> Result<Value, ClientError> {
         self.send(
             self.request(reqwest::Method::PUT, &format!("/v1/robots/{serial}"))
                 .json(body),

@@ -3,15 +3,20 @@
 //! bound ([`MAX_JOINT_DEG`]); turned into the radians the numerics take
 //! (`calib/`, method.md §2) by one function, [`JointsDeg::to_radians`].
 
+use serde::Serialize;
+
 use crate::schema::Checker;
 
 /// Largest joint angle accepted anywhere (uploads, forward, compensate
 /// seeds), degrees: two turns either way, beyond any real joint's travel,
 /// so a number past it is a unit mistake (radians sent twice, milli-degrees).
-pub const MAX_JOINT_DEG: f64 = 720.0;
+pub const MAX_JOINT_DEG: f64 = crate::schema::MAX_ANGLE_DEG;
 
-/// One robot configuration: a joint angle per joint, degrees.
-#[derive(Debug, Clone, PartialEq)]
+/// One robot configuration: a joint angle per joint, degrees. Serialised
+/// as the plain array the contract and the store use; read back only
+/// through [`JointsDeg::check`] or [`JointsDeg::stored`].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(transparent)]
 pub struct JointsDeg(Vec<f64>);
 
 impl JointsDeg {
@@ -60,6 +65,21 @@ impl JointsDeg {
     /// The joints in radians, as `calib/` takes them.
     pub fn to_radians(&self) -> Vec<f64> {
         self.0.iter().map(|d| d.to_radians()).collect()
+    }
+
+    /// Joints the numerics found (radians), in the contract's degrees.
+    pub fn from_radians(rad: &[f64]) -> JointsDeg {
+        JointsDeg(rad.iter().map(|r| r.to_degrees()).collect())
+    }
+
+    pub fn into_vec(self) -> Vec<f64> {
+        self.0
+    }
+}
+
+impl PartialEq<Vec<f64>> for JointsDeg {
+    fn eq(&self, other: &Vec<f64>) -> bool {
+        &self.0 == other
     }
 }
 

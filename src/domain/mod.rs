@@ -6,13 +6,19 @@
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
+use crate::schema::session::PoseSet;
+
+mod joints;
 mod label;
+mod parameter_set;
 mod serial;
 mod target;
+pub use joints::{JointsDeg, MAX_JOINT_DEG};
 pub use label::{
     check_label, label_from_archive_path, label_from_file_name, label_or_number, LABEL_RULE,
     MAX_LABEL_CHARS,
 };
+pub use parameter_set::{FrameNames, ParameterSet};
 pub use serial::{InvalidSerial, Serial, MAX_SERIAL_LEN, SERIAL_RULE};
 pub use target::{FoundPoint, Target};
 
@@ -53,8 +59,8 @@ pub struct ImageMeta {
 pub struct PoseRecord {
     pub id: String,
     pub session_id: String,
-    pub joints_deg: Vec<f64>,
-    pub set: String,
+    pub joints_deg: JointsDeg,
+    pub set: PoseSet,
     pub image: Option<ImageMeta>,
     /// `[{"row","col","x","y"}]`: the image points as uploaded (never rewritten;
     /// what a job detected is in `detection`).
@@ -92,8 +98,8 @@ pub struct PoseDetection {
 /// A pose to insert; its image blob must already be stored (`put_blob`).
 #[derive(Debug, Clone)]
 pub struct NewPose {
-    pub joints_deg: Vec<f64>,
-    pub set: String,
+    pub joints_deg: JointsDeg,
+    pub set: PoseSet,
     pub image: Option<ImageMeta>,
     pub points: Value,
     pub measured: Option<Value>,

@@ -6,9 +6,11 @@ use std::fmt::Write;
 
 use serde::Serialize;
 
-use crate::pipeline::results::{ParameterSetDoc, PoseOut};
+use crate::domain::ParameterSet;
 use crate::report::{IdentifiabilityReport, ParameterReport};
 use crate::schema::robot::Convention;
+use crate::schema::session::Instrument;
+use crate::schema::PoseOut;
 
 /// Why a parameter the identifiability analysis fixed was held (method.md §6).
 pub const HELD_REDUNDANT: &str =
@@ -55,7 +57,7 @@ pub struct ParameterRow {
 pub struct DhTable {
     pub serial: String,
     pub version: i64,
-    pub instrument: String,
+    pub instrument: Instrument,
     pub joints: Vec<JointRow>,
     /// `target_to_base` (camera) or `instrument_to_base` (tracker).
     pub world_to_base: PoseOut,
@@ -69,7 +71,7 @@ pub struct DhTable {
 pub fn dh_table(
     serial: &str,
     version: i64,
-    set: &ParameterSetDoc,
+    set: &ParameterSet,
     identifiability: Option<&IdentifiabilityReport>,
 ) -> DhTable {
     let std_of = |name: String| {
@@ -111,7 +113,7 @@ pub fn dh_table(
     DhTable {
         serial: serial.into(),
         version,
-        instrument: set.instrument.clone(),
+        instrument: set.instrument,
         joints,
         world_to_base: set.world_to_base.clone(),
         flange_to_tool: set.flange_to_tool.clone(),

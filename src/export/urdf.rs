@@ -14,6 +14,8 @@ use std::fmt::Write;
 use robocal_calib::geometry::Pose;
 use robocal_calib::kinematics::CalibratedModel;
 
+use crate::domain::FrameNames;
+
 /// Millimetres per metre.
 const MM_PER_M: f64 = 1000.0;
 /// URDF requires `effort` and `velocity` on a revolute joint's limit;
@@ -21,15 +23,6 @@ const MM_PER_M: f64 = 1000.0;
 /// (ROS tools read 0 as "no limit known"); the controller's values govern.
 const UNKNOWN_EFFORT: f64 = 0.0;
 const UNKNOWN_VELOCITY: f64 = 0.0;
-
-/// Names of the frames at the two ends of the chain.
-#[derive(Debug, Clone, Copy)]
-pub struct FrameNames {
-    /// `camera` (camera sessions) or `tool` (tracker sessions).
-    pub end: &'static str,
-    /// `target` (camera sessions) or `tracker` (tracker sessions).
-    pub world: &'static str,
-}
 
 /// The URDF document of `model`, robot named `name`.
 pub fn write_urdf(name: &str, model: &CalibratedModel, frames: FrameNames) -> String {

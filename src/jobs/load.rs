@@ -8,7 +8,7 @@ use crate::imaging::{DecodeGate, ImageDetection};
 use crate::pipeline::{ImageSource, Input, PoseImage, PoseInput};
 use crate::schema::job::CalibrationOptions;
 use crate::schema::robot::KinematicsDoc;
-use crate::schema::session::{ImagePointDoc, PoseSet, SessionBody};
+use crate::schema::session::{ImagePointDoc, SessionBody};
 use crate::schema::PoseDoc;
 use crate::service::camera_reuse::{self, ReuseError};
 use crate::store::{DynStore, StoreError};
@@ -88,7 +88,7 @@ pub async fn load_input(
                 id: p.id,
                 label,
                 joints_deg: p.joints_deg,
-                set: PoseSet::parse(&p.set).unwrap_or_default(),
+                set: p.set,
                 image,
                 image_points,
                 measured_position_mm,

@@ -208,7 +208,7 @@ impl Worker {
         let outcome = match result {
             Ok(Ok(out)) => JobOutcome::Succeeded {
                 parameter_set: out.parameter_set,
-                summary: out.summary,
+                summary: serde_json::to_value(&out.summary).unwrap_or_default(),
                 detections: stamp(&job_id, out.detections),
             },
             Ok(Err(PipelineError::Cancelled)) if releasing => {
@@ -254,7 +254,7 @@ impl Worker {
 fn stamp(job_id: &str, mut detections: Vec<PoseDetection>) -> Vec<PoseDetection> {
     for d in &mut detections {
         if let Some(doc) = d.detection.as_object_mut() {
-            doc.insert("job_id".into(), serde_json::Value::from(job_id));
+            doc.insert("job_id".into(), serde_json::json!(job_id));
         }
     }
     detections

@@ -134,7 +134,7 @@ pub fn with_residuals(
     let mut out = detected(poses, measured);
     for (view, &i) in step.view_pose.iter().enumerate() {
         let pose = &poses[i];
-        let joints_rad: Vec<f64> = pose.joints_deg.iter().map(|d| d.to_radians()).collect();
+        let joints_rad: Vec<f64> = pose.joints_deg.to_radians();
         let target_to_camera = match model.world_to_tool(&joints_rad) {
             Ok(t) if full_pose => Some(t),
             _ => None,

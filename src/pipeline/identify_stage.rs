@@ -83,7 +83,7 @@ fn measurement_of(
     intrinsics: Option<&Intrinsics>,
     kind: MeasurementKind,
 ) -> Option<Measurement> {
-    let joints_rad = pose.joints_deg.iter().map(|d| d.to_radians()).collect();
+    let joints_rad = pose.joints_deg.to_radians();
     let observed = match camera {
         Some(step) => {
             let estimate = match intrinsics {
@@ -168,7 +168,7 @@ pub fn identify_robot(
             .iter()
             .filter_map(|&i| {
                 Some(ImagePose {
-                    joints_rad: poses[i].joints_deg.iter().map(|d| d.to_radians()).collect(),
+                    joints_rad: poses[i].joints_deg.to_radians(),
                     observations: step.observations_of(i)?.to_vec(),
                 })
             })

@@ -7,6 +7,7 @@ use std::time::Duration;
 use robocal_calib::camera::Intrinsics;
 use robocal_calib::kinematics::RobotModel;
 
+use crate::domain::JointsDeg;
 use crate::imaging::{DecodeGate, ImageDetection};
 use crate::schema::job::CalibrationOptions;
 use crate::schema::robot::KinematicsDoc;
@@ -42,7 +43,7 @@ pub struct PoseInput {
     /// What reports call the pose: its stored label (the photo's file
     /// name), or its number in upload order (`#12`).
     pub label: String,
-    pub joints_deg: Vec<f64>,
+    pub joints_deg: JointsDeg,
     pub set: PoseSet,
     /// The pose's image, when it was uploaded with one: a reference, never
     /// the bytes (a job holds no images; the detect stage reads, decodes and

@@ -187,7 +187,7 @@ mod tests {
         PoseInput {
             id: id.into(),
             label: id.into(),
-            joints_deg: vec![0.0; 6],
+            joints_deg: crate::domain::JointsDeg::stored(vec![0.0; 6]),
             set: PoseSet::Cal,
             image: Some(PoseImage {
                 key: id.into(),

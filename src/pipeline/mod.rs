@@ -25,7 +25,7 @@ mod stage;
 mod validate;
 
 pub use input::{FixedCamera, ImageSource, Input, PoseImage, PoseInput, ReadImage};
-pub use output::{Output, PipelineError};
+pub use output::{Output, PipelineError, Summary};
 use stage::stage_span;
 pub use stage::Stage;
 pub use validate::validate;
@@ -262,7 +262,7 @@ fn run_stages(
     within(Stage::Report, "done", 1.0);
     Ok(Output {
         parameter_set: Some(NewParameterSet {
-            parameters: set.to_json(),
+            parameters: serde_json::to_value(&set).unwrap_or_default(),
             report: serde_json::to_value(&report).unwrap_or_default(),
         }),
         summary: results::summary(&identified),

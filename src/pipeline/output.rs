@@ -1,6 +1,8 @@
 //! What a job gives back: the parameter set with its report, a summary and
 //! every pose's image points; or why it stopped.
 
+use serde::Serialize;
+
 use crate::domain::{NewParameterSet, PoseDetection};
 use crate::schema::FieldError;
 
@@ -10,10 +12,28 @@ pub struct Output {
     /// identified one (stored as the serial's next version).
     pub parameter_set: Option<NewParameterSet>,
     /// A short summary for the job's `result`.
-    pub summary: serde_json::Value,
+    pub summary: Summary,
     /// Every camera pose's image points with their reprojection residuals
     /// (empty for tracker sessions and validation-only runs).
     pub detections: Vec<PoseDetection>,
+}
+
+/// The job's `result.summary`: the poses it used and, after a calibration,
+/// the mean validation error before and after.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Summary {
+    /// The stage a validation-only run stopped after (`validate`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stage: Option<&'static str>,
+    pub calibration_poses: usize,
+    pub validation_poses: usize,
+    /// The robot's joint count (validation-only runs).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub joints: Option<usize>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub before_mean_mm: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub after_mean_mm: Option<f64>,
 }
 
 #[derive(Debug, Clone, thiserror::Error)]

@@ -2,105 +2,24 @@
 //! evaluate) and the accuracy report (api.md "Results"), from the stages'
 //! outcomes.
 
-use robocal_calib::geometry::{pose_to_matrix_rows, Pose, PoseXyzRpy};
-use robocal_calib::kinematics::{CalibratedModel, Instrument, ParamKind, ParamLayout};
-use serde::{Deserialize, Serialize};
-use serde_json::json;
+use robocal_calib::kinematics::{Instrument, ParamKind, ParamLayout};
 
 use super::camera_stage::{camera_mode, camera_report, CameraStep};
 use super::identify_stage::Identified;
 use super::measure::Measured;
 use super::screen_stage::Outlier;
-use super::PoseInput;
+use super::{PoseInput, Summary};
+use crate::domain::ParameterSet;
 use crate::report::{
     CameraStd, DetectionReport, IdentifiabilityReport, ParameterReport, PoseReport, Report,
     ResidualSample,
 };
 use crate::schema::robot::model_to_doc;
-use crate::schema::robot::KinematicsDoc;
+use crate::schema::session::Instrument as SessionInstrument;
+use crate::schema::PoseOut;
 
 /// Most residual arrows kept in a report (the plot averages them anyway).
 const MAX_RESIDUAL_SAMPLES: usize = 6000;
-
-/// A pose in the contract's form plus its exact matrix: translation in mm,
-/// fixed-axis X-Y-Z angles in degrees, the 4x4 row-major matrix.
-#[derive(Debug, Clone, Serialize, Deserialize, utoipa::ToSchema)]
-#[schema(as = FramePose)]
-pub struct PoseOut {
-    pub translation_mm: [f64; 3],
-    pub rotation_deg: [f64; 3],
-    pub matrix: [[f64; 4]; 4],
-}
-
-impl PoseOut {
-    pub fn new(pose: &Pose) -> Self {
-        let form = PoseXyzRpy::from_pose(pose);
-        Self {
-            translation_mm: form.translation_mm,
-            rotation_deg: form.rotation_deg,
-            matrix: pose_to_matrix_rows(pose),
-        }
-    }
-}
-
-/// The stored parameter set (api.md: identified kinematics, frames,
-/// intrinsics, what was held fixed).
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct ParameterSetDoc {
-    pub instrument: String,
-    pub session_id: String,
-    pub kinematics: KinematicsDoc,
-    /// `target_to_base` (camera) or `instrument_to_base` (tracker).
-    pub world_to_base: PoseOut,
-    /// `flange_to_camera` (camera) or `flange_to_tool` (tracker).
-    pub flange_to_tool: PoseOut,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub camera: Option<robocal_calib::camera::Intrinsics>,
-    /// How `camera` was obtained: "refined", "paper" (`refine_intrinsics:
-    /// false`) or "fixed" (reused from `camera_calibration_id`).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub camera_mode: Option<String>,
-    /// The earlier calibration (`"{serial}/{version}"`) whose intrinsics
-    /// `camera` repeats, when they were held fixed.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub camera_calibration_id: Option<String>,
-    pub fixed: Vec<String>,
-    pub parameters: Vec<ParameterReport>,
-}
-
-impl ParameterSetDoc {
-    /// The calibrated model back from its stored form.
-    pub fn model(&self) -> Result<CalibratedModel, String> {
-        let from = |p: &PoseOut| {
-            robocal_calib::geometry::pose_from_matrix_rows(&p.matrix).map_err(|e| e.to_string())
-        };
-        Ok(CalibratedModel {
-            robot: crate::schema::robot::doc_to_model(&self.kinematics),
-            world_to_base: from(&self.world_to_base)?,
-            flange_to_tool: from(&self.flange_to_tool)?,
-        })
-    }
-
-    /// The JSON served by `GET .../parameter-sets/{version}`, with the
-    /// contract's frame names.
-    pub fn to_json(&self) -> serde_json::Value {
-        let (base, tool) = if self.instrument == "tracker" {
-            ("instrument_to_base", "flange_to_tool")
-        } else {
-            ("target_to_base", "flange_to_camera")
-        };
-        let mut v = serde_json::to_value(self).unwrap_or_default();
-        if let Some(obj) = v.as_object_mut() {
-            if let Some(b) = obj.remove("world_to_base") {
-                obj.insert(base.into(), b);
-            }
-            if let Some(t) = obj.remove("flange_to_tool") {
-                obj.insert(tool.into(), t);
-            }
-        }
-        v
-    }
-}
 
 fn display_value(layout: &ParamLayout, i: usize, value: f64) -> (f64, String) {
     if layout.is_angle(i) {
@@ -159,15 +78,14 @@ pub struct Context<'a> {
     pub notes: Vec<String>,
 }
 
-pub fn parameter_set(ctx: &Context, id: &Identified) -> ParameterSetDoc {
+pub fn parameter_set(ctx: &Context, id: &Identified) -> ParameterSet {
     let rows = parameter_rows(id);
-    ParameterSetDoc {
+    ParameterSet {
         instrument: if ctx.instrument == Instrument::Camera {
-            "camera"
+            SessionInstrument::Camera
         } else {
-            "tracker"
-        }
-        .into(),
+            SessionInstrument::Tracker
+        },
         session_id: ctx.session_id.to_string(),
         kinematics: model_to_doc(&id.model.robot),
         world_to_base: PoseOut::new(&id.model.world_to_base),
@@ -203,7 +121,7 @@ fn residual_field(step: &CameraStep) -> Vec<ResidualSample> {
     out.into_iter().step_by(stride).collect()
 }
 
-pub fn report(ctx: &Context, id: &Identified, set: &ParameterSetDoc) -> Report {
+pub fn report(ctx: &Context, id: &Identified, set: &ParameterSet) -> Report {
     let camera = ctx.camera.map(|step| {
         let std = id.refined_intrinsics.as_ref().map(|(_, s, _)| CameraStd {
             fx: s[0],
@@ -249,7 +167,7 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSetDoc) -> Report {
                 Some(_) => ctx.poses[*i].set.as_str().into(),
                 None => "val".into(),
             },
-            joints_deg: ctx.poses[*i].joints_deg.clone(),
+            joints_deg: ctx.poses[*i].joints_deg.as_deg().to_vec(),
             before_error_mm: [before.x, before.y, before.z],
             after_error_mm: [after.x, after.y, after.z],
             before_mm: before.norm(),
@@ -285,7 +203,7 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSetDoc) -> Report {
         job_id: String::new(),
         session_id: ctx.session_id.to_string(),
         created_at: crate::domain::now_rfc3339(),
-        instrument: set.instrument.clone(),
+        instrument: set.instrument.as_str().to_string(),
         measurement: ctx.measurement.to_string(),
         camera,
         detection,
@@ -307,11 +225,13 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSetDoc) -> Report {
 }
 
 /// The summary stored as the job's result document.
-pub fn summary(id: &Identified) -> serde_json::Value {
-    json!({
-        "calibration_poses": id.cal.len(),
-        "validation_poses": id.val.len(),
-        "before_mean_mm": id.before.norm.mean_mm,
-        "after_mean_mm": id.after.norm.mean_mm,
-    })
+pub fn summary(id: &Identified) -> Summary {
+    Summary {
+        stage: None,
+        calibration_poses: id.cal.len(),
+        validation_poses: id.val.len(),
+        joints: None,
+        before_mean_mm: Some(id.before.norm.mean_mm),
+        after_mean_mm: Some(id.after.norm.mean_mm),
+    }
 }

@@ -56,7 +56,7 @@ pub fn screen_poses(
     let images: Vec<ImagePose> = usable
         .iter()
         .map(|&i| ImagePose {
-            joints_rad: poses[i].joints_deg.iter().map(|d| d.to_radians()).collect(),
+            joints_rad: poses[i].joints_deg.to_radians(),
             observations: camera.observations_of(i).unwrap_or_default().to_vec(),
         })
         .collect();

@@ -4,9 +4,7 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-use serde_json::json;
-
-use super::{Input, PipelineError, Stage, MIN_CALIBRATION_POSES};
+use super::{Input, PipelineError, Stage, Summary, MIN_CALIBRATION_POSES};
 use crate::schema::job::Validation;
 use crate::schema::session::{Instrument, PoseSet};
 use crate::schema::FieldError;
@@ -16,7 +14,7 @@ pub fn validate(
     input: &Input,
     progress: &dyn Fn(Stage, &str, f64),
     cancel: &AtomicBool,
-) -> Result<serde_json::Value, PipelineError> {
+) -> Result<Summary, PipelineError> {
     let joint_count = input.robot.dof();
     let mut errors = Vec::new();
     let cal = input.poses.iter().filter(|p| p.set == PoseSet::Cal).count();
@@ -94,12 +92,14 @@ pub fn validate(
     if !errors.is_empty() {
         return Err(PipelineError::Invalid(errors));
     }
-    Ok(json!({
-        "stage": Stage::Validate.as_str(),
-        "calibration_poses": cal,
-        "validation_poses": val,
-        "joints": joint_count,
-    }))
+    Ok(Summary {
+        stage: Some(Stage::Validate.as_str()),
+        calibration_poses: cal,
+        validation_poses: val,
+        joints: Some(joint_count),
+        before_mean_mm: None,
+        after_mean_mm: None,
+    })
 }
 
 fn sleep_cancellable(total: Duration, cancel: &AtomicBool) -> Result<(), PipelineError> {

@@ -5,9 +5,12 @@
 use serde::Serialize;
 use utoipa::ToSchema;
 
+mod frame_pose;
 pub mod job;
 pub mod robot;
 pub mod session;
+
+pub use frame_pose::PoseOut;
 
 /// One validation failure, naming the field by its JSON path (`kinematics.joints[1].a_mm`).
 #[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]

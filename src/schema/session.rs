@@ -3,7 +3,8 @@
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
-use super::{Checker, FieldError, PoseDoc, MAX_ANGLE_DEG, MAX_LENGTH_MM};
+use super::{Checker, FieldError, PoseDoc, MAX_LENGTH_MM};
+use crate::domain::JointsDeg;
 
 /// Most dots per board side.
 pub const MAX_GRID_SIDE: u32 = 1000;
@@ -209,31 +210,16 @@ pub struct PoseJsonBody {
     pub label: Option<String>,
 }
 
-/// Checks a joint vector against the robot's joint count.
-pub fn check_joints(c: &mut Checker, field: &str, joints_deg: &[f64], joint_count: usize) {
-    if joints_deg.len() != joint_count {
-        c.fail(
-            field,
-            format!(
-                "the robot has {joint_count} joints, got {} values",
-                joints_deg.len()
-            ),
-        );
-    }
-    for (i, v) in joints_deg.iter().enumerate() {
-        c.bounded(format!("{field}[{i}]"), *v, MAX_ANGLE_DEG, "deg");
-    }
-}
-
 impl PoseJsonBody {
+    /// Checks the body against the session; its typed joints when it passes.
     pub fn check(
         &self,
         instrument: Instrument,
         camera: Option<&CameraDoc>,
         joint_count: usize,
-    ) -> Result<(), Vec<FieldError>> {
+    ) -> Result<JointsDeg, Vec<FieldError>> {
         let mut c = Checker::default();
-        check_joints(&mut c, "joints_deg", &self.joints_deg, joint_count);
+        let joints = JointsDeg::check(&mut c, "joints_deg", &self.joints_deg, joint_count);
         if let Some(Err(rule)) = self.label.as_deref().map(crate::domain::check_label) {
             c.fail("label", rule);
         }
@@ -275,7 +261,8 @@ impl PoseJsonBody {
                 }
             }
         }
-        c.finish()
+        c.finish()?;
+        Ok(joints.expect("checked above"))
     }
 }
 

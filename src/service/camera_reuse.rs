@@ -7,8 +7,10 @@
 //! may be any robot's.
 
 use robocal_calib::camera::Intrinsics;
+use serde::Deserialize;
 
 use super::error::{ServiceError, ServiceResult};
+use crate::domain::ParameterSet;
 use crate::pipeline::FixedCamera;
 use crate::schema::session::{CameraDoc, Instrument, SessionBody};
 use crate::store::{DynStore, StoreError};
@@ -78,6 +80,19 @@ pub async fn resolve_for_session(
     }
 }
 
+/// What this check reads of a stored report: the size of the images the
+/// camera was calibrated on.
+#[derive(Deserialize)]
+struct CalibratedImages {
+    camera: Option<ImageSize>,
+}
+
+#[derive(Deserialize)]
+struct ImageSize {
+    image_width: u32,
+    image_height: u32,
+}
+
 /// Looks the calibration up and checks it fits a session whose camera is
 /// `camera`: it has intrinsics, measured on images of the same size.
 pub async fn resolve(
@@ -91,25 +106,26 @@ pub async fn resolve(
         .await?
         .ok_or_else(|| ReuseError::NotFound(format!("no parameter set {id:?}")))?;
     let resolved = format!("{serial}/{}", set.version);
-    let intrinsics: Intrinsics = set
-        .parameters
-        .get("camera")
-        .and_then(|c| serde_json::from_value(c.clone()).ok())
+    let intrinsics: Intrinsics = serde_json::from_value::<ParameterSet>(set.parameters)
+        .ok()
+        .and_then(|p| p.camera)
         .ok_or_else(|| {
             ReuseError::Unusable(format!(
                 "parameter set {resolved} has no camera intrinsics (not a camera calibration)"
             ))
         })?;
     if let Some(camera) = camera {
-        let report = store.get_report(serial, set.version).await?;
-        let size = |key: &str| {
-            report
-                .as_ref()
-                .and_then(|r| r.pointer(&format!("/camera/{key}")))
-                .and_then(serde_json::Value::as_u64)
-        };
-        if let (Some(w), Some(h)) = (size("image_width"), size("image_height")) {
-            if (w, h) != (u64::from(camera.width), u64::from(camera.height)) {
+        let calibrated = store
+            .get_report(serial, set.version)
+            .await?
+            .and_then(|r| serde_json::from_value::<CalibratedImages>(r).ok())
+            .and_then(|r| r.camera);
+        if let Some(ImageSize {
+            image_width: w,
+            image_height: h,
+        }) = calibrated
+        {
+            if (w, h) != (camera.width, camera.height) {
                 return Err(ReuseError::Unusable(format!(
                     "parameter set {resolved} calibrated {w}x{h} images, the session camera is {}x{}",
                     camera.width, camera.height

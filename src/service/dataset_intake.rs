@@ -12,8 +12,9 @@ use super::error::{ServiceError, ServiceResult};
 use super::images::inspect_and_hash;
 use super::intake::PoseIntake;
 use super::staged_images::StagedImages;
+use crate::domain::JointsDeg;
 use crate::domain::{label_from_archive_path, NewPose, PoseRecord};
-use crate::schema::session::{check_joints, Instrument};
+use crate::schema::session::Instrument;
 use crate::schema::Checker;
 
 impl From<DatasetError> for ServiceError {
@@ -54,15 +55,21 @@ impl PoseIntake {
         if reader.manifest.is_empty() {
             c.fail("poses.json", "holds no poses");
         }
-        for (i, p) in reader.manifest.iter().enumerate() {
-            check_joints(
-                &mut c,
-                &format!("poses.json[{i}].joints_deg"),
-                &p.joints_deg,
-                self.joint_count,
-            );
-        }
+        let joints: Vec<Option<JointsDeg>> = reader
+            .manifest
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                JointsDeg::check(
+                    &mut c,
+                    &format!("poses.json[{i}].joints_deg"),
+                    &p.joints_deg,
+                    self.joint_count,
+                )
+            })
+            .collect();
         c.finish()?;
+        let mut joints = joints.into_iter().map(|q| q.expect("checked above"));
         let check = self.image_check();
         let mut staged = StagedImages::new(self.store.clone());
         let mut poses = Vec::with_capacity(reader.manifest.len());
@@ -94,8 +101,8 @@ impl PoseIntake {
             self.store.put_blob(&ingested.meta, &bytes).await?;
             staged.stored(&ingested.meta.sha256);
             poses.push(NewPose {
-                joints_deg: reader.manifest[i].joints_deg.clone(),
-                set: reader.manifest[i].set.as_str().to_string(),
+                joints_deg: joints.next().expect("one per manifest entry"),
+                set: reader.manifest[i].set,
                 image: Some(ingested.meta),
                 points: json!([]),
                 measured: None,

@@ -7,11 +7,10 @@ use robocal_calib::kinematics::ik::{default_seeds, nearest_within_limits, IkStar
 use robocal_calib::kinematics::ik_branches::{self, SphericalWristArm};
 use robocal_calib::kinematics::CalibratedModel;
 use serde::{Deserialize, Serialize};
-use serde_json::Value;
 use utoipa::ToSchema;
 
-use crate::pipeline::results::{ParameterSetDoc, PoseOut};
-use crate::schema::{Checker, FieldError, PoseDoc};
+use crate::domain::JointsDeg;
+use crate::schema::{Checker, FieldError, PoseDoc, PoseOut};
 
 /// Most rows of one `forward` or `compensate` request.
 pub const MAX_ROWS: usize = 10_000;
@@ -142,29 +141,6 @@ pub struct CompensateResponse {
     pub configuration: Vec<Option<Configuration>>,
 }
 
-/// The calibrated model of a stored parameter set.
-pub fn model_of(parameters: &Value) -> Result<CalibratedModel, String> {
-    doc_of(parameters)?.model()
-}
-
-/// A stored parameter set read back into its typed form (the contract's
-/// frame names mapped to the model's).
-pub fn doc_of(parameters: &Value) -> Result<ParameterSetDoc, String> {
-    let mut v = parameters.clone();
-    if let Some(obj) = v.as_object_mut() {
-        for (from, to) in [
-            ("target_to_base", "world_to_base"),
-            ("instrument_to_base", "world_to_base"),
-            ("flange_to_camera", "flange_to_tool"),
-        ] {
-            if let Some(x) = obj.remove(from) {
-                obj.insert(to.into(), x);
-            }
-        }
-    }
-    serde_json::from_value(v).map_err(|e| format!("stored parameter set unreadable: {e}"))
-}
-
 pub(crate) fn pose_of(doc: &PoseDoc, field: &str, c: &mut Checker) -> Option<Pose> {
     doc.check(c, field);
     let pose = match doc.matrix {
@@ -195,17 +171,6 @@ pub(crate) fn target_poses(targets: &[PoseDoc], c: &mut Checker) -> Vec<Option<P
         .collect()
 }
 
-pub(crate) fn check_joints(row: &[f64], dof: usize, field: &str, c: &mut Checker) {
-    if row.len() != dof {
-        c.fail(
-            field,
-            format!("{} values for a {dof}-joint robot", row.len()),
-        );
-    } else if row.iter().any(|v| !v.is_finite() || v.abs() > 3600.0) {
-        c.fail(field, "joint angles must be finite degrees within +-3600");
-    }
-}
-
 pub fn forward(
     model: &CalibratedModel,
     req: &ForwardRequest,
@@ -214,14 +179,19 @@ pub fn forward(
     if req.joints_deg.is_empty() || req.joints_deg.len() > MAX_ROWS {
         c.fail("joints_deg", format!("1 to {MAX_ROWS} rows"));
     }
-    for (i, row) in req.joints_deg.iter().enumerate() {
-        check_joints(row, model.robot.dof(), &format!("joints_deg[{i}]"), &mut c);
-    }
+    let rows: Vec<Option<JointsDeg>> = req
+        .joints_deg
+        .iter()
+        .enumerate()
+        .map(|(i, row)| {
+            JointsDeg::check(&mut c, &format!("joints_deg[{i}]"), row, model.robot.dof())
+        })
+        .collect();
     let tool = req.tool.as_ref().and_then(|t| pose_of(t, "tool", &mut c));
     c.finish()?;
-    let mut poses = Vec::with_capacity(req.joints_deg.len());
-    for (i, row) in req.joints_deg.iter().enumerate() {
-        let q: Vec<f64> = row.iter().map(|d| d.to_radians()).collect();
+    let mut poses = Vec::with_capacity(rows.len());
+    for (i, row) in rows.into_iter().enumerate() {
+        let q = row.expect("checked above").to_radians();
         let flange = model
             .robot
             .base_to_flange(&q)
@@ -250,8 +220,8 @@ pub fn compensate(
     let targets = target_poses(&req.targets, &mut c);
     let tool = req.tool.as_ref().and_then(|t| pose_of(t, "tool", &mut c));
     let dof = model.robot.dof();
-    match &req.seed_joints_deg {
-        Some(Seeds::One(seed)) => check_joints(seed, dof, "seed_joints_deg", &mut c),
+    let seeds: Vec<Option<JointsDeg>> = match &req.seed_joints_deg {
+        Some(Seeds::One(seed)) => vec![JointsDeg::check(&mut c, "seed_joints_deg", seed, dof)],
         Some(Seeds::PerTarget(rows)) => {
             if rows.len() != req.targets.len() {
                 c.fail(
@@ -259,15 +229,21 @@ pub fn compensate(
                     "one seed for all targets, or exactly one per target",
                 );
             }
-            for (i, row) in rows.iter().enumerate() {
-                check_joints(row, dof, &format!("seed_joints_deg[{i}]"), &mut c);
-            }
+            rows.iter()
+                .enumerate()
+                .map(|(i, row)| {
+                    JointsDeg::check(&mut c, &format!("seed_joints_deg[{i}]"), row, dof)
+                })
+                .collect()
         }
-        None => {}
-    }
+        None => Vec::new(),
+    };
     c.finish()?;
+    let seeds: Vec<Vec<f64>> = seeds
+        .into_iter()
+        .map(|s| s.expect("checked above").to_radians())
+        .collect();
     let tool_model = tool.map_or_else(|| model.clone(), |t| model.with_tool(t));
-    let rad = |row: &Vec<f64>| row.iter().map(|d| d.to_radians()).collect::<Vec<f64>>();
     // Without a seed: mid-range joints (the first of the default grid).
     let mid_range = default_seeds(&tool_model).swap_remove(0);
     let arm = SphericalWristArm::of(&tool_model.robot);
@@ -281,10 +257,11 @@ pub fn compensate(
     let mut failures = 0;
     for (i, target) in targets.iter().enumerate() {
         let target = target.expect("checked above");
-        let seed = match &req.seed_joints_deg {
-            Some(Seeds::One(seed)) => rad(seed),
-            Some(Seeds::PerTarget(rows)) => rad(&rows[i]),
-            None => mid_range.clone(),
+        // One seed for all, one per target, or none (mid-range).
+        let seed = match seeds.len() {
+            0 => mid_range.clone(),
+            1 => seeds[0].clone(),
+            _ => seeds[i].clone(),
         };
         let solution = match nearest_within_limits(&tool_model, &target, &seed) {
             Ok(s) => s,
@@ -308,7 +285,7 @@ pub fn compensate(
             }));
         answer
             .joints_deg
-            .push(solution.joints_rad.iter().map(|r| r.to_degrees()).collect());
+            .push(JointsDeg::from_radians(&solution.joints_rad).into_vec());
         answer.residual_mm.push(solution.residual_mm);
         answer.start.push(solution.start.into());
     }

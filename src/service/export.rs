@@ -2,16 +2,12 @@
 //! tool (issue "Deploy the result"): URDF, `dh-json`, CSV.
 
 use super::error::{ServiceError, ServiceResult};
-use super::evaluate::doc_of;
-use super::results::find_parameter_set;
+use super::results::{find_parameter_set, typed};
 use crate::export::table::{dh_table, write_csv};
-use crate::export::urdf::{write_urdf, FrameNames};
+use crate::export::urdf::write_urdf;
 use crate::export::ExportFormat;
 use crate::report::IdentifiabilityReport;
 use crate::store::DynStore;
-
-/// `instrument` of a tracker session's parameter set.
-const TRACKER: &str = "tracker";
 
 /// An export's bytes and how to serve them.
 pub struct Exported {
@@ -35,25 +31,15 @@ pub async fn export(
         )
     })?;
     let record = find_parameter_set(store, serial, version).await?;
-    let set = doc_of(&record.parameters).map_err(|_| {
-        ServiceError::Conflict("this parameter set holds no calibrated model".into())
-    })?;
+    let set = typed(&record)?;
     let stem = format!("{serial}-v{}", record.version);
     let (body, extension) = match format {
         ExportFormat::Urdf => {
             let model = set.model().map_err(ServiceError::internal)?;
-            let frames = if set.instrument == TRACKER {
-                FrameNames {
-                    end: "tool",
-                    world: "tracker",
-                }
-            } else {
-                FrameNames {
-                    end: "camera",
-                    world: "target",
-                }
-            };
-            (write_urdf(serial, &model, frames).into_bytes(), "urdf")
+            (
+                write_urdf(serial, &model, set.frame_names()).into_bytes(),
+                "urdf",
+            )
         }
         ExportFormat::DhJson | ExportFormat::Csv => {
             let report = store.get_report(serial, record.version).await?;

@@ -8,9 +8,9 @@ use robocal_calib::kinematics::{CalibratedModel, RobotModel};
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
-use super::evaluate::{check_joints, pose_of, target_poses};
-use crate::pipeline::results::PoseOut;
-use crate::schema::{Checker, FieldError, PoseDoc};
+use super::evaluate::{pose_of, target_poses};
+use crate::domain::JointsDeg;
+use crate::schema::{Checker, FieldError, PoseDoc, PoseOut};
 
 #[derive(Debug, Clone, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
@@ -59,9 +59,10 @@ pub fn filter(
     let mut c = Checker::default();
     let targets = target_poses(&req.targets, &mut c);
     let tool = pose_of(&req.tool, "tool", &mut c);
-    if let Some(seed) = &req.seed_joints_deg {
-        check_joints(seed, calibrated.robot.dof(), "seed_joints_deg", &mut c);
-    }
+    let seed = req
+        .seed_joints_deg
+        .as_ref()
+        .map(|seed| JointsDeg::check(&mut c, "seed_joints_deg", seed, calibrated.robot.dof()));
     if nominal.dof() != calibrated.robot.dof() {
         c.fail(
             "robot",
@@ -70,8 +71,8 @@ pub fn filter(
     }
     c.finish()?;
     let model = calibrated.with_tool(tool.expect("checked above"));
-    let seed: Vec<f64> = match &req.seed_joints_deg {
-        Some(deg) => deg.iter().map(|d| d.to_radians()).collect(),
+    let seed: Vec<f64> = match seed {
+        Some(deg) => deg.expect("checked above").to_radians(),
         None => default_seeds(&model).swap_remove(0),
     };
     let mut answer = FilterResponse {
@@ -89,7 +90,7 @@ pub fn filter(
                     .push(Some(PoseOut::new(&f.nominal_base_to_flange)));
                 answer
                     .joints_deg
-                    .push(Some(f.joints_rad.iter().map(|r| r.to_degrees()).collect()));
+                    .push(Some(JointsDeg::from_radians(&f.joints_rad).into_vec()));
                 answer.residual_mm.push(Some(f.residual_mm));
             }
             Err(e) => {

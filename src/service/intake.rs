@@ -9,9 +9,10 @@ use serde_json::json;
 
 use super::error::{ServiceError, ServiceResult};
 use super::images::{ingest_image, ImageCheck};
+use crate::domain::JointsDeg;
 use crate::domain::{NewPose, PoseRecord, SessionRecord};
 use crate::imaging::DecodeGate;
-use crate::schema::session::{check_joints, Instrument, PoseJsonBody, PoseSet, SessionBody};
+use crate::schema::session::{Instrument, PoseJsonBody, PoseSet, SessionBody};
 use crate::schema::Checker;
 use crate::store::DynStore;
 
@@ -92,7 +93,7 @@ impl PoseIntake {
 
     /// Stores one JSON pose (image points or a tracker measurement).
     pub async fn add_json(self, body: PoseJsonBody) -> ServiceResult<PoseRecord> {
-        body.check(
+        let joints_deg = body.check(
             self.spec.instrument,
             self.spec.camera.as_ref(),
             self.joint_count,
@@ -101,8 +102,8 @@ impl PoseIntake {
             .measured_position_mm
             .map(|p| json!({ "measured_position_mm": p, "measured_pose": body.measured_pose }));
         let pose = NewPose {
-            joints_deg: body.joints_deg,
-            set: body.set.as_str().to_string(),
+            joints_deg,
+            set: body.set,
             image: None,
             points: serde_json::to_value(body.image_points.unwrap_or_default())
                 .unwrap_or(json!([])),
@@ -117,13 +118,15 @@ impl PoseIntake {
     /// the pose.
     pub async fn add_image(self, upload: ImagePose) -> ServiceResult<PoseRecord> {
         let mut c = Checker::default();
-        check_joints(&mut c, "joints_deg", &upload.joints_deg, self.joint_count);
+        let joints_deg =
+            JointsDeg::check(&mut c, "joints_deg", &upload.joints_deg, self.joint_count);
         c.finish()?;
+        let joints_deg = joints_deg.expect("checked above");
         let ingested =
             ingest_image(&self.store, upload.image, &self.image_check(), "image").await?;
         let pose = NewPose {
-            joints_deg: upload.joints_deg,
-            set: upload.set.as_str().to_string(),
+            joints_deg,
+            set: upload.set,
             image: Some(ingested.meta),
             points: json!([]),
             measured: None,

@@ -8,7 +8,7 @@ use super::evaluate::{
     self, CompensateRequest, CompensateResponse, ForwardRequest, ForwardResponse,
 };
 use super::filter::{self, FilterRequest, FilterResponse};
-use crate::domain::ParameterSetRecord;
+use crate::domain::{ParameterSet, ParameterSetRecord};
 use crate::schema::robot::{doc_to_model, KinematicsDoc};
 use crate::store::DynStore;
 
@@ -42,11 +42,20 @@ pub async fn find_parameter_set(
         .ok_or_else(|| ServiceError::not_found("parameter set", &format!("{serial}/{version}")))
 }
 
+/// A stored parameter set in its typed form (409 when the stored document
+/// is not a calibrated set).
+pub fn typed(record: &ParameterSetRecord) -> ServiceResult<ParameterSet> {
+    serde_json::from_value(record.parameters.clone()).map_err(|_| no_model())
+}
+
+fn no_model() -> ServiceError {
+    ServiceError::Conflict("this parameter set holds no calibrated model".into())
+}
+
 /// The calibrated model of a parameter set (409 when it holds none).
 async fn model(store: &DynStore, serial: &str, version: &str) -> ServiceResult<CalibratedModel> {
-    let set = find_parameter_set(store, serial, version).await?;
-    evaluate::model_of(&set.parameters)
-        .map_err(|_| ServiceError::Conflict("this parameter set holds no calibrated model".into()))
+    let record = find_parameter_set(store, serial, version).await?;
+    typed(&record)?.model().map_err(|_| no_model())
 }
 
 /// Forward kinematics of a parameter set's calibrated model.

@@ -8,9 +8,10 @@ use sqlx::{Decode, Row, Type};
 use super::StoreError;
 use super::StoreResult;
 use crate::domain::{
-    ClaimedJob, ImageMeta, JobRecord, JobState, ParameterSetRecord, PoseRecord, RobotRecord, Scope,
-    SessionRecord, TokenRecord,
+    ClaimedJob, ImageMeta, JobRecord, JobState, JointsDeg, ParameterSetRecord, PoseRecord,
+    RobotRecord, Scope, SessionRecord, TokenRecord,
 };
+use crate::schema::session::PoseSet;
 
 pub fn json(text: &str) -> StoreResult<Value> {
     Ok(serde_json::from_str(text)?)
@@ -95,8 +96,10 @@ pub fn pose(row: &impl Columns) -> StoreResult<PoseRecord> {
     Ok(PoseRecord {
         id: row.string("id"),
         session_id: row.string("session_id"),
-        joints_deg: serde_json::from_str(row.str("joints_deg"))?,
-        set: row.string("pose_set"),
+        joints_deg: JointsDeg::stored(serde_json::from_str(row.str("joints_deg"))?),
+        set: PoseSet::parse(row.str("pose_set")).ok_or_else(|| {
+            StoreError::Backend(format!("unknown pose set {:?}", row.str("pose_set")))
+        })?,
         image,
         points: json(row.str("points"))?,
         measured: opt_json(row.opt_str("measured"))?,

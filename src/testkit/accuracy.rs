@@ -14,10 +14,9 @@ use robocal_calib::sim::oracle::{
     truth_measurements,
 };
 use robocal_calib::stats::AccuracyStats;
-use serde_json::Value;
 
-use crate::report::ParameterReport;
-use crate::service::evaluate::model_of;
+use crate::domain::ParameterSet;
+use crate::report::Report;
 
 /// A served parameter set against the truth of its campaign.
 #[derive(Debug, Clone)]
@@ -43,12 +42,14 @@ impl TruthComparison {
     }
 }
 
-/// Compares `set` (the JSON served at `.../parameter-sets/{v}`, or a
-/// pipeline output's `parameters`) with the truth of `campaign`.
-pub fn compare_with_truth(set: &Value, campaign: &Campaign) -> Result<TruthComparison, String> {
-    let model = model_of(set)?;
-    let rows: Vec<ParameterReport> =
-        serde_json::from_value(set["parameters"].clone()).map_err(|e| e.to_string())?;
+/// Compares `set` (as served at `.../parameter-sets/{v}`, or a pipeline
+/// output's `parameters`) with the truth of `campaign`.
+pub fn compare_with_truth(
+    set: &ParameterSet,
+    campaign: &Campaign,
+) -> Result<TruthComparison, String> {
+    let model = set.model()?;
+    let rows = &set.parameters;
     let layout = ParamLayout::new(&model.robot, Instrument::Camera);
     let mut free = Vec::new();
     let mut std_internal = Vec::new();
@@ -130,9 +131,10 @@ pub fn oracle_floors(
 
 /// The dot noise per image axis (px) a served report's camera section
 /// measured: its reprojection RMS is per dot (2-D residual length).
-pub fn dot_noise_px(report: &Value) -> Result<f64, String> {
-    report["camera"]["reprojection_rms_px"]
-        .as_f64()
-        .map(|rms| rms / std::f64::consts::SQRT_2)
+pub fn dot_noise_px(report: &Report) -> Result<f64, String> {
+    report
+        .camera
+        .as_ref()
+        .map(|c| c.reprojection_rms_px / std::f64::consts::SQRT_2)
         .ok_or_else(|| "report without camera.reprojection_rms_px".to_string())
 }

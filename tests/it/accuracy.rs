@@ -123,10 +123,11 @@ async fn targets_hold(preset: &str) {
             assert_warns_iff_worse(&report);
         }
         let report = report_of(&app, &serial, &set).await;
-        let sigma_px = dot_noise_px(&report).unwrap();
+        let sigma_px = dot_noise_px(&serde_json::from_value(report.clone()).unwrap()).unwrap();
         let (served, two, floors) = tokio::task::spawn_blocking(move || {
-            let served: TruthComparison = compare_with_truth(&set, &campaign).unwrap();
-            let two = compare_with_truth(&two, &campaign).unwrap();
+            let typed = |v: Value| serde_json::from_value(v).expect("a calibrated parameter set");
+            let served: TruthComparison = compare_with_truth(&typed(set), &campaign).unwrap();
+            let two = compare_with_truth(&typed(two), &campaign).unwrap();
             let floors =
                 oracle_floors(&spec, &campaign, sigma_px, &served.free, FLOOR_DRAWS).unwrap();
             (served, two, floors)

@@ -6,8 +6,8 @@
 
 use rand::{rngs::StdRng, Rng, SeedableRng};
 use robocal::domain::NewParameterSet;
-use robocal::pipeline::results::PoseOut;
 use robocal::schema::robot::model_to_doc;
+use robocal::schema::PoseOut;
 use robocal::store;
 use robocal_calib::geometry::{pose_error, pose_from_matrix_rows, pose_from_xyz_rpy_deg};
 use robocal_calib::kinematics::CalibratedModel;

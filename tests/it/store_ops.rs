@@ -10,8 +10,10 @@ use serde_json::json;
 
 use robocal::domain::{
     new_id, now_rfc3339, now_unix_ms, IdempotencyClaim, IdempotencyScope, ImageMeta, JobOutcome,
-    JobState, LeaseStatus, NewJob, NewParameterSet, NewPose, RobotRecord, Scope, StoredResponse,
+    JobState, JointsDeg, LeaseStatus, NewJob, NewParameterSet, NewPose, RobotRecord, Scope,
+    StoredResponse,
 };
+use robocal::schema::session::PoseSet;
 use robocal::store::{self, DynStore, StoreError};
 
 use crate::support::*;
@@ -46,8 +48,8 @@ fn set(n: usize) -> NewParameterSet {
 
 fn pose(sha: Option<&ImageMeta>) -> NewPose {
     NewPose {
-        joints_deg: vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.5],
-        set: "cal".into(),
+        joints_deg: JointsDeg::stored(vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.5]),
+        set: PoseSet::Cal,
         image: sha.cloned(),
         points: json!([{"row": 0, "col": 1, "x": 1.5, "y": 2.25}]),
         measured: None,

@@ -139,8 +139,8 @@ impl From<PoseRecord> for PoseOut {
         PoseOut {
             id: p.id,
             session_id: p.session_id,
-            joints_deg: p.joints_deg,
-            set: PoseSet::parse(&p.set).unwrap_or_default(),
+            joints_deg: p.joints_deg.into_vec(),
+            set: p.set,
             source: source.into(),
             detected_points: points.len(),
             points,

@@ -153,7 +153,7 @@ impl<B: Backend> SessionStore for B {
                 id: new_id(),
                 session_id: session_id.to_string(),
                 joints_deg: p.joints_deg.clone(),
-                set: p.set.clone(),
+                set: p.set,
                 image: p.image.clone(),
                 points: p.points.clone(),
                 measured: p.measured.clone(),
@@ -170,7 +170,7 @@ impl<B: Backend> SessionStore for B {
             .bind(&record.id)
             .bind(session_id)
             .bind(serde_json::to_string(&record.joints_deg)?)
-            .bind(&record.set)
+            .bind(record.set.as_str())
             .bind(record.image.as_ref().map(|i| i.sha256.as_str()))
             .bind(
                 record

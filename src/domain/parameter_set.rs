@@ -1,0 +1,155 @@
+//! A calibrated parameter set, typed once (api.md "Results"): the identified
+//! joint table, the two frames the calibration found, the intrinsics and
+//! what was held fixed. It owns the frames' names: the contract calls them
+//! `target_to_base`/`flange_to_camera` for a camera session and
+//! `instrument_to_base`/`flange_to_tool` for a tracker, the numerics
+//! `world_to_base`/`flange_to_tool` (method.md §5). Its serde form is the
+//! stored and served document, so nothing renames keys after it, and
+//! [`ParameterSet::model`] is the one conversion to the numerics' model.
+
+use robocal_calib::camera::Intrinsics;
+use robocal_calib::kinematics::CalibratedModel;
+use serde::{Deserialize, Serialize};
+
+use crate::report::ParameterReport;
+use crate::schema::robot::{doc_to_model, KinematicsDoc};
+use crate::schema::session::Instrument;
+use crate::schema::PoseOut;
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(into = "StoredSet", try_from = "StoredSet")]
+pub struct ParameterSet {
+    pub instrument: Instrument,
+    pub session_id: String,
+    pub kinematics: KinematicsDoc,
+    /// The board's (camera) or the tracker's frame in the robot base frame.
+    pub world_to_base: PoseOut,
+    /// The camera (camera) or the measured tool point (tracker) in the
+    /// flange frame.
+    pub flange_to_tool: PoseOut,
+    pub camera: Option<Intrinsics>,
+    /// How `camera` was obtained: "refined", "paper" (`refine_intrinsics:
+    /// false`) or "fixed" (reused from `camera_calibration_id`).
+    pub camera_mode: Option<String>,
+    /// The earlier calibration (`"{serial}/{version}"`) whose intrinsics
+    /// `camera` repeats, when they were held fixed.
+    pub camera_calibration_id: Option<String>,
+    pub fixed: Vec<String>,
+    pub parameters: Vec<ParameterReport>,
+}
+
+/// The contract's names of a set's frames.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FrameNames {
+    /// The key of [`ParameterSet::world_to_base`].
+    pub world_to_base: &'static str,
+    /// The key of [`ParameterSet::flange_to_tool`].
+    pub flange_to_end: &'static str,
+    /// The world frame itself (`target`, `tracker`).
+    pub world: &'static str,
+    /// The frame at the end of the chain (`camera`, `tool`).
+    pub end: &'static str,
+}
+
+const CAMERA_FRAMES: FrameNames = FrameNames {
+    world_to_base: "target_to_base",
+    flange_to_end: "flange_to_camera",
+    world: "target",
+    end: "camera",
+};
+
+const TRACKER_FRAMES: FrameNames = FrameNames {
+    world_to_base: "instrument_to_base",
+    flange_to_end: "flange_to_tool",
+    world: "tracker",
+    end: "tool",
+};
+
+impl ParameterSet {
+    /// What the contract calls this set's frames.
+    pub fn frame_names(&self) -> FrameNames {
+        match self.instrument {
+            Instrument::Tracker => TRACKER_FRAMES,
+            _ => CAMERA_FRAMES,
+        }
+    }
+
+    /// The calibrated model, as the numerics take it.
+    pub fn model(&self) -> Result<CalibratedModel, String> {
+        Ok(CalibratedModel {
+            robot: doc_to_model(&self.kinematics),
+            world_to_base: self.world_to_base.pose()?,
+            flange_to_tool: self.flange_to_tool.pose()?,
+        })
+    }
+}
+
+/// The document as stored and served: each frame under the contract's
+/// name for the set's instrument.
+#[derive(Serialize, Deserialize)]
+struct StoredSet {
+    instrument: Instrument,
+    session_id: String,
+    kinematics: KinematicsDoc,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    target_to_base: Option<PoseOut>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    instrument_to_base: Option<PoseOut>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    flange_to_camera: Option<PoseOut>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    flange_to_tool: Option<PoseOut>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    camera: Option<Intrinsics>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    camera_mode: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    camera_calibration_id: Option<String>,
+    fixed: Vec<String>,
+    parameters: Vec<ParameterReport>,
+}
+
+impl From<ParameterSet> for StoredSet {
+    fn from(set: ParameterSet) -> StoredSet {
+        let tracker = set.frame_names() == TRACKER_FRAMES;
+        let (world, end) = (Some(set.world_to_base), Some(set.flange_to_tool));
+        StoredSet {
+            instrument: set.instrument,
+            session_id: set.session_id,
+            kinematics: set.kinematics,
+            target_to_base: if tracker { None } else { world.clone() },
+            instrument_to_base: if tracker { world } else { None },
+            flange_to_camera: if tracker { None } else { end.clone() },
+            flange_to_tool: if tracker { end } else { None },
+            camera: set.camera,
+            camera_mode: set.camera_mode,
+            camera_calibration_id: set.camera_calibration_id,
+            fixed: set.fixed,
+            parameters: set.parameters,
+        }
+    }
+}
+
+impl TryFrom<StoredSet> for ParameterSet {
+    type Error = String;
+
+    fn try_from(s: StoredSet) -> Result<ParameterSet, String> {
+        let missing = |camera: &str, tracker: &str| format!("neither {camera} nor {tracker}");
+        Ok(ParameterSet {
+            instrument: s.instrument,
+            session_id: s.session_id,
+            kinematics: s.kinematics,
+            world_to_base: s.target_to_base.or(s.instrument_to_base).ok_or_else(|| {
+                missing(CAMERA_FRAMES.world_to_base, TRACKER_FRAMES.world_to_base)
+            })?,
+            flange_to_tool: s.flange_to_camera.or(s.flange_to_tool).ok_or_else(|| {
+                missing(CAMERA_FRAMES.flange_to_end, TRACKER_FRAMES.flange_to_end)
+            })?,
+            camera: s.camera,
+            camera_mode: s.camera_mode,
+            camera_calibration_id: s.camera_calibration_id,
+            fixed: s.fixed,
+            parameters: s.parameters,
+        })
+    }
+}
