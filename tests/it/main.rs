@@ -3,6 +3,7 @@
 pub(crate) mod accuracy;
 pub(crate) mod anonymous;
 pub(crate) mod auth;
+pub(crate) mod bad_json;
 pub(crate) mod camera_reuse;
 pub(crate) mod charuco_campaign;
 pub(crate) mod cli;
@@ -21,6 +22,7 @@ pub(crate) mod openapi;
 pub(crate) mod ops;
 pub(crate) mod outliers;
 pub(crate) mod poses;
+pub(crate) mod processes;
 pub(crate) mod raw_http;
 pub(crate) mod report_links;
 pub(crate) mod restart;

@@ -2,55 +2,11 @@
 
 use std::time::Duration;
 
-use reqwest::multipart::Form;
 use serde_json::Value;
 
 use crate::support::*;
 
 const WAIT: Duration = Duration::from_secs(30);
-
-async fn setup(base: &str, c: &reqwest::Client, png_bytes: Vec<u8>) -> (String, String) {
-    let r = c
-        .put(format!("{base}/v1/robots/K1"))
-        .json(&robot_body())
-        .send()
-        .await
-        .unwrap();
-    assert_eq!(r.status(), 201);
-    let s: Value = c
-        .post(format!("{base}/v1/robots/K1/sessions"))
-        .json(&session_body())
-        .send()
-        .await
-        .unwrap()
-        .json()
-        .await
-        .unwrap();
-    let session = s["id"].as_str().unwrap().to_string();
-    for i in 0..4 {
-        let set = if i < 3 { "cal" } else { "val" };
-        let r = c
-            .post(format!("{base}/v1/sessions/{session}/poses"))
-            .json(&point_pose(i, set))
-            .send()
-            .await
-            .unwrap();
-        assert_eq!(r.status(), 201);
-    }
-    let form = Form::new()
-        .text("joints_deg", "[1,2,3,4,5,6]")
-        .part("image", image_part(png_bytes, "k.png"));
-    let pose: Value = c
-        .post(format!("{base}/v1/sessions/{session}/poses"))
-        .multipart(form)
-        .send()
-        .await
-        .unwrap()
-        .json()
-        .await
-        .unwrap();
-    (session, pose["id"].as_str().unwrap().to_string())
-}
 
 #[tokio::test]
 async fn job_survives_kill_9_and_uploads_are_byte_identical_after_restart() {
@@ -70,8 +26,7 @@ async fn job_survives_kill_9_and_uploads_are_byte_identical_after_restart() {
     ];
     let c = reqwest::Client::new();
     let mut first = spawn_binary(&args, &[("ROBOCAL_TEST_STAGE_DELAY_MS", "1500")]);
-    let image = png(CAMERA_W, CAMERA_H, 42);
-    let (session, pose) = setup(&first.base, &c, image.clone()).await;
+    let (session, pose, image) = robot_with_session(&c, &first.base, "K1", 42, "cal").await;
     let r = c
         .post(format!("{}/v1/sessions/{session}/calibrations", first.base))
         .send()
@@ -131,7 +86,7 @@ async fn sigterm_releases_the_running_job_and_exits_cleanly() {
     ];
     let c = reqwest::Client::new();
     let mut first = spawn_binary(&args, &[("ROBOCAL_TEST_STAGE_DELAY_MS", "3000")]);
-    let (session, _) = setup(&first.base, &c, png(CAMERA_W, CAMERA_H, 1)).await;
+    let (session, _, _) = robot_with_session(&c, &first.base, "K1", 1, "cal").await;
     let r = c
         .post(format!("{}/v1/sessions/{session}/calibrations", first.base))
         .send()
@@ -142,7 +97,7 @@ async fn sigterm_releases_the_running_job_and_exits_cleanly() {
         .unwrap()
         .to_string();
     wait_job_at(&c, &first.base, &job, WAIT, |v| v["state"] == "running").await;
-    let pid = first.child.id().to_string();
+    let pid = first.pid().to_string();
     assert!(std::process::Command::new("kill")
         .args(["-TERM", &pid])
         .status()

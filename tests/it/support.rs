@@ -4,8 +4,8 @@
 //! `tests/it` runs every test on SQLite, `tests/pg` compiles the same modules
 //! again for PostgreSQL (see `test_db.rs` for the per-test databases).
 
-use std::io::{BufRead, BufReader, Write};
-use std::process::{Child, Command, Stdio};
+use std::io::Write;
+use std::process::Command;
 use std::time::{Duration, Instant};
 
 use robocal::config::ServeConfig;
@@ -13,6 +13,7 @@ use robocal::server::{start, RunningServer};
 use serde_json::{json, Value};
 use sha2::{Digest, Sha256};
 
+pub use super::processes::{robot_with_session, spawn_binary};
 pub use super::test_db::TestDb;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -21,13 +22,38 @@ pub enum Backend {
     Postgres,
 }
 
-/// The backend of this test binary: `pg` is the PostgreSQL suite.
+/// Selects the backend of a test run: `sqlite` or `postgres`.
+pub const BACKEND_VAR: &str = "ROBOCAL_TEST_BACKEND";
+/// Set (not `0`): the PostgreSQL suite fails, instead of running on SQLite,
+/// when there is no server (CI sets it).
+pub const REQUIRE_PG_VAR: &str = "ROBOCAL_TEST_REQUIRE_PG";
+
+/// The backend every test of this run uses, chosen once. [`BACKEND_VAR`]
+/// names it; unset, `tests/it` runs on SQLite and `tests/pg` on PostgreSQL
+/// at [`super::test_db::pg_admin_url`] when a server answers there (or
+/// [`REQUIRE_PG_VAR`] is set: then a missing server fails each test), else
+/// on SQLite, said once on stderr.
 pub fn backend() -> Backend {
-    if env!("CARGO_CRATE_NAME") == "pg" {
-        Backend::Postgres
-    } else {
-        Backend::Sqlite
-    }
+    static CHOSEN: std::sync::OnceLock<Backend> = std::sync::OnceLock::new();
+    *CHOSEN.get_or_init(|| match std::env::var(BACKEND_VAR).as_deref() {
+        Ok("sqlite") => Backend::Sqlite,
+        Ok("postgres") => Backend::Postgres,
+        Ok(other) => panic!("{BACKEND_VAR}={other:?}: expected sqlite or postgres"),
+        Err(_) if env!("CARGO_CRATE_NAME") != "pg" => Backend::Sqlite,
+        Err(_) => {
+            let required = std::env::var_os(REQUIRE_PG_VAR).is_some_and(|v| v != "0");
+            let url = super::test_db::pg_admin_url();
+            if required || super::test_db::server_reachable(&url) {
+                Backend::Postgres
+            } else {
+                eprintln!(
+                    "PostgreSQL suite on SQLite: no server at {url} (set ROBOCAL_TEST_PG_URL to \
+                     use one, {REQUIRE_PG_VAR}=1 to require it)"
+                );
+                Backend::Sqlite
+            }
+        }
+    })
 }
 
 /// A fresh, empty database for one test, on the selected backend. Keep the
@@ -293,36 +319,6 @@ pub fn image_part(bytes: Vec<u8>, name: &str) -> reqwest::multipart::Part {
         .file_name(name.to_string())
         .mime_str("image/png")
         .unwrap()
-}
-
-/// The real binary, started on port 0; its address is read from stdout.
-pub struct BinaryServer {
-    pub child: Child,
-    pub base: String,
-}
-
-pub fn spawn_binary(args: &[&str], envs: &[(&str, &str)]) -> BinaryServer {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_robocal"));
-    cmd.arg("serve").args(args);
-    cmd.env("RUST_LOG", "warn");
-    cmd.env("ROBOCAL_TEST_VALIDATE_ONLY", "true");
-    for (k, v) in envs {
-        cmd.env(k, v);
-    }
-    let mut child = cmd
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("robocal binary starts");
-    let stdout = child.stdout.take().unwrap();
-    let mut line = String::new();
-    BufReader::new(stdout).read_line(&mut line).unwrap();
-    let addr = line
-        .trim()
-        .strip_prefix("robocal listening on ")
-        .unwrap_or_else(|| panic!("unexpected first line {line:?}"))
-        .to_string();
-    BinaryServer { child, base: addr }
 }
 
 /// Runs `robocal <args>` to completion.

@@ -6,9 +6,11 @@
 
 use std::fmt;
 use std::future::Future;
+use std::net::{TcpStream, ToSocketAddrs};
 use std::ops::Deref;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Once;
+use std::time::Duration;
 
 use sqlx::{Connection, PgConnection};
 
@@ -17,8 +19,29 @@ pub const DEFAULT_PG_URL: &str = "postgres://postgres@127.0.0.1:5432/test";
 /// Name prefix of the databases the tests create (`robocal_t_<pid>_<n>`).
 const PREFIX: &str = "robocal_t_";
 
+/// How long the one connectivity check waits.
+const PROBE_TIMEOUT: Duration = Duration::from_millis(500);
+
 pub fn pg_admin_url() -> String {
     std::env::var("ROBOCAL_TEST_PG_URL").unwrap_or_else(|_| DEFAULT_PG_URL.to_string())
+}
+
+/// A TCP (or Unix socket) connection to the server's address succeeds.
+pub fn server_reachable(url: &str) -> bool {
+    let Ok(parsed) = reqwest::Url::parse(url) else {
+        return false;
+    };
+    let host = parsed.host_str().unwrap_or("localhost").to_string();
+    let port = parsed.port().unwrap_or(5432);
+    if host.starts_with('/') || host.is_empty() {
+        return std::os::unix::net::UnixStream::connect(format!("{host}/.s.PGSQL.{port}")).is_ok();
+    }
+    let Ok(addrs) = (host.as_str(), port).to_socket_addrs() else {
+        return false;
+    };
+    addrs
+        .into_iter()
+        .any(|a| TcpStream::connect_timeout(&a, PROBE_TIMEOUT).is_ok())
 }
 
 /// A database URL that lives as long as the guard. Derefs to the URL.
@@ -48,9 +71,9 @@ impl TestDb {
             NEXT.fetch_add(1, Ordering::SeqCst)
         );
         block_on(async {
-            let mut conn = PgConnection::connect(&admin)
-                .await
-                .expect("PostgreSQL test server");
+            let mut conn = PgConnection::connect(&admin).await.unwrap_or_else(|e| {
+                panic!("no PostgreSQL test server at {admin} ({e}): start one, or run on SQLite")
+            });
             sqlx::query(&format!("CREATE DATABASE \"{name}\""))
                 .execute(&mut conn)
                 .await

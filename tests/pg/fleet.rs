@@ -2,13 +2,11 @@
 //! killed and restarted while they work, and hammered by concurrent writers.
 
 use std::collections::{BTreeMap, BTreeSet};
-use std::io::{BufRead, BufReader};
-use std::process::{Child, Command, Stdio};
+use std::process::Command;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use futures_util::future::join_all;
-use reqwest::multipart::Form;
 use serde_json::{json, Value};
 use sqlx::{Connection, PgConnection};
 use tokio::sync::Notify;
@@ -16,32 +14,14 @@ use tokio::sync::Notify;
 use robocal::domain::NewJob;
 use robocal::store;
 
+use crate::on_postgres;
+use crate::processes::{spawn_binaries, BinaryServer};
 use crate::support::*;
 
 const WAIT: Duration = Duration::from_secs(60);
 
-/// One replica: the real binary on a free port.
-struct Replica {
-    child: Child,
-    base: String,
-}
-
-impl Replica {
-    fn pid(&self) -> u32 {
-        self.child.id()
-    }
-}
-
-impl Drop for Replica {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
-}
-
-fn replica_args(db: &str, workers: &str) -> Vec<String> {
+fn replica_args<'a>(db: &'a str, workers: &'a str) -> [&'a str; 14] {
     [
-        "serve",
         "--database-url",
         db,
         "--bind",
@@ -57,102 +37,19 @@ fn replica_args(db: &str, workers: &str) -> Vec<String> {
         "--shutdown-grace-secs",
         "0",
     ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect()
 }
 
-/// Starts every replica before waiting for any (so they migrate together),
-/// then reads each one's address from its first line of output.
-fn start_replicas(n: usize, db: &str, workers: &str, stage_delay_ms: &str) -> Vec<Replica> {
-    let children: Vec<Child> = (0..n)
-        .map(|_| {
-            Command::new(env!("CARGO_BIN_EXE_robocal"))
-                .args(replica_args(db, workers))
-                .env("RUST_LOG", "warn")
-                .env("ROBOCAL_TEST_STAGE_DELAY_MS", stage_delay_ms)
-                .env("ROBOCAL_TEST_PARAMETER_SETS", "true")
-                .env("ROBOCAL_TEST_VALIDATE_ONLY", "true")
-                .stdout(Stdio::piped())
-                .stderr(Stdio::null())
-                .spawn()
-                .expect("robocal binary starts")
-        })
-        .collect();
-    children
-        .into_iter()
-        .map(|mut child| {
-            let mut line = String::new();
-            BufReader::new(child.stdout.take().unwrap())
-                .read_line(&mut line)
-                .unwrap();
-            let base = line
-                .trim()
-                .strip_prefix("robocal listening on ")
-                .unwrap_or_else(|| panic!("unexpected first line {line:?}"))
-                .to_string();
-            Replica { child, base }
-        })
-        .collect()
-}
-
-async fn post(c: &reqwest::Client, url: String, body: &Value) -> reqwest::Response {
-    c.post(url).json(body).send().await.unwrap()
-}
-
-/// A robot `serial` with a session of 3 cal + 1 val point poses and one
-/// uploaded image pose; returns (session, pose id, image bytes).
-async fn robot_with_session(
-    c: &reqwest::Client,
-    base: &str,
-    serial: &str,
-    seed: u8,
-) -> (String, String, Vec<u8>) {
-    let r = c
-        .put(format!("{base}/v1/robots/{serial}"))
-        .json(&robot_body())
-        .send()
-        .await
-        .unwrap();
-    assert_eq!(r.status(), 201);
-    let r = post(
-        c,
-        format!("{base}/v1/robots/{serial}/sessions"),
-        &session_body(),
+/// `n` replicas on `db`, started together (so they migrate together);
+/// jobs stop after validation and store a parameter set.
+fn start_replicas(n: usize, db: &str, workers: &str, stage_delay_ms: &str) -> Vec<BinaryServer> {
+    spawn_binaries(
+        n,
+        &replica_args(db, workers),
+        &[
+            ("ROBOCAL_TEST_STAGE_DELAY_MS", stage_delay_ms),
+            ("ROBOCAL_TEST_PARAMETER_SETS", "true"),
+        ],
     )
-    .await;
-    assert_eq!(r.status(), 201);
-    let session = r.json::<Value>().await.unwrap()["id"]
-        .as_str()
-        .unwrap()
-        .to_string();
-    for i in 0..4 {
-        let set = if i < 3 { "cal" } else { "val" };
-        let r = post(
-            c,
-            format!("{base}/v1/sessions/{session}/poses"),
-            &point_pose(i, set),
-        )
-        .await;
-        assert_eq!(r.status(), 201);
-    }
-    let image = png(CAMERA_W, CAMERA_H, seed);
-    let form = Form::new()
-        .text("joints_deg", "[1,2,3,4,5,6]")
-        .text("set", "val")
-        .part("image", image_part(image.clone(), "p.png"));
-    let r = c
-        .post(format!("{base}/v1/sessions/{session}/poses"))
-        .multipart(form)
-        .send()
-        .await
-        .unwrap();
-    assert_eq!(r.status(), 201);
-    let pose = r.json::<Value>().await.unwrap()["id"]
-        .as_str()
-        .unwrap()
-        .to_string();
-    (session, pose, image)
 }
 
 /// Waits until every job is finished; returns them by id.
@@ -230,6 +127,9 @@ async fn running_on(db: &str, pid: u32) -> i64 {
 
 #[tokio::test]
 async fn three_replicas_survive_kill_9_and_restart_every_job_succeeds_once() {
+    if !on_postgres("three_replicas_survive_kill_9_and_restart_every_job_succeeds_once") {
+        return;
+    }
     const SERIALS: usize = 5;
     const JOBS: usize = 30;
     let dir = tempfile::tempdir().unwrap();
@@ -241,7 +141,7 @@ async fn three_replicas_survive_kill_9_and_restart_every_job_succeeds_once() {
     let mut sessions = Vec::new();
     for i in 0..SERIALS {
         let base = &fleet[i % 3].base;
-        sessions.push(robot_with_session(&c, base, &format!("F{i}"), i as u8).await);
+        sessions.push(robot_with_session(&c, base, &format!("F{i}"), i as u8, "val").await);
     }
     let submitted = join_all((0..JOBS).map(|i| {
         let (c, base, session) = (
@@ -350,6 +250,9 @@ async fn three_replicas_survive_kill_9_and_restart_every_job_succeeds_once() {
 
 #[tokio::test]
 async fn two_hundred_concurrent_writers_across_replicas() {
+    if !on_postgres("two_hundred_concurrent_writers_across_replicas") {
+        return;
+    }
     const WRITERS: usize = 200;
     let dir = tempfile::tempdir().unwrap();
     let db = fresh_database(&dir);
@@ -359,7 +262,7 @@ async fn two_hundred_concurrent_writers_across_replicas() {
     for (i, replica) in fleet.iter().take(2).enumerate() {
         let serial = format!("W{i}");
         sessions.push(
-            robot_with_session(&c, &replica.base, &serial, 100 + i as u8)
+            robot_with_session(&c, &replica.base, &serial, 100 + i as u8, "val")
                 .await
                 .0,
         );
@@ -481,6 +384,9 @@ async fn two_hundred_concurrent_writers_across_replicas() {
 /// its idle poll: the wake-up came over LISTEN/NOTIFY, not from polling.
 #[tokio::test]
 async fn notify_wakes_other_replicas_without_polling() {
+    if !on_postgres("notify_wakes_other_replicas_without_polling") {
+        return;
+    }
     let dir = tempfile::tempdir().unwrap();
     let db = fresh_database(&dir);
     let a = store::connect(&db).await.unwrap();

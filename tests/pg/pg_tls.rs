@@ -9,6 +9,7 @@ use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use robocal::store;
 
 use crate::it::test_db::TestDb;
+use crate::on_postgres;
 
 /// Bytes of the SSLRequest a client sends first (length + code).
 const SSL_REQUEST_LEN: usize = 8;
@@ -30,6 +31,9 @@ async fn server_has_ssl(url: &str) -> bool {
 
 #[tokio::test]
 async fn sslmode_disable_and_prefer_connect() {
+    if !on_postgres("sslmode_disable_and_prefer_connect") {
+        return;
+    }
     let db = TestDb::postgres();
     for mode in ["disable", "prefer"] {
         let url = with_sslmode(&db, mode);
@@ -42,6 +46,9 @@ async fn sslmode_disable_and_prefer_connect() {
 
 #[tokio::test]
 async fn sslmode_require_encrypts_when_the_server_offers_tls() {
+    if !on_postgres("sslmode_require_encrypts_when_the_server_offers_tls") {
+        return;
+    }
     let db = TestDb::postgres();
     let url = with_sslmode(&db, "require");
     if !server_has_ssl(&db).await {
@@ -67,6 +74,9 @@ async fn sslmode_require_encrypts_when_the_server_offers_tls() {
 
 #[tokio::test]
 async fn sslmode_require_against_a_server_without_tls_is_a_clear_error() {
+    if !on_postgres("sslmode_require_against_a_server_without_tls_is_a_clear_error") {
+        return;
+    }
     // A stand-in that answers the SSLRequest as PostgreSQL with ssl=off does.
     let listener = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
     let port = listener.local_addr().unwrap().port();

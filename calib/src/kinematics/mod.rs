@@ -12,6 +12,8 @@ mod ik_branches_tests;
 #[cfg(test)]
 mod ik_limits_tests;
 #[cfg(test)]
+mod ik_proptests;
+#[cfg(test)]
 mod ik_tests;
 mod image_fit;
 pub mod image_pose;
