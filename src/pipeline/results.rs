@@ -184,7 +184,7 @@ pub fn parameter_set(ctx: &Context, id: &Identified) -> ParameterSetDoc {
     }
 }
 
-fn residual_field(step: &CameraStep) -> Vec<ResidualSample> {
+pub(super) fn residual_field(step: &CameraStep) -> Vec<ResidualSample> {
     let intr = step.calibration.intrinsics;
     let mut out = Vec::new();
     for (view, obs) in step.calibration.views.iter().zip(&step.observations) {
@@ -302,6 +302,7 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSetDoc) -> Report {
             weak: ident.weak.clone(),
         },
         residual_field: ctx.camera.map(residual_field).unwrap_or_default(),
+        hand_eye: None,
         notes,
     }
 }

@@ -5,6 +5,7 @@
 use serde::Serialize;
 use utoipa::ToSchema;
 
+pub mod flange_pose;
 pub mod job;
 pub mod robot;
 pub mod session;

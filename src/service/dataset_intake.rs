@@ -10,10 +10,11 @@ use serde_json::json;
 use super::dataset::{DatasetError, DatasetLimits, DatasetReader};
 use super::error::{ServiceError, ServiceResult};
 use super::images::inspect_and_hash;
-use super::intake::PoseIntake;
+use super::intake::{stored_doc, PoseIntake};
 use super::staged_images::StagedImages;
 use crate::domain::{label_from_archive_path, NewPose, PoseRecord};
-use crate::schema::session::{check_joints, Instrument};
+use crate::domain::check_robot_pose;
+use crate::schema::session::Instrument;
 use crate::schema::Checker;
 
 impl From<DatasetError> for ServiceError {
@@ -54,13 +55,20 @@ impl PoseIntake {
         if reader.manifest.is_empty() {
             c.fail("poses.json", "holds no poses");
         }
+        let mut session_kind = self.pose_kind;
         for (i, p) in reader.manifest.iter().enumerate() {
-            check_joints(
+            let prefix = format!("poses.json[{i}].");
+            let kind = check_robot_pose(
                 &mut c,
-                &format!("poses.json[{i}].joints_deg"),
-                &p.joints_deg,
+                &prefix,
+                p.joints_deg.as_deref(),
+                p.flange_pose.as_ref(),
                 self.joint_count,
             );
+            if let Some(kind) = kind {
+                kind.check_same(&mut c, &prefix, session_kind);
+                session_kind = session_kind.or(Some(kind));
+            }
         }
         c.finish()?;
         let check = self.image_check();
@@ -94,13 +102,14 @@ impl PoseIntake {
             self.store.put_blob(&ingested.meta, &bytes).await?;
             staged.stored(&ingested.meta.sha256);
             poses.push(NewPose {
-                joints_deg: reader.manifest[i].joints_deg.clone(),
+                joints_deg: reader.manifest[i].joints_deg.clone().unwrap_or_default(),
                 set: reader.manifest[i].set.as_str().to_string(),
                 image: Some(ingested.meta),
                 points: json!([]),
                 measured: None,
                 label: label_from_archive_path(&reader.manifest[i].image),
                 image_detection: ingested.detection.map(|d| d.to_value()),
+                flange_pose: stored_doc(reader.manifest[i].flange_pose.as_ref()),
             });
         }
         let stored = match self.store.add_poses(&self.session.id, &poses).await {

@@ -3,7 +3,7 @@
 
 use super::error::{ServiceError, ServiceResult};
 use super::evaluate::doc_of;
-use super::results::find_parameter_set;
+use super::results::{find_parameter_set, refuse_hand_eye};
 use crate::export::table::{dh_table, write_csv};
 use crate::export::urdf::{write_urdf, FrameNames};
 use crate::export::ExportFormat;
@@ -35,6 +35,7 @@ pub async fn export(
         )
     })?;
     let record = find_parameter_set(store, serial, version).await?;
+    refuse_hand_eye(&record)?;
     let set = doc_of(&record.parameters).map_err(|_| {
         ServiceError::Conflict("this parameter set holds no calibrated model".into())
     })?;
