@@ -244,9 +244,10 @@ fn rct_flange_pose(dir: &Path, k: usize) -> Value {
     ));
     let r = q.to_rotation_matrix();
     let m = r.matrix();
+    let rows = [0, 1, 2].map(|i| [m[(i, 0)], m[(i, 1)], m[(i, 2)]]);
     json!({
         "translation_mm": [value("x") * M_TO_MM, value("y") * M_TO_MM, value("z") * M_TO_MM],
-        "matrix": [0, 1, 2].map(|i| [m[(i, 0)], m[(i, 1)], m[(i, 2)]]),
+        "matrix": rows,
     })
 }
 
