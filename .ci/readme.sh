@@ -32,6 +32,8 @@ cleanup() {
 trap cleanup EXIT
 
 export ROBOCAL_URL="http://127.0.0.1:$port"
+# Blocks that read fixtures of the repository (e.g. calib/tests/data) find it here.
+export ROBOCAL_REPO="$repo"
 for _ in $(seq 100); do
   curl -sf "$ROBOCAL_URL/healthz" >/dev/null && break
   sleep 0.1

@@ -48,7 +48,9 @@ pub struct ParameterSetOut {
 /// The identified model of a parameter set, as served (the stored
 /// `ParameterSetDoc` with the contract's frame names). Camera sets have
 /// `target_to_base`, `flange_to_camera` and `camera`; tracker sets
-/// `instrument_to_base` and `flange_to_tool`.
+/// `instrument_to_base` and `flange_to_tool`. A hand–eye set (`kind`
+/// `"hand_eye"`, from a session of controller flange poses) has no
+/// `kinematics`, and adds `base_to_target` and `board_scale`.
 #[derive(ToSchema)]
 #[allow(dead_code)] // a schema only: the answer serialises the stored document
 pub struct ParameterSetFields {
@@ -56,8 +58,16 @@ pub struct ParameterSetFields {
     pub instrument: String,
     /// The session the parameters were identified from.
     pub session_id: String,
-    /// The identified joint table.
-    pub kinematics: crate::schema::robot::KinematicsDoc,
+    /// `"hand_eye"` for a set from controller flange poses (no
+    /// kinematics; `forward`, `compensate`, `filter` and exports answer
+    /// 409); absent for a kinematic calibration.
+    pub kind: Option<String>,
+    /// The identified joint table (absent in a hand–eye set).
+    pub kinematics: Option<crate::schema::robot::KinematicsDoc>,
+    /// The board in the robot base frame (hand–eye sets).
+    pub base_to_target: Option<PoseOut>,
+    /// True board coordinates / configured ones (hand–eye sets).
+    pub board_scale: Option<f64>,
     /// The calibration board's frame in the robot base frame (camera sets).
     pub target_to_base: Option<PoseOut>,
     /// The camera in the flange frame (camera sets).

@@ -70,12 +70,13 @@ pub async fn read_field_capped(
 pub struct ZipArchive(Vec<u8>);
 
 /// Upload a whole campaign: a zip with `poses.json`
-/// (`[{"joints_deg","image","set"}]`) and the images it names. All poses are
-/// stored in one transaction, or none.
+/// (`[{"joints_deg","image","set"}]`, or `flange_pose` instead of
+/// `joints_deg`: the controller's flange pose in the base frame) and the
+/// images it names. All poses are stored in one transaction, or none.
 #[utoipa::path(post, path = "/v1/sessions/{id}/dataset", tag = "poses",
     params(("id" = String, Path, description = "Session id")),
     request_body(content = ZipArchive, content_type = "application/zip",
-        description = "A zip with `poses.json` (`[{\"joints_deg\", \"image\", \"set\"}]`) and the images it names"),
+        description = "A zip with `poses.json` (`[{\"joints_deg\", \"image\", \"set\"}]`; a pose may carry the controller's `flange_pose` instead of `joints_deg`, a session not both kinds) and the images it names"),
     responses((status = 201, body = DatasetOut, description = "Every pose of the archive was stored, each image searched for the session's target at upload (`detected_points`)."),
               (status = 400, body = Problem, content_type = "application/problem+json"),
               (status = 404, body = Problem, content_type = "application/problem+json"),

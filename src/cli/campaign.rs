@@ -253,6 +253,7 @@ pub fn run_local_with(
             id: format!("p{:03}", i + 1),
             label: entry.image.clone(),
             joints_deg,
+            flange_pose: None,
             set: match entry.set {
                 SimPoseSet::Cal => PoseSet::Cal,
                 SimPoseSet::Val => PoseSet::Val,

@@ -8,11 +8,13 @@ use serde_json::Value;
 
 use crate::schema::session::PoseSet;
 
+mod flange_pose;
 mod joints;
 mod label;
 mod parameter_set;
 mod serial;
 mod target;
+pub use flange_pose::{check_robot_pose, FlangePose, PoseKind};
 pub use joints::{JointsDeg, MAX_JOINT_DEG};
 pub use label::{
     check_label, label_from_archive_path, label_from_file_name, label_or_number, LABEL_RULE,
@@ -78,6 +80,9 @@ pub struct PoseRecord {
     /// centres, or `{"points":[],"error","error_kind"}`. `None` for JSON
     /// poses and image poses never detected.
     pub image_detection: Option<Value>,
+    /// The controller's flange pose (a `FlangePoseDoc` as uploaded) of a
+    /// pose sent without joints (`joints_deg` is then empty).
+    pub flange_pose: Option<Value>,
     pub created_at: String,
 }
 
@@ -109,6 +114,9 @@ pub struct NewPose {
     pub label: Option<String>,
     /// The detector's outcome on `image`, measured at upload.
     pub image_detection: Option<Value>,
+    /// The checked `FlangePoseDoc` of a pose sent with the controller's
+    /// flange pose instead of joints (`joints_deg` empty).
+    pub flange_pose: Option<Value>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

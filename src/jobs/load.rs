@@ -3,10 +3,11 @@
 use std::sync::Arc;
 use std::time::Duration;
 
-use crate::domain::{label_or_number, ClaimedJob};
+use crate::domain::{label_or_number, ClaimedJob, FlangePose};
 use crate::imaging::{DecodeGate, ImageDetection};
 use crate::pipeline::{ImageSource, Input, PoseImage, PoseInput};
 use crate::schema::job::CalibrationOptions;
+use crate::schema::flange_pose::FlangePoseDoc;
 use crate::schema::robot::KinematicsDoc;
 use crate::schema::session::{ImagePointDoc, SessionBody};
 use crate::schema::PoseDoc;
@@ -83,11 +84,22 @@ pub async fn load_input(
             let measured_pose: Option<PoseDoc> =
                 serde_json::from_value(measured["measured_pose"].clone())
                     .map_err(|e| bad("measured_pose", e))?;
+            let flange_pose = match &p.flange_pose {
+                Some(doc) => {
+                    let doc: FlangePoseDoc =
+                        serde_json::from_value(doc.clone()).map_err(|e| bad("flange_pose", e))?;
+                    Some(FlangePose::stored(&doc).ok_or_else(|| {
+                        LoadError::Gone(format!("stored flange_pose of pose {} is not a pose", p.id))
+                    })?)
+                }
+                None => None,
+            };
             let label = label_or_number(p.label.as_deref(), poses.len());
             poses.push(PoseInput {
                 id: p.id,
                 label,
                 joints_deg: p.joints_deg,
+                flange_pose,
                 set: p.set,
                 image,
                 image_points,

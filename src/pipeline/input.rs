@@ -7,7 +7,7 @@ use std::time::Duration;
 use robocal_calib::camera::Intrinsics;
 use robocal_calib::kinematics::RobotModel;
 
-use crate::domain::JointsDeg;
+use crate::domain::{FlangePose, JointsDeg};
 use crate::imaging::{DecodeGate, ImageDetection};
 use crate::schema::job::CalibrationOptions;
 use crate::schema::robot::KinematicsDoc;
@@ -37,13 +37,25 @@ pub struct Input {
     pub validate_only: bool,
 }
 
+impl Input {
+    /// A hand–eye session: its (first) pose carries the controller's
+    /// flange pose instead of joints, so the job identifies no kinematics.
+    pub fn is_flange_session(&self) -> bool {
+        self.poses.first().is_some_and(|p| p.flange_pose.is_some())
+    }
+}
+
 #[derive(Debug, Clone)]
 pub struct PoseInput {
     pub id: String,
     /// What reports call the pose: its stored label (the photo's file
     /// name), or its number in upload order (`#12`).
     pub label: String,
+    /// Empty for a pose that carries `flange_pose` instead.
     pub joints_deg: JointsDeg,
+    /// The controller's flange pose, for a pose sent without joints (a
+    /// hand–eye session: no kinematics are identified).
+    pub flange_pose: Option<FlangePose>,
     pub set: PoseSet,
     /// The pose's image, when it was uploaded with one: a reference, never
     /// the bytes (a job holds no images; the detect stage reads, decodes and

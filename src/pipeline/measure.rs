@@ -188,6 +188,7 @@ mod tests {
             id: id.into(),
             label: id.into(),
             joints_deg: crate::domain::JointsDeg::stored(vec![0.0; 6]),
+            flange_pose: None,
             set: PoseSet::Cal,
             image: Some(PoseImage {
                 key: id.into(),

@@ -14,6 +14,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 mod camera_stage;
 mod detections;
+mod flange_job;
+mod flange_stage;
+pub mod hand_eye_results;
 mod identify_stage;
 mod input;
 mod measure;
@@ -151,6 +154,9 @@ fn run_stages(
     };
     check_cancel()?;
     within(Stage::MeasurePoses, "camera poses measured", 1.0);
+    if let (true, Some(m), Some(step)) = (input.is_flange_session(), &measured, &camera) {
+        return flange_job::run(input, m, step, notes, &within);
+    }
     let usable: Vec<usize> = (0..input.poses.len())
         .filter(|&i| camera.as_ref().is_none_or(|c| c.view_pose.contains(&i)))
         .collect();

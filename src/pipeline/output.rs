@@ -20,7 +20,7 @@ pub struct Output {
 
 /// The job's `result.summary`: the poses it used and, after a calibration,
 /// the mean validation error before and after.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct Summary {
     /// The stage a validation-only run stopped after (`validate`).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -34,6 +34,16 @@ pub struct Summary {
     pub before_mean_mm: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub after_mean_mm: Option<f64>,
+    /// Poses left out as contradicting their image (hand–eye jobs).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub outliers: Option<usize>,
+    /// Reprojection RMS of the hand–eye bundle (hand–eye jobs).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reprojection_rms_px: Option<f64>,
+    /// The board's fitted scale against its configured spacing (hand–eye
+    /// jobs that fit it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub board_scale: Option<f64>,
 }
 
 #[derive(Debug, Clone, thiserror::Error)]

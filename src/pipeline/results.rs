@@ -102,7 +102,7 @@ pub fn parameter_set(ctx: &Context, id: &Identified) -> ParameterSet {
     }
 }
 
-fn residual_field(step: &CameraStep) -> Vec<ResidualSample> {
+pub(super) fn residual_field(step: &CameraStep) -> Vec<ResidualSample> {
     let intr = step.calibration.intrinsics;
     let mut out = Vec::new();
     for (view, obs) in step.calibration.views.iter().zip(&step.observations) {
@@ -220,6 +220,7 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSet) -> Report {
             weak: ident.weak.clone(),
         },
         residual_field: ctx.camera.map(residual_field).unwrap_or_default(),
+        hand_eye: None,
         notes,
     }
 }
@@ -233,5 +234,6 @@ pub fn summary(id: &Identified) -> Summary {
         joints: None,
         before_mean_mm: Some(id.before.norm.mean_mm),
         after_mean_mm: Some(id.after.norm.mean_mm),
+        ..Summary::default()
     }
 }

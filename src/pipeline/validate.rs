@@ -35,6 +35,7 @@ pub fn validate(
         ));
     }
     let camera = input.session.camera.as_ref();
+    let flange_session = input.is_flange_session();
     let total = input.poses.len().max(1) as f64;
     for (i, pose) in input.poses.iter().enumerate() {
         if cancel.load(Ordering::Relaxed) {
@@ -46,7 +47,24 @@ pub fn validate(
             i as f64 / total,
         );
         let field = |name: &str| format!("poses[{}].{name}", pose.id);
-        if pose.joints_deg.len() != joint_count {
+        if flange_session != pose.flange_pose.is_some() {
+            let (has, session) = if flange_session {
+                ("joints_deg", "flange_pose")
+            } else {
+                ("flange_pose", "joints_deg")
+            };
+            errors.push(FieldError::new(
+                field(has),
+                format!("the session's first pose carries {session}; a session does not mix joint angles and flange poses"),
+            ));
+        } else if flange_session {
+            if input.session.instrument != Instrument::Camera {
+                errors.push(FieldError::new(
+                    field("flange_pose"),
+                    "flange poses need a camera session",
+                ));
+            }
+        } else if pose.joints_deg.len() != joint_count {
             errors.push(FieldError::new(
                 field("joints_deg"),
                 format!(
@@ -97,8 +115,7 @@ pub fn validate(
         calibration_poses: cal,
         validation_poses: val,
         joints: Some(joint_count),
-        before_mean_mm: None,
-        after_mean_mm: None,
+        ..Summary::default()
     })
 }
 

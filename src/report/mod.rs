@@ -9,6 +9,7 @@ mod field;
 mod field_key;
 mod field_marks;
 pub mod format;
+pub mod hand_eye;
 mod html;
 mod html_sections;
 pub mod model;
@@ -22,6 +23,7 @@ mod table;
 #[cfg(test)]
 mod xml_check;
 
+pub use hand_eye::{BoardScaleReport, FrameReport, HandEyeReport};
 pub use html::render_html;
 pub use model::*;
 pub use svg::render_svg;

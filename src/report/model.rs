@@ -199,6 +199,12 @@ pub struct Report {
     pub parameters: Vec<ParameterReport>,
     pub identifiability: IdentifiabilityReport,
     pub residual_field: Vec<ResidualSample>,
+    /// The hand–eye result of a session whose poses carry the controller's
+    /// flange poses (no kinematics identified; `before` and `after` then
+    /// hold the camera positions the flange poses predict against those
+    /// the images measure).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hand_eye: Option<super::hand_eye::HandEyeReport>,
     /// Plain-language remarks for the cell engineer (warnings, what was
     /// held fixed and why, what remains unmodelled).
     pub notes: Vec<String>,

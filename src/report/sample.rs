@@ -114,6 +114,7 @@ pub fn sample_report_sized(calibration: usize, validation: usize) -> Report {
         parameters,
         identifiability,
         residual_field,
+        hand_eye: None,
         notes: vec![
             "joint6.d_mm and joint6.theta_offset_deg were held at nominal: they trade exactly against the hand-eye transform.".into(),
             "joint1.d_mm and joint1.theta_offset_deg were held at nominal: they trade exactly against the base frame.".into(),

@@ -5,6 +5,7 @@
 use serde::Serialize;
 use utoipa::ToSchema;
 
+pub mod flange_pose;
 mod frame_pose;
 pub mod job;
 pub mod robot;

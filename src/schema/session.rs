@@ -3,8 +3,9 @@
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
+use super::flange_pose::FlangePoseDoc;
 use super::{Checker, FieldError, PoseDoc, MAX_LENGTH_MM};
-use crate::domain::JointsDeg;
+use crate::domain::{check_robot_pose, JointsDeg};
 
 /// Most dots per board side.
 pub const MAX_GRID_SIDE: u32 = 1000;
@@ -193,7 +194,15 @@ pub struct ImagePointDoc {
 #[derive(Debug, Clone, PartialEq, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PoseJsonBody {
-    pub joints_deg: Vec<f64>,
+    /// The robot's joint angles, degrees (one per joint). A camera pose may
+    /// carry `flange_pose` instead; a session takes one kind only.
+    #[serde(default)]
+    pub joints_deg: Option<Vec<f64>>,
+    /// The controller's flange pose in the base frame, instead of
+    /// `joints_deg` (camera sessions: hand–eye and board calibration
+    /// without kinematic identification).
+    #[serde(default)]
+    pub flange_pose: Option<FlangePoseDoc>,
     #[serde(default)]
     pub set: PoseSet,
     #[serde(default)]
@@ -219,7 +228,16 @@ impl PoseJsonBody {
         joint_count: usize,
     ) -> Result<JointsDeg, Vec<FieldError>> {
         let mut c = Checker::default();
-        let joints = JointsDeg::check(&mut c, "joints_deg", &self.joints_deg, joint_count);
+        let (_, joints) = check_robot_pose(
+            &mut c,
+            "",
+            self.joints_deg.as_deref(),
+            self.flange_pose.as_ref(),
+            joint_count,
+        );
+        if instrument == Instrument::Tracker && self.flange_pose.is_some() {
+            c.fail("flange_pose", "a tracker session takes joints_deg");
+        }
         if let Some(Err(rule)) = self.label.as_deref().map(crate::domain::check_label) {
             c.fail("label", rule);
         }
@@ -293,7 +311,11 @@ fn check_points(c: &mut Checker, points: &[ImagePointDoc], camera: Option<&Camer
 #[derive(Debug, Clone, PartialEq, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DatasetPoseDoc {
-    pub joints_deg: Vec<f64>,
+    /// The joint angles, or (instead) the controller's `flange_pose`.
+    #[serde(default)]
+    pub joints_deg: Option<Vec<f64>>,
+    #[serde(default)]
+    pub flange_pose: Option<FlangePoseDoc>,
     pub image: String,
     #[serde(default)]
     pub set: PoseSet,

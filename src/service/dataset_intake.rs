@@ -10,10 +10,11 @@ use serde_json::json;
 use super::dataset::{DatasetError, DatasetLimits, DatasetReader};
 use super::error::{ServiceError, ServiceResult};
 use super::images::inspect_and_hash;
-use super::intake::PoseIntake;
+use super::intake::{stored_doc, PoseIntake};
 use super::staged_images::StagedImages;
 use crate::domain::JointsDeg;
 use crate::domain::{label_from_archive_path, NewPose, PoseRecord};
+use crate::domain::check_robot_pose;
 use crate::schema::session::Instrument;
 use crate::schema::Checker;
 
@@ -55,19 +56,23 @@ impl PoseIntake {
         if reader.manifest.is_empty() {
             c.fail("poses.json", "holds no poses");
         }
-        let joints: Vec<Option<JointsDeg>> = reader
-            .manifest
-            .iter()
-            .enumerate()
-            .map(|(i, p)| {
-                JointsDeg::check(
-                    &mut c,
-                    &format!("poses.json[{i}].joints_deg"),
-                    &p.joints_deg,
-                    self.joint_count,
-                )
-            })
-            .collect();
+        let mut session_kind = self.pose_kind;
+        let mut joints: Vec<Option<JointsDeg>> = Vec::with_capacity(reader.manifest.len());
+        for (i, p) in reader.manifest.iter().enumerate() {
+            let prefix = format!("poses.json[{i}].");
+            let (kind, typed) = check_robot_pose(
+                &mut c,
+                &prefix,
+                p.joints_deg.as_deref(),
+                p.flange_pose.as_ref(),
+                self.joint_count,
+            );
+            if let Some(kind) = kind {
+                kind.check_same(&mut c, &prefix, session_kind);
+                session_kind = session_kind.or(Some(kind));
+            }
+            joints.push(typed);
+        }
         c.finish()?;
         let mut joints = joints.into_iter().map(|q| q.expect("checked above"));
         let check = self.image_check();
@@ -108,6 +113,7 @@ impl PoseIntake {
                 measured: None,
                 label: label_from_archive_path(&reader.manifest[i].image),
                 image_detection: ingested.detection.map(|d| d.to_value()),
+                flange_pose: stored_doc(reader.manifest[i].flange_pose.as_ref()),
             });
         }
         let stored = match self.store.add_poses(&self.session.id, &poses).await {

@@ -2,7 +2,7 @@
 //! tool (issue "Deploy the result"): URDF, `dh-json`, CSV.
 
 use super::error::{ServiceError, ServiceResult};
-use super::results::{find_parameter_set, typed};
+use super::results::{find_parameter_set, refuse_hand_eye, typed};
 use crate::export::table::{dh_table, write_csv};
 use crate::export::urdf::write_urdf;
 use crate::export::ExportFormat;
@@ -31,6 +31,7 @@ pub async fn export(
         )
     })?;
     let record = find_parameter_set(store, serial, version).await?;
+    refuse_hand_eye(&record)?;
     let set = typed(&record)?;
     let stem = format!("{serial}-v{}", record.version);
     let (body, extension) = match format {

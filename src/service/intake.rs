@@ -9,9 +9,10 @@ use serde_json::json;
 
 use super::error::{ServiceError, ServiceResult};
 use super::images::{ingest_image, ImageCheck};
-use crate::domain::JointsDeg;
 use crate::domain::{NewPose, PoseRecord, SessionRecord};
 use crate::imaging::DecodeGate;
+use crate::domain::{check_robot_pose, PoseKind};
+use crate::schema::flange_pose::FlangePoseDoc;
 use crate::schema::session::{Instrument, PoseJsonBody, PoseSet, SessionBody};
 use crate::schema::Checker;
 use crate::store::DynStore;
@@ -24,11 +25,15 @@ pub struct PoseIntake {
     pub session: SessionRecord,
     pub spec: SessionBody,
     pub joint_count: usize,
+    /// What the session's poses so far carry (`None` before its first).
+    pub pose_kind: Option<PoseKind>,
 }
 
 /// One image pose as the client sent it (the multipart parts, read).
 pub struct ImagePose {
-    pub joints_deg: Vec<f64>,
+    /// The joint angles, or (instead) the controller's `flange_pose`.
+    pub joints_deg: Option<Vec<f64>>,
+    pub flange_pose: Option<FlangePoseDoc>,
     pub set: PoseSet,
     pub image: Vec<u8>,
     /// The image's file name, as a label.
@@ -66,12 +71,18 @@ impl PoseIntake {
         let session = find_session(store, id).await?;
         let spec = session_spec(&session)?;
         let joint_count = robot_joint_count(store, &session.serial).await?;
+        let first = store.list_poses(&session.id, 1, None).await?;
+        let pose_kind = first
+            .items
+            .first()
+            .map(|p| PoseKind::of_stored(p.flange_pose.as_ref()));
         Ok(PoseIntake {
             store: store.clone(),
             gate,
             session,
             spec,
             joint_count,
+            pose_kind,
         })
     }
 
@@ -93,11 +104,23 @@ impl PoseIntake {
 
     /// Stores one JSON pose (image points or a tracker measurement).
     pub async fn add_json(self, body: PoseJsonBody) -> ServiceResult<PoseRecord> {
-        let joints_deg = body.check(
+        let checked = body.check(
             self.spec.instrument,
             self.spec.camera.as_ref(),
             self.joint_count,
-        )?;
+        );
+        let mut c = Checker::default();
+        if let Some(kind) = kind_of(body.joints_deg.as_deref(), body.flange_pose.as_ref()) {
+            kind.check_same(&mut c, "", self.pose_kind);
+        }
+        let joints_deg = match checked {
+            Ok(joints) if c.errors.is_empty() => joints,
+            Ok(_) => return Err(c.errors.into()),
+            Err(mut errors) => {
+                errors.extend(c.errors);
+                return Err(errors.into());
+            }
+        };
         let measured = body
             .measured_position_mm
             .map(|p| json!({ "measured_position_mm": p, "measured_pose": body.measured_pose }));
@@ -110,6 +133,7 @@ impl PoseIntake {
             measured,
             label: body.label,
             image_detection: None,
+            flange_pose: stored_doc(body.flange_pose.as_ref()),
         };
         self.store_one(pose).await
     }
@@ -118,8 +142,16 @@ impl PoseIntake {
     /// the pose.
     pub async fn add_image(self, upload: ImagePose) -> ServiceResult<PoseRecord> {
         let mut c = Checker::default();
-        let joints_deg =
-            JointsDeg::check(&mut c, "joints_deg", &upload.joints_deg, self.joint_count);
+        let (kind, joints_deg) = check_robot_pose(
+            &mut c,
+            "",
+            upload.joints_deg.as_deref(),
+            upload.flange_pose.as_ref(),
+            self.joint_count,
+        );
+        if let Some(kind) = kind {
+            kind.check_same(&mut c, "", self.pose_kind);
+        }
         c.finish()?;
         let joints_deg = joints_deg.expect("checked above");
         let ingested =
@@ -132,6 +164,7 @@ impl PoseIntake {
             measured: None,
             label: upload.label,
             image_detection: ingested.detection.map(|d| d.to_value()),
+            flange_pose: stored_doc(upload.flange_pose.as_ref()),
         };
         self.store_one(pose).await
     }
@@ -142,4 +175,19 @@ impl PoseIntake {
             .pop()
             .ok_or_else(|| ServiceError::internal("pose not stored"))
     }
+}
+
+/// The kind a pose names (`None` when it names both or neither: its check
+/// says so).
+pub fn kind_of(joints_deg: Option<&[f64]>, flange_pose: Option<&FlangePoseDoc>) -> Option<PoseKind> {
+    match (joints_deg, flange_pose) {
+        (Some(_), None) => Some(PoseKind::Joints),
+        (None, Some(_)) => Some(PoseKind::Flange),
+        _ => None,
+    }
+}
+
+/// A checked flange pose as its store row keeps it.
+pub fn stored_doc(doc: Option<&FlangePoseDoc>) -> Option<serde_json::Value> {
+    doc.and_then(|d| serde_json::to_value(d).ok())
 }

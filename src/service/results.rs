@@ -9,6 +9,7 @@ use super::evaluate::{
 };
 use super::filter::{self, FilterRequest, FilterResponse};
 use crate::domain::{ParameterSet, ParameterSetRecord};
+use crate::pipeline::hand_eye_results::HAND_EYE_KIND;
 use crate::schema::robot::{doc_to_model, KinematicsDoc};
 use crate::store::DynStore;
 
@@ -52,9 +53,25 @@ fn no_model() -> ServiceError {
     ServiceError::Conflict("this parameter set holds no calibrated model".into())
 }
 
+/// 409 for a hand–eye set (a flange-pose session's): it holds no
+/// identified kinematics, and evaluating the robot's nominal joint table
+/// under its name would pass uncalibrated kinematics off as calibrated.
+pub fn refuse_hand_eye(set: &ParameterSetRecord) -> ServiceResult<()> {
+    if set.parameters["kind"] == HAND_EYE_KIND {
+        return Err(ServiceError::Conflict(format!(
+            "parameter set {}/{} is a hand–eye calibration from controller flange poses: \
+             it identified no kinematics, so it has no model to evaluate or export; \
+             use a set calibrated from joint angles",
+            set.serial, set.version
+        )));
+    }
+    Ok(())
+}
+
 /// The calibrated model of a parameter set (409 when it holds none).
 async fn model(store: &DynStore, serial: &str, version: &str) -> ServiceResult<CalibratedModel> {
     let record = find_parameter_set(store, serial, version).await?;
+    refuse_hand_eye(&record)?;
     typed(&record)?.model().map_err(|_| no_model())
 }
 

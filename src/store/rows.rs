@@ -106,6 +106,7 @@ pub fn pose(row: &impl Columns) -> StoreResult<PoseRecord> {
         label: row.opt_string("label"),
         detection: opt_json(row.opt_str("detection"))?,
         image_detection: opt_json(row.opt_str("image_detection"))?,
+        flange_pose: opt_json(row.opt_str("flange_pose"))?,
         created_at: row.string("created_at"),
     })
 }

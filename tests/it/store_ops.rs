@@ -55,6 +55,7 @@ fn pose(sha: Option<&ImageMeta>) -> NewPose {
         measured: None,
         label: None,
         image_detection: None,
+        flange_pose: None,
     }
 }
 

@@ -7,6 +7,7 @@ use serde_json::Value;
 use utoipa::ToSchema;
 
 use crate::domain::{ImageMeta, PoseRecord};
+use crate::schema::flange_pose::FlangePoseDoc;
 use crate::schema::session::PoseSet;
 use crate::schema::PoseDoc;
 
@@ -14,7 +15,12 @@ use crate::schema::PoseDoc;
 pub struct PoseOut {
     pub id: String,
     pub session_id: String,
+    /// The joint angles (empty for a pose sent with `flange_pose`).
     pub joints_deg: Vec<f64>,
+    /// The controller's flange pose in the base frame, as uploaded, for a
+    /// pose sent with it instead of joints.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub flange_pose: Option<FlangePoseDoc>,
     pub set: PoseSet,
     /// `image`, `image_points` or `measured`.
     pub source: String,
@@ -86,7 +92,12 @@ pub struct PoseImagePoint {
 #[allow(dead_code)] // a schema only
 pub struct PoseImageUpload {
     /// JSON array of the joint angles in degrees, e.g. `[0, -10, 20, 0, 30, 0]`.
-    pub joints_deg: String,
+    /// A camera pose may send `flange_pose` instead (not both).
+    pub joints_deg: Option<String>,
+    /// The controller's flange pose in the base frame, as JSON:
+    /// `{"translation_mm": [x, y, z], "rotation_deg": [rx, ry, rz]}` (fixed
+    /// X-Y-Z angles, `R = Rz Ry Rx`) or `{"translation_mm", "matrix": 3x3}`.
+    pub flange_pose: Option<String>,
     /// `cal` (default) or `val`.
     pub set: Option<PoseSet>,
     /// The photo of the board, PNG or JPEG.
@@ -140,6 +151,9 @@ impl From<PoseRecord> for PoseOut {
             id: p.id,
             session_id: p.session_id,
             joints_deg: p.joints_deg.into_vec(),
+            flange_pose: p
+                .flange_pose
+                .and_then(|f| serde_json::from_value(f).ok()),
             set: p.set,
             source: source.into(),
             detected_points: points.len(),

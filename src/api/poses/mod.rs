@@ -14,6 +14,7 @@ use super::sessions::find_session;
 use super::upload::{read_field_capped, read_field_limited};
 use super::AppState;
 use crate::domain::{label_from_file_name, PoseRecord};
+use crate::schema::flange_pose::FlangePoseDoc;
 use crate::schema::session::{PoseJsonBody, PoseSet};
 use crate::service::intake::{ImagePose, PoseIntake};
 
@@ -33,8 +34,8 @@ pub fn router() -> OpenApiRouter<AppState> {
         .routes(routes!(get_pose_image))
 }
 
-/// Add one pose: `multipart/form-data` (parts `joints_deg`, `set`, `image`)
-/// or JSON with `image_points` (camera) or `measured_position_mm` (tracker).
+/// Add one pose: `multipart/form-data` (parts `joints_deg` or
+/// `flange_pose`, `set`, `image`) or JSON with `image_points` (camera) or `measured_position_mm` (tracker).
 #[utoipa::path(post, path = "/v1/sessions/{id}/poses", tag = "poses",
     params(("id" = String, Path, description = "Session id")),
     request_body(content(
@@ -76,13 +77,15 @@ async fn add_pose(
     Ok((StatusCode::CREATED, Json(record.into())))
 }
 
-/// Reads the parts of a multipart pose (`joints_deg`, `set`, `image`);
+/// Reads the parts of a multipart pose (`joints_deg` or `flange_pose`,
+/// `set`, `image`);
 /// the service checks their values.
 async fn read_image_pose(mut multipart: Multipart, max_image_bytes: u64) -> ApiResult<ImagePose> {
     let malformed = |e: axum::extract::multipart::MultipartError| {
         ApiError::malformed("multipart", e.body_text())
     };
     let (mut joints, mut set, mut image, mut label) = (None, PoseSet::Cal, None, None);
+    let mut flange_pose = None;
     while let Some(mut field) = multipart.next_field().await.map_err(malformed)? {
         let name = field.name().unwrap_or("").to_string();
         match name.as_str() {
@@ -92,6 +95,18 @@ async fn read_image_pose(mut multipart: Multipart, max_image_bytes: u64) -> ApiR
                     ApiError::invalid("joints_deg", format!("a JSON array of numbers: {e}"))
                 })?;
                 joints = Some(parsed);
+            }
+            "flange_pose" => {
+                let bytes = read_text_part(&mut field, "flange_pose").await?;
+                let parsed: FlangePoseDoc = serde_json::from_slice(&bytes).map_err(|e| {
+                    ApiError::invalid(
+                        "flange_pose",
+                        format!(
+                            "a JSON object {{\"translation_mm\", \"rotation_deg\" or \"matrix\"}}: {e}"
+                        ),
+                    )
+                })?;
+                flange_pose = Some(parsed);
             }
             "set" => {
                 let bytes = read_text_part(&mut field, "set").await?;
@@ -107,15 +122,15 @@ async fn read_image_pose(mut multipart: Multipart, max_image_bytes: u64) -> ApiR
             other => {
                 return Err(ApiError::invalid(
                     shortened(other),
-                    "unknown part (expected joints_deg, set, image)",
+                    "unknown part (expected joints_deg or flange_pose, set, image)",
                 ))
             }
         }
     }
-    let joints_deg = joints.ok_or_else(|| ApiError::invalid("joints_deg", "required part"))?;
     let image = image.ok_or_else(|| ApiError::invalid("image", "required part (PNG or JPEG)"))?;
     Ok(ImagePose {
-        joints_deg,
+        joints_deg: joints,
+        flange_pose,
         set,
         image,
         label,

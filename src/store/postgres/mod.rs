@@ -68,6 +68,11 @@ const MIGRATIONS: &[Embedded] = &[
         "token lifecycle",
         include_str!("../../../migrations/postgres/0006_token_lifecycle.sql"),
     ),
+    (
+        7,
+        "flange pose",
+        include_str!("../../../migrations/postgres/0007_flange_pose.sql"),
+    ),
 ];
 
 /// Connections per replica. Each worker holds at most one while it claims or

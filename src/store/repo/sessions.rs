@@ -13,7 +13,7 @@ use crate::store::{SessionStore, StoreError, StoreResult};
 const SESSION_COLUMNS: &str = "s.id, s.serial, s.instrument, s.spec, s.created_at,
     (SELECT count(*) FROM poses p WHERE p.session_id = s.id) AS pose_count";
 const POSE_COLUMNS: &str =
-    "id, session_id, joints_deg, pose_set, image_meta, points, measured, label, detection, image_detection, created_at";
+    "id, session_id, joints_deg, pose_set, image_meta, points, measured, label, detection, image_detection, flange_pose, created_at";
 
 #[async_trait]
 impl<B: Backend> SessionStore for B {
@@ -160,12 +160,13 @@ impl<B: Backend> SessionStore for B {
                 label: p.label.clone(),
                 detection: None,
                 image_detection: p.image_detection.clone(),
+                flange_pose: p.flange_pose.clone(),
                 created_at: now_rfc3339(),
             };
             query(
                 "INSERT INTO poses (id, session_id, joints_deg, pose_set, image_sha256,
-                   image_meta, points, measured, label, image_detection, created_at)
-                 VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11)",
+                   image_meta, points, measured, label, image_detection, flange_pose, created_at)
+                 VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12)",
             )
             .bind(&record.id)
             .bind(session_id)
@@ -183,6 +184,7 @@ impl<B: Backend> SessionStore for B {
             .bind(record.measured.as_ref().map(|m| m.to_string()))
             .bind(record.label.as_deref())
             .bind(record.image_detection.as_ref().map(|d| d.to_string()))
+            .bind(record.flange_pose.as_ref().map(|f| f.to_string()))
             .bind(&record.created_at)
             .execute(&mut tx)
             .await

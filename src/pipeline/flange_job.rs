@@ -1,0 +1,39 @@
+//! A flange-pose session's job after the camera stage (issue 14): the
+//! hand–eye fit ([`super::flange_stage`]), then its parameter set and
+//! report ([`super::hand_eye_results`]); no kinematics are identified.
+
+use super::camera_stage::CameraStep;
+use super::flange_stage::hand_eye;
+use super::measure::Measured;
+use super::{PipelineError, Stage};
+
+/// The rest of a flange-pose session's job after the camera stage: the
+/// hand–eye fit, then its parameter set and report.
+pub fn run(
+    input: &super::Input,
+    measured: &Measured,
+    camera: &CameraStep,
+    mut notes: Vec<String>,
+    within: &dyn Fn(Stage, &str, f64),
+) -> Result<super::Output, PipelineError> {
+    within(Stage::Identify, "hand–eye from flange poses", 0.0);
+    let step = hand_eye(&input.poses, measured, camera)?;
+    within(Stage::Report, "building the report", 0.0);
+    if !measured.failures.is_empty() {
+        notes.push(format!(
+            "{} of {} images were not used (see detection failures).",
+            measured.failures.len(),
+            measured.points.len()
+        ));
+    }
+    let out = super::hand_eye_results::hand_eye_output(input, measured, camera, &step, notes);
+    within(Stage::Report, "done", 1.0);
+    Ok(super::Output {
+        parameter_set: Some(crate::domain::NewParameterSet {
+            parameters: out.parameters,
+            report: serde_json::to_value(&out.report).unwrap_or_default(),
+        }),
+        summary: out.summary,
+        detections: Vec::new(),
+    })
+}
