@@ -6,12 +6,11 @@
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
-use crate::schema::session::PoseSet;
-
 mod flange_pose;
 mod joints;
 mod label;
 mod parameter_set;
+mod pose_set;
 mod serial;
 mod target;
 pub use flange_pose::{check_robot_pose, FlangePose, PoseKind};
@@ -21,6 +20,7 @@ pub use label::{
     MAX_LABEL_CHARS,
 };
 pub use parameter_set::{FrameNames, ParameterSet};
+pub use pose_set::PoseSet;
 pub use serial::{InvalidSerial, Serial, MAX_SERIAL_LEN, SERIAL_RULE};
 pub use target::{FoundPoint, Target};
 

@@ -156,29 +156,8 @@ impl SessionBody {
     }
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum PoseSet {
-    #[default]
-    Cal,
-    Val,
-}
-
-impl PoseSet {
-    pub fn as_str(self) -> &'static str {
-        match self {
-            PoseSet::Cal => "cal",
-            PoseSet::Val => "val",
-        }
-    }
-    pub fn parse(s: &str) -> Option<PoseSet> {
-        match s {
-            "cal" => Some(PoseSet::Cal),
-            "val" => Some(PoseSet::Val),
-            _ => None,
-        }
-    }
-}
+/// Which set a pose belongs to (typed in the domain).
+pub use crate::domain::PoseSet;
 
 /// A dot's board index and its image position in pixels.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]

@@ -10,7 +10,6 @@ use robocal_calib::camera::Intrinsics;
 use serde::Deserialize;
 
 use super::error::{ServiceError, ServiceResult};
-use crate::domain::ParameterSet;
 use crate::pipeline::FixedCamera;
 use crate::schema::session::{CameraDoc, Instrument, SessionBody};
 use crate::store::{DynStore, StoreError};
@@ -80,6 +79,13 @@ pub async fn resolve_for_session(
     }
 }
 
+/// What is read of a stored parameter set: its intrinsics, when it has
+/// them (any set with a `camera`, not only a whole calibrated one).
+#[derive(Deserialize)]
+struct StoredCamera {
+    camera: Option<Intrinsics>,
+}
+
 /// What this check reads of a stored report: the size of the images the
 /// camera was calibrated on.
 #[derive(Deserialize)]
@@ -106,7 +112,7 @@ pub async fn resolve(
         .await?
         .ok_or_else(|| ReuseError::NotFound(format!("no parameter set {id:?}")))?;
     let resolved = format!("{serial}/{}", set.version);
-    let intrinsics: Intrinsics = serde_json::from_value::<ParameterSet>(set.parameters)
+    let intrinsics: Intrinsics = serde_json::from_value::<StoredCamera>(set.parameters)
         .ok()
         .and_then(|p| p.camera)
         .ok_or_else(|| {

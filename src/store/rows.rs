@@ -8,10 +8,9 @@ use sqlx::{Decode, Row, Type};
 use super::StoreError;
 use super::StoreResult;
 use crate::domain::{
-    ClaimedJob, ImageMeta, JobRecord, JobState, JointsDeg, ParameterSetRecord, PoseRecord,
+    ClaimedJob, ImageMeta, JobRecord, JobState, JointsDeg, ParameterSetRecord, PoseRecord, PoseSet,
     RobotRecord, Scope, SessionRecord, TokenRecord,
 };
-use crate::schema::session::PoseSet;
 
 pub fn json(text: &str) -> StoreResult<Value> {
     Ok(serde_json::from_str(text)?)
