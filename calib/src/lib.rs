@@ -6,11 +6,13 @@
 //! (`p_a = a_to_b * p_b`), lengths are millimetres, angles radians inside the
 //! numerics unless a name says `_deg`.
 
+pub mod arrow;
 pub mod camera;
 pub mod covariance;
 pub mod geometry;
 pub mod handeye;
 pub mod kinematics;
+pub mod normal_matrix;
 pub mod schur;
 pub mod sim;
 pub mod solver;

@@ -1,15 +1,17 @@
-//! Block-arrowhead normal matrices: a dense head (intrinsics, kinematics)
-//! coupled to many small independent tail blocks (one per image: its pose,
-//! or its joint corrections). Such systems are solved and inverted through
-//! the Schur complement of the tail,
+//! Solving and inverting a block-arrowhead normal matrix
+//! ([`ArrowMatrix`]) through the Schur complement of its tail,
 //! `S = A_hh - sum_k A_hk A_kk^-1 A_kh`, at the cost of the head's size
-//! instead of the whole system's (the bundle-adjustment trick).
+//! per tail block instead of the whole system's cube (the
+//! bundle-adjustment trick): time and memory grow linearly with the
+//! number of tail blocks (images).
 
 use nalgebra::{DMatrix, DVector};
 
-/// The tail blocks' inverses and the Schur complement of a normal matrix.
+use crate::arrow::ArrowMatrix;
+use crate::covariance::covariance_from_normal;
+
+/// The tail blocks' inverses and the Schur complement of an arrowhead.
 struct Elimination {
-    block: usize,
     /// `A_kk^-1` of every tail block.
     inverses: Vec<DMatrix<f64>>,
     /// `A_hk A_kk^-1` of every tail block.
@@ -17,33 +19,37 @@ struct Elimination {
     schur: DMatrix<f64>,
 }
 
+/// How a tail block is inverted.
+#[derive(Clone, Copy, PartialEq)]
+enum BlockInverse {
+    /// Cholesky: the block must be positive definite.
+    Exact,
+    /// Cholesky, or the pseudo-inverse where it fails.
+    Pseudo,
+}
+
 impl Elimination {
-    /// `None` unless `a` is square with a tail of whole `block`s, each
-    /// positive definite.
-    fn new(a: &DMatrix<f64>, head: usize, block: usize) -> Option<Self> {
-        let n = a.nrows();
-        if a.ncols() != n || head > n || block == 0 || !(n - head).is_multiple_of(block) {
-            return None;
-        }
-        let blocks = (n - head) / block;
-        let mut schur = a.view((0, 0), (head, head)).into_owned();
+    /// `None` when a tail block is not positive definite and `how` is
+    /// [`BlockInverse::Exact`].
+    fn new(a: &ArrowMatrix, how: BlockInverse) -> Option<Self> {
+        let blocks = a.block_count();
+        let mut schur = a.head().clone();
         let mut inverses = Vec::with_capacity(blocks);
         let mut couplings = Vec::with_capacity(blocks);
         for k in 0..blocks {
-            let b0 = head + k * block;
-            let inverse = a
-                .view((b0, b0), (block, block))
-                .into_owned()
-                .cholesky()?
-                .inverse();
-            let a_hk = a.view((0, b0), (head, block));
+            let block = a.block(k);
+            let inverse = match (block.clone().cholesky(), how) {
+                (Some(c), _) => c.inverse(),
+                (None, BlockInverse::Pseudo) => covariance_from_normal(block, 1.0),
+                (None, BlockInverse::Exact) => return None,
+            };
+            let a_hk = a.coupling(k);
             let coupling = a_hk * &inverse;
             schur -= &coupling * a_hk.transpose();
             inverses.push(inverse);
             couplings.push(coupling);
         }
         Some(Self {
-            block,
             inverses,
             couplings,
             schur,
@@ -51,120 +57,105 @@ impl Elimination {
     }
 }
 
-/// Solve `A d = g` for a positive definite block-arrowhead `A` whose first
-/// `head` rows are dense and whose tail is block-diagonal in `block`-sized
-/// blocks; `None` when it is not positive definite (or not so shaped).
-pub fn schur_solve(
-    a: &DMatrix<f64>,
-    g: &DVector<f64>,
-    head: usize,
-    block: usize,
-) -> Option<DVector<f64>> {
-    let e = Elimination::new(a, head, block)?;
-    let mut rhs = g.rows(0, head).into_owned();
-    for (k, coupling) in e.couplings.iter().enumerate() {
-        rhs -= coupling * g.rows(head + k * block, block);
+impl ArrowMatrix {
+    /// Solve `A d = g`; `None` when `A` is not positive definite (or `g`
+    /// has the wrong length).
+    pub fn solve(&self, g: &DVector<f64>) -> Option<DVector<f64>> {
+        if g.len() != self.dim() {
+            return None;
+        }
+        let e = Elimination::new(self, BlockInverse::Exact)?;
+        let (head, block) = (self.head_len(), self.block_len());
+        let mut rhs = g.rows(0, head).into_owned();
+        for (k, coupling) in e.couplings.iter().enumerate() {
+            rhs -= coupling * g.rows(self.block_start(k), block);
+        }
+        let d_head = if head > 0 {
+            e.schur.cholesky()?.solve(&rhs)
+        } else {
+            DVector::zeros(0)
+        };
+        let mut d = DVector::zeros(g.len());
+        d.rows_mut(0, head).copy_from(&d_head);
+        for (k, inverse) in e.inverses.iter().enumerate() {
+            let b0 = self.block_start(k);
+            let a_kh_d = self.coupling(k).tr_mul(&d_head);
+            let d_k = inverse * (g.rows(b0, block) - a_kh_d);
+            d.rows_mut(b0, block).copy_from(&d_k);
+        }
+        Some(d)
     }
-    let d_head = if head > 0 {
-        e.schur.clone().cholesky()?.solve(&rhs)
-    } else {
-        DVector::zeros(0)
-    };
-    let mut d = DVector::zeros(g.len());
-    d.rows_mut(0, head).copy_from(&d_head);
-    for (k, inverse) in e.inverses.iter().enumerate() {
-        let b0 = head + k * block;
-        let a_kh = a.view((b0, 0), (block, head));
-        let d_k = inverse * (g.rows(b0, block) - a_kh * &d_head);
-        d.rows_mut(b0, block).copy_from(&d_k);
+
+    /// The parts of `A^-1` a covariance needs (see [`ArrowInverse`]);
+    /// `None` when `A` is not positive definite.
+    pub fn invert(&self) -> Option<ArrowInverse> {
+        let e = Elimination::new(self, BlockInverse::Exact)?;
+        let head = if self.head_len() > 0 {
+            e.schur.clone().cholesky()?.inverse()
+        } else {
+            DMatrix::zeros(0, 0)
+        };
+        Some(self.inverse_parts(&e, head))
     }
-    Some(d)
+
+    /// As [`Self::invert`] for a matrix that may be singular: `S^+` (the
+    /// pseudo-inverse of the Schur complement, with
+    /// [`crate::covariance::COVARIANCE_RCOND`]'s cut-off) in place of
+    /// `S^-1`, and likewise for a tail block that is not positive definite,
+    /// so an unidentifiable combination of parameters contributes nothing
+    /// instead of failing. When `A` is regular this is [`Self::invert`]
+    /// within round-off.
+    pub fn pseudo_invert(&self) -> ArrowInverse {
+        let e = Elimination::new(self, BlockInverse::Pseudo)
+            .expect("pseudo-inverted blocks always eliminate");
+        let head = if self.head_len() > 0 {
+            covariance_from_normal(&e.schur, 1.0)
+        } else {
+            DMatrix::zeros(0, 0)
+        };
+        self.inverse_parts(&e, head)
+    }
+
+    fn inverse_parts(&self, e: &Elimination, head_inverse: DMatrix<f64>) -> ArrowInverse {
+        let block = self.block_len();
+        let mut tail_diagonal = DVector::zeros(self.dim() - self.head_len());
+        for (k, (inverse, coupling)) in e.inverses.iter().zip(&e.couplings).enumerate() {
+            let full = inverse + coupling.transpose() * &head_inverse * coupling;
+            tail_diagonal
+                .rows_mut(k * block, block)
+                .copy_from(&full.diagonal());
+        }
+        ArrowInverse {
+            head: head_inverse,
+            tail_diagonal,
+        }
+    }
 }
 
 /// The parts of `A^-1` a covariance needs: the head block and the diagonal
 /// of the tail.
 #[derive(Debug, Clone)]
 pub struct ArrowInverse {
-    /// `(A^-1)_hh = S^-1`.
+    /// `(A^-1)_hh = S^-1`: the head's covariance with every tail block
+    /// marginalised (unit variance).
     pub head: DMatrix<f64>,
     /// Diagonal of `(A^-1)_kk = A_kk^-1 + (A_hk A_kk^-1)^T S^-1 (A_hk A_kk^-1)`.
     pub tail_diagonal: DVector<f64>,
 }
 
-/// Invert a block-arrowhead `A` (see [`schur_solve`]) in the parts a
-/// covariance needs; `None` when it is not positive definite.
-pub fn schur_invert(a: &DMatrix<f64>, head: usize, block: usize) -> Option<ArrowInverse> {
-    let e = Elimination::new(a, head, block)?;
-    let head_inverse = if head > 0 {
-        e.schur.clone().cholesky()?.inverse()
-    } else {
-        DMatrix::zeros(0, 0)
-    };
-    let mut tail_diagonal = DVector::zeros(a.nrows() - head);
-    for (k, (inverse, coupling)) in e.inverses.iter().zip(&e.couplings).enumerate() {
-        let full = inverse + coupling.transpose() * &head_inverse * coupling;
-        tail_diagonal
-            .rows_mut(k * e.block, e.block)
-            .copy_from(&full.diagonal());
-    }
-    Some(ArrowInverse {
-        head: head_inverse,
-        tail_diagonal,
-    })
+/// Solve `A d = g` for a dense positive definite `a` of arrowhead shape
+/// (first `head` rows dense, the tail block-diagonal in `block`-sized
+/// blocks), for problems small enough to assemble it densely; `None` when
+/// it is not positive definite or not so shaped.
+pub fn schur_solve(
+    a: &DMatrix<f64>,
+    g: &DVector<f64>,
+    head: usize,
+    block: usize,
+) -> Option<DVector<f64>> {
+    ArrowMatrix::from_dense(a, head, block)?.solve(g)
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A random positive definite arrowhead: `J^T J` of a block-sparse `J`.
-    fn arrowhead(head: usize, block: usize, blocks: usize) -> DMatrix<f64> {
-        let n = head + block * blocks;
-        let rows_per_block = 3 * (head + block);
-        let mut j = DMatrix::zeros(rows_per_block * blocks, n);
-        let mut seed = 1u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 33) as f64 / (1u64 << 31) as f64) - 0.5
-        };
-        for k in 0..blocks {
-            for r in 0..rows_per_block {
-                let row = k * rows_per_block + r;
-                for c in 0..head {
-                    j[(row, c)] = next();
-                }
-                for c in 0..block {
-                    j[(row, head + k * block + c)] = next();
-                }
-            }
-        }
-        j.transpose() * j
-    }
-
-    #[test]
-    fn arrow_solve_and_inverse_match_the_dense_ones() {
-        for (head, block, blocks) in [(5, 6, 7), (0, 3, 4), (8, 2, 1)] {
-            let a = arrowhead(head, block, blocks);
-            let g = DVector::from_fn(a.nrows(), |i, _| (i as f64 * 0.37).sin());
-            let dense = a.clone().cholesky().unwrap();
-            let d = schur_solve(&a, &g, head, block).unwrap();
-            assert!((&d - dense.solve(&g)).amax() < 1e-9 * (1.0 + d.amax()));
-            let inv = dense.inverse();
-            let parts = schur_invert(&a, head, block).unwrap();
-            assert!((&parts.head - inv.view((0, 0), (head, head))).amax() < 1e-9 * inv.amax());
-            let tail = inv.diagonal().rows(head, a.nrows() - head).into_owned();
-            assert!((&parts.tail_diagonal - tail).amax() < 1e-9 * inv.amax());
-        }
-    }
-
-    #[test]
-    fn misshapen_or_indefinite_systems_are_refused() {
-        let a = arrowhead(2, 3, 2);
-        let g = DVector::zeros(a.nrows());
-        assert!(schur_solve(&a, &g, 3, 3).is_none(), "tail not whole blocks");
-        assert!(schur_solve(&a, &g, 2, 0).is_none());
-        assert!(schur_invert(&(-a), 2, 3).is_none());
-    }
-}
+#[path = "schur_tests.rs"]
+mod tests;

@@ -19,6 +19,7 @@
 use nalgebra::{DMatrix, DVector};
 
 pub use crate::covariance::{covariance_from_jacobian, covariance_from_normal, COVARIANCE_RCOND};
+pub use crate::normal_matrix::NormalMatrix;
 
 /// Relative step of the forward/central finite-difference Jacobian.
 pub const FINITE_DIFFERENCE_STEP: f64 = 1e-6;
@@ -40,9 +41,11 @@ pub trait LeastSquaresProblem {
         finite_difference_jacobian(|x| self.residuals(x), x)
     }
 
-    /// Solve `A d = g` for the (column-scaled, damped) normal matrix `A` of
-    /// this problem, exploiting its structure (e.g. a Schur complement over
-    /// block-diagonal pose blocks); `None` falls back to dense Cholesky.
+    /// Solve `A d = g` for the (column-scaled, damped) dense normal matrix
+    /// `A` of this problem, exploiting its structure (e.g. a Schur
+    /// complement over block-diagonal pose blocks); `None` falls back to
+    /// dense Cholesky. A [`NormalMatrix::Arrow`] is always solved by its
+    /// Schur complement.
     fn solve_normal(&self, _a: &DMatrix<f64>, _g: &DVector<f64>) -> Option<DVector<f64>> {
         None
     }
@@ -52,13 +55,14 @@ pub trait LeastSquaresProblem {
     /// calibration: each image row touches the intrinsics and one pose)
     /// override this so that the solver never forms the dense Jacobian
     /// (not even for the report: [`LmReport::jacobian`] is then `None` and
-    /// the covariance comes from [`LmReport::normal_matrix`]). The default
-    /// `None` lets the solver use [`Self::jacobian`].
+    /// the covariance comes from [`LmReport::normal_matrix`]); returned as
+    /// a [`NormalMatrix::Arrow`], not even the dense normal matrix is
+    /// formed. The default `None` lets the solver use [`Self::jacobian`].
     fn normal_equations(
         &self,
         _x: &DVector<f64>,
         _residuals: &DVector<f64>,
-    ) -> Option<(DMatrix<f64>, DVector<f64>)> {
+    ) -> Option<(NormalMatrix, DVector<f64>)> {
         None
     }
 }
@@ -145,7 +149,7 @@ pub struct LmReport {
     /// rows) would cost more than the whole solve.
     pub jacobian: Option<DMatrix<f64>>,
     /// `J^T J` at `x` (unscaled).
-    pub normal_matrix: DMatrix<f64>,
+    pub normal_matrix: NormalMatrix,
     /// Sum of squared residuals at `x`.
     pub cost: f64,
     pub initial_cost: f64,
@@ -160,11 +164,12 @@ impl LmReport {
         self.cost / dof as f64
     }
 
-    /// Parameter covariance `sigma^2 (J^T J)^+` (method.md §6 **beyond**).
+    /// Parameter covariance `sigma^2 (J^T J)^+` (method.md §6 **beyond**),
+    /// of every parameter (dense; see [`NormalMatrix::covariance`]).
     pub fn covariance(&self) -> DMatrix<f64> {
         match &self.jacobian {
             Some(j) => covariance_from_jacobian(j, self.residual_variance()),
-            None => covariance_from_normal(&self.normal_matrix, self.residual_variance()),
+            None => self.normal_matrix.covariance(self.residual_variance()),
         }
     }
 
@@ -208,9 +213,9 @@ fn linearise<P: LeastSquaresProblem + ?Sized>(
     problem: &P,
     x: &DVector<f64>,
     r: &DVector<f64>,
-) -> Result<(Option<DMatrix<f64>>, DMatrix<f64>, DVector<f64>), SolverError> {
+) -> Result<(Option<DMatrix<f64>>, NormalMatrix, DVector<f64>), SolverError> {
     if let Some((a, g)) = problem.normal_equations(x, r) {
-        if !all_finite(a.iter().copied()) || !all_finite(g.iter().copied()) {
+        if a.dim() != x.len() || !a.is_finite() || !all_finite(g.iter().copied()) {
             return Err(SolverError::NonFinite);
         }
         return Ok((None, a, g));
@@ -221,7 +226,7 @@ fn linearise<P: LeastSquaresProblem + ?Sized>(
     }
     let a = jac.transpose() * &jac;
     let g = jac.transpose() * r;
-    Ok((Some(jac), a, g))
+    Ok((Some(jac), a.into(), g))
 }
 
 /// Minimise `|r(x)|^2` from `x0`.
@@ -264,8 +269,9 @@ pub fn solve<P: LeastSquaresProblem + ?Sized>(
     'outer: while iterations < options.max_iterations {
         iterations += 1;
         if options.column_scaling {
+            let diagonal = a_raw.diagonal();
             for j in 0..n {
-                let norm = a_raw[(j, j)].max(0.0).sqrt();
+                let norm = diagonal[j].max(0.0).sqrt();
                 let previous = if scale_initialised { scale[j] } else { 0.0 };
                 scale[j] = previous.max(norm);
                 if scale[j] == 0.0 {
@@ -276,13 +282,8 @@ pub fn solve<P: LeastSquaresProblem + ?Sized>(
         }
         // Scaled system: J_s = J D^-1, unknown dx_s = D dx.
         let mut a = a_raw.clone();
-        let mut g = g_raw.clone();
-        for i in 0..n {
-            g[i] /= scale[i];
-            for j in 0..n {
-                a[(i, j)] /= scale[i] * scale[j];
-            }
-        }
+        a.scale_symmetric(&scale);
+        let g = g_raw.component_div(&scale);
         if g.amax() <= options.gradient_tolerance * cost.sqrt().max(f64::MIN_POSITIVE) {
             termination = Termination::GradientConverged;
             break;
@@ -298,12 +299,13 @@ pub fn solve<P: LeastSquaresProblem + ?Sized>(
                 break 'outer;
             }
             let mut damped = a.clone();
-            for j in 0..n {
-                damped[(j, j)] += mu;
-            }
-            let solved = problem
-                .solve_normal(&damped, &g)
-                .or_else(|| damped.cholesky().map(|c| c.solve(&g)));
+            damped.add_to_diagonal(mu);
+            let solved = match damped {
+                NormalMatrix::Dense(damped) => problem
+                    .solve_normal(&damped, &g)
+                    .or_else(|| damped.cholesky().map(|c| c.solve(&g))),
+                NormalMatrix::Arrow(damped) => damped.solve(&g),
+            };
             let Some(solution) = solved else {
                 mu = (mu * 10.0).max(1e-12);
                 continue;
@@ -322,7 +324,7 @@ pub fn solve<P: LeastSquaresProblem + ?Sized>(
                 }
                 Damping::Nielsen => {
                     // Predicted reduction of the linear model: -2 g.dx - dx^T A dx.
-                    let predicted = -(2.0 * g.dot(&step_s) + step_s.dot(&(&a * &step_s)));
+                    let predicted = -(2.0 * g.dot(&step_s) + step_s.dot(&a.mul_vector(&step_s)));
                     let rho = (cost - new_cost) / predicted.max(f64::MIN_POSITIVE);
                     if accepted && rho > 0.0 {
                         mu *= (1.0f64 / 3.0).max(1.0 - (2.0 * rho - 1.0).powi(3));

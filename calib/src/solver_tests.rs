@@ -205,7 +205,7 @@ fn assembled_normal_equations_match_dense_path() {
             &self,
             x: &DVector<f64>,
             r: &DVector<f64>,
-        ) -> Option<(DMatrix<f64>, DVector<f64>)> {
+        ) -> Option<(NormalMatrix, DVector<f64>)> {
             let (mut jtj, mut jtr) = (DMatrix::zeros(3, 3), DVector::zeros(3));
             for (k, t) in self.0.t.iter().enumerate() {
                 let e = (-x[1] * t).exp();
@@ -217,7 +217,7 @@ fn assembled_normal_equations_match_dense_path() {
                     }
                 }
             }
-            Some((jtj, jtr))
+            Some((jtj.into(), jtr))
         }
     }
     let truth = [2500.0, 1.3e-3, 40.0];

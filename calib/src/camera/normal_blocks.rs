@@ -1,9 +1,13 @@
 //! Block structure of the joint refinement's normal equations (method.md
 //! §4 **beyond**): every image point's rows touch the intrinsics and its
 //! own view's pose only, so `J^T J` is assembled per point into small
-//! blocks and the pose blocks are eliminated by a Schur complement.
+//! blocks of a block-arrowhead matrix ([`ArrowMatrix`]: intrinsics head,
+//! one 6x6 pose block per view) whose pose blocks are eliminated by a
+//! Schur complement.
 
-use nalgebra::{DMatrix, DVector, SMatrix};
+use nalgebra::{DVector, SMatrix};
+
+use crate::arrow::ArrowMatrix;
 
 use super::projection_jacobian::INTRINSIC_PARAMS;
 use super::projection_jacobian::POSE_PARAMS;
@@ -56,24 +60,30 @@ impl PointNormalAccumulator {
         }
     }
 
-    /// Add into the full normal matrix `a` and gradient `g`: the first
-    /// `ni` intrinsics (the block's length) and the pose at `base`.
-    pub(crate) fn write(&self, a: &mut DMatrix<f64>, g: &mut DVector<f64>, ni: usize, base: usize) {
+    /// Add into the arrowhead normal matrix `a` (head: the intrinsics,
+    /// `a.head_len()` of them; tail: 6x6 pose blocks) and gradient `g`:
+    /// this view's pose is tail block `view`.
+    pub(crate) fn write(&self, a: &mut ArrowMatrix, g: &mut DVector<f64>, view: usize) {
         let h = |i: usize, j: usize| self.upper[i.min(j)][i.max(j)];
+        let ni = a.head_len();
+        let base = a.block_start(view);
+        let head = a.head_mut();
         for i in 0..ni {
             for j in 0..ni {
-                a[(i, j)] += h(i, j);
-            }
-            for p in 0..POSE_PARAMS {
-                let v = h(i, INTRINSIC_PARAMS + p);
-                a[(i, base + p)] = v;
-                a[(base + p, i)] = v;
+                head[(i, j)] += h(i, j);
             }
             g[i] += self.gradient[i];
         }
+        let coupling = a.coupling_mut(view);
+        for i in 0..ni {
+            for p in 0..POSE_PARAMS {
+                coupling[(i, p)] = h(i, INTRINSIC_PARAMS + p);
+            }
+        }
+        let block = a.block_mut(view);
         for p in 0..POSE_PARAMS {
             for q in 0..POSE_PARAMS {
-                a[(base + p, base + q)] = h(INTRINSIC_PARAMS + p, INTRINSIC_PARAMS + q);
+                block[(p, q)] = h(INTRINSIC_PARAMS + p, INTRINSIC_PARAMS + q);
             }
             g[base + p] = self.gradient[INTRINSIC_PARAMS + p];
         }
@@ -86,7 +96,7 @@ mod tests {
 
     use crate::camera::refine::{IntrinsicsBlock, JointProblem};
     use crate::sim::point_views::{simulate_views, ViewCampaignSpec};
-    use crate::solver::LeastSquaresProblem;
+    use crate::solver::{LeastSquaresProblem, NormalMatrix};
 
     /// Relative agreement of the blockwise and the dense computations.
     const TOL: f64 = 1e-9;
@@ -111,13 +121,17 @@ mod tests {
             intr.cx += 0.7;
             let x = problem.encode(&intr, &poses);
             let r = problem.residuals(&x).unwrap();
-            let (a, g) = problem.normal_equations(&x, &r).unwrap();
+            let (normal, g) = problem.normal_equations(&x, &r).unwrap();
+            let NormalMatrix::Arrow(arrow) = &normal else {
+                panic!("without reference distances the normal matrix is an arrowhead");
+            };
+            let a = arrow.to_dense();
             let jac = problem.jacobian(&x).unwrap();
             let (dense_a, dense_g) = (jac.tr_mul(&jac), jac.tr_mul(&r));
             assert!((&a - &dense_a).amax() <= TOL * dense_a.amax());
             assert!((&g - &dense_g).amax() <= TOL * dense_g.amax());
             let ni = problem.block.len();
-            let blockwise = problem.intrinsics_inverse_normal(&a).unwrap();
+            let blockwise = problem.intrinsics_inverse_normal(&normal).unwrap();
             let dense = dense_a.clone().cholesky().unwrap().inverse();
             for i in 0..ni {
                 for j in 0..ni {
@@ -126,7 +140,7 @@ mod tests {
                 }
             }
             // The Schur step solves the same system as the dense one.
-            let step = problem.solve_normal(&a, &g).unwrap();
+            let step = arrow.solve(&g).unwrap();
             let dense_step: DVector<f64> = dense_a.cholesky().unwrap().solve(&g);
             assert!((&step - &dense_step).amax() <= 1e-6 * dense_step.amax());
         }

@@ -12,9 +12,9 @@ use serde::{Deserialize, Serialize};
 use super::model::Intrinsics;
 use super::normal_blocks::PointNormalAccumulator;
 use super::projection_jacobian::{projection_jacobian_at, PoseLinearisation};
+use crate::arrow::ArrowMatrix;
 use crate::geometry::{pose_from_vector, pose_to_vector};
-use crate::schur::{schur_invert, schur_solve};
-use crate::solver::{LeastSquaresProblem, FINITE_DIFFERENCE_STEP};
+use crate::solver::{LeastSquaresProblem, NormalMatrix, FINITE_DIFFERENCE_STEP};
 
 pub use super::projection_jacobian::POSE_PARAMS;
 
@@ -175,28 +175,22 @@ impl LeastSquaresProblem for JointProblem<'_> {
         Some(r)
     }
 
-    /// Schur complement: eliminate each view's 6x6 pose block, solve the
-    /// small intrinsics system, back-substitute (reference rows couple
-    /// poses, so they fall back to the dense solve).
-    fn solve_normal(&self, a: &DMatrix<f64>, g: &DVector<f64>) -> Option<DVector<f64>> {
-        if !self.references.is_empty() {
-            return None;
-        }
-        schur_solve(a, g, self.block.len(), POSE_PARAMS)
-    }
-
     /// Assembled point by point from the analytic projection Jacobian,
-    /// never forming the dense (mostly zero) Jacobian.
+    /// never forming the dense (mostly zero) Jacobian, into a block
+    /// arrowhead (intrinsics head, one 6x6 pose block per view) that the
+    /// solver eliminates by its Schur complement: memory and time linear
+    /// in the number of views. Reference-distance rows couple two poses,
+    /// so with them the matrix is dense (their campaigns are small).
     fn normal_equations(
         &self,
         x: &DVector<f64>,
         r: &DVector<f64>,
-    ) -> Option<(DMatrix<f64>, DVector<f64>)> {
+    ) -> Option<(NormalMatrix, DVector<f64>)> {
         let n = x.len();
         let ni = self.block.len();
         let offsets = self.row_offsets();
         let intr = self.intrinsics(x);
-        let mut a = DMatrix::zeros(n, n);
+        let mut a = ArrowMatrix::zeros(ni, POSE_PARAMS, self.views.len());
         let mut g = DVector::zeros(n);
         for (v, obs) in self.views.iter().enumerate() {
             let base = ni + POSE_PARAMS * v;
@@ -211,18 +205,20 @@ impl LeastSquaresProblem for JointProblem<'_> {
                 let row = offsets[v] + 2 * i;
                 acc.add(&ji, &jp, [-r[row], -r[row + 1]]);
             }
-            acc.write(&mut a, &mut g, ni, base);
+            acc.write(&mut a, &mut g, v);
         }
-        if !self.references.is_empty() {
-            let base = offsets[self.views.len()];
-            let jac = self.reference_jacobian(x);
-            for k in 0..self.references.len() {
-                let row = jac.row(k);
-                a += row.transpose() * row;
-                g += row.transpose() * r[base + k];
-            }
+        if self.references.is_empty() {
+            return Some((a.into(), g));
         }
-        Some((a, g))
+        let mut a = a.to_dense();
+        let base = offsets[self.views.len()];
+        let jac = self.reference_jacobian(x);
+        for k in 0..self.references.len() {
+            let row = jac.row(k);
+            a += row.transpose() * row;
+            g += row.transpose() * r[base + k];
+        }
+        Some((a.into(), g))
     }
 
     /// Analytic image rows ([`projection_jacobian_at`]): intrinsics touch
@@ -264,16 +260,19 @@ impl LeastSquaresProblem for JointProblem<'_> {
 
 impl JointProblem<'_> {
     /// `(J^T J)^-1` restricted to the intrinsics, from the normal matrix
-    /// `a`: the inverse of the Schur complement of the pose blocks, so the
-    /// full (intrinsics + 6 per view) matrix is never inverted. With
-    /// reference rows (poses coupled) the dense inverse.
-    pub fn intrinsics_inverse_normal(&self, a: &DMatrix<f64>) -> Option<DMatrix<f64>> {
+    /// `a` ([`Self::normal_equations`]'): the inverse of the Schur
+    /// complement of the pose blocks, so the full (intrinsics + 6 per view)
+    /// matrix is never formed nor inverted. With reference rows (poses
+    /// coupled, a dense `a`) the dense inverse.
+    pub fn intrinsics_inverse_normal(&self, a: &NormalMatrix) -> Option<DMatrix<f64>> {
         let ni = self.block.len();
-        if !self.references.is_empty() {
-            let inv = a.clone().cholesky()?.inverse();
-            return Some(inv.view((0, 0), (ni, ni)).into_owned());
+        match a {
+            NormalMatrix::Arrow(a) => Some(a.invert()?.head),
+            NormalMatrix::Dense(a) => {
+                let inv = a.clone().cholesky()?.inverse();
+                Some(inv.view((0, 0), (ni, ni)).into_owned())
+            }
         }
-        Some(schur_invert(a, ni, POSE_PARAMS)?.head)
     }
 
     /// Rows of the reference-distance residuals (central differences over

@@ -60,6 +60,50 @@ pub fn calibrate_pairs(
     pairs: &[&Pairs],
     options: &FlangeOptions,
 ) -> Result<FlangeCalibration, HandEyeError> {
+    let Screened {
+        fit,
+        freedom,
+        inliers,
+        per_pose,
+        rounds,
+    } = screen_pairs(flanges, pairs, options)?;
+    let views: Vec<(Pose, &Pairs)> = inliers.iter().map(|&k| (flanges[k], pairs[k])).collect();
+    let (fit, freedom, noise) = if options.estimate_flange_noise {
+        let (fit, noise) = fit_with_flange_noise(
+            &views,
+            &fit.model,
+            &freedom,
+            FlangeNoise::start(fit.sigma_px),
+        )?;
+        let freedom = fit.freedom.clone();
+        (fit, freedom, Some(noise))
+    } else {
+        (fit, freedom, None)
+    };
+    let jackknife = jackknife(&views, &fit, &freedom);
+    let mut result = report(&fit, per_pose, rounds, jackknife);
+    result.flange_noise = noise;
+    Ok(result)
+}
+
+/// The screened bundle: the fit on the inliers and every pose's verdict.
+pub(super) struct Screened {
+    pub(super) fit: BundleFit,
+    pub(super) freedom: BundleFreedom,
+    /// Indices of the poses the fit used.
+    pub(super) inliers: Vec<usize>,
+    pub(super) per_pose: Vec<PoseVerdict>,
+    pub(super) rounds: usize,
+}
+
+/// PnP, the robust start, the board consensus and the bundle refitted
+/// until the residual screening stops changing the inliers (module doc);
+/// no jackknife (its leave-one-out refits cost `O(n^2)`), no flange noise.
+pub(super) fn screen_pairs(
+    flanges: &[Pose],
+    pairs: &[&Pairs],
+    options: &FlangeOptions,
+) -> Result<Screened, HandEyeError> {
     let n = flanges.len();
     if pairs.len() != n {
         return Err(HandEyeError::BadPose {
@@ -160,9 +204,13 @@ pub fn calibrate_pairs(
         }
         inliers = next;
     };
+    let mut is_inlier = vec![false; n];
+    for &k in &inliers {
+        is_inlier[k] = true;
+    }
     let per_pose = (0..n)
         .map(|k| {
-            let outlier = !inliers.contains(&k);
+            let outlier = !is_inlier[k];
             let reason = reasons[k].clone().or_else(|| {
                 outlier.then(|| {
                     format!(
@@ -181,23 +229,13 @@ pub fn calibrate_pairs(
             }
         })
         .collect();
-    let views: Vec<(Pose, &Pairs)> = inliers.iter().map(|&k| (flanges[k], pairs[k])).collect();
-    let (fit, freedom, noise) = if options.estimate_flange_noise {
-        let (fit, noise) = fit_with_flange_noise(
-            &views,
-            &fit.model,
-            &freedom,
-            FlangeNoise::start(fit.sigma_px),
-        )?;
-        let freedom = fit.freedom.clone();
-        (fit, freedom, Some(noise))
-    } else {
-        (fit, freedom, None)
-    };
-    let jackknife = jackknife(&views, &fit, &freedom);
-    let mut result = report(&fit, per_pose, rounds, jackknife);
-    result.flange_noise = noise;
-    Ok(result)
+    Ok(Screened {
+        fit,
+        freedom,
+        inliers,
+        per_pose,
+        rounds,
+    })
 }
 
 /// One leave-one-out refit, relative to the full fit.

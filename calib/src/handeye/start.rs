@@ -23,6 +23,33 @@ const MIN_AXIS_SPREAD: f64 = 1e-4;
 const TRANSLATION_RCOND: f64 = 1e-8;
 /// Floor of residual scales, so that exact data do not divide by zero.
 const TINY: f64 = 1e-12;
+/// Up to this many poses every pair of poses gives a motion; beyond, each
+/// pose is paired with [`MOTION_PARTNERS`] others spread evenly over the
+/// sequence, so that the motions (and the time and memory of the start)
+/// grow linearly with the campaign rather than with its square (500,000
+/// motions at 1,000 poses).
+const ALL_PAIRS_UP_TO: usize = 2 * MOTION_PARTNERS;
+const MOTION_PARTNERS: usize = 32;
+
+/// The pose pairs `(i, j)` whose relative motions feed AX = XB: all of them
+/// for a small campaign, else each pose with [`MOTION_PARTNERS`] others at
+/// sequence offsets from 1 to about `n / 2`, evenly spread (distinct
+/// unordered pairs, as an offset `d < n / 2` never meets `n - d`).
+fn motion_pairs(n: usize) -> Vec<(usize, usize)> {
+    if n <= ALL_PAIRS_UP_TO {
+        return (0..n)
+            .flat_map(|i| ((i + 1)..n).map(move |j| (i, j)))
+            .collect();
+    }
+    let longest = (n - 1) / 2;
+    let mut offsets: Vec<usize> = (0..MOTION_PARTNERS)
+        .map(|m| 1 + m * (longest - 1) / (MOTION_PARTNERS - 1))
+        .collect();
+    offsets.dedup();
+    (0..n)
+        .flat_map(|i| offsets.iter().map(move |d| (i, (i + d) % n)))
+        .collect()
+}
 
 fn cauchy_weights(residuals: &[f64]) -> Vec<f64> {
     let scale = (IRLS_SCALE_MEDIANS * median(residuals)).max(TINY);
@@ -35,9 +62,10 @@ fn cauchy_weights(residuals: &[f64]) -> Vec<f64> {
 /// Robust AX = XB: `flange_to_camera` from flange poses `b` and camera
 /// poses `c` (`target_to_camera`) of the same images, `c_k = T b_k X`.
 pub fn robust_hand_eye(b: &[Pose], c: &[Pose]) -> Result<Pose, HandEyeError> {
-    // Motions between every pair: A = b_i^-1 b_j, B = c_i^-1 c_j, A X = X B.
-    let motions: Vec<(Pose, Pose)> = (0..b.len())
-        .flat_map(|i| ((i + 1)..b.len()).map(move |j| (i, j)))
+    // Motions between pairs of poses ([`motion_pairs`]): A = b_i^-1 b_j,
+    // B = c_i^-1 c_j, A X = X B.
+    let motions: Vec<(Pose, Pose)> = motion_pairs(b.len())
+        .into_iter()
         .map(|(i, j)| (b[i].inverse() * b[j], c[i].inverse() * c[j]))
         .collect();
     if motions.len() < 2 {
@@ -129,16 +157,18 @@ pub fn board_distance_mm(a: &Pose, b: &Pose, probe: &[Point3<f64>]) -> f64 {
 /// smallest median distance to the others) and every estimate's distance
 /// to it (mm).
 pub fn board_consensus(estimates: &[Pose], probe: &[Point3<f64>]) -> Option<(usize, Vec<f64>)> {
-    let n = estimates.len();
-    let distances: Vec<Vec<f64>> = (0..n)
-        .map(|i| {
-            (0..n)
-                .map(|j| board_distance_mm(&estimates[i], &estimates[j], probe))
-                .collect()
-        })
-        .collect();
-    let medoid = (0..n).min_by(|&i, &j| median(&distances[i]).total_cmp(&median(&distances[j])))?;
-    Some((medoid, distances[medoid].clone()))
+    // Row by row (one row of the n x n distance table held at a time).
+    let row = |i: usize| -> Vec<f64> {
+        estimates
+            .iter()
+            .map(|e| board_distance_mm(&estimates[i], e, probe))
+            .collect()
+    };
+    let medoid = (0..estimates.len())
+        .map(|i| (i, median(&row(i))))
+        .min_by(|a, b| a.1.total_cmp(&b.1))?
+        .0;
+    Some((medoid, row(medoid)))
 }
 
 /// The corners of the bounding box of the board points (z = 0 plane):

@@ -2,7 +2,8 @@
 //! see [`super::joint_refine`]): residuals of every dot of every image,
 //! weighted by the dot noise, and the priors of the per-pose joint
 //! corrections; the analytic Jacobian and the normal equations assembled
-//! per pose from 6x6 sums over its dots.
+//! per pose from 6x6 sums over its dots, as a block arrowhead (head: the
+//! kinematics and intrinsics; one block per pose: its joint corrections).
 
 use nalgebra::{DMatrix, DVector, Matrix6, SMatrix};
 
@@ -10,9 +11,9 @@ use super::image_pose::{ImageNoise, ImagePose};
 use super::jacobian::tool_pose_jacobian;
 use super::params::{CalibratedModel, ParamLayout};
 use super::projection::{apply_intrinsics, project_with_jacobians, INTRINSIC_NAMES};
+use crate::arrow::ArrowMatrix;
 use crate::camera::model::Intrinsics;
-use crate::schur::schur_solve;
-use crate::solver::LeastSquaresProblem;
+use crate::solver::{LeastSquaresProblem, NormalMatrix};
 
 /// Intrinsic parameters refined with the kinematics.
 pub(super) const INTRINSICS: usize = INTRINSIC_NAMES.len();
@@ -135,6 +136,65 @@ impl ImageFit<'_> {
         Some(block)
     }
 
+    /// `J^T J` and `J^T r` from each pose's 6-D sums (module doc): a
+    /// block arrowhead whose tail blocks are the poses' joint corrections
+    /// (the solver eliminates them by the Schur complement); without joint
+    /// corrections only the head.
+    pub(super) fn arrow_normal_equations(
+        &self,
+        x: &DVector<f64>,
+    ) -> Option<(ArrowMatrix, DVector<f64>)> {
+        let (model, cam) = self.unpack(x);
+        let (nf, nj, ni, n) = (self.free.len(), self.joints(), self.ni(), self.params());
+        let poses_with_blocks = if nj > 0 { self.poses.len() } else { 0 };
+        let mut a = ArrowMatrix::zeros(self.head(), nj, poses_with_blocks);
+        let mut g = DVector::zeros(n);
+        let prior = self.prior(x);
+        let c0 = nf;
+        for k in 0..self.poses.len() {
+            let b = self.linearise_pose(x, &model, &cam, k, |_, _| {})?;
+            let hf = b.h_pp * &b.t_free;
+            let head = a.head_mut();
+            let mut add = |r0: usize, c0: usize, m: &DMatrix<f64>| {
+                let mut v = head.view_mut((r0, c0), (m.nrows(), m.ncols()));
+                v += m;
+            };
+            add(0, 0, &(b.t_free.transpose() * &hf));
+            // Held intrinsics (ni = 0) drop out of every block.
+            let h_pc = DMatrix::from_column_slice(6, INTRINSICS, b.h_pc.as_slice())
+                .columns(0, ni)
+                .into_owned();
+            let kc = b.t_free.transpose() * &h_pc;
+            add(0, c0, &kc);
+            add(c0, 0, &kc.transpose());
+            let h_cc = DMatrix::from_column_slice(INTRINSICS, INTRINSICS, b.h_cc.as_slice());
+            add(c0, c0, &h_cc.view((0, 0), (ni, ni)).into_owned());
+            let gp = DVector::from_column_slice(b.g_p.as_slice());
+            let mut gk = g.rows_mut(0, nf);
+            gk += b.t_free.transpose() * &gp;
+            let mut gc = g.rows_mut(c0, ni);
+            gc += DVector::from_column_slice(&b.g_c.as_slice()[..ni]);
+            if nj > 0 {
+                let q0 = a.block_start(k);
+                let hj = b.h_pp * &b.t_joint;
+                let coupling = a.coupling_mut(k);
+                coupling
+                    .rows_mut(0, nf)
+                    .copy_from(&(b.t_free.transpose() * &hj));
+                coupling
+                    .rows_mut(c0, ni)
+                    .copy_from(&(h_pc.transpose() * &b.t_joint));
+                let prior_weight = self.noise.joint_sigma_rad().powi(-2);
+                let qq = b.t_joint.transpose() * &hj + DMatrix::identity(nj, nj) * prior_weight;
+                a.block_mut(k).copy_from(&qq);
+                let mut gq = g.rows_mut(q0, nj);
+                gq += b.t_joint.transpose() * &gp
+                    + prior.rows(k * nj, nj) / self.noise.joint_sigma_rad();
+            }
+        }
+        Some((a, g))
+    }
+
     /// The prior residuals `e / sigma_q` of every joint correction.
     fn prior(&self, x: &DVector<f64>) -> DVector<f64> {
         let start = self.head();
@@ -163,7 +223,9 @@ impl LeastSquaresProblem for ImageFit<'_> {
         Some(r)
     }
 
-    /// The dense Jacobian (the solver asks for it once, for its report).
+    /// The dense Jacobian (`O(rows x poses)`: the solver uses
+    /// [`Self::normal_equations`] instead; this is the reference they are
+    /// tested against).
     fn jacobian(&self, x: &DVector<f64>) -> Option<DMatrix<f64>> {
         let (model, cam) = self.unpack(x);
         let (nf, nj, ni) = (self.free.len(), self.joints(), self.ni());
@@ -191,65 +253,13 @@ impl LeastSquaresProblem for ImageFit<'_> {
         Some(jac)
     }
 
-    /// The joint corrections are block-diagonal: eliminate them.
-    fn solve_normal(&self, a: &DMatrix<f64>, g: &DVector<f64>) -> Option<DVector<f64>> {
-        match self.joints() {
-            0 => None,
-            nj => schur_solve(a, g, self.head(), nj),
-        }
-    }
-
-    /// `J^T J` and `J^T r` from each pose's 6-D sums (module doc).
+    /// [`ImageFit::arrow_normal_equations`].
     fn normal_equations(
         &self,
         x: &DVector<f64>,
         _residuals: &DVector<f64>,
-    ) -> Option<(DMatrix<f64>, DVector<f64>)> {
-        let (model, cam) = self.unpack(x);
-        let (nf, nj, ni, n) = (self.free.len(), self.joints(), self.ni(), self.params());
-        let mut a = DMatrix::zeros(n, n);
-        let mut g = DVector::zeros(n);
-        let prior = self.prior(x);
-        let c0 = nf;
-        for k in 0..self.poses.len() {
-            let b = self.linearise_pose(x, &model, &cam, k, |_, _| {})?;
-            let hf = b.h_pp * &b.t_free;
-            let mut add = |r0: usize, c0: usize, m: &DMatrix<f64>| {
-                let mut v = a.view_mut((r0, c0), (m.nrows(), m.ncols()));
-                v += m;
-            };
-            add(0, 0, &(b.t_free.transpose() * &hf));
-            // Held intrinsics (ni = 0) drop out of every block.
-            let h_pc = DMatrix::from_column_slice(6, INTRINSICS, b.h_pc.as_slice())
-                .columns(0, ni)
-                .into_owned();
-            let kc = b.t_free.transpose() * &h_pc;
-            add(0, c0, &kc);
-            add(c0, 0, &kc.transpose());
-            let h_cc = DMatrix::from_column_slice(INTRINSICS, INTRINSICS, b.h_cc.as_slice());
-            add(c0, c0, &h_cc.view((0, 0), (ni, ni)).into_owned());
-            let gp = DVector::from_column_slice(b.g_p.as_slice());
-            let mut gk = g.rows_mut(0, nf);
-            gk += b.t_free.transpose() * &gp;
-            let mut gc = g.rows_mut(c0, ni);
-            gc += DVector::from_column_slice(&b.g_c.as_slice()[..ni]);
-            if nj > 0 {
-                let q0 = nf + ni + k * nj;
-                let hj = b.h_pp * &b.t_joint;
-                let kq = b.t_free.transpose() * &hj;
-                add(0, q0, &kq);
-                add(q0, 0, &kq.transpose());
-                let cq = h_pc.transpose() * &b.t_joint;
-                add(c0, q0, &cq);
-                add(q0, c0, &cq.transpose());
-                let prior_weight = self.noise.joint_sigma_rad().powi(-2);
-                let qq = b.t_joint.transpose() * &hj + DMatrix::identity(nj, nj) * prior_weight;
-                add(q0, q0, &qq);
-                let mut gq = g.rows_mut(q0, nj);
-                gq += b.t_joint.transpose() * &gp
-                    + prior.rows(k * nj, nj) / self.noise.joint_sigma_rad();
-            }
-        }
-        Some((a, g))
+    ) -> Option<(NormalMatrix, DVector<f64>)> {
+        let (a, g) = self.arrow_normal_equations(x)?;
+        Some((a.into(), g))
     }
 }

@@ -29,10 +29,7 @@ use super::image_fit::{ImageFit, INTRINSICS};
 pub use super::image_pose::{ImageNoise, ImagePose};
 use super::params::{CalibratedModel, Instrument, ParamLayout};
 use crate::camera::model::Intrinsics;
-use crate::schur::schur_invert;
-use crate::solver::{
-    covariance_from_normal, solve, LeastSquaresProblem, LmOptions, LmReport, Termination,
-};
+use crate::solver::{solve, LmOptions, LmReport, Termination};
 
 #[derive(Debug, Clone)]
 pub struct JointRefinement {
@@ -193,27 +190,19 @@ impl Solution {
             },
         );
         let (normal, _) = at
-            .normal_equations(&x_at, &report.residuals)
+            .arrow_normal_equations(&x_at)
             .ok_or(IdentifyError::NoPoses)?;
-        let inverse = match problem.joints() {
-            0 => None,
-            nj => schur_invert(&normal, kinematic, nj),
-        };
-        let (head, tail_diagonal) = match inverse {
-            Some(parts) => (parts.head, parts.tail_diagonal),
-            None => {
-                let full = covariance_from_normal(&normal, 1.0);
-                let head = full.view((0, 0), (kinematic, kinematic)).into_owned();
-                let tail = full
-                    .diagonal()
-                    .rows(kinematic, full.nrows() - kinematic)
-                    .into_owned();
-                (head, tail)
-            }
+        // An unidentifiable combination gets no variance (the
+        // pseudo-inverse of the Schur complement), never the dense matrix;
+        // without joint corrections the head is the whole (small) matrix
+        // and its pseudo-inverse is taken directly.
+        let parts = match normal.block_count() {
+            0 => normal.pseudo_invert(),
+            _ => normal.invert().unwrap_or_else(|| normal.pseudo_invert()),
         };
         Ok(Self {
-            head_inverse: head,
-            tail_diagonal,
+            head_inverse: parts.head,
+            tail_diagonal: parts.tail_diagonal,
             model,
             intrinsics,
         })
