@@ -11,6 +11,7 @@ pub mod covariance;
 pub mod geometry;
 pub mod handeye;
 pub mod kinematics;
+pub mod plan;
 pub mod schur;
 pub mod sim;
 pub mod solver;
