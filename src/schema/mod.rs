@@ -5,6 +5,7 @@
 use serde::Serialize;
 use utoipa::ToSchema;
 
+pub mod campaign_plan;
 pub mod job;
 pub mod robot;
 pub mod session;

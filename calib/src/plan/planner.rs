@@ -7,9 +7,9 @@ use super::candidates::{anchor_joints, binding_constraint, generate, limited_mod
 use super::error::{FilterCount, PlanError};
 use super::information::{pose_factor, Columns};
 use super::path::{order_path, path_length};
-use super::predict::{predict, Prediction};
+use super::predict::{position_weight, predict, Prediction};
 use super::request::{PlanPurpose, PlanRequest, QUICK_CHECK_MAX_POSES, QUICK_CHECK_MIN_POSES};
-use super::select::d_optimal;
+use super::select::{d_optimal, i_optimal_exchange};
 
 /// Random feasible poses the validation error is predicted over.
 pub const PREDICTION_POSES: usize = 200;
@@ -113,18 +113,23 @@ pub fn plan_campaign(request: &PlanRequest) -> Result<CampaignPlan, PlanError> {
             filters: set.filters,
         });
     }
-    let chosen = d_optimal(&factors, columns.len(), request.poses);
-    let mut rest: Vec<usize> = (0..feasible.len())
-        .filter(|k| !chosen.contains(k))
-        .collect();
     let mut rng = StdRng::seed_from_u64(request.seed ^ VALIDATION_SEED);
-    rest.shuffle(&mut rng);
-    let validation: Vec<usize> = rest[..request.validation_poses].to_vec();
-    let probe: Vec<Vec<f64>> = rest
+    let mut shuffled: Vec<usize> = (0..feasible.len()).collect();
+    shuffled.shuffle(&mut rng);
+    let probe: Vec<Vec<f64>> = shuffled
         .iter()
-        .rev()
         .take(PREDICTION_POSES)
         .map(|&k| feasible[k].clone())
+        .collect();
+    let weight = position_weight(&model, &columns, &probe)?;
+    let chosen = d_optimal(&factors, columns.len(), request.poses);
+    let chosen = i_optimal_exchange(&factors, columns.len(), chosen, &weight);
+    let validation: Vec<usize> = shuffled
+        .iter()
+        .rev()
+        .filter(|k| !chosen.contains(*k))
+        .take(request.validation_poses)
+        .copied()
         .collect();
     let chosen_factors: Vec<_> = chosen.iter().map(|&k| &factors[k]).collect();
     let prediction = predict(&model, &columns, &chosen_factors, &probe)?;

@@ -112,6 +112,33 @@ pub fn predict(
     })
 }
 
+/// `sum A_v^T A_v` over `validation_joints_rad`, with `A_v` the camera
+/// position's Jacobian in the scaled columns (zero for the intrinsics):
+/// `tr(W Cov)` is the summed position variance at those poses, what the
+/// selection's exchange minimises.
+pub fn position_weight(
+    model: &CalibratedModel,
+    columns: &Columns,
+    validation_joints_rad: &[Vec<f64>],
+) -> Result<DMatrix<f64>, PlanError> {
+    let p = columns.len();
+    let nf = columns.free.len();
+    let mut w = DMatrix::zeros(p, p);
+    for q in validation_joints_rad {
+        let (_, jt) = tool_pose_jacobian(&columns.layout, model, q)
+            .map_err(|e| PlanError::Model(e.to_string()))?;
+        let a = DMatrix::from_fn(3, p, |r, c| {
+            if c < nf {
+                jt[(r, columns.free[c])] * columns.scale[c]
+            } else {
+                0.0
+            }
+        });
+        w += a.transpose() * a;
+    }
+    Ok(w)
+}
+
 /// `E|e|` for `e ~ N(0, cov)`, over the fixed standard-normal `draws`.
 fn mean_norm(cov: &Matrix3<f64>, draws: &[Vector3<f64>]) -> f64 {
     let eig = cov.symmetric_eigen();

@@ -68,6 +68,11 @@ const MIGRATIONS: &[Embedded] = &[
         "token lifecycle",
         include_str!("../../../migrations/postgres/0006_token_lifecycle.sql"),
     ),
+    (
+        7,
+        "campaign plans",
+        include_str!("../../../migrations/postgres/0007_campaign_plans.sql"),
+    ),
 ];
 
 /// Connections per replica. Each worker holds at most one while it claims or

@@ -54,6 +54,11 @@ const MIGRATIONS: &[Embedded] = &[
         "token lifecycle",
         include_str!("../../../migrations/sqlite/0006_token_lifecycle.sql"),
     ),
+    (
+        7,
+        "campaign plans",
+        include_str!("../../../migrations/sqlite/0007_campaign_plans.sql"),
+    ),
 ];
 
 /// How long a statement waits for a competing writer before giving up.
