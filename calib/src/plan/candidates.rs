@@ -123,7 +123,10 @@ fn body_points(model: &CalibratedModel, q: &[f64]) -> Option<[Point3<f64>; 2]> {
 
 /// The joints the path starts from: the request's, or the robot looking
 /// straight at the board from mid distance (nearest the mid-range joints).
-pub fn anchor_joints(request: &PlanRequest, model: &CalibratedModel) -> Result<Vec<f64>, PlanError> {
+pub fn anchor_joints(
+    request: &PlanRequest,
+    model: &CalibratedModel,
+) -> Result<Vec<f64>, PlanError> {
     if let Some(q) = &request.start_joints_rad {
         model
             .robot
@@ -189,8 +192,10 @@ pub fn generate(request: &PlanRequest) -> Result<CandidateSet, PlanError> {
         };
         survivors[1] += 1;
         survivors[2] += 1;
-        let outside = body_points(&model, &joints)
-            .is_some_and(|pts| !pts.iter().any(|p| request.keep_out.iter().any(|b| b.contains(p))));
+        let outside = body_points(&model, &joints).is_some_and(|pts| {
+            !pts.iter()
+                .any(|p| request.keep_out.iter().any(|b| b.contains(p)))
+        });
         if !outside {
             continue;
         }
@@ -217,10 +222,15 @@ pub fn generate(request: &PlanRequest) -> Result<CandidateSet, PlanError> {
         constraint: FILTER_GENERATED,
         survivors: request.candidates,
     }];
-    filters.extend(names.iter().zip(survivors).map(|(&constraint, survivors)| FilterCount {
-        constraint,
-        survivors,
-    }));
+    filters.extend(
+        names
+            .iter()
+            .zip(survivors)
+            .map(|(&constraint, survivors)| FilterCount {
+                constraint,
+                survivors,
+            }),
+    );
     Ok(CandidateSet {
         candidates,
         filters,

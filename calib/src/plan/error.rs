@@ -12,7 +12,10 @@ pub struct FilterCount {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum PlanError {
     #[error("invalid request field {field}: {message}")]
-    Invalid { field: &'static str, message: String },
+    Invalid {
+        field: &'static str,
+        message: String,
+    },
     #[error("only {feasible} feasible poses for {wanted} asked; \"{constraint}\" bound ({counts})", counts = format_counts(.filters))]
     Infeasible {
         /// The filter that removed the most candidates (or the last with

@@ -55,8 +55,8 @@ impl Columns {
     /// check the joint zeros and the base, the rest known.
     pub fn of(request: &PlanRequest, model: &CalibratedModel) -> Result<Self, PlanError> {
         let layout = ParamLayout::new(&model.robot, Instrument::Camera);
-        let structural = structural_redundancies(&layout, model)
-            .map_err(|e| PlanError::Model(e.to_string()))?;
+        let structural =
+            structural_redundancies(&layout, model).map_err(|e| PlanError::Model(e.to_string()))?;
         let quick = request.purpose == PlanPurpose::QuickCheck;
         let free: Vec<usize> = (0..layout.len())
             .filter(|i| !structural.contains(i))

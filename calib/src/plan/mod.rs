@@ -4,9 +4,7 @@
 //! Candidates (camera stations within the distance and view-angle ranges,
 //! solved by the nominal inverse kinematics and filtered by joint limits,
 //! board visibility, keep-out boxes and distance from singularities) feed a
-//! greedy D-optimal selection, then an exchange that minimises the
-//! predicted camera-position variance at validation poses, on the
-//! information of the
+//! greedy D-optimal selection with exchange on the information of the
 //! image-level identification a job runs (method.md §6 **beyond**: the
 //! kinematics, `target_to_base`, `flange_to_camera` and the intrinsics on
 //! the raw dots). The chosen poses are ordered into a short joint-space

@@ -7,9 +7,9 @@ use super::candidates::{anchor_joints, binding_constraint, generate, limited_mod
 use super::error::{FilterCount, PlanError};
 use super::information::{pose_factor, Columns};
 use super::path::{order_path, path_length};
-use super::predict::{position_weight, predict, Prediction};
+use super::predict::{predict, Prediction};
 use super::request::{PlanPurpose, PlanRequest, QUICK_CHECK_MAX_POSES, QUICK_CHECK_MIN_POSES};
-use super::select::{d_optimal, i_optimal_exchange};
+use super::select::d_optimal;
 
 /// Random feasible poses the validation error is predicted over.
 pub const PREDICTION_POSES: usize = 200;
@@ -79,7 +79,9 @@ fn check(request: &PlanRequest) -> Result<(), PlanError> {
         {
             Err(invalid(
                 "poses",
-                format!("a quick check has {QUICK_CHECK_MIN_POSES}..={QUICK_CHECK_MAX_POSES} poses"),
+                format!(
+                    "a quick check has {QUICK_CHECK_MIN_POSES}..={QUICK_CHECK_MAX_POSES} poses"
+                ),
             ))
         }
         PlanPurpose::Calibration if request.poses < QUICK_CHECK_MIN_POSES => Err(invalid(
@@ -121,9 +123,7 @@ pub fn plan_campaign(request: &PlanRequest) -> Result<CampaignPlan, PlanError> {
         .take(PREDICTION_POSES)
         .map(|&k| feasible[k].clone())
         .collect();
-    let weight = position_weight(&model, &columns, &probe)?;
     let chosen = d_optimal(&factors, columns.len(), request.poses);
-    let chosen = i_optimal_exchange(&factors, columns.len(), chosen, &weight);
     let validation: Vec<usize> = shuffled
         .iter()
         .rev()

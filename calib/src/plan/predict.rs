@@ -79,9 +79,10 @@ pub fn predict(
                 .collect(),
         });
     }
-    let cov_scaled = &d * scaled.try_inverse().ok_or(PlanError::Unidentifiable {
-        parameters: columns.names.clone(),
-    })? * &d;
+    let cov_scaled =
+        &d * scaled.try_inverse().ok_or(PlanError::Unidentifiable {
+            parameters: columns.names.clone(),
+        })? * &d;
     let parameter_std_devs = (0..p)
         .map(|i| {
             (
@@ -142,7 +143,7 @@ pub fn position_weight(
 /// `E|e|` for `e ~ N(0, cov)`, over the fixed standard-normal `draws`.
 fn mean_norm(cov: &Matrix3<f64>, draws: &[Vector3<f64>]) -> f64 {
     let eig = cov.symmetric_eigen();
-    let root = eig.eigenvectors
-        * Matrix3::from_diagonal(&eig.eigenvalues.map(|v| v.max(0.0).sqrt()));
+    let root =
+        eig.eigenvectors * Matrix3::from_diagonal(&eig.eigenvalues.map(|v| v.max(0.0).sqrt()));
     draws.iter().map(|z| (root * z).norm()).sum::<f64>() / draws.len().max(1) as f64
 }

@@ -8,10 +8,12 @@
 //! never a `p x p` factorisation. Removing a pose is the same with the sign
 //! of its information flipped.
 //!
-//! The exchange then minimises what the plan is judged by, the predicted
-//! variance of the camera position at validation poses (I-optimality,
-//! `tr(W P)` with `W = sum A_v^T A_v` over the validation poses' position
-//! Jacobians): a swap changes it by `-+ tr(S^-1 W_g W W_g^T)`.
+//! [`i_optimal_exchange`] minimises instead the predicted variance of the
+//! camera position at validation poses (`tr(W P)`, `W = sum A_v^T A_v`; a
+//! swap changes it by `-+ tr(S^-1 W_g W W_g^T)`). The planner does not use
+//! it: on the simulator it chose poses at the edge of the image (a board
+//! point left the image on the true robot) and did worse than D-optimal
+//! (see docs/notes/session6-plan.md).
 
 use nalgebra::DMatrix;
 
@@ -21,7 +23,11 @@ pub const EXCHANGE_PASSES: usize = 2;
 const EXCHANGE_MIN_GAIN: f64 = 1e-6;
 
 /// `ln det(I + sign G P G^T)` and `W = G P`; `None` if not positive definite.
-fn gain(p: &DMatrix<f64>, g: &DMatrix<f64>, sign: f64) -> Option<(f64, DMatrix<f64>, DMatrix<f64>)> {
+fn gain(
+    p: &DMatrix<f64>,
+    g: &DMatrix<f64>,
+    sign: f64,
+) -> Option<(f64, DMatrix<f64>, DMatrix<f64>)> {
     let w = g * p;
     let s = DMatrix::identity(g.nrows(), g.nrows()) + (&w * g.transpose()) * sign;
     let chol = s.clone().cholesky()?;
@@ -205,7 +211,13 @@ mod tests {
         for &k in chosen {
             m += factors[k].transpose() * &factors[k];
         }
-        m.cholesky().unwrap().l().diagonal().iter().map(|d| 2.0 * d.ln()).sum()
+        m.cholesky()
+            .unwrap()
+            .l()
+            .diagonal()
+            .iter()
+            .map(|d| 2.0 * d.ln())
+            .sum()
     }
 
     /// The rank-one updates agree with the direct determinant, and the
@@ -238,7 +250,13 @@ mod tests {
         let factors: Vec<DMatrix<f64>> = (0..50)
             .map(|_| DMatrix::from_fn(2, p, |_, _| rng.random_range(-1.0..1.0)))
             .collect();
-        let a = DMatrix::from_fn(3, p, |r, c| if c < 4 { (r + c) as f64 * 0.3 - 0.5 } else { 0.0 });
+        let a = DMatrix::from_fn(3, p, |r, c| {
+            if c < 4 {
+                (r + c) as f64 * 0.3 - 0.5
+            } else {
+                0.0
+            }
+        });
         let weight = a.transpose() * a;
         let variance = |chosen: &[usize]| {
             let mut m = DMatrix::<f64>::identity(p, p);
