@@ -136,6 +136,14 @@ enum Command {
         #[command(flatten)]
         server: ServerArgs,
     },
+    /// Plan a campaign (which poses to shoot, the predicted accuracy) and
+    /// write it as a URScript / RAPID / KRL program, CSV or JSON.
+    Plan {
+        #[command(flatten)]
+        args: robocal::cli::plan::PlanArgs,
+        #[command(flatten)]
+        server: ServerArgs,
+    },
     /// Run the whole pipeline on a campaign directory without a server.
     CalibrateLocal {
         /// Campaign directory (as written by `robocal simulate`).
@@ -337,6 +345,10 @@ async fn main() -> ExitCode {
                 .await
                 .map_err(|e| e.to_string())
                 .and_then(|bytes| robocal::cli::write_output(out.as_deref(), &bytes)),
+            Err(e) => Err(e),
+        },
+        Command::Plan { args, server } => match server.client() {
+            Ok(client) => robocal::cli::plan::plan(&client, &args).await,
             Err(e) => Err(e),
         },
         Command::CalibrateLocal { dir, html } => {

@@ -13,6 +13,7 @@ pub mod geometry;
 pub mod handeye;
 pub mod kinematics;
 pub mod normal_matrix;
+pub mod plan;
 pub mod schur;
 pub mod sim;
 pub mod solver;

@@ -27,6 +27,7 @@ use crate::store::DynStore;
 
 pub mod auth;
 pub mod body_idle;
+pub mod campaign_plans;
 pub mod contract;
 pub mod error;
 pub mod export;
@@ -100,6 +101,7 @@ fn api_router() -> OpenApiRouter<AppState> {
         .merge(report_links::router())
         .merge(tokens::router())
         .merge(targets::router())
+        .merge(campaign_plans::router())
 }
 
 /// The routes and their OpenAPI document with the shared failure answers.

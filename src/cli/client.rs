@@ -286,6 +286,45 @@ impl Client {
         self.send(again).await.map(|_| Vec::new())
     }
 
+    /// `POST /v1/robots/{serial}/campaign-plans`: the plan document.
+    pub async fn create_campaign_plan(
+        &self,
+        serial: &str,
+        body: &Value,
+    ) -> Result<Value, ClientError> {
+        self.send(
+            self.request(
+                reqwest::Method::POST,
+                &format!("/v1/robots/{serial}/campaign-plans"),
+            )
+            .json(body),
+        )
+        .await
+    }
+
+    /// A stored campaign plan in `format` (`json`, `csv`, `urscript`,
+    /// `rapid`, `krl`): the raw bytes.
+    pub async fn campaign_plan(
+        &self,
+        serial: &str,
+        id: &str,
+        format: &str,
+    ) -> Result<Vec<u8>, ClientError> {
+        let path = format!("/v1/robots/{serial}/campaign-plans/{id}");
+        let response = self
+            .request(reqwest::Method::GET, &path)
+            .query(&[("format", format)])
+            .send()
+            .await?;
+        if response.status().is_success() {
+            return Ok(response.bytes().await?.to_vec());
+        }
+        let again = self
+            .request(reqwest::Method::GET, &path)
+            .query(&[("format", format)]);
+        self.send(again).await.map(|_| Vec::new())
+    }
+
     /// `version = None` asks for the latest.
     pub async fn report(&self, serial: &str, version: Option<i64>) -> Result<Report, ClientError> {
         let version = version.map_or("latest".to_string(), |v| v.to_string());

@@ -2,6 +2,7 @@
 //! read (issue "Deploy the result"): URDF, the identified table as JSON
 //! and CSV. Pure writers over the typed parameter set and its report.
 
+pub mod campaign_program;
 pub mod table;
 pub mod urdf;
 

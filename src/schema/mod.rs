@@ -5,6 +5,7 @@
 use serde::Serialize;
 use utoipa::ToSchema;
 
+pub mod campaign_plan;
 pub mod flange_pose;
 mod frame_pose;
 pub mod job;

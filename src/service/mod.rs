@@ -6,6 +6,7 @@
 //! (`api/error.rs`).
 
 pub mod camera_reuse;
+pub mod campaign_plans;
 pub mod dataset;
 pub mod dataset_intake;
 pub mod error;

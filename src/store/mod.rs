@@ -234,8 +234,31 @@ pub trait AuthStore: Send + Sync {
     async fn abandon_idempotency(&self, scope: &IdempotencyScope) -> StoreResult<()>;
 }
 
+/// A stored campaign plan (issue 16): the request and the plan documents.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CampaignPlanRecord {
+    pub id: String,
+    pub serial: String,
+    pub request: Value,
+    pub plan: Value,
+    pub created_at: String,
+}
+
 #[async_trait]
-pub trait Store: RobotStore + SessionStore + JobStore + ResultStore + AuthStore {
+pub trait CampaignPlanStore: Send + Sync {
+    async fn insert_campaign_plan(&self, plan: &CampaignPlanRecord) -> StoreResult<()>;
+    /// The plan `id` of robot `serial`.
+    async fn get_campaign_plan(
+        &self,
+        serial: &str,
+        id: &str,
+    ) -> StoreResult<Option<CampaignPlanRecord>>;
+}
+
+#[async_trait]
+pub trait Store:
+    RobotStore + SessionStore + JobStore + ResultStore + AuthStore + CampaignPlanStore
+{
     /// Readiness probe: the database answers.
     async fn ping(&self) -> StoreResult<()>;
     /// Backend name for logs ("sqlite", "postgres").

@@ -6,6 +6,8 @@ pub mod campaign_io;
 pub mod experiment;
 pub mod experiment_error;
 pub mod oracle;
+/// Planned campaigns: plan requests, images at planned joints, a job on them (issue 16).
+pub mod planned;
 /// Views as point observations (no image): camera-calibration tests.
 pub mod point_views;
 pub mod render;

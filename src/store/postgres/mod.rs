@@ -73,6 +73,11 @@ const MIGRATIONS: &[Embedded] = &[
         "flange pose",
         include_str!("../../../migrations/postgres/0007_flange_pose.sql"),
     ),
+    (
+        8,
+        "campaign plans",
+        include_str!("../../../migrations/postgres/0008_campaign_plans.sql"),
+    ),
 ];
 
 /// Connections per replica. Each worker holds at most one while it claims or

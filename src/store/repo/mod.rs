@@ -13,6 +13,7 @@ use super::statement::query;
 use super::{Store, StoreResult};
 
 mod auth;
+mod campaign_plans;
 mod jobs;
 mod results;
 mod robots;

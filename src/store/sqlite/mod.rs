@@ -59,6 +59,11 @@ const MIGRATIONS: &[Embedded] = &[
         "flange pose",
         include_str!("../../../migrations/sqlite/0007_flange_pose.sql"),
     ),
+    (
+        8,
+        "campaign plans",
+        include_str!("../../../migrations/sqlite/0008_campaign_plans.sql"),
+    ),
 ];
 
 /// How long a statement waits for a competing writer before giving up.

@@ -1,0 +1,159 @@
+//! The planner end to end (module doc of [`super`]): check the request,
+//! generate candidates, select, order, predict.
+
+use rand::{rngs::StdRng, seq::SliceRandom, SeedableRng};
+
+use super::candidates::{anchor_joints, binding_constraint, generate, limited_model};
+use super::error::{FilterCount, PlanError};
+use super::information::{pose_factor, Columns};
+use super::path::{order_path, path_length};
+use super::predict::{predict, Prediction};
+use super::request::{PlanPurpose, PlanRequest, QUICK_CHECK_MAX_POSES, QUICK_CHECK_MIN_POSES};
+use super::select::d_optimal;
+
+/// Random feasible poses the validation error is predicted over.
+pub const PREDICTION_POSES: usize = 200;
+/// Seeds the validation and prediction draws apart from the candidates.
+const VALIDATION_SEED: u64 = 0x7a_11d;
+/// Largest view angle (deg): beyond it the board is seen edge-on.
+const MAX_VIEW_ANGLE_DEG: f64 = 80.0;
+
+/// Which set a planned pose belongs to (the session's `set`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PlannedSet {
+    Cal,
+    Val,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlannedPose {
+    pub joints_rad: Vec<f64>,
+    pub set: PlannedSet,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct CampaignPlan {
+    /// In path order.
+    pub poses: Vec<PlannedPose>,
+    pub prediction: Prediction,
+    /// Survivors of every candidate filter.
+    pub filters: Vec<FilterCount>,
+    /// Where the path starts (the request's start, or the anchor pose).
+    pub start_joints_rad: Vec<f64>,
+    /// Sum of the largest joint change of every move (rad).
+    pub path_length_rad: f64,
+    pub purpose: PlanPurpose,
+}
+
+fn invalid(field: &'static str, message: impl Into<String>) -> PlanError {
+    PlanError::Invalid {
+        field,
+        message: message.into(),
+    }
+}
+
+fn check(request: &PlanRequest) -> Result<(), PlanError> {
+    let (d0, d1) = request.distance_mm;
+    if !(d0.is_finite() && d1.is_finite() && 0.0 < d0 && d0 <= d1) {
+        return Err(invalid("distance_mm", "needs 0 < min <= max"));
+    }
+    let (a0, a1) = request.view_angle_deg;
+    if !(a0.is_finite() && a1.is_finite() && 0.0 <= a0 && a0 <= a1 && a1 <= MAX_VIEW_ANGLE_DEG) {
+        return Err(invalid(
+            "view_angle_deg",
+            format!("needs 0 <= min <= max <= {MAX_VIEW_ANGLE_DEG}"),
+        ));
+    }
+    if request.board_points.is_empty() {
+        return Err(invalid("target", "the board has no points"));
+    }
+    if request.image_width_px == 0 || request.image_height_px == 0 {
+        return Err(invalid("camera", "image size must be positive"));
+    }
+    if !(request.sigma_px.is_finite() && request.sigma_px > 0.0) {
+        return Err(invalid("sigma_px", "must be positive"));
+    }
+    match request.purpose {
+        PlanPurpose::QuickCheck
+            if !(QUICK_CHECK_MIN_POSES..=QUICK_CHECK_MAX_POSES).contains(&request.poses) =>
+        {
+            Err(invalid(
+                "poses",
+                format!(
+                    "a quick check has {QUICK_CHECK_MIN_POSES}..={QUICK_CHECK_MAX_POSES} poses"
+                ),
+            ))
+        }
+        PlanPurpose::Calibration if request.poses < QUICK_CHECK_MIN_POSES => Err(invalid(
+            "poses",
+            format!("at least {QUICK_CHECK_MIN_POSES} poses"),
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// Plan the campaign `request` asks for.
+pub fn plan_campaign(request: &PlanRequest) -> Result<CampaignPlan, PlanError> {
+    check(request)?;
+    let model = limited_model(request)?;
+    let set = generate(request)?;
+    let wanted = request.poses + request.validation_poses;
+    let columns = Columns::of(request, &model)?;
+    let mut feasible = Vec::new();
+    let mut factors = Vec::new();
+    for c in &set.candidates {
+        if let Some(g) = pose_factor(request, &model, &columns, &c.joints_rad) {
+            feasible.push(c.joints_rad.clone());
+            factors.push(g);
+        }
+    }
+    if feasible.len() < wanted {
+        return Err(PlanError::Infeasible {
+            constraint: binding_constraint(&set.filters),
+            feasible: feasible.len(),
+            wanted,
+            filters: set.filters,
+        });
+    }
+    let mut rng = StdRng::seed_from_u64(request.seed ^ VALIDATION_SEED);
+    let mut shuffled: Vec<usize> = (0..feasible.len()).collect();
+    shuffled.shuffle(&mut rng);
+    let probe: Vec<Vec<f64>> = shuffled
+        .iter()
+        .take(PREDICTION_POSES)
+        .map(|&k| feasible[k].clone())
+        .collect();
+    let chosen = d_optimal(&factors, columns.len(), request.poses);
+    let validation: Vec<usize> = shuffled
+        .iter()
+        .rev()
+        .filter(|k| !chosen.contains(*k))
+        .take(request.validation_poses)
+        .copied()
+        .collect();
+    let chosen_factors: Vec<_> = chosen.iter().map(|&k| &factors[k]).collect();
+    let prediction = predict(&model, &columns, &chosen_factors, &probe)?;
+    let start = anchor_joints(request, &model)?;
+    let planned: Vec<(usize, PlannedSet)> = chosen
+        .iter()
+        .map(|&k| (k, PlannedSet::Cal))
+        .chain(validation.iter().map(|&k| (k, PlannedSet::Val)))
+        .collect();
+    let joints: Vec<Vec<f64>> = planned.iter().map(|(k, _)| feasible[*k].clone()).collect();
+    let order = order_path(&start, &joints);
+    let path_length_rad = path_length(&start, &joints, &order);
+    Ok(CampaignPlan {
+        poses: order
+            .iter()
+            .map(|&i| PlannedPose {
+                joints_rad: joints[i].clone(),
+                set: planned[i].1,
+            })
+            .collect(),
+        prediction,
+        filters: set.filters,
+        start_joints_rad: start,
+        path_length_rad,
+        purpose: request.purpose,
+    })
+}

@@ -1,0 +1,239 @@
+//! Campaign plans over HTTP (issue 16): the contract of `POST
+//! /v1/robots/{serial}/campaign-plans`, every export format carrying the
+//! same joint values as the JSON plan, and infeasible or bad requests as
+//! 422/404 problem+json naming the constraint or field.
+
+use robocal_calib::geometry::{pose_to_xyz_rpy_deg, Pose};
+use robocal_calib::kinematics::presets;
+use serde_json::{json, Value};
+
+use crate::support::*;
+
+/// Exported joint values must match the JSON plan to this (deg).
+const ROUND_TRIP_DEG: f64 = 1e-5;
+const CAL_POSES: usize = 12;
+const VAL_POSES: usize = 3;
+/// The simulator's IRB 2400 home (deg): the camera looks at the board.
+const HOME_DEG: [f64; 6] = [0.0, 10.0, 10.0, 0.0, 60.0, 0.0];
+const FLANGE_TO_CAMERA_MM: [f64; 3] = [0.0, 60.0, 110.0];
+const BOARD_CENTRE_MM: f64 = 100.0;
+const STANDOFF_MM: f64 = 800.0;
+
+fn pose_doc(pose: &Pose) -> Value {
+    let (t, r) = pose_to_xyz_rpy_deg(pose);
+    json!({"translation_mm": t, "rotation_deg": r})
+}
+
+/// A request for a cell like the simulator's: the board 800 mm in front
+/// of the camera at the home joints.
+fn body(poses: usize, validation: usize) -> Value {
+    let robot = presets::irb2400();
+    let home: Vec<f64> = HOME_DEG.iter().map(|d| d.to_radians()).collect();
+    let flange_to_camera = Pose::translation(
+        FLANGE_TO_CAMERA_MM[0],
+        FLANGE_TO_CAMERA_MM[1],
+        FLANGE_TO_CAMERA_MM[2],
+    );
+    let base_to_target = robot.base_to_flange(&home).unwrap()
+        * flange_to_camera
+        * Pose::translation(-BOARD_CENTRE_MM, -BOARD_CENTRE_MM, STANDOFF_MM);
+    json!({
+        "target": {"rows": 9, "cols": 9, "pitch_mm": 25.0, "dot_diameter_mm": 8.0,
+                   "origin_marker_diameter_mm": 12.0},
+        "camera": {"width": 2048, "height": 1536, "pixel_size_um": 3.45, "nominal_focal_mm": 12.0},
+        "flange_to_camera_guess": pose_doc(&flange_to_camera),
+        "target_to_base_guess": pose_doc(&base_to_target.inverse()),
+        "poses": poses,
+        "validation_poses": validation,
+        "distance_mm": [600, 1000],
+        "view_angle_deg": [20, 45],
+        "start_joints_deg": HOME_DEG,
+    })
+}
+
+async fn robot(app: &TestApp, serial: &str) {
+    let r = app
+        .put_json(
+            &format!("/v1/robots/{serial}"),
+            &json!({"model": "IRB 2400", "preset": "irb2400"}),
+        )
+        .await;
+    assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
+}
+
+/// Numbers inside every `open ... close` span of `text`, one vector per span.
+fn spans(text: &str, open: &str, close: char) -> Vec<Vec<f64>> {
+    text.split(open)
+        .skip(1)
+        .map(|s| {
+            s[..s.find(close).unwrap()]
+                .split([',', ' '])
+                .filter_map(|v| v.trim().parse::<f64>().ok())
+                .collect()
+        })
+        .collect()
+}
+
+fn assert_joints(what: &str, got: &[Vec<f64>], want: &[Vec<f64>]) {
+    assert_eq!(got.len(), want.len(), "{what}: pose count");
+    for (g, w) in got.iter().zip(want) {
+        for (a, b) in g.iter().zip(w) {
+            assert!((a - b).abs() < ROUND_TRIP_DEG, "{what}: {g:?} vs {w:?}");
+        }
+    }
+}
+
+#[tokio::test]
+async fn plan_contract_and_exports_round_trip_joints() {
+    let app = spawn_app().await;
+    robot(&app, "PLAN-1").await;
+    let r = app
+        .post_json(
+            "/v1/robots/PLAN-1/campaign-plans",
+            &body(CAL_POSES, VAL_POSES),
+        )
+        .await;
+    assert_eq!(r.status(), 201);
+    let plan: Value = r.json().await.unwrap();
+    let poses = plan["poses"].as_array().unwrap();
+    assert_eq!(poses.len(), CAL_POSES + VAL_POSES);
+    let sets: Vec<&str> = poses.iter().map(|p| p["set"].as_str().unwrap()).collect();
+    assert_eq!(sets.iter().filter(|s| **s == "cal").count(), CAL_POSES);
+    assert_eq!(sets.iter().filter(|s| **s == "val").count(), VAL_POSES);
+    let limits = presets::irb2400();
+    let joints: Vec<Vec<f64>> = poses
+        .iter()
+        .map(|p| {
+            let q: Vec<f64> = serde_json::from_value(p["joints_deg"].clone()).unwrap();
+            assert_eq!(q.len(), 6);
+            for (v, j) in q.iter().zip(&limits.joints) {
+                assert!(v.to_radians() >= j.min_rad - 1e-9 && v.to_radians() <= j.max_rad + 1e-9);
+            }
+            q
+        })
+        .collect();
+    let predicted = &plan["predicted"];
+    let error = predicted["validation_error_mean_mm"].as_f64().unwrap();
+    assert!(error > 0.0 && error < 1.0, "{error}");
+    assert!(predicted["condition_number"].as_f64().unwrap() >= 1.0);
+    assert!(predicted["parameter_std_devs"]["a_2"].as_f64().unwrap() > 0.0);
+    assert_eq!(plan["purpose"], "calibration");
+    assert_eq!(plan["model"], "nominal");
+    let id = plan["id"].as_str().unwrap();
+    let base = format!("/v1/robots/PLAN-1/campaign-plans/{id}");
+
+    let stored: Value = app.get(&base).await.json().await.unwrap();
+    assert_eq!(stored, plan);
+
+    let text = |format: &'static str| {
+        let url = format!("{base}?format={format}");
+        let app = &app;
+        async move {
+            let r = app.get(&url).await;
+            assert_eq!(r.status(), 200, "{format}");
+            r.text().await.unwrap()
+        }
+    };
+    let csv = text("csv").await;
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "pose,set,j1_deg,j2_deg,j3_deg,j4_deg,j5_deg,j6_deg"
+    );
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').skip(2).map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert_joints("csv", &rows, &joints);
+
+    let ur = text("urscript").await;
+    assert!(ur.starts_with("def robocal_campaign():") && ur.contains("\nend\n"));
+    assert_eq!(ur.matches("sleep(").count(), joints.len());
+    let ur_deg: Vec<Vec<f64>> = spans(&ur, "movej([", ']')
+        .into_iter()
+        .map(|q| q.iter().map(|r| r.to_degrees()).collect())
+        .collect();
+    assert_joints("urscript", &ur_deg, &joints);
+
+    let rapid = text("rapid").await;
+    assert!(rapid.starts_with("MODULE RobocalCampaign") && rapid.ends_with("ENDMODULE\n"));
+    assert_eq!(rapid.matches("MoveAbsJ pose").count(), joints.len());
+    assert_eq!(rapid.matches("WaitTime").count(), joints.len());
+    let robax: Vec<Vec<f64>> = spans(&rapid, ":= [[", ']');
+    assert_joints("rapid", &robax, &joints);
+
+    let krl = text("krl").await;
+    assert!(krl.starts_with("DEF robocal_campaign()") && krl.ends_with("END\n"));
+    assert_eq!(krl.matches("WAIT SEC").count(), joints.len());
+    // `A1 0.000000, A2 ...`: the axis names do not parse as numbers.
+    let axis: Vec<Vec<f64>> = spans(&krl, "PTP {AXIS:", '}');
+    assert_joints("krl", &axis, &joints);
+
+    let r = app.get(&format!("{base}?format=gcode")).await;
+    assert_eq!(r.status(), 422);
+    let p: Value = r.json().await.unwrap();
+    assert_eq!(p["errors"][0]["field"], "format");
+    let r = app
+        .get("/v1/robots/PLAN-1/campaign-plans/00000000-0000-0000-0000-000000000000")
+        .await;
+    assert_eq!(r.status(), 404);
+}
+
+#[tokio::test]
+async fn infeasible_and_bad_requests_name_the_constraint() {
+    let app = spawn_app().await;
+    robot(&app, "PLAN-2").await;
+    // A keep-out box around the whole cell: nothing survives it.
+    let mut blocked = body(CAL_POSES, 0);
+    blocked["keep_out"] = json!([{"min_mm": [-5000, -5000, -5000], "max_mm": [5000, 5000, 5000]}]);
+    let r = app
+        .post_json("/v1/robots/PLAN-2/campaign-plans", &blocked)
+        .await;
+    assert_eq!(r.status(), 422);
+    let p: Value = r.json().await.unwrap();
+    assert_eq!(p["errors"][0]["field"], "keep_out", "{p}");
+    let counts: Vec<(String, String)> = p["errors"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .skip(1)
+        .map(|e| {
+            (
+                e["field"].as_str().unwrap().to_string(),
+                e["message"].as_str().unwrap().to_string(),
+            )
+        })
+        .collect();
+    assert!(
+        counts.contains(&("candidates.keep_out".into(), "0 survived".into())),
+        "{counts:?}"
+    );
+    assert!(counts
+        .iter()
+        .any(|(f, m)| f == "candidates.joint_limits_deg" && m != "0 survived"));
+
+    for (field, patch) in [
+        ("poses", json!({"poses": 0})),
+        ("distance_mm", json!({"distance_mm": [1000, 600]})),
+        ("view_angle_deg", json!({"view_angle_deg": [10, 95]})),
+        ("start_joints_deg", json!({"start_joints_deg": [0, 0, 0]})),
+        ("joint_limits_deg", json!({"joint_limits_deg": [[0, 10]]})),
+        (
+            "target.pitch_mm",
+            json!({"target": {"rows": 9, "cols": 9, "dot_diameter_mm": 8.0,
+                                               "origin_marker_diameter_mm": 12.0}}),
+        ),
+    ] {
+        let mut b = body(CAL_POSES, 0);
+        for (k, v) in patch.as_object().unwrap() {
+            b[k] = v.clone();
+        }
+        let r = app.post_json("/v1/robots/PLAN-2/campaign-plans", &b).await;
+        assert_eq!(r.status(), 422, "{field}");
+        let p: Value = r.json().await.unwrap();
+        assert_eq!(p["errors"][0]["field"], field, "{p}");
+    }
+    let r = app
+        .post_json("/v1/robots/NOPE/campaign-plans", &body(CAL_POSES, 0))
+        .await;
+    assert_eq!(r.status(), 404);
+}
