@@ -5,6 +5,7 @@
 pub mod campaign;
 pub mod client;
 pub mod evaluate;
+pub mod filter;
 
 use std::io::{IsTerminal, Write};
 use std::path::Path;

@@ -10,6 +10,7 @@ use serde_json::json;
 use super::camera_stage::{camera_mode, camera_report, CameraStep};
 use super::identify_stage::Identified;
 use super::measure::Measured;
+use super::parameter_covariance::CovarianceDoc;
 use super::screen_stage::Outlier;
 use super::PoseInput;
 use crate::report::{
@@ -66,6 +67,10 @@ pub struct ParameterSetDoc {
     pub camera_calibration_id: Option<String>,
     pub fixed: Vec<String>,
     pub parameters: Vec<ParameterReport>,
+    /// The identified parameters' full covariance (absent from sets
+    /// stored before it was kept).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub covariance: Option<CovarianceDoc>,
 }
 
 impl ParameterSetDoc {
@@ -79,6 +84,23 @@ impl ParameterSetDoc {
             world_to_base: from(&self.world_to_base)?,
             flange_to_tool: from(&self.flange_to_tool)?,
         })
+    }
+
+    /// The instrument whose parameter layout the set follows.
+    pub fn instrument(&self) -> Instrument {
+        if self.instrument == "tracker" {
+            Instrument::Tracker
+        } else {
+            Instrument::Camera
+        }
+    }
+
+    /// The stored covariance in layout order and internal units (mm, rad),
+    /// `None` for sets stored without one.
+    pub fn covariance_matrix(&self) -> Option<Result<nalgebra::DMatrix<f64>, String>> {
+        let doc = self.covariance.as_ref()?;
+        let robot = crate::schema::robot::doc_to_model(&self.kinematics);
+        Some(doc.to_layout(&ParamLayout::new(&robot, self.instrument())))
     }
 
     /// The JSON served by `GET .../parameter-sets/{version}`, with the
@@ -181,6 +203,11 @@ pub fn parameter_set(ctx: &Context, id: &Identified) -> ParameterSetDoc {
         camera_calibration_id: ctx.camera.and_then(|c| c.fixed_from.clone()),
         fixed: id.identification.identifiability.fixed.clone(),
         parameters: rows,
+        covariance: Some(CovarianceDoc::from_layout(
+            &id.identification.layout,
+            &id.covariance,
+            &id.identification.identifiability.free,
+        )),
     }
 }
 
@@ -303,6 +330,7 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSetDoc) -> Report {
         },
         residual_field: ctx.camera.map(residual_field).unwrap_or_default(),
         notes,
+        uncertainty_map: super::uncertainty_map::workspace_map(id, ctx.poses),
     }
 }
 

@@ -19,6 +19,7 @@ pub mod schema;
 pub mod svg;
 mod svg_writer;
 mod table;
+mod uncertainty_chart;
 #[cfg(test)]
 mod xml_check;
 
