@@ -118,6 +118,15 @@ enum Command {
         #[command(flatten)]
         server: ServerArgs,
     },
+    /// Filtered targets for a controller that runs the nominal model: the
+    /// flange poses to send so that the real robot puts the tool on each
+    /// target of FILE (CSV in, CSV out; columns below).
+    Filter {
+        #[command(flatten)]
+        args: robocal::cli::filter::FilterArgs,
+        #[command(flatten)]
+        server: ServerArgs,
+    },
     /// A parameter set for the controller or the off-line programming tool:
     /// URDF, the identified table as JSON (`dh-json`) or CSV.
     Export {
@@ -329,6 +338,12 @@ async fn main() -> ExitCode {
         },
         Command::Compensate { args, server } => match server.client() {
             Ok(client) => robocal::cli::evaluate::compensate(&client, &args)
+                .await
+                .map_err(|e| e.to_string()),
+            Err(e) => Err(e),
+        },
+        Command::Filter { args, server } => match server.client() {
+            Ok(client) => robocal::cli::filter::filter(&client, &args)
                 .await
                 .map_err(|e| e.to_string()),
             Err(e) => Err(e),

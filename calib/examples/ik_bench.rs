@@ -3,13 +3,16 @@
 //! near the seed (the seed's own run answers) and for targets spread over
 //! every joint's range (the branch seeds run whenever the seed's branch
 //! leaves the limits). Prints targets per second and how often each start
-//! answered.
-//! `cargo run -p robocal-calib --example ik_bench -- [targets]`
+//! answered, and the mean Levenberg–Marquardt iterations per answered
+//! target (Jacobian evaluations over all its runs).
+//! Then the same targets through `filter_target` (two IK per target).
+//! `cargo run --release -p robocal-calib --example ik_bench -- [targets]`
 
 use std::time::Instant;
 
 use rand::{rngs::StdRng, Rng, SeedableRng};
 use robocal_calib::geometry::pose_from_xyz_rpy_deg;
+use robocal_calib::kinematics::filter::filter_target;
 use robocal_calib::kinematics::ik::{nearest_within_limits, IkStart};
 use robocal_calib::kinematics::CalibratedModel;
 use robocal_calib::sim::campaign::{perturb_robot, CampaignSpec};
@@ -48,19 +51,43 @@ fn main() {
                     model.world_to_tool(&q).expect("in-limit joints")
                 })
                 .collect();
-            let (mut seeded, mut branch, mut failed) = (0, 0, 0);
+            let (mut seeded, mut branch, mut failed, mut iterations) = (0, 0, 0, 0);
             let start = Instant::now();
             for target in &poses {
                 match nearest_within_limits(&model, target, &seed) {
-                    Ok(s) if s.start == IkStart::Seed => seeded += 1,
-                    Ok(_) => branch += 1,
+                    Ok(s) => {
+                        iterations += s.iterations;
+                        if s.start == IkStart::Seed {
+                            seeded += 1;
+                        } else {
+                            branch += 1;
+                        }
+                    }
                     Err(_) => failed += 1,
                 }
             }
             let seconds = start.elapsed().as_secs_f64();
             println!(
                 "{preset} {label}: {targets} targets in {seconds:.3} s = {rate:.0} targets/s; \
-                 answered by the seed {seeded}, by a branch seed {branch}, failed {failed}",
+                 answered by the seed {seeded}, by a branch seed {branch}, failed {failed}; \
+                 {mean:.1} iterations per answered target",
+                rate = targets as f64 / seconds,
+                mean = iterations as f64 / (seeded + branch).max(1) as f64
+            );
+            // Filter: the calibrated IK, the nominal FK and the replayed
+            // controller IK per target.
+            let (mut filtered, mut unfiltered) = (0, 0);
+            let start = Instant::now();
+            for target in &poses {
+                match filter_target(&model, &spec.nominal, target, &seed) {
+                    Ok(_) => filtered += 1,
+                    Err(_) => unfiltered += 1,
+                }
+            }
+            let seconds = start.elapsed().as_secs_f64();
+            println!(
+                "{preset} {label} filter: {targets} targets in {seconds:.3} s = {rate:.0} targets/s; \
+                 filtered {filtered}, failed {unfiltered}",
                 rate = targets as f64 / seconds
             );
         }

@@ -18,7 +18,7 @@ use crate::domain::ParameterSetRecord;
 use crate::report::schema::IntrinsicsSchema;
 use crate::report::{render_html, render_svg, Report};
 use crate::schema::PoseOut;
-use crate::service::{evaluate, filter, results};
+use crate::service::{evaluate, filter, results, uncertainty};
 
 pub fn router() -> OpenApiRouter<AppState> {
     OpenApiRouter::new()
@@ -30,6 +30,7 @@ pub fn router() -> OpenApiRouter<AppState> {
         .routes(routes!(forward))
         .routes(routes!(filter_targets))
         .routes(routes!(compensate))
+        .routes(routes!(uncertainty_map))
 }
 
 /// An identified parameter set: the stored document plus its identity.
@@ -86,6 +87,10 @@ pub struct ParameterSetFields {
     pub fixed: Vec<String>,
     /// Every identified parameter against its nominal value.
     pub parameters: Vec<crate::report::ParameterReport>,
+    /// The identified parameters' full covariance, in the units of
+    /// `parameters` (what `forward`'s predicted σ propagate). Absent for
+    /// sets stored before it was kept.
+    pub covariance: Option<crate::pipeline::parameter_covariance::CovarianceDoc>,
 }
 
 #[derive(Debug, Serialize, ToSchema)]
@@ -281,5 +286,25 @@ async fn compensate(
 ) -> ApiResult<Json<evaluate::CompensateResponse>> {
     Ok(Json(
         results::compensate(&state.store, &serial, &version, body).await?,
+    ))
+}
+
+/// Predicted 1σ of the calibrated model over the workspace: at rows of
+/// joints, or over a box of flange positions (base frame) at one flange
+/// orientation, each solved by the calibrated inverse kinematics.
+#[utoipa::path(post, path = "/v1/robots/{serial}/parameter-sets/{version}/uncertainty-map", tag = "results",
+    params(("serial" = String, Path, description = "Robot serial number"),
+           ("version" = String, Path, pattern = r"^(latest|[1-9][0-9]{0,17})$", description = "Version number (1, 2, ...) or `latest`")),
+    request_body = uncertainty::UncertaintyMapRequest,
+    responses((status = 200, description = "Per point, the joints, the flange position and the predicted 1σ (`position_std_mm` is the square root of the trace of the 3x3 position covariance: the RMS length of the 3-D error); points out of reach in `errors` with their index", body = uncertainty::UncertaintyMapResponse), (status = 422, body = Problem, content_type = "application/problem+json"),
+              (status = 409, description = "The parameter set holds no calibrated model, or was stored without its covariance", body = Problem, content_type = "application/problem+json")))]
+async fn uncertainty_map(
+    State(state): State<AppState>,
+    SerialPath(serial): SerialPath,
+    Path((_serial, version)): Path<(String, String)>,
+    ApiJson(body): ApiJson<uncertainty::UncertaintyMapRequest>,
+) -> ApiResult<Json<uncertainty::UncertaintyMapResponse>> {
+    Ok(Json(
+        results::uncertainty_map(&state.store, &serial, &version, body).await?,
     ))
 }

@@ -67,7 +67,7 @@ pub struct CompensateArgs {
 }
 
 /// Numbers of one row: commas and/or whitespace between them.
-fn parse_row(text: &str, what: &str) -> Result<Vec<f64>, String> {
+pub(super) fn parse_row(text: &str, what: &str) -> Result<Vec<f64>, String> {
     let row: Vec<f64> = text
         .split(|c: char| c == ',' || c.is_whitespace())
         .filter(|t| !t.is_empty())
@@ -82,7 +82,7 @@ fn parse_row(text: &str, what: &str) -> Result<Vec<f64>, String> {
     Ok(row)
 }
 
-fn read_input(path: &Path) -> Result<String, String> {
+pub(super) fn read_input(path: &Path) -> Result<String, String> {
     if path == Path::new("-") {
         std::io::read_to_string(std::io::stdin()).map_err(|e| format!("stdin: {e}"))
     } else {

@@ -5,6 +5,7 @@
 pub mod campaign;
 pub mod client;
 pub mod evaluate;
+pub mod filter;
 pub mod plan;
 
 use std::io::{IsTerminal, Write};

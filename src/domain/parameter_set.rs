@@ -8,9 +8,10 @@
 //! [`ParameterSet::model`] is the one conversion to the numerics' model.
 
 use robocal_calib::camera::Intrinsics;
-use robocal_calib::kinematics::CalibratedModel;
+use robocal_calib::kinematics::{CalibratedModel, ParamLayout};
 use serde::{Deserialize, Serialize};
 
+use crate::pipeline::parameter_covariance::CovarianceDoc;
 use crate::report::ParameterReport;
 use crate::schema::robot::{doc_to_model, KinematicsDoc};
 use crate::schema::session::Instrument;
@@ -36,6 +37,9 @@ pub struct ParameterSet {
     pub camera_calibration_id: Option<String>,
     pub fixed: Vec<String>,
     pub parameters: Vec<ParameterReport>,
+    /// The identified parameters' full covariance (absent from sets
+    /// stored before it was kept).
+    pub covariance: Option<CovarianceDoc>,
 }
 
 /// The contract's names of a set's frames.
@@ -74,6 +78,14 @@ impl ParameterSet {
         }
     }
 
+    /// The stored covariance in layout order and internal units (mm, rad),
+    /// `None` for sets stored without one.
+    pub fn covariance_matrix(&self) -> Option<Result<nalgebra::DMatrix<f64>, String>> {
+        let doc = self.covariance.as_ref()?;
+        let robot = doc_to_model(&self.kinematics);
+        Some(doc.to_layout(&ParamLayout::new(&robot, self.instrument)))
+    }
+
     /// The calibrated model, as the numerics take it.
     pub fn model(&self) -> Result<CalibratedModel, String> {
         Ok(CalibratedModel {
@@ -107,6 +119,8 @@ struct StoredSet {
     camera_calibration_id: Option<String>,
     fixed: Vec<String>,
     parameters: Vec<ParameterReport>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    covariance: Option<CovarianceDoc>,
 }
 
 impl From<ParameterSet> for StoredSet {
@@ -126,6 +140,7 @@ impl From<ParameterSet> for StoredSet {
             camera_calibration_id: set.camera_calibration_id,
             fixed: set.fixed,
             parameters: set.parameters,
+            covariance: set.covariance,
         }
     }
 }
@@ -150,6 +165,7 @@ impl TryFrom<StoredSet> for ParameterSet {
             camera_calibration_id: s.camera_calibration_id,
             fixed: s.fixed,
             parameters: s.parameters,
+            covariance: s.covariance,
         })
     }
 }

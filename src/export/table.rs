@@ -7,6 +7,7 @@ use std::fmt::Write;
 use serde::Serialize;
 
 use crate::domain::ParameterSet;
+use crate::pipeline::parameter_covariance::CovarianceDoc;
 use crate::report::{IdentifiabilityReport, ParameterReport};
 use crate::schema::robot::Convention;
 use crate::schema::session::Instrument;
@@ -64,6 +65,10 @@ pub struct DhTable {
     /// `flange_to_camera` (camera) or `flange_to_tool` (tracker).
     pub flange_to_tool: PoseOut,
     pub parameters: Vec<ParameterRow>,
+    /// The identified parameters' full covariance (`names`, `units`,
+    /// `matrix`); absent for sets stored before it was kept.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub covariance: Option<CovarianceDoc>,
 }
 
 /// The table of a stored parameter set; `identifiability` from its report
@@ -118,6 +123,7 @@ pub fn dh_table(
         world_to_base: set.world_to_base.clone(),
         flange_to_tool: set.flange_to_tool.clone(),
         parameters,
+        covariance: set.covariance.clone(),
     }
 }
 

@@ -10,6 +10,7 @@ use robocal_calib::kinematics::identify::{
     Measurement, Observed,
 };
 use robocal_calib::kinematics::initial::initial_world_to_base;
+use robocal_calib::kinematics::joint_covariance::joint_refine_covariance;
 use robocal_calib::kinematics::joint_refine::{joint_refine, ImageNoise, ImagePose};
 use robocal_calib::kinematics::{CalibratedModel, Instrument, RobotModel};
 use robocal_calib::stats::AccuracyStats;
@@ -32,6 +33,10 @@ pub struct Identified {
     /// units): the joint refinement's when it ran. The pose-level fit's
     /// would describe a different, less precise estimate.
     pub std_devs: nalgebra::DVector<f64>,
+    /// The full covariance behind `std_devs` (layout order, internal
+    /// units, zero where fixed): stored with the set for predicted
+    /// uncertainties.
+    pub covariance: nalgebra::DMatrix<f64>,
     /// Refined intrinsics and their standard deviations, when the joint
     /// refinement ran.
     pub refined_intrinsics: Option<(Intrinsics, [f64; 8], f64)>,
@@ -161,6 +166,7 @@ pub fn identify_robot(
         .map_err(|e| numerical(Stage::Identify, e))?;
     let mut model = identification.model.clone();
     let mut std_devs = identification.std_devs.clone();
+    let mut covariance = identification.covariance.clone();
     let mut refined_intrinsics = None;
     let mut joint_noise_rad = None;
     if let (Some(step), true) = (camera, joint_refinement && kind == MeasurementKind::Pose) {
@@ -183,6 +189,13 @@ pub fn identify_robot(
                 sigma_px,
                 joint: JointNoise::Estimate,
             },
+            hold_intrinsics,
+        )
+        .map_err(|e| numerical(Stage::Identify, e))?;
+        covariance = joint_refine_covariance(
+            &joint,
+            &images,
+            &identification.identifiability.free,
             hold_intrinsics,
         )
         .map_err(|e| numerical(Stage::Identify, e))?;
@@ -238,6 +251,7 @@ pub fn identify_robot(
         identification,
         model,
         std_devs,
+        covariance,
         refined_intrinsics,
         joint_noise_rad,
         cal,

@@ -21,10 +21,12 @@ mod identify_stage;
 mod input;
 mod measure;
 mod output;
+pub mod parameter_covariance;
 pub mod results;
 mod screen_stage;
 mod session_cause;
 mod stage;
+mod uncertainty_map;
 mod validate;
 
 pub use input::{FixedCamera, ImageSource, Input, PoseImage, PoseInput, ReadImage};

@@ -7,6 +7,7 @@ use robocal_calib::kinematics::{Instrument, ParamKind, ParamLayout};
 use super::camera_stage::{camera_mode, camera_report, CameraStep};
 use super::identify_stage::Identified;
 use super::measure::Measured;
+use super::parameter_covariance::CovarianceDoc;
 use super::screen_stage::Outlier;
 use super::{PoseInput, Summary};
 use crate::domain::ParameterSet;
@@ -99,6 +100,11 @@ pub fn parameter_set(ctx: &Context, id: &Identified) -> ParameterSet {
         camera_calibration_id: ctx.camera.and_then(|c| c.fixed_from.clone()),
         fixed: id.identification.identifiability.fixed.clone(),
         parameters: rows,
+        covariance: Some(CovarianceDoc::from_layout(
+            &id.identification.layout,
+            &id.covariance,
+            &id.identification.identifiability.free,
+        )),
     }
 }
 
@@ -222,6 +228,7 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSet) -> Report {
         residual_field: ctx.camera.map(residual_field).unwrap_or_default(),
         hand_eye: None,
         notes,
+        uncertainty_map: super::uncertainty_map::workspace_map(id, ctx.poses),
     }
 }
 

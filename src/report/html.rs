@@ -5,7 +5,9 @@
 use super::format::{before_fit, escape_xml, improvement_text, mm};
 use super::html_sections::*;
 use super::model::Report;
-use super::svg::{axis_errors_svg, histogram_svg, pose_errors_svg, residual_field_svg};
+use super::svg::{
+    axis_errors_svg, histogram_svg, pose_errors_svg, residual_field_svg, uncertainty_map_svg,
+};
 use std::fmt::Write;
 
 /// Inline style sheet: compact tables, charts scaled to the page width,
@@ -167,11 +169,15 @@ fn accuracy(page: &mut String, report: &Report) {
     page.push_str("</div>\n");
     let _ = write!(
         page,
-        "<figure>{}</figure>\n<figure><div class=\"pair\">{}{}</div></figure>\n</section>\n",
+        "<figure>{}</figure>\n<figure><div class=\"pair\">{}{}</div></figure>\n",
         pose_errors_svg(report),
         histogram_svg(report),
         axis_errors_svg(report)
     );
+    if report.uncertainty_map.is_some() {
+        let _ = writeln!(page, "<figure>{}</figure>", uncertainty_map_svg(report));
+    }
+    page.push_str("</section>\n");
 }
 
 fn camera(page: &mut String, report: &Report) {

@@ -20,6 +20,7 @@ pub mod schema;
 pub mod svg;
 mod svg_writer;
 mod table;
+mod uncertainty_chart;
 #[cfg(test)]
 mod xml_check;
 

@@ -208,4 +208,36 @@ pub struct Report {
     /// Plain-language remarks for the cell engineer (warnings, what was
     /// held fixed and why, what remains unmodelled).
     pub notes: Vec<String>,
+    /// Predicted uncertainty over a slice of the workspace (absent in
+    /// reports stored before it was drawn, or when no point was reachable).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uncertainty_map: Option<UncertaintyMapReport>,
+}
+
+/// Predicted 1σ of the tool (camera or tracker tool point) position over a
+/// horizontal slice of the workspace: flange positions on a grid in the
+/// robot base frame at the campaign's median height and one flange
+/// orientation, each solved by the calibrated inverse kinematics.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+pub struct UncertaintyMapReport {
+    /// Height of the slice: flange z in the base frame (mm).
+    pub z_mm: f64,
+    /// The flange's fixed-axis X-Y-Z orientation over the slice (deg).
+    pub rotation_deg: [f64; 3],
+    /// Grid spacing (mm).
+    pub step_mm: f64,
+    /// Reachable grid points with their predicted σ.
+    pub cells: Vec<UncertaintyCell>,
+    /// The calibration poses' flange positions (x, y mm, base frame).
+    pub poses_xy_mm: Vec<[f64; 2]>,
+}
+
+/// One point of [`UncertaintyMapReport`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+pub struct UncertaintyCell {
+    pub x_mm: f64,
+    pub y_mm: f64,
+    /// `sqrt(trace)` of the tool position's 3x3 covariance in the target
+    /// (or tracker) frame: the RMS length of its 3-D error (mm).
+    pub position_std_mm: f64,
 }

@@ -121,6 +121,7 @@ pub fn sample_report_sized(calibration: usize, validation: usize) -> Report {
             format!("{low_angle_views} views have a board-to-image angle under 20 degrees; the focal length rests on the other views."),
             "Joint compliance and gear backlash are not modelled; expect larger errors under heavy payloads.".into(),
         ],
+        uncertainty_map: Some(super::uncertainty_chart::sample_map()),
     }
 }
 

@@ -10,6 +10,7 @@ use super::model::Report;
 use super::plot::*;
 use super::pose_chart::pose_chart;
 pub use super::pose_chart::{pose_chart_height, POSE_CHART_HEIGHT};
+use super::uncertainty_chart::{uncertainty_chart, uncertainty_height};
 
 /// Width of the whole sheet and of full-width charts.
 pub const SHEET_WIDTH: f64 = 880.0;
@@ -50,11 +51,22 @@ pub fn render_svg(report: &Report) -> String {
         y,
         &residual_field_chart(report, SHEET_WIDTH, field_h),
     );
+    y += field_h;
+    if report.uncertainty_map.is_some() {
+        let map_h = uncertainty_height(SHEET_WIDTH);
+        place(
+            &mut sheet,
+            0.0,
+            y,
+            &uncertainty_chart(report, SHEET_WIDTH, map_h),
+        );
+        y += map_h;
+    }
     let title = format!(
         "Calibration accuracy report, robot {} v{}",
         report.serial, report.version
     );
-    standalone(SHEET_WIDTH, y + field_h, &title, &sheet.body)
+    standalone(SHEET_WIDTH, y, &title, &sheet.body)
 }
 
 /// Standalone chart documents, for embedding one by one in the HTML page.
@@ -90,6 +102,16 @@ pub fn residual_field_svg(report: &Report) -> String {
         h,
         "Reprojection residual field",
         &residual_field_chart(report, SHEET_WIDTH, h).body,
+    )
+}
+
+pub fn uncertainty_map_svg(report: &Report) -> String {
+    let h = uncertainty_height(SHEET_WIDTH);
+    standalone(
+        SHEET_WIDTH,
+        h,
+        "Predicted uncertainty over the workspace",
+        &uncertainty_chart(report, SHEET_WIDTH, h).body,
     )
 }
 

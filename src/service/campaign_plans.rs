@@ -15,7 +15,8 @@ use robocal_calib::plan::{
 
 use super::camera_reuse;
 use super::error::{ServiceError, ServiceResult};
-use super::evaluate::{model_of, pose_of};
+use super::evaluate::pose_of;
+use super::results::typed;
 use super::export::Exported;
 use crate::domain::{now_rfc3339, Target};
 use crate::export::campaign_program::{
@@ -75,7 +76,7 @@ async fn planning_robot(
         .await?
         .ok_or_else(|| ServiceError::not_found("robot", serial))?;
     if let Some(set) = store.get_parameter_set(serial, None).await? {
-        if let Ok(model) = model_of(&set.parameters) {
+        if let Ok(model) = typed(&set).and_then(|t| t.model().map_err(ServiceError::internal)) {
             return Ok((model.robot, format!("{serial}/{}", set.version)));
         }
     }

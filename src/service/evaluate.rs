@@ -37,6 +37,23 @@ pub struct ForwardPose {
     /// One message per joint outside its limits (the pose is still
     /// computed: the controller would refuse it). Empty when all are within.
     pub warnings: Vec<String>,
+    /// Predicted 1σ of `tool_in_target` (or `camera_in_target` without a
+    /// tool) from the set's parameter covariance, board transform included:
+    /// `sqrt(trace)` of the 3x3 position covariance, the RMS length of the
+    /// 3-D error (mm). Absent for sets stored without a covariance.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub position_std_mm: Option<f64>,
+    /// The same pose's orientation 1σ: `sqrt(trace)` of its 3x3 rotation
+    /// covariance (deg).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rotation_std_deg: Option<f64>,
+    /// Predicted 1σ of `flange_in_base` (link parameters only), as
+    /// `position_std_mm` (mm).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub flange_position_std_mm: Option<f64>,
+    /// Predicted orientation 1σ of `flange_in_base` (deg).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub flange_rotation_std_deg: Option<f64>,
 }
 
 #[derive(Debug, Clone, Serialize, ToSchema)]
@@ -207,6 +224,10 @@ pub fn forward(
                 .iter()
                 .map(ToString::to_string)
                 .collect(),
+            position_std_mm: None,
+            rotation_std_deg: None,
+            flange_position_std_mm: None,
+            flange_rotation_std_deg: None,
         });
     }
     Ok(ForwardResponse { poses })

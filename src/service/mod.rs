@@ -17,5 +17,6 @@ pub mod images;
 pub mod intake;
 pub mod results;
 pub mod staged_images;
+pub mod uncertainty;
 
 pub use error::{ServiceError, ServiceResult};

@@ -8,6 +8,7 @@ use super::evaluate::{
     self, CompensateRequest, CompensateResponse, ForwardRequest, ForwardResponse,
 };
 use super::filter::{self, FilterRequest, FilterResponse};
+use super::uncertainty::{self, Uncertainty, UncertaintyMapRequest, UncertaintyMapResponse};
 use crate::domain::{ParameterSet, ParameterSetRecord};
 use crate::pipeline::hand_eye_results::HAND_EYE_KIND;
 use crate::schema::robot::{doc_to_model, KinematicsDoc};
@@ -75,15 +76,56 @@ async fn model(store: &DynStore, serial: &str, version: &str) -> ServiceResult<C
     typed(&record)?.model().map_err(|_| no_model())
 }
 
-/// Forward kinematics of a parameter set's calibrated model.
+/// A parameter set's calibrated model and its stored covariance (`None`
+/// for sets stored without one).
+async fn model_and_uncertainty(
+    store: &DynStore,
+    serial: &str,
+    version: &str,
+) -> ServiceResult<(CalibratedModel, Option<Uncertainty>)> {
+    let record = find_parameter_set(store, serial, version).await?;
+    refuse_hand_eye(&record)?;
+    let doc = typed(&record)?;
+    let model = doc.model().map_err(|_| no_model())?;
+    let uncertainty = Uncertainty::of(&doc, &model)
+        .transpose()
+        .map_err(ServiceError::internal)?;
+    Ok((model, uncertainty))
+}
+
+/// Forward kinematics of a parameter set's calibrated model, with each
+/// row's predicted σ when the set holds a covariance.
 pub async fn forward(
     store: &DynStore,
     serial: &str,
     version: &str,
     request: &ForwardRequest,
 ) -> ServiceResult<ForwardResponse> {
-    let model = model(store, serial, version).await?;
-    Ok(evaluate::forward(&model, request)?)
+    let (model, uncertainty) = model_and_uncertainty(store, serial, version).await?;
+    Ok(uncertainty::forward(&model, uncertainty.as_ref(), request)?)
+}
+
+/// Predicted σ over the workspace (`uncertainty-map`), on a blocking
+/// thread (a box is solved by inverse kinematics).
+pub async fn uncertainty_map(
+    store: &DynStore,
+    serial: &str,
+    version: &str,
+    request: UncertaintyMapRequest,
+) -> ServiceResult<UncertaintyMapResponse> {
+    let (model, uncertainty) = model_and_uncertainty(store, serial, version).await?;
+    let uncertainty = uncertainty.ok_or_else(|| {
+        ServiceError::Conflict(
+            "this parameter set was stored without its covariance: calibrate again to predict uncertainties"
+                .into(),
+        )
+    })?;
+    let answer = tokio::task::spawn_blocking(move || {
+        uncertainty::uncertainty_map(&model, &uncertainty, &request)
+    })
+    .await
+    .map_err(ServiceError::internal)?;
+    Ok(answer?)
 }
 
 /// Joints that put the tool on each target by a parameter set's calibrated

@@ -193,6 +193,35 @@ async fn exports_reproduce_forward_and_carry_the_table() {
     for p in params.iter().filter(|p| p["held"] == true) {
         assert!(p["held_because"].as_str().unwrap().len() > 20, "{p}");
     }
+    // The full covariance: every identified parameter, its diagonal the
+    // rows' σ, symmetric, with correlations.
+    let cov = &table["covariance"];
+    let names: Vec<&str> = cov["names"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|n| n.as_str().unwrap())
+        .collect();
+    assert_eq!(
+        names.len(),
+        params.iter().filter(|p| p["held"] == false).count()
+    );
+    let matrix: Vec<Vec<f64>> = serde_json::from_value(cov["matrix"].clone()).unwrap();
+    assert_eq!(matrix.len(), names.len());
+    for (i, name) in names.iter().enumerate() {
+        let row = params.iter().find(|p| p["name"] == *name).unwrap();
+        let sd = row["std"].as_f64().unwrap();
+        assert!((matrix[i][i].sqrt() - sd).abs() <= 1e-9 * sd, "{name}");
+        assert_eq!(cov["units"][i], row["unit"], "{name}");
+        for j in 0..names.len() {
+            assert!((matrix[i][j] - matrix[j][i]).abs() <= 1e-12 * matrix[i][i].max(matrix[j][j]));
+        }
+    }
+    let correlated = (0..names.len())
+        .flat_map(|i| (0..i).map(move |j| (i, j)))
+        .filter(|&(i, j)| matrix[i][j].abs() > 0.1 * (matrix[i][i] * matrix[j][j]).sqrt())
+        .count();
+    assert!(correlated > 0, "no correlation above 0.1");
 
     let r = app.get(&format!("{base}/export?format=csv")).await;
     assert_eq!(r.status(), 200);

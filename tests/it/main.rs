@@ -37,3 +37,4 @@ pub(crate) mod test_db;
 pub(crate) mod timeouts;
 pub(crate) mod tls;
 pub(crate) mod tokens;
+pub(crate) mod uncertainty;

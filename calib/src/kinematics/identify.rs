@@ -44,6 +44,10 @@ pub struct Identification {
     pub correction: DVector<f64>,
     /// Standard deviation of every parameter (zero where fixed).
     pub std_devs: DVector<f64>,
+    /// Full parameter covariance (layout order, internal units; zero rows
+    /// and columns where fixed): what predicted uncertainties propagate
+    /// (method.md §6, [`super::uncertainty`]).
+    pub covariance: DMatrix<f64>,
     pub identifiability: IdentifiabilityReport,
     /// RMS of the (weighted) calibration residual.
     pub residual_rms: f64,
@@ -180,15 +184,14 @@ pub fn identify(
         .ok_or(IdentifyError::NoPoses)?;
     let dof = (report.residuals.len() - free.len()).max(1) as f64;
     let cov = crate::solver::covariance_from_jacobian(&jac, report.cost / dof);
-    let mut std_devs = DVector::zeros(layout.len());
-    for (k, &i) in free.iter().enumerate() {
-        std_devs[i] = cov[(k, k)].max(0.0).sqrt();
-    }
+    let covariance = super::uncertainty::embed_covariance(layout.len(), &free, &cov);
+    let std_devs = covariance.diagonal().map(|v| v.max(0.0).sqrt());
     Ok(Identification {
         before,
         model,
         correction,
         std_devs,
+        covariance,
         identifiability,
         residual_rms: (report.cost / report.residuals.len() as f64).sqrt(),
         joint_sigma_rad,

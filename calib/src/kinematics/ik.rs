@@ -8,6 +8,7 @@ use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 
 use super::ik_branches::SphericalWristArm;
+use super::ik_newton::solve_joints;
 use super::jacobian::tool_pose_jacobian;
 use super::model::KinematicsError;
 use super::params::{CalibratedModel, Instrument, ParamLayout, PARAMS_PER_JOINT};
@@ -19,9 +20,9 @@ pub const IK_ROTATION_SCALE_MM: f64 = 1000.0;
 /// A solution whose (scaled) residual exceeds this is out of reach.
 pub const IK_REACH_TOL_MM: f64 = 1e-3;
 const IK_MAX_ITERATIONS: usize = 100;
-/// Compensation's answers are polished to this residual (mm, scaled) ...
+/// Compensation's answers are solved to this residual (mm, scaled) ...
 const IK_POLISHED_MM: f64 = 1e-7;
-/// ... by at most this many fresh runs (only near singularities).
+/// ... with at most this many fresh runs (only near singularities).
 const IK_POLISH_RUNS: usize = 5;
 
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -58,11 +59,16 @@ pub struct IkSolution {
     pub residual_rad: f64,
     #[serde(default)]
     pub start: IkStart,
+    /// Levenberg–Marquardt iterations (Jacobian evaluations) over every
+    /// run this target took (compensation's solver only; 0 otherwise).
+    #[serde(default)]
+    pub iterations: usize,
 }
 
 struct IkProblem<'a> {
     model: &'a CalibratedModel,
-    layout: ParamLayout,
+    /// Built on first use: only the generic solver's Jacobian needs it.
+    layout: std::cell::OnceCell<ParamLayout>,
     target: &'a Pose,
 }
 
@@ -83,7 +89,10 @@ impl LeastSquaresProblem for IkProblem<'_> {
     /// The joint columns are the `dtheta_i` columns of the identification
     /// Jacobian (a joint angle and its offset move the chain alike).
     fn jacobian(&self, q: &DVector<f64>) -> Option<DMatrix<f64>> {
-        let (_, j) = tool_pose_jacobian(&self.layout, self.model, q.as_slice()).ok()?;
+        let layout = self
+            .layout
+            .get_or_init(|| ParamLayout::new(&self.model.robot, Instrument::Camera));
+        let (_, j) = tool_pose_jacobian(layout, self.model, q.as_slice()).ok()?;
         let n = q.len();
         Some(DMatrix::from_fn(6, n, |r, c| {
             let v = -j[(r, c * PARAMS_PER_JOINT)];
@@ -184,6 +193,8 @@ struct Search<'a> {
     reference: &'a [f64],
     turns: Turns,
     best_residual: f64,
+    /// Iterations of the compensation solver over all runs.
+    iterations: usize,
     /// The out-of-limit solution nearest the reference, and why.
     limit_error: Option<(f64, KinematicsError)>,
     found: Option<(f64, IkSolution)>,
@@ -199,7 +210,7 @@ impl<'a> Search<'a> {
         Self {
             problem: IkProblem {
                 model,
-                layout: ParamLayout::new(&model.robot, Instrument::Camera),
+                layout: std::cell::OnceCell::new(),
                 target,
             },
             options: LmOptions {
@@ -209,6 +220,7 @@ impl<'a> Search<'a> {
             reference,
             turns,
             best_residual: f64::INFINITY,
+            iterations: 0,
             limit_error: None,
             found: None,
         }
@@ -217,18 +229,56 @@ impl<'a> Search<'a> {
     /// One run from `start`; true when it reached the target within limits.
     fn run(&mut self, start: &[f64], how: IkStart) -> bool {
         let model = self.problem.model;
-        let Ok(report) = solve(
-            &self.problem,
-            DVector::from_column_slice(start),
-            &self.options,
-        ) else {
-            return false;
+        let mut q: Vec<f64> = match self.turns {
+            // Compensation: the dedicated solver, run to the polished residual.
+            Turns::TowardReference => {
+                let Some(mut run) = solve_joints(
+                    model,
+                    self.problem.target,
+                    start,
+                    IK_POLISHED_MM,
+                    IK_MAX_ITERATIONS,
+                ) else {
+                    return false;
+                };
+                self.iterations += run.iterations;
+                // Near a singularity the damping grows and the run creeps;
+                // a fresh run from where it stopped (damping reset) goes on.
+                for _ in 0..IK_POLISH_RUNS {
+                    let residual = run.scaled_residual_mm;
+                    if residual <= IK_POLISHED_MM || residual > IK_REACH_TOL_MM {
+                        break;
+                    }
+                    let Some(next) = solve_joints(
+                        model,
+                        self.problem.target,
+                        &run.joints_rad,
+                        IK_POLISHED_MM,
+                        IK_MAX_ITERATIONS,
+                    ) else {
+                        break;
+                    };
+                    self.iterations += next.iterations;
+                    if next.scaled_residual_mm >= residual {
+                        break;
+                    }
+                    run = next;
+                }
+                run.joints_rad
+            }
+            // The simulator's station placement: the generic solver, as its
+            // campaigns were generated.
+            Turns::IntoLimits => {
+                let Ok(report) = solve(
+                    &self.problem,
+                    DVector::from_column_slice(start),
+                    &self.options,
+                ) else {
+                    return false;
+                };
+                report.x.iter().copied().collect()
+            }
         };
-        let mut x = report.x;
-        if matches!(self.turns, Turns::TowardReference) {
-            x = self.polish(x);
-        }
-        let mut q: Vec<f64> = x.iter().copied().collect();
         move_by_turns(model, &mut q, self.reference, self.turns);
         let Some((_, e)) = self.problem.error(&DVector::from_column_slice(&q)) else {
             return false;
@@ -254,42 +304,19 @@ impl<'a> Search<'a> {
                     residual_mm: pos,
                     residual_rad: rot,
                     start: how,
+                    iterations: 0,
                 },
             ));
         }
         true
     }
 
-    /// Near a singularity Levenberg–Marquardt stops early (its steps gain
-    /// little); a fresh run from where it stopped (damping reset) goes on.
-    fn polish(&self, mut x: DVector<f64>) -> DVector<f64> {
-        let scaled = |x: &DVector<f64>| {
-            self.problem.error(x).map_or(f64::INFINITY, |(_, e)| {
-                e.rows(0, 3)
-                    .norm()
-                    .max(e.rows(3, 3).norm() * IK_ROTATION_SCALE_MM)
-            })
-        };
-        let mut residual = scaled(&x);
-        for _ in 0..IK_POLISH_RUNS {
-            if residual <= IK_POLISHED_MM || residual > IK_REACH_TOL_MM {
-                break;
-            }
-            let Ok(report) = solve(&self.problem, x.clone(), &self.options) else {
-                break;
-            };
-            let better = scaled(&report.x);
-            if better >= residual {
-                break;
-            }
-            (x, residual) = (report.x, better);
-        }
-        x
-    }
-
     fn finish(self) -> Result<IkSolution, IkError> {
         match (self.found, self.limit_error) {
-            (Some((_, s)), _) => Ok(s),
+            (Some((_, s)), _) => Ok(IkSolution {
+                iterations: self.iterations,
+                ..s
+            }),
             (None, Some((_, e))) => Err(IkError::Limits(e)),
             (None, None) => Err(IkError::OutOfReach {
                 residual_mm: self.best_residual,

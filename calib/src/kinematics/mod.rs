@@ -11,6 +11,7 @@ pub mod ik_branches;
 mod ik_branches_tests;
 #[cfg(test)]
 mod ik_limits_tests;
+mod ik_newton;
 #[cfg(test)]
 mod ik_proptests;
 #[cfg(test)]
@@ -19,6 +20,7 @@ mod image_fit;
 pub mod image_pose;
 pub mod initial;
 pub mod jacobian;
+pub mod joint_covariance;
 pub mod joint_refine;
 pub mod measurement;
 pub mod model;
@@ -31,6 +33,7 @@ mod term_cv;
 mod term_fit;
 pub mod term_selection;
 pub mod term_validate;
+pub mod uncertainty;
 pub mod weights;
 
 pub use model::{choose_conventions, Convention, Joint, KinematicsError, RobotModel};

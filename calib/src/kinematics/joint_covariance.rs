@@ -1,0 +1,120 @@
+//! The full covariance of a joint refinement's kinematic parameters
+//! (method.md §6 **beyond**): [`super::joint_refine`] reports only their
+//! standard deviations; predicted pose uncertainties need the correlations
+//! too (a base offset and a link length trade against each other).
+//!
+//! Recomputed at the refinement's solution from its public result: each
+//! pose's 6-D sums over its dots (as in the refinement's normal equations),
+//! the pose's joint corrections eliminated by their Schur complement, the
+//! intrinsics marginalised by taking the kinematic block of the inverse.
+//! Scaled by the same residual variance as the reported standard
+//! deviations, so its diagonal reproduces them.
+
+use nalgebra::{DMatrix, Matrix6, SMatrix};
+
+use super::identify_error::IdentifyError;
+use super::image_pose::ImagePose;
+use super::jacobian::tool_pose_jacobian;
+use super::joint_refine::JointRefinement;
+use super::projection::{project_with_jacobians, INTRINSIC_NAMES};
+use super::uncertainty::embed_covariance;
+use crate::covariance::covariance_from_normal;
+
+const INTRINSICS: usize = INTRINSIC_NAMES.len();
+
+/// Layout-sized covariance (internal units, zero where fixed) of
+/// `refined`'s kinematic parameters, from the `poses` and `free` layout
+/// indices it was refined with; `hold_intrinsics` as given to it.
+pub fn joint_refine_covariance(
+    refined: &JointRefinement,
+    poses: &[ImagePose],
+    free: &[usize],
+    hold_intrinsics: bool,
+) -> Result<DMatrix<f64>, IdentifyError> {
+    let layout = &refined.layout;
+    let ni = if hold_intrinsics { 0 } else { INTRINSICS };
+    let nf = free.len();
+    let head = nf + ni;
+    let sigma_q = refined.joint_sigma_rad;
+    let nj = if sigma_q > 0.0 { layout.joints() } else { 0 };
+    let s = refined.sigma_px;
+    if poses.is_empty() || s <= 0.0 {
+        return Err(IdentifyError::NoPoses);
+    }
+    let offsets = layout.joint_offset_indices();
+    let mut reduced = DMatrix::<f64>::zeros(head, head);
+    let (mut cost, mut rows) = (0.0, 0usize);
+    for (k, pose) in poses.iter().enumerate() {
+        let correction = refined.joint_corrections_rad.get(k);
+        let q: Vec<f64> = pose
+            .joints_rad
+            .iter()
+            .enumerate()
+            .map(|(j, q)| q + correction.and_then(|c| c.get(j)).copied().unwrap_or(0.0))
+            .collect();
+        let (t2c, jt) = tool_pose_jacobian(layout, &refined.model, &q)
+            .map_err(|source| IdentifyError::Pose { pose: k, source })?;
+        let (mut h_pp, mut h_pc, mut h_cc) = (
+            Matrix6::<f64>::zeros(),
+            SMatrix::<f64, 6, INTRINSICS>::zeros(),
+            SMatrix::<f64, INTRINSICS, INTRINSICS>::zeros(),
+        );
+        for (p, uv) in &pose.observations {
+            let Some((pred, jp, jc)) = project_with_jacobians(&refined.intrinsics, &t2c, p) else {
+                continue;
+            };
+            let (jp, jc) = (jp / s, jc / s);
+            h_pp += jp.transpose() * jp;
+            h_pc += jp.transpose() * jc;
+            h_cc += jc.transpose() * jc;
+            cost += ((pred.coords - uv.coords) / s).norm_squared();
+            rows += 2;
+        }
+        let t_free = DMatrix::from_fn(6, nf, |r, c| jt[(r, free[c])]);
+        let h_pp = DMatrix::from_column_slice(6, 6, h_pp.as_slice());
+        let h_pc = DMatrix::from_column_slice(6, INTRINSICS, h_pc.as_slice())
+            .columns(0, ni)
+            .into_owned();
+        let h_cc = DMatrix::from_column_slice(INTRINSICS, INTRINSICS, h_cc.as_slice())
+            .view((0, 0), (ni, ni))
+            .into_owned();
+        // This pose's head block, less its joint corrections' Schur term.
+        let mut block = DMatrix::zeros(head, head);
+        block
+            .view_mut((0, 0), (nf, nf))
+            .copy_from(&(t_free.transpose() * &h_pp * &t_free));
+        let kc = t_free.transpose() * &h_pc;
+        block.view_mut((0, nf), (nf, ni)).copy_from(&kc);
+        block.view_mut((nf, 0), (ni, nf)).copy_from(&kc.transpose());
+        block.view_mut((nf, nf), (ni, ni)).copy_from(&h_cc);
+        if nj > 0 {
+            let t_joint = DMatrix::from_fn(6, nj, |r, c| jt[(r, offsets[c])]);
+            let hj = &h_pp * &t_joint;
+            let mut cross = DMatrix::zeros(head, nj);
+            cross
+                .view_mut((0, 0), (nf, nj))
+                .copy_from(&(t_free.transpose() * &hj));
+            cross
+                .view_mut((nf, 0), (ni, nj))
+                .copy_from(&(h_pc.transpose() * &t_joint));
+            let qq = t_joint.transpose() * &hj + DMatrix::identity(nj, nj) / (sigma_q * sigma_q);
+            let qq_inv = qq
+                .cholesky()
+                .ok_or(IdentifyError::BadCovariance { pose: k })?
+                .inverse();
+            block -= &cross * qq_inv * cross.transpose();
+            if let Some(c) = correction {
+                cost += c.iter().map(|e| (e / sigma_q).powi(2)).sum::<f64>();
+            }
+        }
+        reduced += block;
+    }
+    let dof = rows.saturating_sub(head).max(1) as f64;
+    let head_cov = covariance_from_normal(&reduced, cost / dof);
+    let kinematic = head_cov.view((0, 0), (nf, nf)).into_owned();
+    Ok(embed_covariance(layout.len(), free, &kinematic))
+}
+
+#[cfg(test)]
+#[path = "joint_covariance_tests.rs"]
+mod tests;

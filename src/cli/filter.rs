@@ -1,0 +1,188 @@
+//! `robocal filter FILE.csv`: a program's Cartesian targets filtered for a
+//! controller that runs the robot's nominal model (`POST …/filter`), CSV in
+//! and CSV out, so that a cell's point list goes through in one command.
+
+use std::fmt::Write;
+use std::path::PathBuf;
+
+use serde_json::{json, Value};
+
+use super::client::{Client, ClientError};
+use super::evaluate::{parse_row, read_input, SetArgs};
+
+/// A pose row: x, y, z (mm), rx, ry, rz (deg, fixed-axis X-Y-Z).
+const POSE_WIDTH: usize = 6;
+/// Column names of the input (a header line with letters is skipped).
+pub const INPUT_COLUMNS: &str = "x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg";
+/// Column names of the output: the filtered flange pose in the base frame
+/// for the nominal controller, the joints the robot will take, the
+/// replayed residual, and the reason when a target has no solution.
+pub const OUTPUT_COLUMNS: &str =
+    "index,x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg,joints_deg,residual_mm,error";
+
+#[derive(Debug, Clone, clap::Args)]
+pub struct FilterArgs {
+    #[command(flatten)]
+    pub set: SetArgs,
+    /// Targets: the pose of the tool in the target (or tracker) frame, one
+    /// per line, columns `x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg` (commas or
+    /// spaces; fixed-axis X-Y-Z angles; a header line and `#` comment lines
+    /// are skipped). `-` reads stdin. Output, one CSV line per target:
+    /// `index,x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg,joints_deg,residual_mm,error`
+    /// where x..rz is the flange pose in the base frame to send to the
+    /// nominal controller, `joints_deg` the joints the robot takes
+    /// (space-separated) and `error` why a target has none (then empty).
+    pub file: PathBuf,
+    /// The tool in the flange frame, `x,y,z,rx,ry,rz` (mm, deg).
+    #[arg(long, value_name = "X,Y,Z,RX,RY,RZ", allow_hyphen_values = true)]
+    pub tool: String,
+    /// Joint angles (deg) whose configuration every solution keeps.
+    #[arg(long, value_name = "J1,..,J6", allow_hyphen_values = true)]
+    pub seed: Option<String>,
+}
+
+fn pose_doc(row: &[f64], what: &str) -> Result<Value, String> {
+    if row.len() != POSE_WIDTH {
+        return Err(format!(
+            "{what} has {POSE_WIDTH} numbers (x,y,z mm, rx,ry,rz deg), not {}",
+            row.len()
+        ));
+    }
+    Ok(json!({"translation_mm": &row[..3], "rotation_deg": &row[3..]}))
+}
+
+/// The `filter` request body of a CSV text and the flags.
+pub fn filter_body(csv: &str, args: &FilterArgs) -> Result<Value, String> {
+    let mut targets = Vec::new();
+    for (n, line) in csv.lines().enumerate() {
+        let line = line.trim();
+        let header = line.starts_with(|c: char| c.is_ascii_alphabetic());
+        if line.is_empty() || line.starts_with('#') || (targets.is_empty() && header) {
+            continue;
+        }
+        let what = format!("line {}", n + 1);
+        targets.push(pose_doc(&parse_row(line, &what)?, &what)?);
+    }
+    if targets.is_empty() {
+        return Err(format!(
+            "no targets in the file: one {INPUT_COLUMNS} row per line"
+        ));
+    }
+    let mut body = json!({
+        "targets": targets,
+        "tool": pose_doc(&parse_row(&args.tool, "--tool")?, "--tool")?,
+    });
+    if let Some(seed) = &args.seed {
+        body["seed_joints_deg"] = json!(parse_row(seed, "--seed")?);
+    }
+    Ok(body)
+}
+
+/// The answer as CSV ([`OUTPUT_COLUMNS`]), one line per target in order.
+pub fn filter_csv(answer: &Value) -> String {
+    let mut out = format!("{OUTPUT_COLUMNS}\n");
+    let errors: Vec<(u64, &str)> = answer["errors"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .filter_map(|e| Some((e["index"].as_u64()?, e["message"].as_str()?)))
+        .collect();
+    let count = answer["nominal_targets"].as_array().map_or(0, Vec::len);
+    for i in 0..count {
+        let pose = &answer["nominal_targets"][i];
+        let numbers = |v: &Value| {
+            v.as_array()
+                .into_iter()
+                .flatten()
+                .filter_map(Value::as_f64)
+                .map(|x| format!("{x}"))
+                .collect::<Vec<_>>()
+        };
+        let mut cells = numbers(&pose["translation_mm"]);
+        cells.extend(numbers(&pose["rotation_deg"]));
+        cells.resize(POSE_WIDTH, String::new());
+        let joints = numbers(&answer["joints_deg"][i]).join(" ");
+        let residual = answer["residual_mm"][i]
+            .as_f64()
+            .map_or(String::new(), |r| format!("{r}"));
+        let error = errors
+            .iter()
+            .find(|(k, _)| *k == i as u64)
+            .map_or(String::new(), |(_, m)| {
+                format!("\"{}\"", m.replace('"', "\"\""))
+            });
+        let _ = writeln!(out, "{i},{},{joints},{residual},{error}", cells.join(","));
+    }
+    out
+}
+
+pub async fn filter(client: &Client, args: &FilterArgs) -> Result<(), ClientError> {
+    let csv = read_input(&args.file).map_err(ClientError::Local)?;
+    let body = filter_body(&csv, args).map_err(ClientError::Local)?;
+    let answer = client
+        .evaluate(&args.set.serial, args.set.version, "filter", &body)
+        .await?;
+    if args.set.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&answer).unwrap_or_default()
+        );
+    } else {
+        print!("{}", filter_csv(&answer));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args() -> FilterArgs {
+        FilterArgs {
+            set: SetArgs {
+                serial: "R".into(),
+                version: None,
+                json: false,
+            },
+            file: "-".into(),
+            tool: "0,0,100,0,0,0".into(),
+            seed: Some("0,10,10,0,60,0".into()),
+        }
+    }
+
+    #[test]
+    fn a_csv_with_header_and_comments_becomes_the_request() {
+        let csv = "x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg\n# first\n150,0,-790,3.5,3.7,1e-3\n\n10 20 30 0 0 0\n";
+        let body = filter_body(csv, &args()).unwrap();
+        assert_eq!(body["targets"].as_array().unwrap().len(), 2);
+        assert_eq!(body["targets"][0]["rotation_deg"], json!([3.5, 3.7, 0.001]));
+        assert_eq!(body["tool"]["translation_mm"], json!([0.0, 0.0, 100.0]));
+        assert_eq!(body["seed_joints_deg"][4], 60.0);
+    }
+
+    #[test]
+    fn bad_lines_are_named() {
+        let e = filter_body("1,2,3,4,5,6\n1,2,3\n", &args()).unwrap_err();
+        assert!(e.contains("line 2") && e.contains("6 numbers"), "{e}");
+        let e = filter_body("1,2,3,4,5,x6\n", &args()).unwrap_err();
+        assert!(e.contains("line 1"), "{e}");
+        assert!(filter_body("# nothing\n", &args())
+            .unwrap_err()
+            .contains("no targets"));
+    }
+
+    #[test]
+    fn the_answer_is_one_csv_line_per_target_errors_included() {
+        let answer = json!({
+            "nominal_targets": [
+                {"translation_mm": [1.0, 2.0, 3.0], "rotation_deg": [4.0, 5.0, 6.0]}, null],
+            "joints_deg": [[1.0, 2.0, 3.0, 4.0, 5.0, 6.0], null],
+            "residual_mm": [0.0001, null],
+            "errors": [{"index": 1, "message": "target out of reach"}]});
+        let csv = filter_csv(&answer);
+        let lines: Vec<&str> = csv.lines().collect();
+        assert_eq!(lines[0], OUTPUT_COLUMNS);
+        assert_eq!(lines[1], "0,1,2,3,4,5,6,1 2 3 4 5 6,0.0001,");
+        assert_eq!(lines[2], "1,,,,,,,,,\"target out of reach\"");
+    }
+}
