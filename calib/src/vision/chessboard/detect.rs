@@ -148,3 +148,7 @@ pub fn detect_chessboard(
 #[cfg(test)]
 #[path = "detect_tests.rs"]
 mod tests;
+
+#[cfg(test)]
+#[path = "real_data_tests.rs"]
+mod real_data_tests;
