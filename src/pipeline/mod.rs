@@ -14,6 +14,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 mod camera_stage;
 mod detections;
+mod half_turn;
 mod identify_stage;
 mod input;
 mod measure;
@@ -109,7 +110,7 @@ fn run_stages(
                     )]))
                 }
             };
-            let measured = measure::measure(
+            let mut measured = measure::measure(
                 &input.poses,
                 &target,
                 &input.images,
@@ -127,7 +128,7 @@ fn run_stages(
                 "Tsai start and joint refinement",
                 0.0,
             );
-            let step = camera_stage::calibrate_camera(
+            let mut step = camera_stage::calibrate_camera(
                 &input.poses,
                 &measured,
                 &target,
@@ -135,6 +136,24 @@ fn run_stages(
                 input.options.refine_intrinsics,
                 input.fixed_camera.as_ref(),
             )?;
+            let turned = half_turn::resolve(
+                &input.robot,
+                &input.poses,
+                &target,
+                &mut step,
+                &mut measured,
+            )?;
+            if !turned.is_empty() {
+                let names: Vec<&str> = turned
+                    .iter()
+                    .map(|&i| input.poses[i].label.as_str())
+                    .collect();
+                notes.push(format!(
+                    "The board looks the same after a half turn; the joints showed it turned in {} image(s), relabelled: {}.",
+                    turned.len(),
+                    names.join(", ")
+                ));
+            }
             if let Some(fixed) = &input.fixed_camera {
                 notes.push(format!(
                     "Camera intrinsics held fixed at those of calibration {} (camera_calibration_id); only the camera poses were fitted.",
