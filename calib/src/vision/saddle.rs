@@ -187,7 +187,7 @@ fn symmetry_fit(img: &GrayImage, start: Vector2<f64>, half: f64) -> Option<Vecto
 /// hold the four squares' edges and nothing else), or `None` when there is
 /// no junction or the fit leaves the window.
 pub fn refine_saddle(img: &GrayImage, guess_px: [f64; 2], half_window_px: f64) -> Option<[f64; 2]> {
-    if !(half_window_px >= MIN_HALF_WINDOW_PX) {
+    if half_window_px.is_nan() || half_window_px < MIN_HALF_WINDOW_PX {
         return None;
     }
     let guess = Vector2::new(guess_px[0], guess_px[1]);

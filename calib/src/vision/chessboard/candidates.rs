@@ -104,7 +104,7 @@ pub fn smooth(img: &GrayImage, sigma: f64) -> GrayImage {
 
 /// Bilinear grey level, `None` outside.
 pub fn bilinear(img: &GrayImage, x: f64, y: f64) -> Option<f32> {
-    if !(x >= 0.0 && y >= 0.0) {
+    if x.is_nan() || y.is_nan() || x < 0.0 || y < 0.0 {
         return None;
     }
     let (x0, y0) = (x.floor() as usize, y.floor() as usize);
