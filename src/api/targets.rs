@@ -19,14 +19,15 @@ pub fn router() -> OpenApiRouter<AppState> {
 /// bar and the session `target` spec in the margin.
 #[utoipa::path(get, path = "/v1/targets/render", tag = "targets",
     params(
-        ("kind" = Option<String>, Query, description = "Target kind: `dots` (default; robocal's dot grid) or `charuco`"),
+        ("kind" = Option<String>, Query, description = "Target kind: `dots` (default; robocal's dot grid), `charuco` or `chessboard`"),
         ("rows" = Option<u32>, Query, minimum = 2, maximum = 200, description = "dots: dots along a column"),
         ("cols" = Option<u32>, Query, minimum = 2, maximum = 200, description = "dots: dots along a row"),
         ("pitch_mm" = Option<f64>, Query, description = "dots: centre-to-centre spacing, mm"),
         ("dot_diameter_mm" = Option<f64>, Query, description = "dots: diameter of an ordinary dot, mm (below pitch_mm)"),
         ("origin_marker_diameter_mm" = Option<f64>, Query, description = "dots: diameter of the larger origin dot, mm; omit for a marker-less grid"),
         ("squares" = Option<String>, Query, description = "charuco: squares as `cols,rows`, e.g. `10,8`"),
-        ("square_mm" = Option<f64>, Query, description = "charuco: side of a chessboard square, mm"),
+        ("square_mm" = Option<f64>, Query, description = "charuco, chessboard: side of a chessboard square, mm"),
+        ("inner_corners" = Option<String>, Query, description = "chessboard: inner corners as `cols,rows` (OpenCV's patternSize), e.g. `11,8`"),
         ("marker_mm" = Option<f64>, Query, description = "charuco: side of a marker with its black border, mm (below square_mm)"),
         ("dictionary" = Option<String>, Query, description = "charuco: an OpenCV predefined dictionary name, e.g. `DICT_5X5_100`"),
         ("legacy_layout" = Option<bool>, Query, description = "charuco: the layout of OpenCV < 4.6 (default false)"),

@@ -1,9 +1,10 @@
 //! The board a camera session uses, typed once from the session's `target`
-//! (issue 14): robocal's dot grid or a ChArUco board. Everything downstream
+//! (issue 14): robocal's dot grid, a ChArUco board or a chessboard. Everything downstream
 //! (detection at upload, the camera stage) asks this type where a feature
 //! sits on the board and how to find it, never the JSON.
 
 use robocal_calib::vision::charuco::{self, CharucoSpec};
+use robocal_calib::vision::chessboard::{self, ChessboardSpec};
 use robocal_calib::vision::{self, DetectError, DetectOptions, GrayImage, TargetSpec};
 
 use crate::schema::session::{TargetDoc, TargetKind, MAX_GRID_SIDE};
@@ -23,6 +24,7 @@ pub struct FoundPoint {
 pub enum Target {
     Dots(TargetSpec),
     Charuco(CharucoSpec),
+    Chessboard(ChessboardSpec),
 }
 
 /// Fields that belong to one kind only, for the "not a field of this kind" check.
@@ -40,6 +42,7 @@ const CHARUCO_FIELDS: [&str; 5] = [
     "dictionary",
     "legacy_layout",
 ];
+const CHESSBOARD_FIELDS: [&str; 2] = ["inner_corners", "square_mm"];
 
 impl Target {
     /// The typed board, or every problem named as `target.<field>`.
@@ -55,12 +58,24 @@ impl Target {
             "square_mm" => doc.square_mm.is_some(),
             "marker_mm" => doc.marker_mm.is_some(),
             "dictionary" => doc.dictionary.is_some(),
+            "inner_corners" => doc.inner_corners.is_some(),
             _ => doc.legacy_layout.is_some(),
         };
-        let (own, other, kind) = match doc.kind {
-            TargetKind::Dots => (DOT_FIELDS, CHARUCO_FIELDS, "dots"),
-            TargetKind::Charuco => (CHARUCO_FIELDS, DOT_FIELDS, "charuco"),
+        let (own, kind): (&[&str], _) = match doc.kind {
+            TargetKind::Dots => (&DOT_FIELDS[..], "dots"),
+            TargetKind::Charuco => (&CHARUCO_FIELDS[..], "charuco"),
+            TargetKind::Chessboard => (&CHESSBOARD_FIELDS[..], "chessboard"),
         };
+        let every = DOT_FIELDS
+            .iter()
+            .chain(&CHARUCO_FIELDS)
+            .chain(&CHESSBOARD_FIELDS);
+        let mut other: Vec<&str> = Vec::new();
+        for name in every.copied().filter(|n| !own.contains(n)) {
+            if !other.contains(&name) {
+                other.push(name);
+            }
+        }
         for name in other.iter().filter(|n| given(n)) {
             c.fail(
                 format!("target.{name}"),
@@ -78,6 +93,7 @@ impl Target {
         match doc.kind {
             TargetKind::Dots => dots(doc),
             TargetKind::Charuco => charuco(doc),
+            TargetKind::Chessboard => chessboard_spec(doc),
         }
     }
 
@@ -86,6 +102,7 @@ impl Target {
         match self {
             Target::Dots(t) => t.dot_centre_mm(row as usize, col as usize),
             Target::Charuco(t) => charuco::corner_mm(t, row as usize, col as usize),
+            Target::Chessboard(t) => t.corner_mm(row as usize, col as usize),
         }
     }
 
@@ -100,7 +117,7 @@ impl Target {
                     && t.origin_marker_diameter_mm
                         .is_some_and(|m| m > t.dot_diameter_mm)
             }
-            Target::Charuco(_) => false,
+            Target::Charuco(_) | Target::Chessboard(_) => false,
         }
     }
 
@@ -109,7 +126,7 @@ impl Target {
     pub fn dot_diameter_mm(&self) -> Option<f64> {
         match self {
             Target::Dots(t) => Some(t.dot_diameter_mm),
-            Target::Charuco(_) => None,
+            Target::Charuco(_) | Target::Chessboard(_) => None,
         }
     }
 
@@ -135,28 +152,37 @@ impl Target {
                     })
                     .collect())
             }
-            Target::Charuco(t) => {
-                let found = charuco::detect_charuco(image, t)?;
-                Ok(found
-                    .points
-                    .iter()
-                    .map(|p| FoundPoint {
-                        row: p.row as u32,
-                        col: p.col as u32,
-                        x: p.x_px,
-                        y: p.y_px,
-                    })
-                    .collect())
-            }
+            Target::Charuco(t) => Ok(found_points(&charuco::detect_charuco(image, t)?)),
+            Target::Chessboard(t) => Ok(found_points(&chessboard::detect_chessboard(image, t)?)),
         }
     }
 
     /// Whether every image's features get the same identities (an origin
-    /// marker, or ChArUco's marker ids).
+    /// marker, ChArUco's marker ids, a chessboard's colours when one side is
+    /// odd and the other even).
     pub fn ordering_unique(&self) -> bool {
         match self {
             Target::Dots(t) => t.origin_marker_diameter_mm.is_some(),
             Target::Charuco(_) => true,
+            Target::Chessboard(t) => !t.ambiguous_180(),
+        }
+    }
+
+    /// For a board whose order images fix only up to a half turn (a
+    /// chessboard with both sides even or both odd): its inner corners
+    /// `[cols, rows]` and the span of its corners in x and y (mm), so that
+    /// the half turn maps `(row, col)` to `(rows-1-row, cols-1-col)` and
+    /// `(x, y)` to `(span_x - x, span_y - y)`.
+    pub fn half_turn(&self) -> Option<([u32; 2], [f64; 2])> {
+        match self {
+            Target::Chessboard(t) if t.ambiguous_180() => Some((
+                [t.cols() as u32, t.rows() as u32],
+                [
+                    (t.cols() - 1) as f64 * t.square_mm,
+                    (t.rows() - 1) as f64 * t.square_mm,
+                ],
+            )),
+            _ => None,
         }
     }
 
@@ -166,6 +192,7 @@ impl Target {
         match self {
             Target::Dots(t) => format!("{}x{}", t.rows, t.cols),
             Target::Charuco(t) => format!("ChArUco {}x{}", t.cols(), t.rows()),
+            Target::Chessboard(t) => format!("chessboard {}x{}", t.cols(), t.rows()),
         }
     }
 
@@ -174,6 +201,7 @@ impl Target {
         match self {
             Target::Dots(_) => "rows, cols, pitch_mm, dot diameters",
             Target::Charuco(_) => "squares, square_mm, marker_mm, dictionary, legacy_layout",
+            Target::Chessboard(_) => "inner_corners (cols, rows of inner corners), square_mm",
         }
     }
 }
@@ -206,6 +234,41 @@ fn dots(doc: &TargetDoc) -> Result<Target, Vec<FieldError>> {
         dot_diameter_mm: dot,
         origin_marker_diameter_mm: Some(marker),
     }))
+}
+
+fn found_points(found: &vision::BoardDetection) -> Vec<FoundPoint> {
+    found
+        .points
+        .iter()
+        .map(|p| FoundPoint {
+            row: p.row as u32,
+            col: p.col as u32,
+            x: p.x_px,
+            y: p.y_px,
+        })
+        .collect()
+}
+
+/// calib's `InvalidTarget("<field>: why")` as an error on `target.<field>`.
+fn field_errors(e: DetectError) -> Vec<FieldError> {
+    let text = match e {
+        DetectError::InvalidTarget(text) => text,
+        other => other.to_string(),
+    };
+    match text.split_once(": ") {
+        Some((field, why)) => vec![FieldError::new(format!("target.{field}"), why)],
+        None => vec![FieldError::new("target", text)],
+    }
+}
+
+fn chessboard_spec(doc: &TargetDoc) -> Result<Target, Vec<FieldError>> {
+    let [cols, rows] = doc.inner_corners.unwrap_or_default();
+    let spec = ChessboardSpec {
+        inner_corners: [cols as usize, rows as usize],
+        square_mm: doc.square_mm.unwrap_or_default(),
+    };
+    spec.validate().map_err(field_errors)?;
+    Ok(Target::Chessboard(spec))
 }
 
 fn charuco(doc: &TargetDoc) -> Result<Target, Vec<FieldError>> {

@@ -16,6 +16,7 @@ mod camera_stage;
 mod detections;
 mod flange_job;
 mod flange_stage;
+mod half_turn;
 pub mod hand_eye_results;
 mod identify_stage;
 mod input;
@@ -114,7 +115,7 @@ fn run_stages(
                     )]))
                 }
             };
-            let measured = measure::measure(
+            let mut measured = measure::measure(
                 &input.poses,
                 &target,
                 &input.images,
@@ -132,7 +133,7 @@ fn run_stages(
                 "Tsai start and joint refinement",
                 0.0,
             );
-            let step = camera_stage::calibrate_camera(
+            let mut step = camera_stage::calibrate_camera(
                 &input.poses,
                 &measured,
                 &target,
@@ -140,6 +141,24 @@ fn run_stages(
                 input.options.refine_intrinsics,
                 input.fixed_camera.as_ref(),
             )?;
+            let turned = half_turn::resolve(
+                &input.robot,
+                &input.poses,
+                &target,
+                &mut step,
+                &mut measured,
+            )?;
+            if !turned.is_empty() {
+                let names: Vec<&str> = turned
+                    .iter()
+                    .map(|&i| input.poses[i].label.as_str())
+                    .collect();
+                notes.push(format!(
+                    "The board looks the same after a half turn; the joints showed it turned in {} image(s), relabelled: {}.",
+                    turned.len(),
+                    names.join(", ")
+                ));
+            }
             if let Some(fixed) = &input.fixed_camera {
                 notes.push(format!(
                     "Camera intrinsics held fixed at those of calibration {} (camera_calibration_id); only the camera poses were fitted.",

@@ -5,6 +5,7 @@
 use std::collections::BTreeMap;
 
 use robocal_calib::vision::charuco::CharucoSpec;
+use robocal_calib::vision::chessboard::ChessboardSpec;
 use robocal_calib::vision::target::MAX_GRID_SIDE;
 use robocal_calib::vision::{BoardDrawing, DetectError, TargetSpec};
 
@@ -33,6 +34,9 @@ const CHARUCO_KEYS: [&str; 5] = [
     "legacy_layout",
 ];
 
+/// Keys a chessboard takes (`inner_corners` as `cols,rows`).
+const CHESSBOARD_KEYS: [&str; 2] = ["inner_corners", "square_mm"];
+
 /// Why pairs could not be turned into a printable target.
 pub type PrintError = Vec<FieldError>;
 
@@ -50,6 +54,8 @@ pub enum PrintableTarget {
     Dots(TargetSpec),
     /// An OpenCV ChArUco board (validated: it can be drawn).
     Charuco(CharucoSpec),
+    /// A chessboard (validated), OpenCV's corner order.
+    Chessboard(ChessboardSpec),
 }
 
 impl PrintableTarget {
@@ -57,6 +63,9 @@ impl PrintableTarget {
         match self {
             PrintableTarget::Dots(t) => t.drawing(),
             PrintableTarget::Charuco(t) => {
+                t.drawing().expect("validated when the request was parsed")
+            }
+            PrintableTarget::Chessboard(t) => {
                 t.drawing().expect("validated when the request was parsed")
             }
         }
@@ -102,6 +111,20 @@ impl PrintableTarget {
                     t.legacy_layout
                 ),
             ],
+            PrintableTarget::Chessboard(t) => vec![
+                format!(
+                    "chessboard {} x {} inner corners, squares of {} mm",
+                    t.cols(),
+                    t.rows(),
+                    t.square_mm
+                ),
+                format!(
+                    "session target: {{\"kind\": \"chessboard\", \"inner_corners\": [{}, {}], \"square_mm\": {}}}",
+                    t.cols(),
+                    t.rows(),
+                    t.square_mm
+                ),
+            ],
         }
     }
 }
@@ -126,10 +149,11 @@ pub fn parse_pairs(pairs: &[(String, String)]) -> Result<PrintRequest, PrintErro
     let target = match map.remove("kind").unwrap_or("dots") {
         "dots" => dots(&mut c, &mut map),
         "charuco" => charuco(&mut c, &mut map),
+        "chessboard" => chessboard(&mut c, &mut map),
         other => {
             c.fail(
                 "kind",
-                format!("{other:?} is not a printable target kind (dots, charuco)"),
+                format!("{other:?} is not a printable target kind (dots, charuco, chessboard)"),
             );
             None
         }
@@ -263,6 +287,55 @@ fn charuco(c: &mut Checker, map: &mut BTreeMap<&str, &str>) -> Option<PrintableT
         return None;
     }
     Some(PrintableTarget::Charuco(spec))
+}
+
+fn chessboard(c: &mut Checker, map: &mut BTreeMap<&str, &str>) -> Option<PrintableTarget> {
+    let mut got = BTreeMap::new();
+    for key in CHESSBOARD_KEYS {
+        if let Some(v) = map.remove(key) {
+            got.insert(key, v);
+        }
+    }
+    let corners: Option<Vec<usize>> = got.get("inner_corners").map(|v| {
+        v.split(',')
+            .map(|n| n.trim().parse::<usize>().unwrap_or(0))
+            .collect()
+    });
+    let inner_corners = match corners.as_deref() {
+        Some(&[cols, rows]) => [cols, rows],
+        Some(_) => {
+            c.fail("inner_corners", "two whole numbers: cols,rows");
+            return None;
+        }
+        None => {
+            c.fail("inner_corners", "required");
+            return None;
+        }
+    };
+    let spec = ChessboardSpec {
+        inner_corners,
+        square_mm: number(c, &got, "square_mm")?,
+    };
+    if let Err(e) = spec.validate() {
+        let text = match e {
+            DetectError::InvalidTarget(text) => text,
+            other => other.to_string(),
+        };
+        match text.split_once(": ") {
+            Some((field, why)) => c.fail(field, why),
+            None => c.fail("kind", text),
+        }
+        return None;
+    }
+    let side_mm = (inner_corners[0].max(inner_corners[1]) + 3) as f64 * spec.square_mm;
+    if side_mm > MAX_PRINT_MM {
+        c.fail(
+            "square_mm",
+            format!("the board would exceed {MAX_PRINT_MM} mm"),
+        );
+        return None;
+    }
+    Some(PrintableTarget::Chessboard(spec))
 }
 
 /// A required finite number.

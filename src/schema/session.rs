@@ -36,13 +36,14 @@ impl Instrument {
 }
 
 /// What board the camera sees (issue 14): robocal's dot grid (`kind`
-/// `"dots"`, the default, may be omitted) or a ChArUco board.
+/// `"dots"`, the default, may be omitted), a ChArUco board or a chessboard.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum TargetKind {
     #[default]
     Dots,
     Charuco,
+    Chessboard,
 }
 
 impl TargetKind {
@@ -55,8 +56,10 @@ impl TargetKind {
 /// `origin_marker_diameter_mm`. ChArUco (OpenCV's `CharucoBoard`):
 /// `squares` `[cols, rows]`, `square_mm`, `marker_mm`, `dictionary` (an
 /// OpenCV predefined dictionary name, e.g. `DICT_5X5_100`) and
-/// `legacy_layout` (boards made by OpenCV < 4.6; default false). A field of
-/// the other kind is refused.
+/// `legacy_layout` (boards made by OpenCV < 4.6; default false).
+/// Chessboard (OpenCV's `findChessboardCorners`): `inner_corners`
+/// `[cols, rows]` and `square_mm`; corners in OpenCV's order. A field of
+/// another kind is refused.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct TargetDoc {
@@ -82,6 +85,10 @@ pub struct TargetDoc {
     pub dictionary: Option<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub legacy_layout: Option<bool>,
+    /// Chessboard: inner corners `[cols, rows]` (`cols` per row), as
+    /// OpenCV's `patternSize`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inner_corners: Option<[u32; 2]>,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]

@@ -2,6 +2,7 @@
 
 pub(crate) mod accuracy;
 pub(crate) mod anonymous;
+pub(crate) mod aubo_campaign;
 pub(crate) mod auth;
 pub(crate) mod bad_json;
 pub(crate) mod camera_reuse;

@@ -199,3 +199,61 @@ async fn printed_charuco_board_is_detected_with_every_corner() {
     }
     app.shutdown().await;
 }
+
+#[tokio::test]
+async fn printed_chessboard_is_detected_in_opencv_order() {
+    use robocal::calib::vision::chessboard::{detect_chessboard, ChessboardSpec};
+    let app = spawn_app().await;
+    let r = app
+        .get("/v1/targets/render?kind=chessboard&inner_corners=9,6&square_mm=20")
+        .await;
+    assert_eq!(r.status(), 200);
+    let svg = r.text().await.unwrap();
+    assert!(
+        svg.contains("\"kind\": \"chessboard\""),
+        "spec in the margin"
+    );
+    let spec = ChessboardSpec {
+        inner_corners: [9, 6],
+        square_mm: 20.0,
+    };
+    let found = detect_chessboard(&rasterise(&svg), &spec).unwrap();
+    assert!(found.ordering_unique, "9x6 is not half-turn symmetric");
+    assert_eq!(found.points.len(), 9 * 6, "every inner corner");
+    // Corners 20 mm apart on paper: 200 px at 10 px/mm; the page is upright,
+    // so OpenCV's order runs along x first, then down.
+    let at = |k: usize| (found.points[k].x_px, found.points[k].y_px);
+    for k in [0, 13, 40] {
+        let (a, b, c) = (at(k), at(k + 1), at(k + 9));
+        assert!(
+            (b.0 - a.0 - 200.0).abs() < 0.1 && (b.1 - a.1).abs() < 0.1,
+            "{k}: {a:?} {b:?}"
+        );
+        assert!(
+            (c.1 - a.1 - 200.0).abs() < 0.1 && (c.0 - a.0).abs() < 0.1,
+            "{k}: {a:?} {c:?}"
+        );
+    }
+    for (query, field) in [
+        ("kind=chessboard&inner_corners=9,6&square_mm=0", "square_mm"),
+        (
+            "kind=chessboard&inner_corners=9,6&square_mm=-5",
+            "square_mm",
+        ),
+        (
+            "kind=chessboard&inner_corners=1,6&square_mm=20",
+            "inner_corners",
+        ),
+        (
+            "kind=chessboard&inner_corners=9&square_mm=20",
+            "inner_corners",
+        ),
+        ("kind=chessboard&square_mm=20", "inner_corners"),
+    ] {
+        let r = app.get(&format!("/v1/targets/render?{query}")).await;
+        assert_eq!(r.status(), 422, "{query}");
+        let body: Value = r.json().await.unwrap();
+        assert_eq!(body["errors"][0]["field"], field, "{query}: {body}");
+    }
+    app.shutdown().await;
+}

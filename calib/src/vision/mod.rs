@@ -8,6 +8,7 @@ pub mod bias;
 pub mod blobs;
 pub mod board_point;
 pub mod charuco;
+pub mod chessboard;
 pub mod detect;
 pub mod drawing;
 pub mod ellipse;
@@ -16,6 +17,7 @@ pub mod grid;
 pub mod homography;
 pub mod image;
 pub mod order;
+pub mod saddle;
 pub mod target;
 pub mod threshold;
 

@@ -10,7 +10,6 @@
 use nalgebra::Vector2;
 
 use super::consistency::consistent_markers;
-use super::corner_refine::refine_corner;
 use super::layout::{corner_mm, inner_corner_grid, marker_cells, squares_around_corner};
 use super::spec::CharucoSpec;
 use crate::vision::aruco::detect_markers;
@@ -18,6 +17,7 @@ use crate::vision::board_point::{BoardDetection, BoardPoint};
 use crate::vision::error::DetectError;
 use crate::vision::homography::Homography;
 use crate::vision::image::GrayImage;
+use crate::vision::saddle::refine_saddle;
 
 /// Markers whose square centre lies within this many squares (Chebyshev)
 /// of an inner corner take part in its local homography.
@@ -134,10 +134,10 @@ pub fn detect_charuco_with(
     })
 }
 
-/// Detects the inner corners, refined by the interim saddle fit
-/// (`corner_refine`; see `detect_charuco_with`).
+/// Detects the inner corners, refined by the shared saddle/point-symmetry
+/// fit (`vision::saddle`; see `detect_charuco_with`).
 pub fn detect_charuco(img: &GrayImage, spec: &CharucoSpec) -> Result<BoardDetection, DetectError> {
-    detect_charuco_with(img, spec, Some(&refine_corner))
+    detect_charuco_with(img, spec, Some(&refine_saddle))
 }
 
 #[cfg(test)]

@@ -2,7 +2,6 @@
 //! (markers → board squares → local homography → inner corners).
 
 pub mod consistency;
-pub mod corner_refine;
 pub mod detect;
 pub mod drawing;
 pub mod layout;

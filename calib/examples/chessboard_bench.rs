@@ -1,0 +1,170 @@
+//! Chessboard benchmark (issue 14): renders views of a 9x6 inner-corner
+//! board (30 mm squares) in four kinds (fronto, steep, blurred, uneven
+//! light), writes them as PNGs with `truth.csv`, detects the corners and
+//! prints, per kind, boards detected, corners with a wrong identity, RMS and
+//! worst corner error against the true projections, and CPU ms per image.
+//! `bench/chessboard_opencv.py DIR` runs OpenCV's findChessboardCorners +
+//! cornerSubPix on the same PNGs with the same truth.
+//!
+//! cargo run --release -p robocal-calib --example chessboard_bench -- [--views N] [--seed S] [--out DIR]
+
+use std::fmt::Write as _;
+
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+use rand::{rngs::StdRng, Rng, SeedableRng};
+use robocal_calib::sim::render::RenderOptions;
+use robocal_calib::sim::render_chessboard::render_chessboard;
+use robocal_calib::sim::views::reference_camera;
+use robocal_calib::vision::chessboard::{detect_chessboard, ChessboardSpec};
+
+const WIDTH: usize = 1280;
+const HEIGHT: usize = 1024;
+/// A corner further than this from its truth has a wrong identity.
+const WRONG_ID_PX: f64 = 3.0;
+const KINDS: [&str; 4] = ["fronto", "steep", "blurred", "uneven"];
+
+fn arg<T: std::str::FromStr>(name: &str, default: T) -> T {
+    let args: Vec<String> = std::env::args().collect();
+    args.iter()
+        .position(|a| a == name)
+        .and_then(|i| args.get(i + 1))
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default)
+}
+
+/// CPU time of the calling thread, ns (the machine is shared).
+fn thread_cpu_ns() -> u64 {
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse().ok())
+        .unwrap_or(0)
+}
+
+fn board() -> ChessboardSpec {
+    ChessboardSpec {
+        inner_corners: [9, 6],
+        square_mm: 30.0,
+    }
+}
+
+/// A random pose of the given kind and its render options.
+fn view(kind: &str, rng: &mut StdRng) -> (Isometry3<f64>, RenderOptions) {
+    let spec = board();
+    let base = RenderOptions {
+        supersampling: 8,
+        board_margin_mm: 20.0,
+        ..RenderOptions::default()
+    };
+    let (dist, tilt, opts): (f64, f64, RenderOptions) = match kind {
+        "fronto" => (
+            rng.random_range(550.0..750.0),
+            rng.random_range(0.0..15.0),
+            base,
+        ),
+        "steep" => (
+            rng.random_range(550.0..700.0),
+            rng.random_range(50.0..62.0),
+            base,
+        ),
+        "blurred" => (
+            rng.random_range(600.0..800.0),
+            rng.random_range(20.0..45.0),
+            RenderOptions {
+                blur_sigma_px: 2.0,
+                noise_sigma_grey: 3.0,
+                ..base
+            },
+        ),
+        _ => (
+            rng.random_range(600.0..800.0),
+            rng.random_range(20.0..45.0),
+            RenderOptions {
+                vignetting: 0.65,
+                ..base
+            },
+        ),
+    };
+    let shift = 20.0;
+    let centre = Vector3::new(
+        0.5 * (spec.cols() - 1) as f64 * spec.square_mm + rng.random_range(-shift..=shift),
+        0.5 * (spec.rows() - 1) as f64 * spec.square_mm + rng.random_range(-shift..=shift),
+        0.0,
+    );
+    let rot = UnitQuaternion::from_axis_angle(
+        &Vector3::z_axis(),
+        rng.random_range(0.0..360f64).to_radians(),
+    ) * UnitQuaternion::from_axis_angle(&Vector3::x_axis(), tilt.to_radians());
+    let iso =
+        Isometry3::from_parts(Translation3::new(0.0, 0.0, dist), rot) * Translation3::from(-centre);
+    (iso, opts)
+}
+
+fn main() {
+    let views: usize = arg("--views", 8);
+    let seed: u64 = arg("--seed", 14);
+    let out: String = arg("--out", "/tmp/chessboard_bench".to_string());
+    std::fs::create_dir_all(&out).expect("output dir");
+    let spec = board();
+    let mut rng = StdRng::seed_from_u64(seed);
+    let mut csv = String::from("image,id,row,col,x,y,visible\n");
+    println!("robocal chessboard 9x6, {WIDTH}x{HEIGHT}, {views} views per kind, seed {seed}");
+    for kind in KINDS {
+        let (mut boards, mut found, mut wrong, mut sum2, mut worst, mut cpu_ns) =
+            (0, 0, 0, 0.0, 0.0f64, 0u64);
+        for k in 0..views {
+            let (iso, opts) = view(kind, &mut rng);
+            let v = render_chessboard(
+                &reference_camera(),
+                &iso,
+                &spec,
+                WIDTH,
+                HEIGHT,
+                &opts,
+                &mut rng,
+            )
+            .expect("render");
+            let name = format!("{kind}_{k:03}.png");
+            v.image
+                .to_luma8()
+                .save(format!("{out}/{name}"))
+                .expect("write png");
+            for (id, t) in v.truth.iter().enumerate() {
+                let _ = writeln!(
+                    csv,
+                    "{name},{id},{},{},{:.6},{:.6},{}",
+                    t.row,
+                    t.col,
+                    t.x,
+                    t.y,
+                    u8::from(t.visible)
+                );
+            }
+            let t0 = thread_cpu_ns();
+            let det = detect_chessboard(&v.image, &spec);
+            cpu_ns += thread_cpu_ns() - t0;
+            let Ok(det) = det else { continue };
+            boards += 1;
+            for p in &det.points {
+                let t = v.truth[p.row * spec.cols() + p.col];
+                let e = (p.x_px - t.x).hypot(p.y_px - t.y);
+                if e > WRONG_ID_PX {
+                    wrong += 1;
+                    continue;
+                }
+                found += 1;
+                sum2 += e * e;
+                worst = worst.max(e);
+            }
+        }
+        println!(
+            "{kind:8} boards {boards}/{views}, corners {found}, wrong {wrong}, RMS {:.4} px, worst {:.3} px, {:.1} ms/image (CPU)",
+            (sum2 / found.max(1) as f64).sqrt(),
+            worst,
+            cpu_ns as f64 / 1e6 / views as f64
+        );
+    }
+    std::fs::write(format!("{out}/truth.csv"), csv).expect("write truth");
+    println!(
+        "images + truth.csv in {out}; OpenCV: /tmp/bench-venv/bin/python bench/chessboard_opencv.py {out}"
+    );
+}

@@ -1,0 +1,154 @@
+//! Chessboard detection (issue 14): saddle candidates on a decimated image
+//! → lattice grown from a seed → OpenCV's order (colour decides the half
+//! turn where it can) → every corner refined at full resolution by the
+//! saddle/point-symmetry fit (`vision::saddle`).
+//!
+//! Only a complete board is accepted: chessboard corners carry no ids, so a
+//! partial view could not be numbered without guessing. A lattice larger
+//! than the spec is refused naming `inner_corners`, never cut arbitrarily.
+
+use nalgebra::Vector2;
+
+use super::candidates::{decimate, find_candidates, MAX_CANDIDATES_PER_CORNER};
+use super::lattice::{grow, Lattice, MAX_SEEDS};
+use super::orient::order;
+use super::spec::ChessboardSpec;
+use crate::vision::board_point::{BoardDetection, BoardPoint};
+use crate::vision::error::DetectError;
+use crate::vision::image::GrayImage;
+use crate::vision::saddle::refine_saddle;
+
+/// Candidates are searched on a copy decimated to at most this long side
+/// first (then at full resolution if that fails: small squares).
+pub const COARSE_LONG_SIDE_PX: usize = 1000;
+/// Smallest image side accepted, pixels.
+pub const MIN_IMAGE_SIDE_PX: usize = 16;
+/// Refinement half window as a fraction of the distance to the nearest
+/// lattice neighbour (the window holds the four squares' edges only).
+pub const REFINE_WINDOW_FRACTION: f64 = 0.4;
+/// Bounds of the refinement half window, pixels.
+pub const MIN_REFINE_HALF_WINDOW_PX: f64 = 2.0;
+pub const MAX_REFINE_HALF_WINDOW_PX: f64 = 12.0;
+
+/// The largest lattice grown from any seed (a complete one ends the search).
+fn best_lattice(cands: &[super::candidates::Candidate], spec: &ChessboardSpec) -> Option<Lattice> {
+    let mut best: Option<Lattice> = None;
+    let cap = 4 * spec.corner_count();
+    for k in 0..cands.len().min(MAX_SEEDS) {
+        let Some(l) = grow(cands, k, cap) else {
+            continue;
+        };
+        let done = l.len() >= spec.corner_count();
+        if best.as_ref().is_none_or(|b| l.len() > b.len()) {
+            best = Some(l);
+        }
+        if done {
+            break;
+        }
+    }
+    best
+}
+
+/// One attempt at decimation `factor`: ordered corners in full-resolution
+/// pixels (unrefined) and whether the order is unique.
+fn at_level(
+    img: &GrayImage,
+    spec: &ChessboardSpec,
+    factor: usize,
+) -> Result<(Vec<Vector2<f64>>, bool), DetectError> {
+    let level = decimate(img, factor);
+    let (cands, smoothed) =
+        find_candidates(&level, MAX_CANDIDATES_PER_CORNER * spec.corner_count());
+    let lattice = best_lattice(&cands, spec).ok_or_else(|| {
+        DetectError::NoBoard(format!(
+            "no chessboard corner lattice found ({} saddle candidates)",
+            cands.len()
+        ))
+    })?;
+    let pos = |k: usize| cands[k].pos;
+    let (grid, unique) = order(&lattice, &pos, spec, &smoothed)?;
+    let f = factor as f64;
+    let to_full = |p: Vector2<f64>| (p + Vector2::repeat(0.5)) * f - Vector2::repeat(0.5);
+    Ok((grid.into_iter().map(to_full).collect(), unique))
+}
+
+/// Distance from corner `k` to its nearest row/column neighbour in `grid`.
+fn neighbour_gap(grid: &[Vector2<f64>], spec: &ChessboardSpec, k: usize) -> f64 {
+    let (cols, rows) = (spec.cols(), spec.rows());
+    let (r, c) = (k / cols, k % cols);
+    let mut gap = f64::INFINITY;
+    if c > 0 {
+        gap = gap.min((grid[k] - grid[k - 1]).norm());
+    }
+    if c + 1 < cols {
+        gap = gap.min((grid[k] - grid[k + 1]).norm());
+    }
+    if r > 0 {
+        gap = gap.min((grid[k] - grid[k - cols]).norm());
+    }
+    if r + 1 < rows {
+        gap = gap.min((grid[k] - grid[k + cols]).norm());
+    }
+    gap
+}
+
+/// Detects the complete chessboard `spec` in `img`, corners in OpenCV's
+/// order (`row * cols + col`), refined to sub-pixel. `ordering_unique` is
+/// false for a board that looks the same after a half turn
+/// ([`ChessboardSpec::ambiguous_180`]): the caller resolves the half turn
+/// from robot data or refuses. Corners whose refinement fails are left out.
+pub fn detect_chessboard(
+    img: &GrayImage,
+    spec: &ChessboardSpec,
+) -> Result<BoardDetection, DetectError> {
+    spec.validate()?;
+    if img.width.min(img.height) < MIN_IMAGE_SIDE_PX {
+        return Err(DetectError::ImageTooSmall {
+            width: img.width,
+            height: img.height,
+            min_side: MIN_IMAGE_SIDE_PX,
+        });
+    }
+    let coarse = img
+        .width
+        .max(img.height)
+        .div_ceil(COARSE_LONG_SIDE_PX)
+        .max(1);
+    let (grid, unique) = match at_level(img, spec, coarse) {
+        Ok(found) => found,
+        Err(e @ DetectError::GridMismatch(_)) => return Err(e),
+        Err(e) if coarse == 1 => return Err(e),
+        Err(_) => at_level(img, spec, 1)?,
+    };
+    let points = grid
+        .iter()
+        .enumerate()
+        .filter_map(|(k, p)| {
+            let half = (REFINE_WINDOW_FRACTION * neighbour_gap(&grid, spec, k))
+                .clamp(MIN_REFINE_HALF_WINDOW_PX, MAX_REFINE_HALF_WINDOW_PX);
+            let [x_px, y_px] = refine_saddle(img, [p.x, p.y], half)?;
+            let (row, col) = (k / spec.cols(), k % spec.cols());
+            Some(BoardPoint {
+                row,
+                col,
+                target_mm: spec.corner_mm(row, col),
+                x_px,
+                y_px,
+            })
+        })
+        .collect();
+    Ok(BoardDetection {
+        image_width: img.width,
+        image_height: img.height,
+        points,
+        ordering_unique: unique,
+    })
+}
+
+#[cfg(test)]
+#[path = "detect_tests.rs"]
+mod tests;
+
+#[cfg(test)]
+#[path = "real_data_tests.rs"]
+mod real_data_tests;

@@ -1,0 +1,204 @@
+//! Sub-pixel X-junction (chessboard corner) refinement shared by the
+//! chessboard and ChArUco detectors (issue 14).
+//!
+//! Two stages, both exact for an ideal X-junction seen under any blur:
+//! 1. the saddle of a weighted quadratic fitted to the smoothed grey levels
+//!    around the guess, re-centred until it stops moving (wide capture
+//!    range: the blurred junction is a saddle of the intensity);
+//! 2. the point-symmetry fit: an X-junction is point-symmetric about its
+//!    centre (`I(c + p) = I(c - p)`, kept by any symmetric blur and, locally,
+//!    by perspective), so the corner is the `c` minimising
+//!    `sum w(p) (I(c + p) - I(c - p) - 2 g·p)^2` over the window, with `g` a
+//!    local illumination gradient (uneven light breaks the symmetry by an
+//!    odd linear term). Gauss–Newton on `(c, g)`; every pixel of the window
+//!    contributes, not only the edge pixels `cornerSubPix` weighs, which is
+//!    why it is less sensitive to noise and blur.
+
+use nalgebra::{Matrix2, Matrix4, Matrix6, Vector2, Vector4, Vector6};
+
+use crate::vision::image::GrayImage;
+
+/// Pre-smoothing sigma of the quadratic fit as a fraction of the half window
+/// (a sharp X-junction is not a quadratic; its blurred version is, near the
+/// centre).
+const SMOOTH_SIGMA_FRACTION: f64 = 0.5;
+/// Fit weight sigma of the quadratic as a fraction of the half window.
+const WEIGHT_SIGMA_FRACTION: f64 = 0.6;
+/// Least smoothing sigma, pixels.
+const MIN_SMOOTH_SIGMA_PX: f64 = 1.0;
+/// Re-centring passes of the quadratic fit.
+const QUADRATIC_PASSES: usize = 3;
+/// A step below this ends an iteration, pixels.
+const CONVERGED_PX: f64 = 1e-3;
+/// Gaussian kernel half-width in sigmas.
+const KERNEL_SIGMAS: f64 = 3.0;
+/// Gauss–Newton iterations of the symmetry fit.
+const SYMMETRY_ITERATIONS: usize = 8;
+/// Weight sigma of the symmetry fit as a fraction of the half window.
+const SYMMETRY_WEIGHT_FRACTION: f64 = 0.5;
+/// Largest single Gauss–Newton step, pixels (a larger one means the fit
+/// left the junction's basin).
+const MAX_STEP_PX: f64 = 2.0;
+/// Smallest half window the fits accept, pixels.
+pub const MIN_HALF_WINDOW_PX: f64 = 1.5;
+
+fn gaussian_kernel(sigma: f64) -> Vec<f64> {
+    let r = (KERNEL_SIGMAS * sigma).ceil() as isize;
+    let k: Vec<f64> = (-r..=r)
+        .map(|x| (-((x * x) as f64) / (2.0 * sigma * sigma)).exp())
+        .collect();
+    let s: f64 = k.iter().sum();
+    k.into_iter().map(|v| v / s).collect()
+}
+
+/// One quadratic fit centred on pixel `(cx, cy)`: the saddle's offset from
+/// it, or `None` when the fitted surface has no saddle (no corner there).
+fn quadratic_once(img: &GrayImage, cx: isize, cy: isize, half: f64) -> Option<Vector2<f64>> {
+    let r = half.ceil() as isize;
+    let kernel = gaussian_kernel((SMOOTH_SIGMA_FRACTION * half).max(MIN_SMOOTH_SIGMA_PX));
+    let kr = (kernel.len() / 2) as isize;
+    let (x0, y0) = (cx - r - kr, cy - r - kr);
+    let side = (2 * (r + kr) + 1) as usize;
+    if x0 < 0 || y0 < 0 || x0 as usize + side > img.width || y0 as usize + side > img.height {
+        return None;
+    }
+    // Separable blur of the patch (rows, then columns inside the fit window).
+    let inner = (2 * r + 1) as usize;
+    let mut rows = vec![0.0f64; side * inner];
+    for y in 0..side {
+        let line = &img.data[(y0 as usize + y) * img.width + x0 as usize..];
+        for x in 0..inner {
+            rows[y * inner + x] = kernel
+                .iter()
+                .enumerate()
+                .map(|(k, w)| w * line[x + k] as f64)
+                .sum();
+        }
+    }
+    let sw = WEIGHT_SIGMA_FRACTION * half;
+    let (mut ata, mut atb) = (Matrix6::<f64>::zeros(), Vector6::<f64>::zeros());
+    for y in 0..inner {
+        for x in 0..inner {
+            let v: f64 = kernel
+                .iter()
+                .enumerate()
+                .map(|(k, w)| w * rows[(y + k) * inner + x])
+                .sum();
+            let (dx, dy) = (x as f64 - r as f64, y as f64 - r as f64);
+            let w = (-(dx * dx + dy * dy) / (2.0 * sw * sw)).exp();
+            let a = Vector6::new(dx * dx, dx * dy, dy * dy, dx, dy, 1.0);
+            ata += w * a * a.transpose();
+            atb += w * v * a;
+        }
+    }
+    let c = ata.cholesky()?.solve(&atb);
+    let hess = Matrix2::new(2.0 * c[0], c[1], c[1], 2.0 * c[2]);
+    if hess.determinant() >= 0.0 {
+        return None; // an extremum, not a saddle
+    }
+    Some(-(hess.try_inverse()? * Vector2::new(c[3], c[4])))
+}
+
+/// The saddle of the fitted quadratic, re-centred; `None` if there is no
+/// saddle or it lies farther than `half` from the guess.
+pub fn quadratic_saddle(img: &GrayImage, guess_px: [f64; 2], half: f64) -> Option<[f64; 2]> {
+    let guess = Vector2::new(guess_px[0], guess_px[1]);
+    let mut p = guess;
+    for _ in 0..QUADRATIC_PASSES {
+        let (cx, cy) = (p.x.round() as isize, p.y.round() as isize);
+        let q = Vector2::new(cx as f64, cy as f64) + quadratic_once(img, cx, cy, half)?;
+        let moved = (q - p).norm();
+        p = q;
+        if (p - guess).norm() > half {
+            return None;
+        }
+        if moved < CONVERGED_PX {
+            break;
+        }
+    }
+    Some([p.x, p.y])
+}
+
+/// Bilinear grey level and its gradient at `(x, y)`, or `None` outside.
+#[inline]
+fn sample(img: &GrayImage, x: f64, y: f64) -> Option<(f64, f64, f64)> {
+    if x < 0.0 || y < 0.0 {
+        return None;
+    }
+    let (x0, y0) = (x.floor() as usize, y.floor() as usize);
+    if x0 + 1 >= img.width || y0 + 1 >= img.height {
+        return None;
+    }
+    let (fx, fy) = (x - x0 as f64, y - y0 as f64);
+    let i = y0 * img.width + x0;
+    let a = img.data[i] as f64;
+    let b = img.data[i + 1] as f64;
+    let c = img.data[i + img.width] as f64;
+    let d = img.data[i + img.width + 1] as f64;
+    let top = a + (b - a) * fx;
+    let bottom = c + (d - c) * fx;
+    let v = top + (bottom - top) * fy;
+    let gx = (b - a) + ((d - c) - (b - a)) * fy;
+    let gy = bottom - top;
+    Some((v, gx, gy))
+}
+
+/// Gauss–Newton on the point-symmetry residual from `start`.
+fn symmetry_fit(img: &GrayImage, start: Vector2<f64>, half: f64) -> Option<Vector2<f64>> {
+    let r = half.floor() as isize;
+    let sw = SYMMETRY_WEIGHT_FRACTION * half;
+    // Half of the point pairs: the upper half-plane plus the positive x axis.
+    let offsets: Vec<(f64, f64, f64)> = (0..=r)
+        .flat_map(|dy| (-r..=r).map(move |dx| (dx, dy)))
+        .filter(|&(dx, dy)| dy > 0 || dx > 0)
+        .filter(|&(dx, dy)| ((dx * dx + dy * dy) as f64) <= half * half)
+        .map(|(dx, dy)| {
+            let (x, y) = (dx as f64, dy as f64);
+            (x, y, (-(x * x + y * y) / (2.0 * sw * sw)).exp())
+        })
+        .collect();
+    let mut c = start;
+    let mut g = Vector2::zeros();
+    for _ in 0..SYMMETRY_ITERATIONS {
+        let (mut jtj, mut jtr) = (Matrix4::<f64>::zeros(), Vector4::<f64>::zeros());
+        for &(dx, dy, w) in &offsets {
+            let (a, ax, ay) = sample(img, c.x + dx, c.y + dy)?;
+            let (b, bx, by) = sample(img, c.x - dx, c.y - dy)?;
+            let res = a - b - 2.0 * (g.x * dx + g.y * dy);
+            let j = Vector4::new(ax - bx, ay - by, -2.0 * dx, -2.0 * dy);
+            jtj += w * j * j.transpose();
+            jtr += w * res * j;
+        }
+        let step = jtj.cholesky()?.solve(&(-jtr));
+        let dc = Vector2::new(step[0], step[1]);
+        if !dc.norm().is_finite() || dc.norm() > MAX_STEP_PX {
+            return None;
+        }
+        c += dc;
+        g += Vector2::new(step[2], step[3]);
+        if dc.norm() < CONVERGED_PX {
+            break;
+        }
+    }
+    Some(c)
+}
+
+/// The X-junction near `guess_px` within `half_window_px` (the window must
+/// hold the four squares' edges and nothing else), or `None` when there is
+/// no junction or the fit leaves the window.
+pub fn refine_saddle(img: &GrayImage, guess_px: [f64; 2], half_window_px: f64) -> Option<[f64; 2]> {
+    if half_window_px.is_nan() || half_window_px < MIN_HALF_WINDOW_PX {
+        return None;
+    }
+    let guess = Vector2::new(guess_px[0], guess_px[1]);
+    // The quadratic's saddle is the better start; where it is none (heavy
+    // blur, a window clipped by the image) start from the guess.
+    let start =
+        quadratic_saddle(img, guess_px, half_window_px).map_or(guess, |q| Vector2::new(q[0], q[1]));
+    let p = symmetry_fit(img, start, half_window_px)?;
+    ((p - guess).norm() <= half_window_px).then_some([p.x, p.y])
+}
+
+#[cfg(test)]
+#[path = "saddle_tests.rs"]
+mod tests;

@@ -1,0 +1,230 @@
+//! The real Aubo i10 eye-in-hand campaign through the service (issue 14),
+//! exactly as a user sends it: the robot as a DH table (the authors'
+//! nominal one), a session with the 11x8 chessboard and a rough camera
+//! guess, the 24 photos uploaded with their joints (radians in the files,
+//! degrees to the service), one calibration job. Data:
+//! calib/tests/data/aubo_i10_hkclr (Apache-2.0, PROVENANCE.md there).
+
+use reqwest::multipart::Form;
+use serde_json::{json, Value};
+
+use crate::support::*;
+
+const AUBO_DIR: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/calib/tests/data/aubo_i10_hkclr"
+);
+/// The authors' intrinsics (PROVENANCE.md), which OpenCV reproduces.
+const PUBLISHED_FX: f64 = 2281.69027;
+const PUBLISHED_CX: f64 = 1407.20528;
+const PUBLISHED_CY: f64 = 893.295531;
+/// OpenCV's reprojection RMS on the same 24 images.
+const OPENCV_RMS_PX: f64 = 0.064;
+/// The authors' hand–eye (flange to camera) translation, mm.
+const PUBLISHED_FLANGE_TO_CAMERA_MM: [f64; 3] = [42.56417, 6.81424, 129.86917];
+
+/// The authors' standard DH table: (d mm, a mm, alpha deg, theta offset deg).
+const DH: [(f64, f64, f64, f64); 6] = [
+    (163.2, 0.0, 90.0, 0.0),
+    (0.0, 647.0, 180.0, 90.0),
+    (0.0, 600.5, 180.0, 0.0),
+    (201.3, 0.0, -90.0, -90.0),
+    (102.5, 0.0, 90.0, 0.0),
+    (94.0, 0.0, 0.0, 0.0),
+];
+
+fn robot() -> Value {
+    let joints: Vec<Value> = DH
+        .iter()
+        .map(|(d, a, alpha, off)| {
+            json!({"type": "revolute", "d_mm": d, "a_mm": a, "alpha_deg": alpha,
+                   "theta_offset_deg": off, "min_deg": -360.0, "max_deg": 360.0})
+        })
+        .collect();
+    json!({"model": "Aubo i10", "kinematics": {"joints": joints}})
+}
+
+/// `(group/file name, joints in degrees)` of every photo, sorted by name
+/// (line k of `joints/groupN.txt` belongs to the k-th image of the group).
+fn photos() -> Vec<(String, Vec<f64>)> {
+    let mut out = Vec::new();
+    for g in 1..=6 {
+        let text = std::fs::read_to_string(format!("{AUBO_DIR}/joints/group{g}.txt")).unwrap();
+        let mut names: Vec<String> = std::fs::read_dir(format!("{AUBO_DIR}/images/group{g}"))
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .collect();
+        names.sort();
+        let lines: Vec<&str> = text.lines().filter(|l| !l.trim().is_empty()).collect();
+        assert_eq!(lines.len(), names.len(), "group{g}");
+        for (name, line) in names.into_iter().zip(lines) {
+            let deg = line
+                .split(',')
+                .map(|v| v.trim().parse::<f64>().unwrap().to_degrees())
+                .collect();
+            out.push((format!("group{g}/{name}"), deg));
+        }
+    }
+    out
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn aubo_campaign_calibrates_through_the_service() {
+    let app = spawn_app_with(|c| c.test_validate_only = false).await;
+    let serial = "AUBO-I10";
+    assert_eq!(
+        app.put_json(&format!("/v1/robots/{serial}"), &robot())
+            .await
+            .status(),
+        201
+    );
+    // A rough camera: a 2400x1800 sensor of 3.45 um pixels behind an 8 mm lens.
+    let session = json!({
+        "instrument": "camera",
+        "target": {"kind": "chessboard", "inner_corners": [11, 8], "square_mm": 10.0},
+        "camera": {"width": 2400, "height": 1800, "pixel_size_um": 3.45, "nominal_focal_mm": 8.0}
+    });
+    let r = app
+        .post_json(&format!("/v1/robots/{serial}/sessions"), &session)
+        .await;
+    assert_eq!(r.status(), 201);
+    let id = r.json::<Value>().await.unwrap()["id"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    for (k, (name, joints)) in photos().into_iter().enumerate() {
+        let bytes = std::fs::read(format!("{AUBO_DIR}/images/{name}")).unwrap();
+        // The last photo of each group of four validates.
+        let set = if k % 4 == 3 { "val" } else { "cal" };
+        let form = Form::new()
+            .text("joints_deg", serde_json::to_string(&joints).unwrap())
+            .text("set", set)
+            .part("image", image_part(bytes, name.replace('/', "_").as_str()));
+        let r = app
+            .client
+            .post(app.url(&format!("/v1/sessions/{id}/poses")))
+            .multipart(form)
+            .send()
+            .await
+            .unwrap();
+        assert_eq!(r.status(), 201, "{name}");
+        let pose: Value = r.json().await.unwrap();
+        assert_eq!(pose["detected_points"], 88, "{name}: {pose}");
+    }
+    let r = app
+        .post_json(&format!("/v1/sessions/{id}/calibrations"), &json!({}))
+        .await;
+    assert_eq!(r.status(), 202);
+    let job_id = r.json::<Value>().await.unwrap()["job_id"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    let job = app.wait_job(&job_id, CAMPAIGN_WAIT, is_finished).await;
+    assert_eq!(job["state"], "succeeded", "{job}");
+    let report: Value = app
+        .get(&format!("/v1/robots/{serial}/parameter-sets/latest/report"))
+        .await
+        .json()
+        .await
+        .unwrap();
+    let cam = &report["camera"];
+    let k = &cam["intrinsics"];
+    let (fx, cx, cy) = (
+        k["fx"].as_f64().unwrap(),
+        k["cx"].as_f64().unwrap(),
+        k["cy"].as_f64().unwrap(),
+    );
+    let rms = cam["reprojection_rms_px"].as_f64().unwrap();
+    let param = |name: &str| {
+        report["parameters"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|p| p["name"] == name)
+            .map(|p| p["identified"].as_f64().unwrap())
+    };
+    let hand_eye = [
+        param("flange_to_camera.tx_mm"),
+        param("flange_to_camera.ty_mm"),
+        param("flange_to_camera.tz_mm"),
+    ];
+    let outliers: Vec<String> = report["per_pose"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|p| p["outlier"] == true)
+        .map(|p| format!("{} ({})", p["label"], p["reason"]))
+        .collect();
+    eprintln!(
+        "aubo: fx {fx:.3} ({:+.4} %), fy {}, cx {cx:.3}, cy {cy:.3}, k {k}, RMS {rms:.4} px\n\
+         hand-eye {hand_eye:?} mm (authors {PUBLISHED_FLANGE_TO_CAMERA_MM:?})\n\
+         identifiability {}\noutliers {outliers:?}\nnotes {}",
+        100.0 * (fx / PUBLISHED_FX - 1.0),
+        k["fy"],
+        report["identifiability"],
+        report["notes"]
+    );
+    assert_eq!(
+        report["detection"]["images_detected"], 24,
+        "{}",
+        report["detection"]
+    );
+    assert!((fx / PUBLISHED_FX - 1.0).abs() < 5e-4, "fx {fx}");
+    assert!((cx - PUBLISHED_CX).abs() < 1.0, "cx {cx}");
+    assert!((cy - PUBLISHED_CY).abs() < 1.0, "cy {cy}");
+    assert!(rms <= OPENCV_RMS_PX, "reprojection {rms} px");
+    app.shutdown().await;
+}
+
+#[tokio::test]
+async fn bad_chessboard_specs_are_422_naming_the_field() {
+    let app = spawn_app().await;
+    assert_eq!(
+        app.put_json("/v1/robots/CB-BAD", &robot()).await.status(),
+        201
+    );
+    let camera =
+        json!({"width": 2400, "height": 1800, "pixel_size_um": 3.45, "nominal_focal_mm": 8.0});
+    for (target, field) in [
+        (
+            json!({"kind": "chessboard", "inner_corners": [11, 8], "square_mm": 0.0}),
+            "target.square_mm",
+        ),
+        (
+            json!({"kind": "chessboard", "inner_corners": [11, 8], "square_mm": -2.0}),
+            "target.square_mm",
+        ),
+        (
+            json!({"kind": "chessboard", "inner_corners": [1, 8], "square_mm": 10.0}),
+            "target.inner_corners",
+        ),
+        (
+            json!({"kind": "chessboard", "inner_corners": [0, 0], "square_mm": 10.0}),
+            "target.inner_corners",
+        ),
+        (
+            json!({"kind": "chessboard", "square_mm": 10.0}),
+            "target.inner_corners",
+        ),
+        (
+            json!({"kind": "chessboard", "inner_corners": [11, 8]}),
+            "target.square_mm",
+        ),
+        (
+            json!({"kind": "chessboard", "inner_corners": [11, 8], "square_mm": 10.0, "rows": 3}),
+            "target.rows",
+        ),
+        (
+            json!({"kind": "dots", "rows": 7, "cols": 9, "pitch_mm": 20.0, "dot_diameter_mm": 8.0,
+                "origin_marker_diameter_mm": 12.0, "inner_corners": [11, 8]}),
+            "target.inner_corners",
+        ),
+    ] {
+        let body = json!({"instrument": "camera", "target": target, "camera": camera});
+        let r = app.post_json("/v1/robots/CB-BAD/sessions", &body).await;
+        assert_eq!(r.status(), 422, "{target}");
+        let problem: Value = r.json().await.unwrap();
+        assert_eq!(problem["errors"][0]["field"], field, "{target}: {problem}");
+    }
+    app.shutdown().await;
+}
