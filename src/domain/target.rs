@@ -1,10 +1,13 @@
 //! The board a camera session uses, typed once from the session's `target`
-//! (issue 14): robocal's dot grid or a ChArUco board. Everything downstream
+//! (issue 14): robocal's dot grid (with or without its origin marker), a
+//! ChArUco board or OpenCV's asymmetric circle grid. Everything downstream
 //! (detection at upload, the camera stage) asks this type where a feature
 //! sits on the board and how to find it, never the JSON.
 
 use robocal_calib::vision::charuco::{self, CharucoSpec};
-use robocal_calib::vision::{self, DetectError, DetectOptions, GrayImage, TargetSpec};
+use robocal_calib::vision::{
+    self, AsymmetricCirclesSpec, CircleBoard, DetectError, DetectOptions, GrayImage, TargetSpec,
+};
 
 use crate::schema::session::{TargetDoc, TargetKind, MAX_GRID_SIDE};
 use crate::schema::{Checker, FieldError, MAX_LENGTH_MM};
@@ -23,6 +26,7 @@ pub struct FoundPoint {
 pub enum Target {
     Dots(TargetSpec),
     Charuco(CharucoSpec),
+    AsymmetricCircles(AsymmetricCirclesSpec),
 }
 
 /// Fields that belong to one kind only, for the "not a field of this kind" check.
@@ -40,6 +44,10 @@ const CHARUCO_FIELDS: [&str; 5] = [
     "dictionary",
     "legacy_layout",
 ];
+/// An asymmetric grid's fields; every other field is refused.
+const ASYMMETRIC_FIELDS: [&str; 4] = ["rows", "cols", "pitch_mm", "dot_diameter_mm"];
+/// Fields a kind may omit.
+const OPTIONAL_FIELDS: [&str; 2] = ["legacy_layout", "origin_marker_diameter_mm"];
 
 impl Target {
     /// The typed board, or every problem named as `target.<field>`.
@@ -57,18 +65,25 @@ impl Target {
             "dictionary" => doc.dictionary.is_some(),
             _ => doc.legacy_layout.is_some(),
         };
-        let (own, other, kind) = match doc.kind {
-            TargetKind::Dots => (DOT_FIELDS, CHARUCO_FIELDS, "dots"),
-            TargetKind::Charuco => (CHARUCO_FIELDS, DOT_FIELDS, "charuco"),
+        let (own, kind): (&[&str], &str) = match doc.kind {
+            TargetKind::Dots => (&DOT_FIELDS, "dots"),
+            TargetKind::Charuco => (&CHARUCO_FIELDS, "charuco"),
+            TargetKind::AsymmetricCircles => (&ASYMMETRIC_FIELDS, "asymmetric_circles"),
         };
-        for name in other.iter().filter(|n| given(n)) {
+        let other = DOT_FIELDS
+            .iter()
+            .chain(&CHARUCO_FIELDS)
+            .filter(|n| !own.contains(n));
+        for name in other.filter(|n| given(n)) {
             c.fail(
                 format!("target.{name}"),
                 format!("not a field of a {kind} target"),
             );
         }
-        let optional = ["legacy_layout"];
-        for name in own.iter().filter(|n| !given(n) && !optional.contains(n)) {
+        for name in own
+            .iter()
+            .filter(|n| !given(n) && !OPTIONAL_FIELDS.contains(n))
+        {
             c.fail(
                 format!("target.{name}"),
                 format!("required for a {kind} target"),
@@ -78,6 +93,7 @@ impl Target {
         match doc.kind {
             TargetKind::Dots => dots(doc),
             TargetKind::Charuco => charuco(doc),
+            TargetKind::AsymmetricCircles => asymmetric(doc),
         }
     }
 
@@ -86,6 +102,7 @@ impl Target {
         match self {
             Target::Dots(t) => t.dot_centre_mm(row as usize, col as usize),
             Target::Charuco(t) => charuco::corner_mm(t, row as usize, col as usize),
+            Target::AsymmetricCircles(t) => t.dot_centre_mm(row as usize, col as usize),
         }
     }
 
@@ -100,7 +117,7 @@ impl Target {
                     && t.origin_marker_diameter_mm
                         .is_some_and(|m| m > t.dot_diameter_mm)
             }
-            Target::Charuco(_) => false,
+            Target::Charuco(_) | Target::AsymmetricCircles(_) => false,
         }
     }
 
@@ -109,35 +126,24 @@ impl Target {
     pub fn dot_diameter_mm(&self) -> Option<f64> {
         match self {
             Target::Dots(t) => Some(t.dot_diameter_mm),
+            Target::AsymmetricCircles(t) => Some(t.dot_diameter_mm),
             Target::Charuco(_) => None,
         }
     }
 
     /// Every feature found in `image` (raw positions: for dots the ellipse
     /// centres, whose perspective bias the camera stage corrects from the
-    /// calibrated model).
+    /// calibrated model). A circle grid whose symmetry leaves the dot
+    /// identities open in this image (a marker-less grid, an asymmetric grid
+    /// with an even number of rows) is refused with `OrderingAmbiguous`:
+    /// identities that might differ from image to image would bend the fit.
     pub fn detect(&self, image: &GrayImage) -> Result<Vec<FoundPoint>, DetectError> {
-        match self {
-            Target::Dots(t) => {
-                let options = DetectOptions {
-                    correct_perspective_bias: false,
-                    ..DetectOptions::default()
-                };
-                let found = vision::detect_with(image, t, &options)?;
-                Ok(found
-                    .dots
-                    .iter()
-                    .map(|d| FoundPoint {
-                        row: d.row as u32,
-                        col: d.col as u32,
-                        x: d.ellipse.cx,
-                        y: d.ellipse.cy,
-                    })
-                    .collect())
-            }
+        let board = match self {
+            Target::Dots(t) => CircleBoard::Dots(*t),
+            Target::AsymmetricCircles(t) => CircleBoard::Asymmetric(*t),
             Target::Charuco(t) => {
                 let found = charuco::detect_charuco(image, t)?;
-                Ok(found
+                return Ok(found
                     .points
                     .iter()
                     .map(|p| FoundPoint {
@@ -146,9 +152,35 @@ impl Target {
                         x: p.x_px,
                         y: p.y_px,
                     })
-                    .collect())
+                    .collect());
             }
+        };
+        let options = DetectOptions {
+            correct_perspective_bias: false,
+            ..DetectOptions::default()
+        };
+        let found = vision::detect_board(image, &board, &options)?;
+        if !found.ordering_unique {
+            let turns: Vec<String> = found
+                .equivalent_turns
+                .iter()
+                .map(|k| format!("{} deg", 90 * u32::from(*k)))
+                .collect();
+            return Err(DetectError::OrderingAmbiguous(format!(
+                "the board reads the same turned by {}: its dots cannot be told apart (use a board with an origin marker, or an asymmetric grid with an odd number of rows)",
+                turns.join(" or ")
+            )));
         }
+        Ok(found
+            .dots
+            .iter()
+            .map(|d| FoundPoint {
+                row: d.row as u32,
+                col: d.col as u32,
+                x: d.ellipse.cx,
+                y: d.ellipse.cy,
+            })
+            .collect())
     }
 
     /// Whether every image's features get the same identities (an origin
@@ -156,6 +188,7 @@ impl Target {
     pub fn ordering_unique(&self) -> bool {
         match self {
             Target::Dots(t) => t.origin_marker_diameter_mm.is_some(),
+            Target::AsymmetricCircles(t) => t.rows % 2 == 1,
             Target::Charuco(_) => true,
         }
     }
@@ -166,6 +199,9 @@ impl Target {
         match self {
             Target::Dots(t) => format!("{}x{}", t.rows, t.cols),
             Target::Charuco(t) => format!("ChArUco {}x{}", t.cols(), t.rows()),
+            Target::AsymmetricCircles(t) => {
+                format!("asymmetric circles {}x{}", t.cols, t.rows)
+            }
         }
     }
 
@@ -174,6 +210,7 @@ impl Target {
         match self {
             Target::Dots(_) => "rows, cols, pitch_mm, dot diameters",
             Target::Charuco(_) => "squares, square_mm, marker_mm, dictionary, legacy_layout",
+            Target::AsymmetricCircles(_) => "rows, cols (dots per row), pitch_mm, dot_diameter_mm",
         }
     }
 }
@@ -189,23 +226,57 @@ fn dots(doc: &TargetDoc) -> Result<Target, Vec<FieldError>> {
     }
     let pitch = doc.pitch_mm.unwrap_or_default();
     let dot = doc.dot_diameter_mm.unwrap_or_default();
-    let marker = doc.origin_marker_diameter_mm.unwrap_or_default();
     c.positive("target.pitch_mm", pitch, MAX_LENGTH_MM, "mm");
     c.positive("target.dot_diameter_mm", dot, pitch.abs(), "mm");
-    c.positive(
-        "target.origin_marker_diameter_mm",
-        marker,
-        MAX_LENGTH_MM,
-        "mm",
-    );
+    if let Some(marker) = doc.origin_marker_diameter_mm {
+        c.positive(
+            "target.origin_marker_diameter_mm",
+            marker,
+            MAX_LENGTH_MM,
+            "mm",
+        );
+    }
     c.finish()?;
     Ok(Target::Dots(TargetSpec {
         rows: rows as usize,
         cols: cols as usize,
         pitch_mm: pitch,
         dot_diameter_mm: dot,
-        origin_marker_diameter_mm: Some(marker),
+        origin_marker_diameter_mm: doc.origin_marker_diameter_mm,
     }))
+}
+
+fn asymmetric(doc: &TargetDoc) -> Result<Target, Vec<FieldError>> {
+    let mut c = Checker::default();
+    for (name, v) in [("target.rows", doc.rows), ("target.cols", doc.cols)] {
+        if !(2..=MAX_GRID_SIDE).contains(&v.unwrap_or_default()) {
+            c.fail(name, format!("must be 2 to {MAX_GRID_SIDE}"));
+        }
+    }
+    let pitch = doc.pitch_mm.unwrap_or_default();
+    c.positive("target.pitch_mm", pitch, MAX_LENGTH_MM, "mm");
+    c.finish()?;
+    let spec = AsymmetricCirclesSpec {
+        rows: doc.rows.unwrap_or_default() as usize,
+        cols: doc.cols.unwrap_or_default() as usize,
+        pitch_mm: pitch,
+        dot_diameter_mm: doc.dot_diameter_mm.unwrap_or_default(),
+    };
+    spec.validate().map_err(field_errors)?;
+    Ok(Target::AsymmetricCircles(spec))
+}
+
+/// calib names the offending field first ("<field>: why"): the same field
+/// under `target.`.
+fn field_errors(e: DetectError) -> Vec<FieldError> {
+    let text = match e {
+        DetectError::InvalidTarget(text) => text,
+        other => other.to_string(),
+    };
+    match text.split_once(": ") {
+        Some((field, why)) => vec![FieldError::new(format!("target.{field}"), why)],
+        None => vec![FieldError::new("target", text)],
+    }
 }
 
 fn charuco(doc: &TargetDoc) -> Result<Target, Vec<FieldError>> {

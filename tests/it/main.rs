@@ -5,6 +5,7 @@ pub(crate) mod anonymous;
 pub(crate) mod auth;
 pub(crate) mod camera_reuse;
 pub(crate) mod charuco_campaign;
+pub(crate) mod circle_boards;
 pub(crate) mod cli;
 pub(crate) mod compensate;
 pub(crate) mod e2e;

@@ -11,6 +11,8 @@ pub mod point_views;
 pub mod render;
 /// ChArUco boards through the same camera (issue 14).
 pub mod render_charuco;
+/// Circle boards: symmetric dot grids and OpenCV's asymmetric grid.
+pub mod render_circles;
 pub mod start_model;
 /// Laser-tracker campaigns with optional non-geometric errors (issue 19).
 pub mod tracker_campaign;
