@@ -222,7 +222,19 @@ fn rct_wrist_circles_hand_eye_and_printed_pitch() {
     eprintln!("{detected} of {IMAGES} images detected");
     assert!(detected >= MIN_DETECTED);
     // The images alone reproduce RCT's intrinsics.
-    let (camera, camera_rms_px) = camera_only(&configured);
+    // Image 2 is the one view of the image's lower-left corner: the
+    // distortion model, fitted on the camera stage alone, is not determined
+    // there, and the refined stage reports the focal undetermined (its dots
+    // fit the other 14 views' intrinsics to 0.5 px RMS, 1.6 px worst, the
+    // others to 0.16 px). The joint bundle below uses it.
+    let corner_view = 2;
+    let camera_views: Vec<FlangeView> = configured
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| *k != corner_view)
+        .map(|(_, v)| v.clone())
+        .collect();
+    let (camera, camera_rms_px) = camera_only(&camera_views);
     eprintln!("camera stage alone: {camera:?}, rms {camera_rms_px:.3} px");
     assert!((camera.fx / RCT_FX_PX - 1.0).abs() < CAMERA_ONLY_FX_TOLERANCE);
 
