@@ -89,9 +89,24 @@ fn view(kind: &str, board: &CircleBoard, rng: &mut StdRng) -> RenderedView {
     };
     for _ in 0..MAX_ATTEMPTS {
         let (dist, tilt, shift, opts): (f64, f64, f64, RenderOptions) = match kind {
-            "fronto" => (rng.random_range(550.0..800.0), rng.random_range(0.0..15.0), 20.0, base),
-            "steep" => (rng.random_range(550.0..750.0), rng.random_range(50.0..62.0), 20.0, base),
-            "partial" => (rng.random_range(400.0..600.0), rng.random_range(10.0..35.0), 150.0, base),
+            "fronto" => (
+                rng.random_range(550.0..800.0),
+                rng.random_range(0.0..15.0),
+                20.0,
+                base,
+            ),
+            "steep" => (
+                rng.random_range(550.0..750.0),
+                rng.random_range(50.0..62.0),
+                20.0,
+                base,
+            ),
+            "partial" => (
+                rng.random_range(400.0..600.0),
+                rng.random_range(10.0..35.0),
+                150.0,
+                base,
+            ),
             "blurred" => (
                 rng.random_range(600.0..800.0),
                 rng.random_range(20.0..45.0),

@@ -314,7 +314,9 @@ fn asymmetric(c: &mut Checker, map: &mut BTreeMap<&str, &str>) -> Option<Printab
     };
     if let Err(e) = spec.validate() {
         let text = e.to_string();
-        let text = text.strip_prefix("invalid target description: ").unwrap_or(&text);
+        let text = text
+            .strip_prefix("invalid target description: ")
+            .unwrap_or(&text);
         match text.split_once(": ") {
             Some((field, why)) => c.fail(field, why),
             None => c.fail("kind", text),

@@ -16,11 +16,8 @@ use rand_distr::{Distribution, Normal};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-use super::render_circles::{circle_truth, render_circle_board};
 use crate::camera::model::Intrinsics;
-use crate::vision::circle_board::CircleBoard;
 use crate::vision::image::{GrayImage, WHITE_LEVEL};
-use crate::vision::target::TargetSpec;
 
 /// Largest image side the renderer accepts, pixels.
 pub const MAX_RENDER_SIDE_PX: usize = 16_384;
@@ -128,28 +125,6 @@ pub(crate) fn check(opts: &RenderOptions, width: usize, height: usize) -> Result
     Ok(())
 }
 
-/// Renders the board seen by `camera` with the target at `camera_to_target`
-/// (`p_camera = camera_to_target * p_target`).
-pub fn render_target<R: Rng + ?Sized>(
-    camera: &Intrinsics,
-    camera_to_target: &Isometry3<f64>,
-    target: &TargetSpec,
-    width: usize,
-    height: usize,
-    opts: &RenderOptions,
-    rng: &mut R,
-) -> Result<RenderedView, RenderError> {
-    render_circle_board(
-        camera,
-        camera_to_target,
-        &CircleBoard::Dots(*target),
-        width,
-        height,
-        opts,
-        rng,
-    )
-}
-
 /// Separable Gaussian blur with clamped borders.
 pub(crate) fn gaussian_blur(data: &mut [f32], w: usize, h: usize, sigma: f64) {
     let r = (BLUR_HALF_WIDTH_SIGMAS * sigma).ceil() as isize;
@@ -202,23 +177,6 @@ pub(crate) fn finish<R: Rng + ?Sized>(
             data[y * w + x] = v.round().clamp(0.0, WHITE_LEVEL as f64) as f32;
         }
     }
-}
-
-/// Projections of every dot centre, row-major.
-pub fn target_truth(
-    camera: &Intrinsics,
-    camera_to_target: &Isometry3<f64>,
-    target: &TargetSpec,
-    width: usize,
-    height: usize,
-) -> Vec<TruthDot> {
-    circle_truth(
-        camera,
-        camera_to_target,
-        &CircleBoard::Dots(*target),
-        width,
-        height,
-    )
 }
 
 #[cfg(test)]

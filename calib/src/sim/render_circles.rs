@@ -14,6 +14,7 @@ use super::render::{
 use crate::camera::model::Intrinsics;
 use crate::vision::circle_board::CircleBoard;
 use crate::vision::image::GrayImage;
+use crate::vision::target::TargetSpec;
 
 /// What the board looks like at a board-plane point (mm).
 struct Scene<'a> {
@@ -227,4 +228,43 @@ pub fn circle_truth(
         }
     }
     out
+}
+
+/// Renders the board seen by `camera` with the target at `camera_to_target`
+/// (`p_camera = camera_to_target * p_target`).
+pub fn render_target<R: Rng + ?Sized>(
+    camera: &Intrinsics,
+    camera_to_target: &Isometry3<f64>,
+    target: &TargetSpec,
+    width: usize,
+    height: usize,
+    opts: &RenderOptions,
+    rng: &mut R,
+) -> Result<RenderedView, RenderError> {
+    render_circle_board(
+        camera,
+        camera_to_target,
+        &CircleBoard::Dots(*target),
+        width,
+        height,
+        opts,
+        rng,
+    )
+}
+
+/// Projections of every dot centre, row-major.
+pub fn target_truth(
+    camera: &Intrinsics,
+    camera_to_target: &Isometry3<f64>,
+    target: &TargetSpec,
+    width: usize,
+    height: usize,
+) -> Vec<TruthDot> {
+    circle_truth(
+        camera,
+        camera_to_target,
+        &CircleBoard::Dots(*target),
+        width,
+        height,
+    )
 }

@@ -39,7 +39,12 @@ fn render(board: &CircleBoard, pose: &Isometry3<f64>, seed: u64) -> RenderedView
     .unwrap()
 }
 
-fn truth_of<'a>(truth: &'a [TruthDot], board: &CircleBoard, row: usize, col: usize) -> &'a TruthDot {
+fn truth_of<'a>(
+    truth: &'a [TruthDot],
+    board: &CircleBoard,
+    row: usize,
+    col: usize,
+) -> &'a TruthDot {
     &truth[row * board.cols() + col]
 }
 
@@ -114,7 +119,11 @@ fn even_asymmetric_and_marker_less_grids_report_their_symmetry() {
         // Exactly one reading (the reported one or a listed turn) is true.
         let true_readings = std::iter::once(0)
             .chain(turns.iter().copied())
-            .filter(|&t| errors(&det, &view.truth, &board, t).iter().all(|&e| e < WRONG_ID_PX))
+            .filter(|&t| {
+                errors(&det, &view.truth, &board, t)
+                    .iter()
+                    .all(|&e| e < WRONG_ID_PX)
+            })
             .count();
         assert_eq!(true_readings, 1, "{board:?}");
     }
@@ -133,7 +142,11 @@ fn partial_view_with_the_marker_in_view_is_read_with_true_ids() {
         assert!(visible < 81 && visible > 30, "view {k}: {visible} visible");
         let det = detect(&view.image, &target).unwrap_or_else(|e| panic!("view {k}: {e}"));
         assert!(det.ordering_unique);
-        assert!(det.dots.len() + 16 >= visible, "view {k}: {} of {visible}", det.dots.len());
+        assert!(
+            det.dots.len() + 16 >= visible,
+            "view {k}: {} of {visible}",
+            det.dots.len()
+        );
         let e = errors(&det, &view.truth, &board, 0);
         assert!(e.iter().all(|&v| v < WRONG_ID_PX), "view {k}: wrong ids");
         assert!(det.dots.iter().any(|d| (d.row, d.col) == (0, 0)));
@@ -144,17 +157,31 @@ fn partial_view_with_the_marker_in_view_is_read_with_true_ids() {
 fn partial_views_that_cannot_be_placed_are_refused() {
     // Marker off the image: the visible dots could be any part of the board.
     let target = TargetSpec::robocal_9x9();
-    let view = render(&CircleBoard::Dots(target), &pose(300.0, 10.0, 0.0, [150.0, 140.0]), 4);
+    let view = render(
+        &CircleBoard::Dots(target),
+        &pose(300.0, 10.0, 0.0, [150.0, 140.0]),
+        4,
+    );
     assert!(!view.truth[0].visible);
     let err = detect(&view.image, &target).unwrap_err();
-    assert!(matches!(err, DetectError::BoardPartlyOutside { .. }), "{err}");
+    assert!(
+        matches!(err, DetectError::BoardPartlyOutside { .. }),
+        "{err}"
+    );
     // Marker-less grid cut on two sides: no edge pins the rows and columns.
     let mut bare = target;
     bare.origin_marker_diameter_mm = None;
-    let view = render(&CircleBoard::Dots(bare), &pose(300.0, 5.0, 0.0, [100.0, 100.0]), 5);
+    let view = render(
+        &CircleBoard::Dots(bare),
+        &pose(300.0, 5.0, 0.0, [100.0, 100.0]),
+        5,
+    );
     assert!(view.truth.iter().filter(|t| !t.visible).count() > 10);
     let err = detect(&view.image, &bare).unwrap_err();
-    assert!(matches!(err, DetectError::BoardPartlyOutside { .. }), "{err}");
+    assert!(
+        matches!(err, DetectError::BoardPartlyOutside { .. }),
+        "{err}"
+    );
 }
 
 #[test]
@@ -171,7 +198,11 @@ fn marker_less_partial_view_with_three_edges_is_placed_up_to_the_turn() {
     assert_eq!(det.equivalent_turns, vec![2]);
     let ok = [0u8, 2]
         .iter()
-        .filter(|&&t| errors(&det, &view.truth, &board, t).iter().all(|&e| e < WRONG_ID_PX))
+        .filter(|&&t| {
+            errors(&det, &view.truth, &board, t)
+                .iter()
+                .all(|&e| e < WRONG_ID_PX)
+        })
         .count();
     assert_eq!(ok, 1);
 }

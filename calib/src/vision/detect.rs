@@ -5,14 +5,14 @@ use image::DynamicImage;
 use nalgebra::Vector2;
 use serde::{Deserialize, Serialize};
 
+use super::asymmetric::AsymmetricCirclesSpec;
 use super::bias::perspective_bias;
 use super::blobs::{find_blobs, Blob};
+use super::circle_board::CircleBoard;
 use super::ellipse::{refine_dot, DotQuality, Ellipse, Rejection};
 use super::error::DetectError;
 use super::grid::{grow_lattices, Candidates, Lattice, MIN_LATTICE_DOTS};
 use super::image::GrayImage;
-use super::asymmetric::AsymmetricCirclesSpec;
-use super::circle_board::CircleBoard;
 use super::order::{order_lattice, Ordering};
 use super::target::TargetSpec;
 use super::threshold::{auto_window_radius, local_threshold};

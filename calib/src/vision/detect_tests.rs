@@ -7,7 +7,8 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 use rand::{rngs::StdRng, Rng, SeedableRng};
 
 use super::*;
-use crate::sim::render::{render_target, RenderOptions, RenderedView, TruthDot};
+use crate::sim::render::{RenderOptions, RenderedView, TruthDot};
+use crate::sim::render_circles::render_target;
 use crate::sim::views::{random_view, reference_camera, ViewRanges};
 
 const W: usize = 1280;

@@ -20,13 +20,17 @@ pub mod grid;
 pub mod homography;
 pub mod image;
 pub mod order;
+pub mod site_prediction;
 pub mod target;
 pub mod threshold;
 
 pub use asymmetric::AsymmetricCirclesSpec;
 pub use board_point::{BoardDetection, BoardPoint};
 pub use circle_board::CircleBoard;
-pub use detect::{detect, detect_asymmetric, detect_board, detect_dynamic, detect_with, DetectOptions, Detection, DotObservation};
+pub use detect::{
+    detect, detect_asymmetric, detect_board, detect_dynamic, detect_with, DetectOptions, Detection,
+    DotObservation,
+};
 pub use drawing::{BoardDrawing, Mark};
 pub use ellipse::{DotQuality, Ellipse};
 pub use error::DetectError;
@@ -34,8 +38,8 @@ pub use image::{decode_image, DecodeLimits, GrayImage};
 pub use target::TargetSpec;
 
 #[cfg(test)]
+mod circle_tests;
+#[cfg(test)]
 mod detect_tests;
 #[cfg(test)]
 mod real_data_tests;
-#[cfg(test)]
-mod circle_tests;

@@ -20,7 +20,7 @@ use nalgebra::Vector2;
 use super::circle_board::{CircleBoard, SiteTurn};
 use super::error::DetectError;
 use super::grid::Lattice;
-use super::homography::Homography;
+use super::site_prediction::{enlarged_blob_at, relative_size, Predictor};
 
 /// A lattice node mapped to its board position.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -49,18 +49,6 @@ impl Ordering {
 /// Fraction of the found dots that may be missing where the image should
 /// show a dot (glare, a dirty or damaged dot).
 const MAX_HOLE_FRACTION: f64 = 0.05;
-/// A missing dot counts as visible when its predicted centre is inside the
-/// image by this many of its predicted radii plus `EDGE_SLACK_PX` (blobs
-/// touching the border are dropped, and the prediction extrapolates).
-const EDGE_RADII: f64 = 1.5;
-const EDGE_SLACK_PX: f64 = 2.0;
-/// Lattice neighbourhood (Chebyshev radius) of the local prediction.
-const PREDICT_RADIUS: i32 = 3;
-/// Nodes needed for a local homography prediction.
-const MIN_PREDICT_NODES: usize = 6;
-/// An unrefined blob counts as the marker within this fraction of the
-/// lattice step from the site's predicted position.
-const UNREFINED_MARKER_TOL: f64 = 0.3;
 /// Most shifts tried per turn when no marker pins the shift.
 const MAX_SHIFTS: usize = 100_000;
 
@@ -130,128 +118,6 @@ enum Refusal {
     MarkerMissing,
     /// Too many dots missing inside the image.
     Holes,
-}
-
-/// Predicts where lattice sites outside the lattice would appear and how
-/// big, for the visibility test; cached per site.
-struct Predictor<'a> {
-    lat: &'a Lattice,
-    centres: &'a [Vector2<f64>],
-    extents: (i32, i32, i32, i32),
-    global: Option<Homography>,
-    /// Image size.
-    size: (f64, f64),
-    /// Dot radius per lattice step (board geometry).
-    radius_per_step: f64,
-    cache: HashMap<(i32, i32), bool>,
-}
-
-impl Predictor<'_> {
-    fn fit(&self, sites: &[(i32, i32)]) -> Option<Homography> {
-        let plane: Vec<Vector2<f64>> = sites
-            .iter()
-            .map(|&(i, j)| Vector2::new(i as f64, j as f64))
-            .collect();
-        let image: Vec<Vector2<f64>> = sites
-            .iter()
-            .map(|s| self.centres[self.lat.nodes[s]])
-            .collect();
-        Homography::fit(&plane, &image)
-    }
-
-    /// Where lattice site `ij` (not found) would appear and the local
-    /// lattice step there, px: a local homography of the nearest found
-    /// dots, else the global one.
-    fn predict(&self, ij: (i32, i32)) -> Option<(Vector2<f64>, f64)> {
-        let (i0, i1, j0, j1) = self.extents;
-        let near = (ij.0.clamp(i0, i1), ij.1.clamp(j0, j1));
-        let mut local = Vec::new();
-        for di in -PREDICT_RADIUS..=PREDICT_RADIUS {
-            for dj in -PREDICT_RADIUS..=PREDICT_RADIUS {
-                let s = (near.0 + di, near.1 + dj);
-                if self.lat.nodes.contains_key(&s) {
-                    local.push(s);
-                }
-            }
-        }
-        let h = if local.len() >= MIN_PREDICT_NODES {
-            self.fit(&local).or_else(|| self.global.clone())
-        } else {
-            self.global.clone()
-        }?;
-        let at = |i: f64, j: f64| h.apply(&Vector2::new(i, j));
-        let (fi, fj) = (ij.0 as f64, ij.1 as f64);
-        let p = at(fi, fj)?;
-        let step = (at(fi + 1.0, fj)? - p)
-            .norm()
-            .max((at(fi, fj + 1.0)? - p).norm());
-        Some((p, step))
-    }
-
-    /// Whether a dot at lattice site `ij` (not found), `radius_scale` times
-    /// an ordinary dot's size, would be well inside the image; `false` when
-    /// it cannot be predicted.
-    fn visible(&mut self, ij: (i32, i32), radius_scale: f64) -> bool {
-        if let Some(&v) = self.cache.get(&ij) {
-            return v;
-        }
-        let v = self.predict(ij).is_some_and(|(p, step)| {
-            let margin = EDGE_RADII * radius_scale * self.radius_per_step * step + EDGE_SLACK_PX;
-            let (w, h) = self.size;
-            p.x > margin && p.y > margin && p.x < w - 1.0 - margin && p.y < h - 1.0 - margin
-        });
-        self.cache.insert(ij, v);
-        v
-    }
-}
-
-/// Size of a node relative to the median of its 8-neighbours.
-fn relative_size(lat: &Lattice, sizes: &[f64], ij: (i32, i32)) -> f64 {
-    let mut nb: Vec<f64> = Vec::new();
-    for di in -1..=1 {
-        for dj in -1..=1 {
-            if (di, dj) != (0, 0) {
-                if let Some(&k) = lat.nodes.get(&(ij.0 + di, ij.1 + dj)) {
-                    nb.push(sizes[k]);
-                }
-            }
-        }
-    }
-    if nb.is_empty() {
-        return 1.0;
-    }
-    nb.sort_by(f64::total_cmp);
-    sizes[lat.nodes[&ij]] / nb[nb.len() / 2]
-}
-
-/// Whether an unrefined blob `threshold` times larger (in area) than the
-/// found dots around it sits where lattice site `ij` is predicted.
-fn enlarged_blob_at(
-    predictor: &Predictor,
-    ij: (i32, i32),
-    areas: &[f64],
-    unrefined: &[(Vector2<f64>, f64)],
-    threshold: f64,
-) -> bool {
-    let Some((p, step)) = predictor.predict(ij) else {
-        return false;
-    };
-    let mut nb: Vec<f64> = Vec::new();
-    for di in -1..=1 {
-        for dj in -1..=1 {
-            if let Some(&k) = predictor.lat.nodes.get(&(ij.0 + di, ij.1 + dj)) {
-                nb.push(areas[k]);
-            }
-        }
-    }
-    if nb.is_empty() {
-        return false;
-    }
-    nb.sort_by(f64::total_cmp);
-    let typical = nb[nb.len() / 2];
-    unrefined
-        .iter()
-        .any(|&(c, a)| (c - p).norm() < UNREFINED_MARKER_TOL * step && a > threshold * typical)
 }
 
 /// Sign of the lattice's handedness in the image: +1 when `i` then `j`
@@ -364,7 +230,17 @@ pub fn order_lattice(
         };
         for t in shifts {
             let r = Reading { m, t };
-            match check(&r, &lattice_sites, &sites, &frontier, &big, marker, &mut predictor, board, max_holes) {
+            match check(
+                &r,
+                &lattice_sites,
+                &sites,
+                &frontier,
+                &big,
+                marker,
+                &mut predictor,
+                board,
+                max_holes,
+            ) {
                 Ok(()) => survivors.push(r),
                 Err(why) => refusals.push(why),
             }
@@ -383,7 +259,9 @@ pub fn order_lattice(
     for r in &survivors {
         let g = compose(r.m, first_inv);
         let Some(k) = (0..4u8).find(|&k| LINEAR[k as usize] == g) else {
-            return Err(DetectError::OrderingAmbiguous("readings differ by a mirror".into()));
+            return Err(DetectError::OrderingAmbiguous(
+                "readings differ by a mirror".into(),
+            ));
         };
         let turn = SiteTurn::of_board(&sites, k);
         let same = turn.is_some_and(|turn| {
@@ -448,7 +326,10 @@ fn check(
     board: &CircleBoard,
     max_holes: usize,
 ) -> Result<(), Refusal> {
-    if lattice_sites.iter().any(|&s| !sites.contains_key(&r.board(s))) {
+    if lattice_sites
+        .iter()
+        .any(|&s| !sites.contains_key(&r.board(s)))
+    {
         return Err(Refusal::OffBoard);
     }
     if let Some((origin, _, scale)) = marker {
