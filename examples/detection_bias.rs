@@ -16,7 +16,8 @@ use robocal::cli::campaign::{rendered_spec, simulated_target};
 use robocal_calib::camera::bias::centre_bias;
 use robocal_calib::sim::campaign::simulate_campaign;
 use robocal_calib::sim::campaign_io::PoseSet;
-use robocal_calib::sim::render::{render_target, RenderOptions};
+use robocal_calib::sim::render::RenderOptions;
+use robocal_calib::sim::render_circles::render_target;
 use robocal_calib::vision::{self, DetectOptions};
 
 fn main() {

@@ -9,7 +9,8 @@ use std::time::Instant;
 
 use image::DynamicImage;
 use rand::{rngs::StdRng, SeedableRng};
-use robocal_calib::sim::render::{render_target, RenderOptions};
+use robocal_calib::sim::render::RenderOptions;
+use robocal_calib::sim::render_circles::render_target;
 use robocal_calib::sim::views::{random_view, reference_camera, ViewRanges};
 use robocal_calib::vision::{
     decode_image, detect, detect_dynamic, DecodeLimits, GrayImage, TargetSpec,

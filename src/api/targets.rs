@@ -19,11 +19,11 @@ pub fn router() -> OpenApiRouter<AppState> {
 /// bar and the session `target` spec in the margin.
 #[utoipa::path(get, path = "/v1/targets/render", tag = "targets",
     params(
-        ("kind" = Option<String>, Query, description = "Target kind: `dots` (default; robocal's dot grid), `charuco` or `chessboard`"),
-        ("rows" = Option<u32>, Query, minimum = 2, maximum = 200, description = "dots: dots along a column"),
-        ("cols" = Option<u32>, Query, minimum = 2, maximum = 200, description = "dots: dots along a row"),
-        ("pitch_mm" = Option<f64>, Query, description = "dots: centre-to-centre spacing, mm"),
-        ("dot_diameter_mm" = Option<f64>, Query, description = "dots: diameter of an ordinary dot, mm (below pitch_mm)"),
+        ("kind" = Option<String>, Query, description = "Target kind: `dots` (default; robocal's dot grid), `charuco`, `chessboard` or `asymmetric_circles` (OpenCV's asymmetric grid)"),
+        ("rows" = Option<u32>, Query, minimum = 2, maximum = 200, description = "dots, asymmetric_circles: rows of dots"),
+        ("cols" = Option<u32>, Query, minimum = 2, maximum = 200, description = "dots, asymmetric_circles: dots per row"),
+        ("pitch_mm" = Option<f64>, Query, description = "dots: centre-to-centre spacing, mm; asymmetric_circles: row spacing = half the in-row spacing (OpenCV's squareSize), mm"),
+        ("dot_diameter_mm" = Option<f64>, Query, description = "dots, asymmetric_circles: diameter of an ordinary dot, mm (dots must not touch)"),
         ("origin_marker_diameter_mm" = Option<f64>, Query, description = "dots: diameter of the larger origin dot, mm; omit for a marker-less grid"),
         ("squares" = Option<String>, Query, description = "charuco: squares as `cols,rows`, e.g. `10,8`"),
         ("square_mm" = Option<f64>, Query, description = "charuco, chessboard: side of a chessboard square, mm"),

@@ -1,11 +1,14 @@
 //! The board a camera session uses, typed once from the session's `target`
-//! (issue 14): robocal's dot grid, a ChArUco board or a chessboard. Everything downstream
+//! (issue 14): robocal's dot grid (with or without its origin marker), a
+//! ChArUco board, a chessboard or OpenCV's asymmetric circle grid. Everything downstream
 //! (detection at upload, the camera stage) asks this type where a feature
 //! sits on the board and how to find it, never the JSON.
 
 use robocal_calib::vision::charuco::{self, CharucoSpec};
 use robocal_calib::vision::chessboard::{self, ChessboardSpec};
-use robocal_calib::vision::{self, DetectError, DetectOptions, GrayImage, TargetSpec};
+use robocal_calib::vision::{
+    self, AsymmetricCirclesSpec, CircleBoard, DetectError, DetectOptions, GrayImage, TargetSpec,
+};
 
 use crate::schema::session::{TargetDoc, TargetKind, MAX_GRID_SIDE};
 use crate::schema::{Checker, FieldError, MAX_LENGTH_MM};
@@ -25,6 +28,7 @@ pub enum Target {
     Dots(TargetSpec),
     Charuco(CharucoSpec),
     Chessboard(ChessboardSpec),
+    AsymmetricCircles(AsymmetricCirclesSpec),
 }
 
 /// Fields that belong to one kind only, for the "not a field of this kind" check.
@@ -43,6 +47,10 @@ const CHARUCO_FIELDS: [&str; 5] = [
     "legacy_layout",
 ];
 const CHESSBOARD_FIELDS: [&str; 2] = ["inner_corners", "square_mm"];
+/// An asymmetric grid's fields; every other field is refused.
+const ASYMMETRIC_FIELDS: [&str; 4] = ["rows", "cols", "pitch_mm", "dot_diameter_mm"];
+/// Fields a kind may omit.
+const OPTIONAL_FIELDS: [&str; 2] = ["legacy_layout", "origin_marker_diameter_mm"];
 
 impl Target {
     /// The typed board, or every problem named as `target.<field>`.
@@ -65,6 +73,7 @@ impl Target {
             TargetKind::Dots => (&DOT_FIELDS[..], "dots"),
             TargetKind::Charuco => (&CHARUCO_FIELDS[..], "charuco"),
             TargetKind::Chessboard => (&CHESSBOARD_FIELDS[..], "chessboard"),
+            TargetKind::AsymmetricCircles => (&ASYMMETRIC_FIELDS[..], "asymmetric_circles"),
         };
         let every = DOT_FIELDS
             .iter()
@@ -82,8 +91,10 @@ impl Target {
                 format!("not a field of a {kind} target"),
             );
         }
-        let optional = ["legacy_layout"];
-        for name in own.iter().filter(|n| !given(n) && !optional.contains(n)) {
+        for name in own
+            .iter()
+            .filter(|n| !given(n) && !OPTIONAL_FIELDS.contains(n))
+        {
             c.fail(
                 format!("target.{name}"),
                 format!("required for a {kind} target"),
@@ -94,6 +105,7 @@ impl Target {
             TargetKind::Dots => dots(doc),
             TargetKind::Charuco => charuco(doc),
             TargetKind::Chessboard => chessboard_spec(doc),
+            TargetKind::AsymmetricCircles => asymmetric(doc),
         }
     }
 
@@ -103,6 +115,7 @@ impl Target {
             Target::Dots(t) => t.dot_centre_mm(row as usize, col as usize),
             Target::Charuco(t) => charuco::corner_mm(t, row as usize, col as usize),
             Target::Chessboard(t) => t.corner_mm(row as usize, col as usize),
+            Target::AsymmetricCircles(t) => t.dot_centre_mm(row as usize, col as usize),
         }
     }
 
@@ -117,7 +130,7 @@ impl Target {
                     && t.origin_marker_diameter_mm
                         .is_some_and(|m| m > t.dot_diameter_mm)
             }
-            Target::Charuco(_) | Target::Chessboard(_) => false,
+            Target::Charuco(_) | Target::Chessboard(_) | Target::AsymmetricCircles(_) => false,
         }
     }
 
@@ -126,35 +139,52 @@ impl Target {
     pub fn dot_diameter_mm(&self) -> Option<f64> {
         match self {
             Target::Dots(t) => Some(t.dot_diameter_mm),
+            Target::AsymmetricCircles(t) => Some(t.dot_diameter_mm),
             Target::Charuco(_) | Target::Chessboard(_) => None,
         }
     }
 
     /// Every feature found in `image` (raw positions: for dots the ellipse
     /// centres, whose perspective bias the camera stage corrects from the
-    /// calibrated model).
+    /// calibrated model). A circle grid whose symmetry leaves the dot
+    /// identities open in this image (a marker-less grid, an asymmetric grid
+    /// with an even number of rows) is refused with `OrderingAmbiguous`:
+    /// identities that might differ from image to image would bend the fit.
     pub fn detect(&self, image: &GrayImage) -> Result<Vec<FoundPoint>, DetectError> {
-        match self {
-            Target::Dots(t) => {
-                let options = DetectOptions {
-                    correct_perspective_bias: false,
-                    ..DetectOptions::default()
-                };
-                let found = vision::detect_with(image, t, &options)?;
-                Ok(found
-                    .dots
-                    .iter()
-                    .map(|d| FoundPoint {
-                        row: d.row as u32,
-                        col: d.col as u32,
-                        x: d.ellipse.cx,
-                        y: d.ellipse.cy,
-                    })
-                    .collect())
+        let board = match self {
+            Target::Dots(t) => CircleBoard::Dots(*t),
+            Target::AsymmetricCircles(t) => CircleBoard::Asymmetric(*t),
+            Target::Charuco(t) => return Ok(found_points(&charuco::detect_charuco(image, t)?)),
+            Target::Chessboard(t) => {
+                return Ok(found_points(&chessboard::detect_chessboard(image, t)?))
             }
-            Target::Charuco(t) => Ok(found_points(&charuco::detect_charuco(image, t)?)),
-            Target::Chessboard(t) => Ok(found_points(&chessboard::detect_chessboard(image, t)?)),
+        };
+        let options = DetectOptions {
+            correct_perspective_bias: false,
+            ..DetectOptions::default()
+        };
+        let found = vision::detect_board(image, &board, &options)?;
+        if !found.ordering_unique {
+            let turns: Vec<String> = found
+                .equivalent_turns
+                .iter()
+                .map(|k| format!("{} deg", 90 * u32::from(*k)))
+                .collect();
+            return Err(DetectError::OrderingAmbiguous(format!(
+                "the board reads the same turned by {}: its dots cannot be told apart (use a board with an origin marker, or an asymmetric grid with an odd number of rows)",
+                turns.join(" or ")
+            )));
         }
+        Ok(found
+            .dots
+            .iter()
+            .map(|d| FoundPoint {
+                row: d.row as u32,
+                col: d.col as u32,
+                x: d.ellipse.cx,
+                y: d.ellipse.cy,
+            })
+            .collect())
     }
 
     /// Whether every image's features get the same identities (an origin
@@ -163,6 +193,7 @@ impl Target {
     pub fn ordering_unique(&self) -> bool {
         match self {
             Target::Dots(t) => t.origin_marker_diameter_mm.is_some(),
+            Target::AsymmetricCircles(t) => t.rows % 2 == 1,
             Target::Charuco(_) => true,
             Target::Chessboard(t) => !t.ambiguous_180(),
         }
@@ -193,6 +224,9 @@ impl Target {
             Target::Dots(t) => format!("{}x{}", t.rows, t.cols),
             Target::Charuco(t) => format!("ChArUco {}x{}", t.cols(), t.rows()),
             Target::Chessboard(t) => format!("chessboard {}x{}", t.cols(), t.rows()),
+            Target::AsymmetricCircles(t) => {
+                format!("asymmetric circles {}x{}", t.cols, t.rows)
+            }
         }
     }
 
@@ -202,6 +236,7 @@ impl Target {
             Target::Dots(_) => "rows, cols, pitch_mm, dot diameters",
             Target::Charuco(_) => "squares, square_mm, marker_mm, dictionary, legacy_layout",
             Target::Chessboard(_) => "inner_corners (cols, rows of inner corners), square_mm",
+            Target::AsymmetricCircles(_) => "rows, cols (dots per row), pitch_mm, dot_diameter_mm",
         }
     }
 }
@@ -217,22 +252,23 @@ fn dots(doc: &TargetDoc) -> Result<Target, Vec<FieldError>> {
     }
     let pitch = doc.pitch_mm.unwrap_or_default();
     let dot = doc.dot_diameter_mm.unwrap_or_default();
-    let marker = doc.origin_marker_diameter_mm.unwrap_or_default();
     c.positive("target.pitch_mm", pitch, MAX_LENGTH_MM, "mm");
     c.positive("target.dot_diameter_mm", dot, pitch.abs(), "mm");
-    c.positive(
-        "target.origin_marker_diameter_mm",
-        marker,
-        MAX_LENGTH_MM,
-        "mm",
-    );
+    if let Some(marker) = doc.origin_marker_diameter_mm {
+        c.positive(
+            "target.origin_marker_diameter_mm",
+            marker,
+            MAX_LENGTH_MM,
+            "mm",
+        );
+    }
     c.finish()?;
     Ok(Target::Dots(TargetSpec {
         rows: rows as usize,
         cols: cols as usize,
         pitch_mm: pitch,
         dot_diameter_mm: dot,
-        origin_marker_diameter_mm: Some(marker),
+        origin_marker_diameter_mm: doc.origin_marker_diameter_mm,
     }))
 }
 
@@ -249,7 +285,28 @@ fn found_points(found: &vision::BoardDetection) -> Vec<FoundPoint> {
         .collect()
 }
 
-/// calib's `InvalidTarget("<field>: why")` as an error on `target.<field>`.
+fn asymmetric(doc: &TargetDoc) -> Result<Target, Vec<FieldError>> {
+    let mut c = Checker::default();
+    for (name, v) in [("target.rows", doc.rows), ("target.cols", doc.cols)] {
+        if !(2..=MAX_GRID_SIDE).contains(&v.unwrap_or_default()) {
+            c.fail(name, format!("must be 2 to {MAX_GRID_SIDE}"));
+        }
+    }
+    let pitch = doc.pitch_mm.unwrap_or_default();
+    c.positive("target.pitch_mm", pitch, MAX_LENGTH_MM, "mm");
+    c.finish()?;
+    let spec = AsymmetricCirclesSpec {
+        rows: doc.rows.unwrap_or_default() as usize,
+        cols: doc.cols.unwrap_or_default() as usize,
+        pitch_mm: pitch,
+        dot_diameter_mm: doc.dot_diameter_mm.unwrap_or_default(),
+    };
+    spec.validate().map_err(field_errors)?;
+    Ok(Target::AsymmetricCircles(spec))
+}
+
+/// calib names the offending field first ("<field>: why"): the same field
+/// under `target.`.
 fn field_errors(e: DetectError) -> Vec<FieldError> {
     let text = match e {
         DetectError::InvalidTarget(text) => text,

@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 use robocal_calib::vision::charuco::CharucoSpec;
 use robocal_calib::vision::chessboard::ChessboardSpec;
 use robocal_calib::vision::target::MAX_GRID_SIDE;
-use robocal_calib::vision::{BoardDrawing, DetectError, TargetSpec};
+use robocal_calib::vision::{AsymmetricCirclesSpec, BoardDrawing, DetectError, TargetSpec};
 
 use super::page::PageFormat;
 use crate::schema::{Checker, FieldError};
@@ -56,6 +56,8 @@ pub enum PrintableTarget {
     Charuco(CharucoSpec),
     /// A chessboard (validated), OpenCV's corner order.
     Chessboard(ChessboardSpec),
+    /// OpenCV's asymmetric circle grid (validated).
+    AsymmetricCircles(AsymmetricCirclesSpec),
 }
 
 impl PrintableTarget {
@@ -68,6 +70,7 @@ impl PrintableTarget {
             PrintableTarget::Chessboard(t) => {
                 t.drawing().expect("validated when the request was parsed")
             }
+            PrintableTarget::AsymmetricCircles(t) => t.drawing(),
         }
     }
 
@@ -125,6 +128,22 @@ impl PrintableTarget {
                     t.square_mm
                 ),
             ],
+            PrintableTarget::AsymmetricCircles(t) => vec![
+                format!(
+                    "asymmetric circle grid: {} rows of {} dots {} mm, rows {} mm apart, dots in a row {} mm apart (OpenCV findCirclesGrid patternSize ({}, {}))",
+                    t.rows,
+                    t.cols,
+                    t.dot_diameter_mm,
+                    t.pitch_mm,
+                    2.0 * t.pitch_mm,
+                    t.cols,
+                    t.rows
+                ),
+                format!(
+                    "session target: {{\"kind\": \"asymmetric_circles\", \"rows\": {}, \"cols\": {}, \"pitch_mm\": {}, \"dot_diameter_mm\": {}}}",
+                    t.rows, t.cols, t.pitch_mm, t.dot_diameter_mm
+                ),
+            ],
         }
     }
 }
@@ -150,10 +169,11 @@ pub fn parse_pairs(pairs: &[(String, String)]) -> Result<PrintRequest, PrintErro
         "dots" => dots(&mut c, &mut map),
         "charuco" => charuco(&mut c, &mut map),
         "chessboard" => chessboard(&mut c, &mut map),
+        "asymmetric_circles" => asymmetric(&mut c, &mut map),
         other => {
             c.fail(
                 "kind",
-                format!("{other:?} is not a printable target kind (dots, charuco, chessboard)"),
+                format!("{other:?} is not a printable target kind (dots, charuco, chessboard, asymmetric_circles)"),
             );
             None
         }
@@ -336,6 +356,53 @@ fn chessboard(c: &mut Checker, map: &mut BTreeMap<&str, &str>) -> Option<Printab
         return None;
     }
     Some(PrintableTarget::Chessboard(spec))
+}
+
+fn asymmetric(c: &mut Checker, map: &mut BTreeMap<&str, &str>) -> Option<PrintableTarget> {
+    let mut got = BTreeMap::new();
+    for key in ["rows", "cols", "pitch_mm", "dot_diameter_mm"] {
+        if let Some(v) = map.remove(key) {
+            got.insert(key, v);
+        }
+    }
+    let side = |c: &mut Checker, key: &str| -> Option<usize> {
+        let v = number(c, &got, key)?;
+        if v.fract() != 0.0 || !(2.0..=MAX_GRID_SIDE as f64).contains(&v) {
+            c.fail(key, format!("must be a whole number 2 to {MAX_GRID_SIDE}"));
+            return None;
+        }
+        Some(v as usize)
+    };
+    let rows = side(c, "rows");
+    let cols = side(c, "cols");
+    let pitch_mm = number(c, &got, "pitch_mm");
+    let dot_diameter_mm = number(c, &got, "dot_diameter_mm");
+    let spec = AsymmetricCirclesSpec {
+        rows: rows?,
+        cols: cols?,
+        pitch_mm: pitch_mm?,
+        dot_diameter_mm: dot_diameter_mm?,
+    };
+    if let Err(e) = spec.validate() {
+        let text = e.to_string();
+        let text = text
+            .strip_prefix("invalid target description: ")
+            .unwrap_or(&text);
+        match text.split_once(": ") {
+            Some((field, why)) => c.fail(field, why),
+            None => c.fail("kind", text),
+        }
+        return None;
+    }
+    let [w, h] = spec.drawing().size_mm;
+    if w.max(h) > MAX_PRINT_MM {
+        c.fail(
+            "pitch_mm",
+            format!("the board would exceed {MAX_PRINT_MM} mm"),
+        );
+        return None;
+    }
+    Some(PrintableTarget::AsymmetricCircles(spec))
 }
 
 /// A required finite number.

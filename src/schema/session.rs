@@ -36,7 +36,8 @@ impl Instrument {
 }
 
 /// What board the camera sees (issue 14): robocal's dot grid (`kind`
-/// `"dots"`, the default, may be omitted), a ChArUco board or a chessboard.
+/// `"dots"`, the default, may be omitted), a ChArUco board, a chessboard
+/// or OpenCV's asymmetric circle grid.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum TargetKind {
@@ -44,6 +45,7 @@ pub enum TargetKind {
     Dots,
     Charuco,
     Chessboard,
+    AsymmetricCircles,
 }
 
 impl TargetKind {
@@ -53,7 +55,13 @@ impl TargetKind {
 }
 
 /// The board. Dots: `rows`, `cols`, `pitch_mm`, `dot_diameter_mm`,
-/// `origin_marker_diameter_mm`. ChArUco (OpenCV's `CharucoBoard`):
+/// `origin_marker_diameter_mm` (omitted for a grid without the larger
+/// origin dot: its ordering is then known only up to the grid's symmetry).
+/// Asymmetric circles (OpenCV's `CALIB_CB_ASYMMETRIC_GRID`, found by
+/// `findCirclesGrid(image, (cols, rows))`): `rows`, `cols` (dots per row),
+/// `pitch_mm` (OpenCV's `squareSize`: dot `(i, j)` at
+/// `((2 j + i mod 2) pitch, i pitch)`, so dots in a row are `2 pitch`
+/// apart), `dot_diameter_mm`. ChArUco (OpenCV's `CharucoBoard`):
 /// `squares` `[cols, rows]`, `square_mm`, `marker_mm`, `dictionary` (an
 /// OpenCV predefined dictionary name, e.g. `DICT_5X5_100`) and
 /// `legacy_layout` (boards made by OpenCV < 4.6; default false).

@@ -8,6 +8,7 @@ pub(crate) mod bad_json;
 pub(crate) mod camera_reuse;
 pub(crate) mod campaign_plans;
 pub(crate) mod charuco_campaign;
+pub(crate) mod circle_boards;
 pub(crate) mod cli;
 pub(crate) mod compensate;
 pub(crate) mod e2e;

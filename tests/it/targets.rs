@@ -12,7 +12,7 @@ const PX_PER_MM: f32 = 10.0;
 const PRODUCTION_QUERY: &str =
     "rows=9&cols=9&pitch_mm=25&dot_diameter_mm=8&origin_marker_diameter_mm=12";
 
-fn rasterise(svg: &str) -> GrayImage {
+pub(crate) fn rasterise(svg: &str) -> GrayImage {
     let tree = resvg::usvg::Tree::from_str(svg, &resvg::usvg::Options::default()).unwrap();
     let size = tree.size();
     // usvg sizes in CSS px (96 per inch); scale them to PX_PER_MM.

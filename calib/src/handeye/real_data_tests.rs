@@ -44,11 +44,12 @@ const WRONG_PITCH_RMS_RATIO: f64 = 5.0;
 /// within this much.
 const HAND_EYE_ROTATION_TOLERANCE_DEG: f64 = 3.0;
 const HAND_EYE_YAW_DEG: f64 = -90.0;
-/// Today's detector finds 99 of 100 dots in images 2 (origin dot clipped
-/// by the border), 6, 11 and 12, and refuses them (the same for every dot
-/// and marker size tried); the hand-eye reports them as unusable poses.
-/// Raise to 15 when the detector accepts partial views.
-const MIN_DETECTED: usize = 11;
+/// Every image is read (issue 14). Four are partial views: image 2 has the
+/// origin dot clipped by the border (read from the three plain corners and
+/// the board edges, `vision/order.rs`), and in images 6, 11 and 12 the
+/// origin dot is seen but fails the sub-pixel outline tests, so it marks
+/// the origin without being measured: 99 dots each.
+const MIN_DETECTED: usize = IMAGES;
 
 fn data_dir() -> Option<PathBuf> {
     let fixture =
@@ -217,11 +218,23 @@ fn rct_wrist_circles_hand_eye_and_printed_pitch() {
     let dir =
         data_dir().expect("calib/tests/data/rct_wrist_circles_10x10 is part of the repository");
     let configured = views(&dir, CONFIGURED_PITCH_MM);
-    let detected = configured.iter().filter(|v| v.points.len() == 100).count();
+    let detected = configured.iter().filter(|v| v.points.len() >= 99).count();
     eprintln!("{detected} of {IMAGES} images detected");
     assert!(detected >= MIN_DETECTED);
     // The images alone reproduce RCT's intrinsics.
-    let (camera, camera_rms_px) = camera_only(&configured);
+    // Image 2 is the one view of the image's lower-left corner: the
+    // distortion model, fitted on the camera stage alone, is not determined
+    // there, and the refined stage reports the focal undetermined (its dots
+    // fit the other 14 views' intrinsics to 0.5 px RMS, 1.6 px worst, the
+    // others to 0.16 px). The joint bundle below uses it.
+    let corner_view = 2;
+    let camera_views: Vec<FlangeView> = configured
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| *k != corner_view)
+        .map(|(_, v)| v.clone())
+        .collect();
+    let (camera, camera_rms_px) = camera_only(&camera_views);
     eprintln!("camera stage alone: {camera:?}, rms {camera_rms_px:.3} px");
     assert!((camera.fx / RCT_FX_PX - 1.0).abs() < CAMERA_ONLY_FX_TOLERANCE);
 

@@ -15,6 +15,8 @@ pub mod render;
 pub mod render_charuco;
 /// Chessboards through the same camera (issue 14).
 pub mod render_chessboard;
+/// Circle boards: symmetric dot grids and OpenCV's asymmetric grid.
+pub mod render_circles;
 pub mod start_model;
 /// Laser-tracker campaigns with optional non-geometric errors (issue 19).
 pub mod tracker_campaign;

@@ -10,7 +10,7 @@
 //! the projection of its 3-D centre, not a blob centroid. One call renders
 //! one view, so a campaign generator calls it per pose.
 
-use nalgebra::{Isometry3, Point2, Point3, Vector2, Vector3};
+use nalgebra::{Isometry3, Point2, Vector2, Vector3};
 use rand::Rng;
 use rand_distr::{Distribution, Normal};
 use serde::{Deserialize, Serialize};
@@ -18,7 +18,6 @@ use thiserror::Error;
 
 use crate::camera::model::Intrinsics;
 use crate::vision::image::{GrayImage, WHITE_LEVEL};
-use crate::vision::target::TargetSpec;
 
 /// Largest image side the renderer accepts, pixels.
 pub const MAX_RENDER_SIDE_PX: usize = 16_384;
@@ -89,60 +88,6 @@ pub enum RenderError {
     InvalidTarget(#[from] crate::vision::error::DetectError),
 }
 
-/// What the board looks like at a board-plane point (mm).
-struct Scene<'a> {
-    target: &'a TargetSpec,
-    opts: &'a RenderOptions,
-}
-
-impl Scene<'_> {
-    /// Grey level at board point `p`.
-    fn grey(&self, p: Vector2<f64>) -> f64 {
-        let t = self.target;
-        let m = self.opts.board_margin_mm;
-        let (w, h) = (
-            (t.cols - 1) as f64 * t.pitch_mm,
-            (t.rows - 1) as f64 * t.pitch_mm,
-        );
-        if p.x < -m || p.y < -m || p.x > w + m || p.y > h + m {
-            return self.opts.background_grey;
-        }
-        let (c, r) = self.nearest_dot(p);
-        let centre = Vector2::new(c as f64 * t.pitch_mm, r as f64 * t.pitch_mm);
-        let radius = 0.5 * t.dot_diameter_at_mm(r, c);
-        if (p - centre).norm_squared() <= radius * radius {
-            self.opts.dot_grey
-        } else {
-            self.opts.board_grey
-        }
-    }
-
-    fn nearest_dot(&self, p: Vector2<f64>) -> (usize, usize) {
-        let t = self.target;
-        let c = (p.x / t.pitch_mm).round().clamp(0.0, (t.cols - 1) as f64) as usize;
-        let r = (p.y / t.pitch_mm).round().clamp(0.0, (t.rows - 1) as f64) as usize;
-        (c, r)
-    }
-
-    /// Whether an edge (dot outline or board border) passes within `reach`
-    /// mm of `p`, so the pixel needs supersampling.
-    fn near_edge(&self, p: Vector2<f64>, reach: f64) -> bool {
-        let t = self.target;
-        let m = self.opts.board_margin_mm;
-        let (w, h) = (
-            (t.cols - 1) as f64 * t.pitch_mm,
-            (t.rows - 1) as f64 * t.pitch_mm,
-        );
-        let border = [p.x + m, p.y + m, w + m - p.x, h + m - p.y];
-        if border.iter().any(|d| d.abs() <= reach) {
-            return true;
-        }
-        let (c, r) = self.nearest_dot(p);
-        let centre = Vector2::new(c as f64 * t.pitch_mm, r as f64 * t.pitch_mm);
-        ((p - centre).norm() - 0.5 * t.dot_diameter_at_mm(r, c)).abs() <= reach
-    }
-}
-
 /// Board-plane point seen at pixel `(u, v)`, or `None` if the ray misses it.
 pub(crate) fn board_point(
     camera: &Intrinsics,
@@ -178,78 +123,6 @@ pub(crate) fn check(opts: &RenderOptions, width: usize, height: usize) -> Result
         return bad("blur, noise, margin must be finite and >= 0; vignetting in [0, 1)");
     }
     Ok(())
-}
-
-/// Renders the board seen by `camera` with the target at `camera_to_target`
-/// (`p_camera = camera_to_target * p_target`).
-pub fn render_target<R: Rng + ?Sized>(
-    camera: &Intrinsics,
-    camera_to_target: &Isometry3<f64>,
-    target: &TargetSpec,
-    width: usize,
-    height: usize,
-    opts: &RenderOptions,
-    rng: &mut R,
-) -> Result<RenderedView, RenderError> {
-    target.validate()?;
-    check(opts, width, height)?;
-    let scene = Scene { target, opts };
-    let target_to_camera = camera_to_target.inverse();
-    let s = opts.supersampling;
-    let mut data = vec![0.0f32; width * height];
-    // Board points of the pixel corners, two corner rows at a time.
-    let corner_row = |i: usize| -> Vec<Option<Vector2<f64>>> {
-        (0..=width)
-            .map(|j| board_point(camera, &target_to_camera, j as f64 - 0.5, i as f64 - 0.5))
-            .collect()
-    };
-    let mut top = corner_row(0);
-    for i in 0..height {
-        let bottom = corner_row(i + 1);
-        for j in 0..width {
-            let corners = [top[j], top[j + 1], bottom[j], bottom[j + 1]];
-            data[i * width + j] = shade_pixel(&scene, &corners, s) as f32;
-        }
-        top = bottom;
-    }
-    if opts.blur_sigma_px > 0.0 {
-        gaussian_blur(&mut data, width, height, opts.blur_sigma_px);
-    }
-    finish(&mut data, width, height, opts, rng);
-    let truth = target_truth(camera, camera_to_target, target, width, height);
-    Ok(RenderedView {
-        image: GrayImage {
-            width,
-            height,
-            data,
-        },
-        truth,
-    })
-}
-
-/// Mean grey level over one pixel footprint given its corners' board points.
-fn shade_pixel(scene: &Scene, corners: &[Option<Vector2<f64>>; 4], s: usize) -> f64 {
-    let bg = scene.opts.background_grey;
-    let all: Option<Vec<Vector2<f64>>> = corners.iter().copied().collect();
-    let Some(c) = all else {
-        return bg; // horizon or behind the camera: not the board
-    };
-    let centre = (c[0] + c[1] + c[2] + c[3]) * 0.25;
-    let reach = c.iter().map(|p| (p - centre).norm()).fold(0.0, f64::max);
-    if !scene.near_edge(centre, reach) {
-        return scene.grey(centre);
-    }
-    let mut sum = 0.0;
-    for a in 0..s {
-        let ty = (a as f64 + 0.5) / s as f64;
-        let left = c[0] + (c[2] - c[0]) * ty;
-        let right = c[1] + (c[3] - c[1]) * ty;
-        for b in 0..s {
-            let tx = (b as f64 + 0.5) / s as f64;
-            sum += scene.grey(left + (right - left) * tx);
-        }
-    }
-    sum / (s * s) as f64
 }
 
 /// Separable Gaussian blur with clamped borders.
@@ -304,42 +177,6 @@ pub(crate) fn finish<R: Rng + ?Sized>(
             data[y * w + x] = v.round().clamp(0.0, WHITE_LEVEL as f64) as f32;
         }
     }
-}
-
-/// Projections of every dot centre, row-major.
-pub fn target_truth(
-    camera: &Intrinsics,
-    camera_to_target: &Isometry3<f64>,
-    target: &TargetSpec,
-    width: usize,
-    height: usize,
-) -> Vec<TruthDot> {
-    let mut out = Vec::with_capacity(target.dot_count());
-    for row in 0..target.rows {
-        for col in 0..target.cols {
-            let m = target.dot_centre_mm(row, col);
-            let p = camera_to_target * Point3::new(m[0], m[1], m[2]);
-            let (x, y, visible) = match camera.project(&p) {
-                Some(q) => (
-                    q.x,
-                    q.y,
-                    q.x >= -0.5
-                        && q.y >= -0.5
-                        && q.x < width as f64 - 0.5
-                        && q.y < height as f64 - 0.5,
-                ),
-                None => (f64::NAN, f64::NAN, false),
-            };
-            out.push(TruthDot {
-                row,
-                col,
-                x,
-                y,
-                visible,
-            });
-        }
-    }
-    out
 }
 
 #[cfg(test)]

@@ -1,6 +1,8 @@
 //! The renderer against its own truth.
 
 use super::*;
+use crate::sim::render_circles::render_target;
+use crate::vision::target::TargetSpec;
 use nalgebra::{Translation3, UnitQuaternion};
 use rand::{rngs::StdRng, SeedableRng};
 

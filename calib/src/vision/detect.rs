@@ -5,13 +5,15 @@ use image::DynamicImage;
 use nalgebra::Vector2;
 use serde::{Deserialize, Serialize};
 
+use super::asymmetric::AsymmetricCirclesSpec;
 use super::bias::perspective_bias;
 use super::blobs::{find_blobs, Blob};
+use super::circle_board::CircleBoard;
 use super::ellipse::{refine_dot, DotQuality, Ellipse, Rejection};
 use super::error::DetectError;
-use super::grid::{grow_lattices, Candidates, Lattice};
+use super::grid::{grow_lattices, Candidates, Lattice, MIN_LATTICE_DOTS};
 use super::image::GrayImage;
-use super::order::order_lattice;
+use super::order::{order_lattice, Ordering};
 use super::target::TargetSpec;
 use super::threshold::{auto_window_radius, local_threshold};
 
@@ -37,6 +39,8 @@ const RANGE_SAMPLE_STEP: usize = 7;
 /// Fraction of a lattice step beyond the next dot that must still be inside
 /// the image for that dot to count as visible.
 const EDGE_FIT_FRACTION: f64 = 0.5;
+/// A partial view must show at least this fraction of the board's dots.
+pub const MIN_VIEW_FRACTION: f64 = 0.25;
 /// Area ratio slack between lattice neighbours beyond the marker's own ratio.
 const SIZE_RATIO_SLACK: f64 = 2.0;
 
@@ -75,7 +79,8 @@ pub struct DotObservation {
     pub quality: DotQuality,
 }
 
-/// A found board: `rows * cols` dots in row-major order.
+/// A found board: the dots in view (all `rows * cols` of a full view) in
+/// row-major order.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Detection {
     pub rows: usize,
@@ -83,10 +88,15 @@ pub struct Detection {
     pub image_width: usize,
     pub image_height: usize,
     pub dots: Vec<DotObservation>,
-    /// False for boards without an origin marker: the ordering is then
-    /// consistent only up to the grid's symmetry (origin chosen nearest the
-    /// image's top-left corner).
+    /// False when the board's symmetry leaves the ordering ambiguous (a
+    /// marker-less grid, an asymmetric grid with an even number of rows):
+    /// the reported reading puts its first dot nearest the image's top-left
+    /// corner, and `equivalent_turns` lists the others.
     pub ordering_unique: bool,
+    /// Quarter turns (1..=3) of the board that read the image equally well
+    /// (`CircleBoard::turned` maps the dots); empty when unique.
+    #[serde(default)]
+    pub equivalent_turns: Vec<u8>,
     /// Whether `x, y` had the perspective bias removed.
     pub perspective_corrected: bool,
 }
@@ -132,12 +142,12 @@ struct CandidateSet {
     unsharp: Vec<(Vector2<f64>, f64)>,
 }
 
-fn candidates(img: &GrayImage, target: &TargetSpec, opts: &DetectOptions) -> CandidateSet {
+fn candidates(img: &GrayImage, board: &CircleBoard, opts: &DetectOptions) -> CandidateSet {
     let radius = opts
         .threshold_radius_px
         .unwrap_or_else(|| auto_window_radius(img.width, img.height));
     let thr = local_threshold(img, radius);
-    let max_area = (img.width * img.height) as f64 / target.dot_count() as f64;
+    let max_area = (img.width * img.height) as f64 / board.dot_count() as f64;
     let mut set = CandidateSet {
         blobs: Vec::new(),
         dots: Vec::new(),
@@ -194,7 +204,29 @@ pub fn detect_with(
     target: &TargetSpec,
     opts: &DetectOptions,
 ) -> Result<Detection, DetectError> {
-    target.validate()?;
+    detect_board(img, &CircleBoard::Dots(*target), opts)
+}
+
+/// Finds an OpenCV asymmetric circle grid (default options).
+pub fn detect_asymmetric(
+    img: &GrayImage,
+    target: &AsymmetricCirclesSpec,
+) -> Result<Detection, DetectError> {
+    detect_board(
+        img,
+        &CircleBoard::Asymmetric(*target),
+        &DetectOptions::default(),
+    )
+}
+
+/// Finds any circle board: the whole board, or the part in view when the
+/// view fixes which dots they are (`order.rs`).
+pub fn detect_board(
+    img: &GrayImage,
+    board: &CircleBoard,
+    opts: &DetectOptions,
+) -> Result<Detection, DetectError> {
+    board.validate()?;
     if img.width.checked_mul(img.height) != Some(img.data.len()) {
         return Err(DetectError::BufferSize {
             width: img.width,
@@ -213,8 +245,8 @@ pub fn detect_with(
     if range < MIN_IMAGE_RANGE_GREY {
         return Err(DetectError::NoContrast { range });
     }
-    let set = candidates(img, target, opts);
-    let n_dots = target.dot_count();
+    let set = candidates(img, board, opts);
+    let n_dots = board.dot_count();
     if set.dots.len() > MAX_CANDIDATES {
         return Err(DetectError::NoBoard(format!(
             "{} dot-like blobs: clutter or noise",
@@ -227,37 +259,61 @@ pub fn detect_with(
         .map(|d| Vector2::new(d.ellipse.cx, d.ellipse.cy))
         .collect();
     let areas: Vec<f64> = set.blobs.iter().map(|b| b.area).collect();
-    let marker_ratio = target
-        .origin_marker_diameter_mm
-        .map_or(1.0, |m| (m / target.dot_diameter_mm).powi(2));
+    let marker_ratio = board
+        .marker_diameter_mm()
+        .map_or(1.0, |m| (m / board.dot_diameter_mm()).powi(2));
     let cand = Candidates {
         centres: &centres,
         sizes: &areas,
         max_size_ratio: marker_ratio * SIZE_RATIO_SLACK,
     };
     let lattices = grow_lattices(&cand);
-    let fits = |l: &Lattice| {
-        let s = l.shape();
-        l.is_full() && (s == (target.rows, target.cols) || s == (target.cols, target.rows))
-    };
-    let complete: Vec<&Lattice> = lattices.iter().filter(|l| fits(l)).collect();
-    let lattice = match complete.len() {
-        1 => complete[0],
-        0 => {
-            return Err(explain_failure(
-                &lattices, &set, &centres, img, target, n_dots,
-            ))
+    let min_dots = MIN_LATTICE_DOTS.max((MIN_VIEW_FRACTION * n_dots as f64).ceil() as usize);
+    let mut orderings: Vec<(usize, Ordering)> = Vec::new();
+    let mut first_error = None;
+    for (k, lattice) in lattices.iter().enumerate() {
+        if lattice.nodes.len() < min_dots || lattice.nodes.len() > n_dots {
+            continue;
         }
-        n => return Err(DetectError::AmbiguousBoards(n)),
+        match order_lattice(
+            lattice,
+            &centres,
+            &areas,
+            &set.unsharp,
+            board,
+            (img.width, img.height),
+        ) {
+            Ok(o) => orderings.push((k, o)),
+            Err(e) => {
+                first_error.get_or_insert(e);
+            }
+        }
+    }
+    let complete = orderings
+        .iter()
+        .filter(|(_, o)| o.nodes.len() == n_dots)
+        .count();
+    if complete > 1 {
+        return Err(DetectError::AmbiguousBoards(complete));
+    }
+    // Lattices come largest first: the first readable one is the board.
+    let Some((_, ordering)) = orderings.into_iter().next() else {
+        return Err(explain_failure(
+            &lattices,
+            &set,
+            &centres,
+            img,
+            board,
+            first_error,
+        ));
     };
-    let ordering = order_lattice(lattice, &centres, &areas, target)?;
     let raw: Vec<(usize, usize, Vector2<f64>)> = ordering
         .nodes
         .iter()
         .map(|n| (n.row, n.col, centres[n.index]))
         .collect();
     let bias = if opts.correct_perspective_bias {
-        perspective_bias(&raw, target)
+        perspective_bias(&raw, board)
     } else {
         vec![None; raw.len()]
     };
@@ -280,12 +336,13 @@ pub fn detect_with(
         })
         .collect();
     Ok(Detection {
-        rows: target.rows,
-        cols: target.cols,
+        rows: board.rows(),
+        cols: board.cols(),
         image_width: img.width,
         image_height: img.height,
         dots,
-        ordering_unique: ordering.unique,
+        ordering_unique: ordering.unique(),
+        equivalent_turns: ordering.equivalent_turns,
         perspective_corrected: opts.correct_perspective_bias,
     })
 }
@@ -312,15 +369,17 @@ fn rejected_lattice(rejected: &[(Vector2<f64>, f64)], n_dots: usize) -> Option<f
     Some(a[a.len() / 2])
 }
 
-/// The clearest error when no complete board was found.
+/// The clearest error when no board was read: the first lattice's
+/// ordering error if there was one, else what the candidates show.
 fn explain_failure(
     lattices: &[Lattice],
     set: &CandidateSet,
     centres: &[Vector2<f64>],
     img: &GrayImage,
-    target: &TargetSpec,
-    n_dots: usize,
+    board: &CircleBoard,
+    ordering_error: Option<DetectError>,
 ) -> DetectError {
+    let n_dots = board.dot_count();
     let Some(best) = lattices.first() else {
         if let Some(median_area_px) = rejected_lattice(&set.too_small, n_dots) {
             return DetectError::DotsTooSmall {
@@ -336,43 +395,35 @@ fn explain_failure(
         return DetectError::NoBoard(format!("no lattice among {} dot candidates", centres.len()));
     };
     let (ni, nj) = best.shape();
-    let (big, small) = (target.rows.max(target.cols), target.rows.min(target.cols));
-    if ni.max(nj) > big || ni.min(nj) > small {
+    let (rows, cols) = (board.rows(), board.cols());
+    if best.nodes.len() > n_dots {
         return DetectError::GridMismatch(format!(
-            "found a {ni}x{nj} lattice, larger than the {}x{} target (clutter in line with the board?)",
-            target.rows, target.cols
+            "found a lattice of {} dots ({ni}x{nj}), more than the {rows}x{cols} target (clutter in line with the board?)",
+            best.nodes.len()
         ));
     }
     let mut areas: Vec<f64> = best.nodes.values().map(|&k| set.blobs[k].area).collect();
     areas.sort_by(f64::total_cmp);
     let median_area_px = areas[areas.len() / 2];
-    if median_area_px < SMALL_DOT_AREA_PX {
+    if median_area_px < SMALL_DOT_AREA_PX && best.nodes.len() < n_dots {
         return DetectError::DotsTooSmall {
             median_area_px,
             min_area_px: SMALL_DOT_AREA_PX,
         };
     }
-    let shape_matches =
-        (ni, nj) == (target.rows, target.cols) || (nj, ni) == (target.rows, target.cols);
-    if shape_matches {
-        return DetectError::NoBoard(format!(
-            "only {} of {} dots found: the lattice has holes (occlusion, glare, or a dot clipped by the image border)",
-            best.nodes.len(),
-            n_dots
-        ));
+    if let Some(e) = ordering_error {
+        return e;
     }
     if runs_off_image(best, centres, img.width, img.height) {
         return DetectError::BoardPartlyOutside {
-            found_rows: ni,
-            found_cols: nj,
-            rows: target.rows,
-            cols: target.cols,
+            found_rows: ni.min(nj),
+            found_cols: ni.max(nj),
+            rows,
+            cols,
         };
     }
     DetectError::NoBoard(format!(
-        "best lattice has {} dots in a {ni}x{nj} box, target is {}x{} (dots occluded or unreadable?)",
+        "best lattice has {} dots in a {ni}x{nj} box, target is {rows}x{cols} (dots occluded or unreadable?)",
         best.nodes.len(),
-        target.rows,
-        target.cols
     ))
 }

@@ -8,6 +8,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::asymmetric::AsymmetricCirclesSpec;
 use super::target::TargetSpec;
 
 /// One filled dark shape, target frame, mm.
@@ -120,6 +121,25 @@ impl TargetSpec {
             })
             .collect();
         BoardDrawing::around(marks, self.pitch_mm - self.dot_diameter_mm / 2.0)
+    }
+}
+
+impl AsymmetricCirclesSpec {
+    /// The asymmetric grid on paper as OpenCV lays it out, with one
+    /// in-row spacing (`2 * pitch_mm`) less a dot radius of white around.
+    pub fn drawing(&self) -> BoardDrawing {
+        let marks = (0..self.rows)
+            .flat_map(|row| (0..self.cols).map(move |col| (row, col)))
+            .map(|(row, col)| {
+                let [cx_mm, cy_mm, _] = self.dot_centre_mm(row, col);
+                Mark::Disc {
+                    cx_mm,
+                    cy_mm,
+                    diameter_mm: self.dot_diameter_mm,
+                }
+            })
+            .collect();
+        BoardDrawing::around(marks, 2.0 * self.pitch_mm - self.dot_diameter_mm / 2.0)
     }
 }
 

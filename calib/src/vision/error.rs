@@ -62,6 +62,10 @@ pub enum DetectError {
     /// More than one dot looks like the origin marker.
     #[error("origin marker ambiguous: {0}")]
     MarkerAmbiguous(String),
+    /// More than one placement of the dots on the board fits the image, and
+    /// the placements are not related by the board's own symmetry.
+    #[error("ordering ambiguous: {0}")]
+    OrderingAmbiguous(String),
     /// The dots are too small in the image for a sub-pixel centre.
     #[error("dots too small: median area {median_area_px:.1} px, minimum {min_area_px:.1} px")]
     DotsTooSmall {
@@ -91,6 +95,7 @@ impl DetectError {
             DetectError::AmbiguousBoards(_) => "ambiguous_boards",
             DetectError::MarkerNotFound(_) => "marker_not_found",
             DetectError::MarkerAmbiguous(_) => "marker_ambiguous",
+            DetectError::OrderingAmbiguous(_) => "ordering_ambiguous",
             DetectError::DotsTooSmall { .. } => "dots_too_small",
             DetectError::DotsTooBlurred(_) => "dots_too_blurred",
         }

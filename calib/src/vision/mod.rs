@@ -1,14 +1,18 @@
-//! Dot-grid target detection (method.md §1): threshold, blobs, ellipses, grid.
+//! Dot-grid target detection (method.md §1): threshold, blobs, ellipses, grid;
+//! robocal's symmetric grid (with or without origin marker) and OpenCV's
+//! asymmetric circle grid (issue 14), plus ChArUco boards.
 //!
 //! Entry points: [`decode_image`] for untrusted bytes, [`detect`] /
 //! [`detect_with`] for a grey image and a [`TargetSpec`].
 
 pub mod aruco;
+pub mod asymmetric;
 pub mod bias;
 pub mod blobs;
 pub mod board_point;
 pub mod charuco;
 pub mod chessboard;
+pub mod circle_board;
 pub mod detect;
 pub mod drawing;
 pub mod ellipse;
@@ -18,17 +22,25 @@ pub mod homography;
 pub mod image;
 pub mod order;
 pub mod saddle;
+pub mod site_prediction;
 pub mod target;
 pub mod threshold;
 
+pub use asymmetric::AsymmetricCirclesSpec;
 pub use board_point::{BoardDetection, BoardPoint};
-pub use detect::{detect, detect_dynamic, detect_with, DetectOptions, Detection, DotObservation};
+pub use circle_board::CircleBoard;
+pub use detect::{
+    detect, detect_asymmetric, detect_board, detect_dynamic, detect_with, DetectOptions, Detection,
+    DotObservation,
+};
 pub use drawing::{BoardDrawing, Mark};
 pub use ellipse::{DotQuality, Ellipse};
 pub use error::DetectError;
 pub use image::{decode_image, DecodeLimits, GrayImage};
 pub use target::TargetSpec;
 
+#[cfg(test)]
+mod circle_tests;
 #[cfg(test)]
 mod detect_tests;
 #[cfg(test)]

@@ -1,0 +1,211 @@
+//! Circle boards other than robocal's marker board through the service
+//! (issue 14): OpenCV's asymmetric circle grid (printed, detected, and a
+//! whole simulated campaign re-rendered on it) and the marker-less dot grid.
+
+use rand::{rngs::StdRng, SeedableRng};
+use robocal::calib::vision::{detect_asymmetric, AsymmetricCirclesSpec};
+use robocal_calib::geometry::pose_from_matrix_rows;
+use robocal_calib::sim::campaign_io::{PoseEntry, Truth};
+use robocal_calib::sim::render::RenderOptions;
+use robocal_calib::sim::render_circles::render_circle_board;
+use robocal_calib::vision::CircleBoard;
+use serde_json::{json, Value};
+
+use crate::support::{spawn_app, spawn_app_with, upload_and_calibrate};
+use crate::targets::rasterise;
+
+const CAL_POSES: usize = 24;
+const VAL_POSES: usize = 8;
+/// Same bar as the dot-board campaign (`e2e.rs`).
+const MIN_IMPROVEMENT: f64 = 12.0;
+
+/// An asymmetric grid inside the simulator's 9x9 board area (200 x 200 mm):
+/// 11 rows of 5, so every view that saw the dot board sees all of it.
+fn board() -> AsymmetricCirclesSpec {
+    AsymmetricCirclesSpec {
+        rows: 11,
+        cols: 5,
+        pitch_mm: 20.0,
+        dot_diameter_mm: 12.0,
+    }
+}
+
+/// The simulated campaign in `dir`, its images re-rendered as the
+/// asymmetric grid in the same target frame.
+fn asymmetric_campaign(dir: &std::path::Path) {
+    robocal::cli::campaign::simulate("irb2400", dir, CAL_POSES, VAL_POSES, 52).unwrap();
+    let read = |name: &str| std::fs::read_to_string(dir.join(name)).unwrap();
+    let truth: Truth = serde_json::from_str(&read("truth.json")).unwrap();
+    let entries: Vec<PoseEntry> = serde_json::from_str(&read("poses.json")).unwrap();
+    let spec = board();
+    let mut rng = StdRng::seed_from_u64(6);
+    for (i, entry) in entries.iter().enumerate() {
+        let camera_to_target = pose_from_matrix_rows(&truth.target_to_camera[i])
+            .unwrap()
+            .inverse();
+        let view = render_circle_board(
+            &truth.intrinsics,
+            &camera_to_target,
+            &CircleBoard::Asymmetric(spec),
+            truth.image_width as usize,
+            truth.image_height as usize,
+            &RenderOptions::default(),
+            &mut rng,
+        )
+        .unwrap();
+        view.image.to_luma8().save(dir.join(&entry.image)).unwrap();
+    }
+    let mut campaign: Value = serde_json::from_str(&read("campaign.json")).unwrap();
+    campaign["session"]["target"] = json!({
+        "kind": "asymmetric_circles", "rows": spec.rows, "cols": spec.cols,
+        "pitch_mm": spec.pitch_mm, "dot_diameter_mm": spec.dot_diameter_mm,
+    });
+    std::fs::write(dir.join("campaign.json"), campaign.to_string()).unwrap();
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn asymmetric_grid_campaign_calibrates_through_the_service() {
+    let dir = tempfile::tempdir().unwrap();
+    asymmetric_campaign(dir.path());
+    let app = spawn_app_with(|c| c.test_validate_only = false).await;
+    let serial = "ACIRCLES-1";
+    let job = upload_and_calibrate(&app, serial, dir.path()).await;
+    let session = job["session_id"].as_str().unwrap();
+    let s: Value = app
+        .get(&format!("/v1/sessions/{session}"))
+        .await
+        .json()
+        .await
+        .unwrap();
+    assert_eq!(s["target"]["kind"], "asymmetric_circles", "{s}");
+    let report: Value = app
+        .get(&format!("/v1/robots/{serial}/parameter-sets/latest/report"))
+        .await
+        .json()
+        .await
+        .unwrap();
+    assert_eq!(
+        report["detection"]["images_detected"],
+        CAL_POSES + VAL_POSES,
+        "{}",
+        report["detection"]
+    );
+    let before = report["before"]["mean_mm"].as_f64().unwrap();
+    let after = report["after"]["mean_mm"].as_f64().unwrap();
+    let rms = report["camera"]["reprojection_rms_px"].as_f64().unwrap();
+    eprintln!(
+        "asymmetric circles campaign: before {before:.3} mm, after {after:.4} mm, reprojection {rms:.3} px"
+    );
+    assert!(
+        before / after >= MIN_IMPROVEMENT,
+        "before {before} after {after}"
+    );
+    assert!(rms < 0.2, "reprojection {rms} px");
+    app.shutdown().await;
+}
+
+#[tokio::test]
+async fn circle_board_specs_are_checked_naming_the_field() {
+    let app = spawn_app().await;
+    let r = app
+        .put_json(
+            "/v1/robots/AC-BAD",
+            &json!({"model": "IRB", "preset": "irb2400"}),
+        )
+        .await;
+    assert_eq!(r.status(), 201);
+    let camera =
+        json!({"width": 1280, "height": 1024, "pixel_size_um": 5.3, "nominal_focal_mm": 11.0});
+    let good = json!({"kind": "asymmetric_circles", "rows": 11, "cols": 4,
+                      "pitch_mm": 20.0, "dot_diameter_mm": 14.0});
+    let cases = [
+        (json!({"dot_diameter_mm": 30.0}), "target.dot_diameter_mm"),
+        (json!({"pitch_mm": 0.0}), "target.pitch_mm"),
+        (json!({"rows": 1}), "target.rows"),
+        (
+            json!({"origin_marker_diameter_mm": 20.0}),
+            "target.origin_marker_diameter_mm",
+        ),
+        (json!({"square_mm": 20.0}), "target.square_mm"),
+    ];
+    for (change, field) in cases {
+        let mut target = good.clone();
+        for (k, v) in change.as_object().unwrap() {
+            target[k] = v.clone();
+        }
+        let body = json!({"instrument": "camera", "target": target, "camera": camera});
+        let r = app.post_json("/v1/robots/AC-BAD/sessions", &body).await;
+        assert_eq!(r.status(), 422, "{change}");
+        let problem: Value = r.json().await.unwrap();
+        assert_eq!(problem["errors"][0]["field"], field, "{change}: {problem}");
+    }
+    let missing = json!({"kind": "asymmetric_circles", "rows": 11, "cols": 4, "pitch_mm": 20.0});
+    let body = json!({"instrument": "camera", "target": missing, "camera": camera});
+    let problem: Value = app
+        .post_json("/v1/robots/AC-BAD/sessions", &body)
+        .await
+        .json()
+        .await
+        .unwrap();
+    assert_eq!(problem["errors"][0]["field"], "target.dot_diameter_mm");
+    // Both circle boards are accepted: the asymmetric grid, and the dot
+    // grid without its origin marker.
+    let bare = json!({"rows": 7, "cols": 9, "pitch_mm": 25.0, "dot_diameter_mm": 10.0});
+    for target in [good, bare] {
+        let body = json!({"instrument": "camera", "target": target, "camera": camera});
+        let r = app.post_json("/v1/robots/AC-BAD/sessions", &body).await;
+        assert_eq!(r.status(), 201, "{target}");
+    }
+    app.shutdown().await;
+}
+
+#[tokio::test]
+async fn printed_asymmetric_grid_is_exact_scale_and_detected() {
+    let app = spawn_app().await;
+    let r = app
+        .get("/v1/targets/render?kind=asymmetric_circles&rows=11&cols=4&pitch_mm=20&dot_diameter_mm=14")
+        .await;
+    assert_eq!(r.status(), 200);
+    let svg = r.text().await.unwrap();
+    assert!(
+        svg.contains("\"kind\": \"asymmetric_circles\""),
+        "spec in the margin"
+    );
+    let found = detect_asymmetric(&rasterise(&svg), &AsymmetricCirclesSpec::opencv_4x11()).unwrap();
+    assert_eq!(found.dots.len(), 44);
+    assert!(found.ordering_unique);
+    // Dots in a row 40 mm apart on paper (400 px at 10 px/mm), rows 20 mm.
+    let at = |row: usize, col: usize| found.dots[row * 4 + col];
+    for (row, col) in [(0, 0), (5, 1), (10, 2)] {
+        let (a, b) = (at(row, col), at(row, col + 1));
+        let d = (b.x - a.x).hypot(b.y - a.y);
+        assert!((d - 400.0).abs() < 0.1, "({row},{col}) spacing {d} px");
+        let c = at(row + usize::from(row < 10), col);
+        let dy = (c.y - a.y).abs();
+        assert!(row == 10 || (dy - 200.0).abs() < 0.1, "row spacing {dy}");
+    }
+    for (query, field) in [
+        (
+            "kind=asymmetric_circles&rows=11&cols=4&pitch_mm=20&dot_diameter_mm=29",
+            "dot_diameter_mm",
+        ),
+        (
+            "kind=asymmetric_circles&rows=11&cols=4&pitch_mm=-2&dot_diameter_mm=14",
+            "pitch_mm",
+        ),
+        (
+            "kind=asymmetric_circles&rows=11&cols=4&pitch_mm=20&dot_diameter_mm=14&origin_marker_diameter_mm=20",
+            "origin_marker_diameter_mm",
+        ),
+        (
+            "kind=asymmetric_circles&rows=11&pitch_mm=20&dot_diameter_mm=14",
+            "cols",
+        ),
+    ] {
+        let r = app.get(&format!("/v1/targets/render?{query}")).await;
+        assert_eq!(r.status(), 422, "{query}");
+        let body: Value = r.json().await.unwrap();
+        assert_eq!(body["errors"][0]["field"], field, "{query}: {body}");
+    }
+    app.shutdown().await;
+}
