@@ -270,7 +270,17 @@ pub fn hand_eye_output(
             names.join(", ")
         ));
     }
-    let report = report(input, measured, camera, step, &s, set.camera, rows, board_scale, notes);
+    let report = report(
+        input,
+        measured,
+        camera,
+        step,
+        &s,
+        set.camera,
+        rows,
+        board_scale,
+        notes,
+    );
     let summary = json!({
         "calibration_poses": step.cal.len(),
         "validation_poses": input.poses.len() - step.cal.len(),
@@ -356,7 +366,13 @@ fn report(
         detection: Some(DetectionReport {
             images: measured.points.len(),
             images_detected: measured.points.iter().filter(|p| p.is_some()).count(),
-            dots_per_image: measured.points.iter().flatten().map(Vec::len).max().unwrap_or(0),
+            dots_per_image: measured
+                .points
+                .iter()
+                .flatten()
+                .map(Vec::len)
+                .max()
+                .unwrap_or(0),
             failures: measured.failures.clone(),
         }),
         before: stats,
