@@ -65,7 +65,10 @@ impl FlangePose {
                 }
             }
         };
-        (c.errors.len() == before).then_some(pose).flatten().map(FlangePose)
+        (c.errors.len() == before)
+            .then_some(pose)
+            .flatten()
+            .map(FlangePose)
     }
 
     /// A flange pose read back from the store: it was checked at upload.
@@ -184,12 +187,14 @@ mod tests {
     #[test]
     fn angles_and_matrix_give_the_same_pose() {
         let mut c = Checker::default();
-        let by_angles =
-            FlangePose::check(&mut c, "f", &doc(Some([0.0, 0.0, 90.0]), None)).unwrap();
+        let by_angles = FlangePose::check(&mut c, "f", &doc(Some([0.0, 0.0, 90.0]), None)).unwrap();
         let by_matrix = FlangePose::check(
             &mut c,
             "f",
-            &doc(None, Some([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])),
+            &doc(
+                None,
+                Some([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]),
+            ),
         )
         .unwrap();
         assert!(c.errors.is_empty());
@@ -213,7 +218,10 @@ mod tests {
         nan.translation_mm[2] = f64::INFINITY;
         assert_eq!(
             fields(&nan),
-            ["flange_pose.translation_mm[2]", "flange_pose.rotation_deg[1]"]
+            [
+                "flange_pose.translation_mm[2]",
+                "flange_pose.rotation_deg[1]"
+            ]
         );
     }
 }

@@ -6,8 +6,8 @@ use std::time::Duration;
 use crate::domain::{label_or_number, ClaimedJob, FlangePose};
 use crate::imaging::{DecodeGate, ImageDetection};
 use crate::pipeline::{ImageSource, Input, PoseImage, PoseInput};
-use crate::schema::job::CalibrationOptions;
 use crate::schema::flange_pose::FlangePoseDoc;
+use crate::schema::job::CalibrationOptions;
 use crate::schema::robot::KinematicsDoc;
 use crate::schema::session::{ImagePointDoc, SessionBody};
 use crate::schema::PoseDoc;
@@ -89,7 +89,10 @@ pub async fn load_input(
                     let doc: FlangePoseDoc =
                         serde_json::from_value(doc.clone()).map_err(|e| bad("flange_pose", e))?;
                     Some(FlangePose::stored(&doc).ok_or_else(|| {
-                        LoadError::Gone(format!("stored flange_pose of pose {} is not a pose", p.id))
+                        LoadError::Gone(format!(
+                            "stored flange_pose of pose {} is not a pose",
+                            p.id
+                        ))
                     })?)
                 }
                 None => None,

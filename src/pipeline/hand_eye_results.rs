@@ -72,10 +72,10 @@ struct Sigmas {
     source: &'static str,
 }
 
-fn sigmas(step: &HandEyeStep) -> Sigmas {
+fn sigmas(step: &HandEyeStep, camera: &CameraStep) -> Sigmas {
     let fit = &step.fit;
     let formal_scale = fit.board_scale_sigma.unwrap_or(0.0);
-    match &fit.jackknife {
+    let s = match &fit.jackknife {
         Some(j) => Sigmas {
             flange_to_camera: j.flange_to_camera,
             target_to_base: j.target_to_base,
@@ -88,6 +88,24 @@ fn sigmas(step: &HandEyeStep) -> Sigmas {
             board_scale: formal_scale,
             source: "formal",
         },
+    };
+    // The bundle holds the camera stage's intrinsics, so neither the
+    // formal nor the jackknife sigmas see their error; the principal
+    // point's turns every camera ray by sigma_c / f (rad), which goes
+    // straight into the hand–eye and board rotations. Added in quadrature
+    // about every axis (conservative: it acts about the camera's x and y).
+    let principal_deg = camera.calibration.std_dev.map_or(0.0, |sd| {
+        let i = camera.intrinsics();
+        (sd.cx / i.fx).hypot(sd.cy / i.fy).to_degrees()
+    });
+    let widen = |p: PoseSigma| PoseSigma {
+        rotation_deg: p.rotation_deg.map(|r| r.hypot(principal_deg)),
+        ..p
+    };
+    Sigmas {
+        flange_to_camera: widen(s.flange_to_camera),
+        target_to_base: widen(s.target_to_base),
+        ..s
     }
 }
 
@@ -177,7 +195,7 @@ pub fn hand_eye_output(
     mut notes: Vec<String>,
 ) -> HandEyeOutput {
     let fit = &step.fit;
-    let s = sigmas(step);
+    let s = sigmas(step, camera);
     let guess = input
         .session
         .flange_to_camera_guess
@@ -253,7 +271,17 @@ pub fn hand_eye_output(
             names.join(", ")
         ));
     }
-    let report = report(input, measured, camera, step, &s, set.camera, rows, board_scale, notes);
+    let report = report(
+        input,
+        measured,
+        camera,
+        step,
+        &s,
+        set.camera,
+        rows,
+        board_scale,
+        notes,
+    );
     let summary = Summary {
         calibration_poses: step.cal.len(),
         validation_poses: input.poses.len() - step.cal.len(),
@@ -340,7 +368,13 @@ fn report(
         detection: Some(DetectionReport {
             images: measured.points.len(),
             images_detected: measured.points.iter().filter(|p| p.is_some()).count(),
-            dots_per_image: measured.points.iter().flatten().map(Vec::len).max().unwrap_or(0),
+            dots_per_image: measured
+                .points
+                .iter()
+                .flatten()
+                .map(Vec::len)
+                .max()
+                .unwrap_or(0),
             failures: measured.failures.clone(),
         }),
         before: stats,

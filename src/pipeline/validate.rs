@@ -25,7 +25,10 @@ pub fn validate(
             format!("{cal} calibration poses; at least {MIN_CALIBRATION_POSES} are needed"),
         ));
     }
+    // A hand–eye session judges on its "val" poses when it has some, else
+    // on the calibration poses in the fit: no holdout is needed.
     if input.options.validation == Validation::Named(crate::schema::job::ValidationNamed::ValSet)
+        && !input.is_flange_session()
         && val == 0
         && !input.poses.is_empty()
     {

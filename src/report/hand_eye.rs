@@ -19,7 +19,9 @@ pub struct FrameReport {
     pub matrix: [[f64; 4]; 4],
     /// The standard deviations the report stands by: the jackknife's (leave
     /// one pose out, refit), which include the controller poses' own
-    /// errors, when there were enough poses; else the formal ones.
+    /// errors, when there were enough poses, else the formal ones; the
+    /// rotations widened by the held camera's principal-point uncertainty
+    /// (`sigma_c / f`), which neither sees.
     pub std_translation_mm: [f64; 3],
     pub std_rotation_deg: [f64; 3],
     /// The formal standard deviations (white pixel noise, exact flange

@@ -9,9 +9,9 @@ use serde_json::json;
 
 use super::error::{ServiceError, ServiceResult};
 use super::images::{ingest_image, ImageCheck};
+use crate::domain::{check_robot_pose, PoseKind};
 use crate::domain::{NewPose, PoseRecord, SessionRecord};
 use crate::imaging::DecodeGate;
-use crate::domain::{check_robot_pose, PoseKind};
 use crate::schema::flange_pose::FlangePoseDoc;
 use crate::schema::session::{Instrument, PoseJsonBody, PoseSet, SessionBody};
 use crate::schema::Checker;
@@ -179,7 +179,10 @@ impl PoseIntake {
 
 /// The kind a pose names (`None` when it names both or neither: its check
 /// says so).
-pub fn kind_of(joints_deg: Option<&[f64]>, flange_pose: Option<&FlangePoseDoc>) -> Option<PoseKind> {
+pub fn kind_of(
+    joints_deg: Option<&[f64]>,
+    flange_pose: Option<&FlangePoseDoc>,
+) -> Option<PoseKind> {
     match (joints_deg, flange_pose) {
         (Some(_), None) => Some(PoseKind::Joints),
         (None, Some(_)) => Some(PoseKind::Flange),

@@ -119,7 +119,14 @@ pub fn calibrate(
             paper_sequence_searching(&planar, &thinned, image_size, &paper_options)?
         }
     };
-    check_focal_determined_paper(&paper)?;
+    // The per-image Tsai spread only judges the paper's own answer. In
+    // refined mode the sequence merely starts the joint fit, which has its
+    // own test (the fitted focal's standard deviation, below): a spread
+    // over a few nearly flat views (RCT's wrist set, docs/notes/session6-
+    // flange.md) must not refuse a camera the joint fit determines well.
+    if options.mode == CalibrationMode::Paper {
+        check_focal_determined_paper(&paper)?;
+    }
     let pairs: Vec<Vec<(Point3<f64>, Point2<f64>)>> = views.iter().map(|v| v.pairs()).collect();
     let start = options.fixed_intrinsics.unwrap_or(paper.intrinsics);
     let initial_poses = pairs

@@ -151,9 +151,7 @@ impl From<PoseRecord> for PoseOut {
             id: p.id,
             session_id: p.session_id,
             joints_deg: p.joints_deg.into_vec(),
-            flange_pose: p
-                .flange_pose
-                .and_then(|f| serde_json::from_value(f).ok()),
+            flange_pose: p.flange_pose.and_then(|f| serde_json::from_value(f).ok()),
             set: p.set,
             source: source.into(),
             detected_points: points.len(),
