@@ -128,7 +128,8 @@ async fn aubo_campaign_calibrates_through_the_service() {
         .await
         .unwrap();
     let cam = &report["camera"];
-    let k = &cam["intrinsics"];
+    // The intrinsics are flattened into the camera section.
+    let k = cam;
     let (fx, cx, cy) = (
         k["fx"].as_f64().unwrap(),
         k["cx"].as_f64().unwrap(),
