@@ -83,7 +83,15 @@ impl ParameterSet {
     pub fn covariance_matrix(&self) -> Option<Result<nalgebra::DMatrix<f64>, String>> {
         let doc = self.covariance.as_ref()?;
         let robot = doc_to_model(&self.kinematics);
-        Some(doc.to_layout(&ParamLayout::new(&robot, self.instrument)))
+        Some(doc.to_layout(&ParamLayout::new(&robot, self.layout_instrument())))
+    }
+
+    /// The instrument whose parameter layout the numerics use for this set.
+    pub fn layout_instrument(&self) -> robocal_calib::kinematics::Instrument {
+        match self.instrument {
+            Instrument::Tracker => robocal_calib::kinematics::Instrument::Tracker,
+            Instrument::Camera => robocal_calib::kinematics::Instrument::Camera,
+        }
     }
 
     /// The calibrated model, as the numerics take it.

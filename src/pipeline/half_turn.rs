@@ -91,7 +91,7 @@ pub fn resolve(
         * UnitQuaternion::from_axis_angle(&Vector3::z_axis(), std::f64::consts::PI);
     let mut flange = Vec::with_capacity(n);
     for &p in &step.view_pose {
-        let q: Vec<f64> = poses[p].joints_deg.iter().map(|d| d.to_radians()).collect();
+        let q = poses[p].joints_deg.to_radians();
         let f = robot
             .base_to_flange(&q)
             .map_err(|e| refuse(format!("cannot settle the board's half turn: {e}")))?;

@@ -19,13 +19,13 @@ use super::flange_stage::HandEyeStep;
 use super::measure::Measured;
 use super::output::Summary;
 use super::results::residual_field;
-use crate::schema::PoseOut;
 use super::{Input, PoseInput};
 use crate::report::{
     BoardScaleReport, DetectionReport, FrameReport, HandEyeReport, IdentifiabilityReport,
     ParameterReport, PoseReport, Report,
 };
 use crate::schema::session::PoseSet;
+use crate::schema::PoseOut;
 
 /// `kind` of a hand–eye parameter set.
 pub const HAND_EYE_KIND: &str = "hand_eye";
@@ -411,5 +411,6 @@ fn report(
             points: fit.points,
         }),
         notes,
+        uncertainty_map: None,
     }
 }

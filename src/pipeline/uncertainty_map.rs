@@ -35,7 +35,7 @@ pub fn workspace_map(id: &Identified, poses: &[PoseInput]) -> Option<Uncertainty
     let joints: Vec<Vec<f64>> = id
         .cal
         .iter()
-        .map(|&i| poses[i].joints_deg.iter().map(|d| d.to_radians()).collect())
+        .map(|&i| poses[i].joints_deg.to_radians())
         .collect();
     let flanges: Vec<Pose> = joints
         .iter()

@@ -16,8 +16,8 @@ use robocal_calib::plan::{
 use super::camera_reuse;
 use super::error::{ServiceError, ServiceResult};
 use super::evaluate::pose_of;
-use super::results::typed;
 use super::export::Exported;
+use super::results::typed;
 use crate::domain::{now_rfc3339, Target};
 use crate::export::campaign_program::{
     write_csv, write_krl, write_rapid, write_urscript, ProgramFormat, KRL_PROGRAM,
@@ -59,6 +59,8 @@ fn board_points(target: &Target) -> Vec<Point3<f64>> {
             t.squares[1].saturating_sub(1),
             t.squares[0].saturating_sub(1),
         ),
+        Target::Chessboard(t) => (t.rows(), t.cols()),
+        Target::AsymmetricCircles(t) => (t.rows, t.cols),
     };
     (0..rows as u32)
         .flat_map(|r| (0..cols as u32).map(move |c| (r, c)))

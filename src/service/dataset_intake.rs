@@ -12,9 +12,9 @@ use super::error::{ServiceError, ServiceResult};
 use super::images::inspect_and_hash;
 use super::intake::{stored_doc, PoseIntake};
 use super::staged_images::StagedImages;
+use crate::domain::check_robot_pose;
 use crate::domain::JointsDeg;
 use crate::domain::{label_from_archive_path, NewPose, PoseRecord};
-use crate::domain::check_robot_pose;
 use crate::schema::session::Instrument;
 use crate::schema::Checker;
 

@@ -11,9 +11,9 @@ use robocal_calib::kinematics::{CalibratedModel, ParamLayout};
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
-use super::evaluate::{check_joints, pose_of, ForwardRequest, ForwardResponse, MAX_ROWS};
+use super::evaluate::{pose_of, ForwardRequest, ForwardResponse, MAX_ROWS};
 use super::filter::TargetError;
-use crate::domain::ParameterSet;
+use crate::domain::{JointsDeg, ParameterSet};
 use crate::schema::{Checker, FieldError, PoseDoc, MAX_ANGLE_DEG, MAX_LENGTH_MM};
 
 /// A parameter set's covariance, ready to propagate.
@@ -49,7 +49,7 @@ impl Uncertainty {
             Ok(c) => c,
             Err(e) => return Some(Err(e)),
         };
-        let layout = ParamLayout::new(&model.robot, set.instrument());
+        let layout = ParamLayout::new(&model.robot, set.layout_instrument());
         Some(
             check_covariance(&layout, &covariance)
                 .map(|()| Self { layout, covariance })
@@ -219,7 +219,7 @@ pub fn uncertainty_map(
     let dof = model.robot.dof();
     let tool = req.tool.as_ref().and_then(|t| pose_of(t, "tool", &mut c));
     if let Some(seed) = &req.seed_joints_deg {
-        check_joints(seed, dof, "seed_joints_deg", &mut c);
+        JointsDeg::check(&mut c, "seed_joints_deg", seed, dof);
     }
     if let Some(r) = &req.rotation_deg {
         for (k, v) in r.iter().enumerate() {
@@ -232,7 +232,7 @@ pub fn uncertainty_map(
                 c.fail("joints_deg", format!("1 to {MAX_ROWS} rows"));
             }
             for (i, row) in rows.iter().enumerate() {
-                check_joints(row, dof, &format!("joints_deg[{i}]"), &mut c);
+                JointsDeg::check(&mut c, &format!("joints_deg[{i}]"), row, dof);
             }
             c.finish()?;
             rows.iter()
