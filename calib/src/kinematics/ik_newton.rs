@@ -108,7 +108,7 @@ pub fn solve_joints(
         // Gauss–Newton on r(q) = target - reached(q), dr/dq = J: dq = -(J^T J + mu)^-1 J^T r.
         let Some(step) = damped.cholesky().map(|c| -c.solve(&g)) else {
             let next = damping * nu;
-            if !(next <= MAX_DAMPING) {
+            if next.is_nan() || next > MAX_DAMPING {
                 break;
             }
             mu = Some(next);
@@ -132,7 +132,7 @@ pub fn solve_joints(
             iterations += 1;
         } else {
             let next = damping * nu;
-            if !(next <= MAX_DAMPING) {
+            if next.is_nan() || next > MAX_DAMPING {
                 break;
             }
             mu = Some(next);

@@ -68,7 +68,7 @@ pub fn predict(
         }
         hi = hi.max(v);
     }
-    if !(lo > UNDETERMINED_TOL * hi) {
+    if lo.is_nan() || lo <= UNDETERMINED_TOL * hi {
         let v = eig.eigenvectors.column(lo_k);
         let mut idx: Vec<usize> = (0..p).collect();
         idx.sort_by(|&a, &b| v[b].abs().total_cmp(&v[a].abs()));

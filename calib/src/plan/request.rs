@@ -124,7 +124,7 @@ impl PlanRequest {
             candidates: DEFAULT_CANDIDATES,
             image_margin_px: DEFAULT_IMAGE_MARGIN_PX,
             min_singular_mm: DEFAULT_MIN_SINGULAR_MM,
-            seed: 0x9_1a_4,
+            seed: 0x91a4,
         }
     }
 

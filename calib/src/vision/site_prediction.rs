@@ -65,9 +65,9 @@ impl Predictor<'_> {
             }
         }
         let h = if local.len() >= MIN_PREDICT_NODES {
-            self.fit(&local).or_else(|| self.global.clone())
+            self.fit(&local).or(self.global)
         } else {
-            self.global.clone()
+            self.global
         }?;
         let at = |i: f64, j: f64| h.apply(&Vector2::new(i, j));
         let (fi, fj) = (ij.0 as f64, ij.1 as f64);

@@ -48,7 +48,7 @@ impl ChessboardSpec {
     /// sides even or both odd): images then fix the corner order only up
     /// to a 180° rotation, which robot data must resolve.
     pub fn ambiguous_180(&self) -> bool {
-        (self.cols() + self.rows()) % 2 == 0
+        (self.cols() + self.rows()).is_multiple_of(2)
     }
 
     /// Target-frame position of corner `(row, col)`, mm.
