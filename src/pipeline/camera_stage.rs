@@ -7,13 +7,16 @@ use nalgebra::{Point2, Point3};
 use robocal_calib::camera::calibrate::{calibrate, CalibrationMode, CalibrationOptions};
 use robocal_calib::camera::observations::{DotObservation, ImageSize, ViewObservations};
 use robocal_calib::camera::pose::PoseEstimate;
-use robocal_calib::camera::{CameraCalibration, Intrinsics};
+use robocal_calib::camera::{CameraCalibration, CameraError, Intrinsics};
 
 use super::measure::{GridPoint, Measured};
 use super::{FixedCamera, PipelineError, PoseInput, Stage};
 use crate::domain::Target;
 use crate::report::{CameraReport, CameraStd, ViewReport};
 use crate::schema::session::CameraDoc;
+
+/// At most one view in this many may be left out as degenerate.
+const MAX_LEFT_OUT_FRACTION_DIV: usize = 4;
 
 /// The camera step's outcome, per pose where the pose had a usable image.
 pub struct CameraStep {
@@ -26,6 +29,9 @@ pub struct CameraStep {
     pub grid: Vec<Vec<(u32, u32)>>,
     /// `"{serial}/{version}"` whose intrinsics were held fixed, if any.
     pub fixed_from: Option<String>,
+    /// Poses whose view the camera calibration could not start from (no
+    /// initial pose from the homography), left out with the reason.
+    pub left_out: Vec<(usize, String)>,
 }
 
 impl CameraStep {
@@ -93,10 +99,27 @@ pub fn calibrate_camera(
         dot_diameter_mm: target.dot_diameter_mm(),
         ..CalibrationOptions::default()
     };
-    let calibration = calibrate(&views, &options).map_err(|e| PipelineError::Numerical {
-        stage: Stage::CalibrateCamera.as_str(),
-        message: describe_camera_error(&e.to_string(), &view_pose, poses),
-    })?;
+    // A view the calibration cannot start from (a partial or nearly
+    // degenerate image) is left out and named rather than failing the whole
+    // job, as long as most views remain.
+    let mut left_out = Vec::new();
+    let max_left_out = views.len() / MAX_LEFT_OUT_FRACTION_DIV;
+    let calibration = loop {
+        match calibrate(&views, &options) {
+            Err(CameraError::DegenerateView { view, reason })
+                if left_out.len() < max_left_out && view < views.len() =>
+            {
+                views.remove(view);
+                left_out.push((view_pose.remove(view), reason));
+            }
+            other => {
+                break other.map_err(|e| PipelineError::Numerical {
+                    stage: Stage::CalibrateCamera.as_str(),
+                    message: describe_camera_error(&e.to_string(), &view_pose, poses),
+                })?
+            }
+        }
+    };
     let observations = views
         .iter()
         .zip(&calibration.views)
@@ -118,6 +141,7 @@ pub fn calibrate_camera(
         observations,
         grid,
         fixed_from: fixed.map(|f| f.calibration_id.clone()),
+        left_out,
     })
 }
 

@@ -148,6 +148,18 @@ fn run_stages(
                 &mut step,
                 &mut measured,
             )?;
+            if !step.left_out.is_empty() {
+                let names: Vec<String> = step
+                    .left_out
+                    .iter()
+                    .map(|(i, why)| format!("{} ({why})", input.poses[*i].label))
+                    .collect();
+                notes.push(format!(
+                    "{} image(s) left out of the camera calibration: {}.",
+                    names.len(),
+                    names.join(", ")
+                ));
+            }
             if !turned.is_empty() {
                 let names: Vec<&str> = turned
                     .iter()

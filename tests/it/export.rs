@@ -211,7 +211,11 @@ async fn exports_reproduce_forward_and_carry_the_table() {
     for (i, name) in names.iter().enumerate() {
         let row = params.iter().find(|p| p["name"] == *name).unwrap();
         let sd = row["std"].as_f64().unwrap();
-        assert!((matrix[i][i].sqrt() - sd).abs() <= 1e-9 * sd, "{name}");
+        assert!(
+            (matrix[i][i].sqrt() - sd).abs() <= 1e-7 * sd,
+            "{name}: sqrt(cov) {} vs std {sd}",
+            matrix[i][i].sqrt()
+        );
         assert_eq!(cov["units"][i], row["unit"], "{name}");
         for j in 0..names.len() {
             assert!((matrix[i][j] - matrix[j][i]).abs() <= 1e-12 * matrix[i][i].max(matrix[j][j]));
