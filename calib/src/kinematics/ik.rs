@@ -9,14 +9,13 @@ use serde::{Deserialize, Serialize};
 
 use super::ik_branches::SphericalWristArm;
 use super::ik_newton::solve_joints;
+pub use super::ik_newton::IK_ROTATION_SCALE_MM;
 use super::jacobian::tool_pose_jacobian;
 use super::model::KinematicsError;
 use super::params::{CalibratedModel, Instrument, ParamLayout, PARAMS_PER_JOINT};
 use crate::geometry::{pose_error, Pose};
 use crate::solver::{solve, LeastSquaresProblem, LmOptions};
 
-/// Orientation residual rows are multiplied by this (mm per rad).
-pub const IK_ROTATION_SCALE_MM: f64 = 1000.0;
 /// A solution whose (scaled) residual exceeds this is out of reach.
 pub const IK_REACH_TOL_MM: f64 = 1e-3;
 const IK_MAX_ITERATIONS: usize = 100;

@@ -11,9 +11,12 @@
 
 use nalgebra::{DMatrix, DVector, Vector3, Vector6};
 
-use super::ik::IK_ROTATION_SCALE_MM;
 use super::params::CalibratedModel;
 use crate::geometry::{pose_error, Pose};
+
+/// Orientation residual rows are multiplied by this (mm per rad): the
+/// weight of a radian against a millimetre in every IK residual.
+pub const IK_ROTATION_SCALE_MM: f64 = 1000.0;
 
 /// Nielsen's initial damping, relative to the largest diagonal of `J^T J`.
 const TAU: f64 = 1e-6;
