@@ -124,7 +124,15 @@ pub fn parse_json<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
         let wrong_value = inner.classify() == serde_json::error::Category::Syntax
             && message == "expected value"
             && serde_json::from_slice::<serde::de::IgnoredAny>(bytes).is_ok();
+        // A fixed-size array (`[x, y, z]`) given too many elements ends in
+        // serde_json's "trailing characters" at that field's path: the
+        // document parses, the value has the wrong length.
+        let too_long = inner.classify() == serde_json::error::Category::Syntax
+            && message.starts_with("trailing characters")
+            && path != "."
+            && serde_json::from_slice::<serde::de::IgnoredAny>(bytes).is_ok();
         match inner.classify() {
+            _ if too_long => ApiError::invalid(path, "too many elements for this array"),
             _ if wrong_value => {
                 let field = if path == "." { "body".into() } else { path };
                 ApiError::invalid(

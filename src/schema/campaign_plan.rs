@@ -29,7 +29,9 @@ fn default_view_angle() -> [f64; 2] {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct KeepOutDoc {
+    #[schema(min_items = 3, max_items = 3)]
     pub min_mm: [f64; 3],
+    #[schema(min_items = 3, max_items = 3)]
     pub max_mm: [f64; 3],
 }
 
@@ -66,9 +68,11 @@ pub struct CampaignPlanBody {
     pub validation_poses: u32,
     /// Camera-to-board-centre distance range.
     #[serde(default = "default_distance")]
+    #[schema(min_items = 2, max_items = 2)]
     pub distance_mm: [f64; 2],
     /// Range of the angle between the line of sight and the board normal.
     #[serde(default = "default_view_angle")]
+    #[schema(min_items = 2, max_items = 2)]
     pub view_angle_deg: [f64; 2],
     /// Per joint `[min, max]`, tighter than the robot's.
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -114,7 +114,9 @@ pub fn forward(
 #[derive(Debug, Clone, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BoxDoc {
+    #[schema(min_items = 3, max_items = 3)]
     pub min_mm: [f64; 3],
+    #[schema(min_items = 3, max_items = 3)]
     pub max_mm: [f64; 3],
     /// Grid spacing along each axis (mm).
     pub step_mm: f64,
