@@ -128,7 +128,7 @@ pub(super) async fn find(
     params(("serial" = String, Path, description = "Robot serial number"),
            ("limit" = Option<i64>, Query, minimum = 1, maximum = 1000, description = "Page size, 1 to 1000 (default 100)"),
            ("cursor" = Option<String>, Query, description = "next_cursor of the previous page")),
-    responses((status = 200, description = "One page of the robot's parameter sets, newest first (empty for an unknown robot)", body = ParameterSetList), (status = 422, body = Problem, content_type = "application/problem+json")))]
+    responses((status = 200, description = "One page of the robot's parameter sets, newest first (404 for an unknown or deleted robot, as its sessions)", body = ParameterSetList), (status = 404, body = Problem, content_type = "application/problem+json"), (status = 422, body = Problem, content_type = "application/problem+json")))]
 async fn list_parameter_sets(
     State(state): State<AppState>,
     SerialPath(serial): SerialPath,
@@ -141,6 +141,9 @@ async fn list_parameter_sets(
                 .map_err(|_| ApiError::invalid("cursor", "not a cursor of this listing"))?,
         ),
     };
+    if state.store.get_robot(&serial).await?.is_none() {
+        return Err(ApiError::not_found("robot", &serial));
+    }
     let page = state
         .store
         .list_parameter_sets(&serial, paging.limit, before)
