@@ -188,12 +188,7 @@ pub fn parse_pairs(pairs: &[(String, String)]) -> Result<PrintRequest, PrintErro
 }
 
 fn dots(c: &mut Checker, map: &mut BTreeMap<&str, &str>) -> Option<PrintableTarget> {
-    let mut got = BTreeMap::new();
-    for key in DOT_KEYS {
-        if let Some(v) = map.remove(key) {
-            got.insert(key, v);
-        }
-    }
+    let got = take_keys(map, &DOT_KEYS);
     let side = |c: &mut Checker, key: &str| -> Option<usize> {
         let v = number(c, &got, key)?;
         if v.fract() != 0.0 || !(2.0..=MAX_GRID_SIDE as f64).contains(&v) {
@@ -244,28 +239,8 @@ fn dots(c: &mut Checker, map: &mut BTreeMap<&str, &str>) -> Option<PrintableTarg
 }
 
 fn charuco(c: &mut Checker, map: &mut BTreeMap<&str, &str>) -> Option<PrintableTarget> {
-    let mut got = BTreeMap::new();
-    for key in CHARUCO_KEYS {
-        if let Some(v) = map.remove(key) {
-            got.insert(key, v);
-        }
-    }
-    let squares: Option<Vec<usize>> = got.get("squares").map(|v| {
-        v.split(',')
-            .map(|n| n.trim().parse::<usize>().unwrap_or(0))
-            .collect()
-    });
-    let squares = match squares.as_deref() {
-        Some(&[cols, rows]) => [cols, rows],
-        Some(_) => {
-            c.fail("squares", "two whole numbers: cols,rows");
-            return None;
-        }
-        None => {
-            c.fail("squares", "required");
-            return None;
-        }
-    };
+    let got = take_keys(map, &CHARUCO_KEYS);
+    let squares = cols_rows(c, &got, "squares")?;
     let square_mm = number(c, &got, "square_mm");
     let marker_mm = number(c, &got, "marker_mm");
     let legacy_layout = match got.get("legacy_layout").copied() {
@@ -310,28 +285,8 @@ fn charuco(c: &mut Checker, map: &mut BTreeMap<&str, &str>) -> Option<PrintableT
 }
 
 fn chessboard(c: &mut Checker, map: &mut BTreeMap<&str, &str>) -> Option<PrintableTarget> {
-    let mut got = BTreeMap::new();
-    for key in CHESSBOARD_KEYS {
-        if let Some(v) = map.remove(key) {
-            got.insert(key, v);
-        }
-    }
-    let corners: Option<Vec<usize>> = got.get("inner_corners").map(|v| {
-        v.split(',')
-            .map(|n| n.trim().parse::<usize>().unwrap_or(0))
-            .collect()
-    });
-    let inner_corners = match corners.as_deref() {
-        Some(&[cols, rows]) => [cols, rows],
-        Some(_) => {
-            c.fail("inner_corners", "two whole numbers: cols,rows");
-            return None;
-        }
-        None => {
-            c.fail("inner_corners", "required");
-            return None;
-        }
-    };
+    let got = take_keys(map, &CHESSBOARD_KEYS);
+    let inner_corners = cols_rows(c, &got, "inner_corners")?;
     let spec = ChessboardSpec {
         inner_corners,
         square_mm: number(c, &got, "square_mm")?,
@@ -359,12 +314,7 @@ fn chessboard(c: &mut Checker, map: &mut BTreeMap<&str, &str>) -> Option<Printab
 }
 
 fn asymmetric(c: &mut Checker, map: &mut BTreeMap<&str, &str>) -> Option<PrintableTarget> {
-    let mut got = BTreeMap::new();
-    for key in ["rows", "cols", "pitch_mm", "dot_diameter_mm"] {
-        if let Some(v) = map.remove(key) {
-            got.insert(key, v);
-        }
-    }
+    let got = take_keys(map, &["rows", "cols", "pitch_mm", "dot_diameter_mm"]);
     let side = |c: &mut Checker, key: &str| -> Option<usize> {
         let v = number(c, &got, key)?;
         if v.fract() != 0.0 || !(2.0..=MAX_GRID_SIDE as f64).contains(&v) {
@@ -403,6 +353,37 @@ fn asymmetric(c: &mut Checker, map: &mut BTreeMap<&str, &str>) -> Option<Printab
         return None;
     }
     Some(PrintableTarget::AsymmetricCircles(spec))
+}
+
+/// The query pairs of `keys`, taken out of `map` (what is left over is
+/// reported as unknown by the caller).
+fn take_keys<'v>(
+    map: &mut BTreeMap<&str, &'v str>,
+    keys: &[&'static str],
+) -> BTreeMap<&'static str, &'v str> {
+    keys.iter()
+        .filter_map(|&key| map.remove(key).map(|v| (key, v)))
+        .collect()
+}
+
+/// A required `cols,rows` pair of whole numbers.
+fn cols_rows(c: &mut Checker, got: &BTreeMap<&str, &str>, key: &str) -> Option<[usize; 2]> {
+    let parsed: Option<Vec<usize>> = got.get(key).map(|v| {
+        v.split(',')
+            .map(|n| n.trim().parse::<usize>().unwrap_or(0))
+            .collect()
+    });
+    match parsed.as_deref() {
+        Some(&[cols, rows]) => Some([cols, rows]),
+        Some(_) => {
+            c.fail(key, "two whole numbers: cols,rows");
+            None
+        }
+        None => {
+            c.fail(key, "required");
+            None
+        }
+    }
 }
 
 /// A required finite number.
