@@ -10,6 +10,8 @@
 //! residual screening with re-fit; [`calibrate`] joins them.
 
 pub mod bundle;
+pub mod bundle_model;
+mod bundle_problem;
 pub mod calibrate;
 pub mod error;
 pub mod noise;
