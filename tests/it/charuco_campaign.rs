@@ -4,20 +4,13 @@
 //! finds the corners, the job calibrates as well as on the dot board, and a
 //! bad ChArUco spec is a 422 naming the field.
 
-use rand::{rngs::StdRng, SeedableRng};
-use robocal_calib::geometry::pose_from_matrix_rows;
-use robocal_calib::sim::campaign_io::{PoseEntry, Truth};
 use robocal_calib::sim::render::RenderOptions;
 use robocal_calib::sim::render_charuco::render_charuco;
 use robocal_calib::vision::charuco::CharucoSpec;
 use serde_json::{json, Value};
 
-use crate::support::{spawn_app, spawn_app_with, upload_and_calibrate};
-
-const CAL_POSES: usize = 24;
-const VAL_POSES: usize = 8;
-/// Same bar as the dot-board campaign (`e2e.rs`).
-const MIN_IMPROVEMENT: f64 = 12.0;
+use crate::board_campaign::{calibrates_through_the_service, rerendered_campaign};
+use crate::support::spawn_app;
 
 fn board() -> CharucoSpec {
     CharucoSpec {
@@ -29,77 +22,34 @@ fn board() -> CharucoSpec {
     }
 }
 
-/// The simulated campaign in `dir`, its images re-rendered as ChArUco.
-fn charuco_campaign(dir: &std::path::Path) {
-    robocal::cli::campaign::simulate("irb2400", dir, CAL_POSES, VAL_POSES, 51).unwrap();
-    let read = |name: &str| std::fs::read_to_string(dir.join(name)).unwrap();
-    let truth: Truth = serde_json::from_str(&read("truth.json")).unwrap();
-    let entries: Vec<PoseEntry> = serde_json::from_str(&read("poses.json")).unwrap();
-    let spec = board();
-    let mut rng = StdRng::seed_from_u64(5);
-    for (i, entry) in entries.iter().enumerate() {
-        let camera_to_target = pose_from_matrix_rows(&truth.target_to_camera[i])
-            .unwrap()
-            .inverse();
-        let view = render_charuco(
-            &truth.intrinsics,
-            &camera_to_target,
-            &spec,
-            truth.image_width as usize,
-            truth.image_height as usize,
-            &RenderOptions::default(),
-            &mut rng,
-        )
-        .unwrap();
-        view.image.to_luma8().save(dir.join(&entry.image)).unwrap();
-    }
-    let mut campaign: Value = serde_json::from_str(&read("campaign.json")).unwrap();
-    campaign["session"]["target"] = json!({
-        "kind": "charuco", "squares": spec.squares, "square_mm": spec.square_mm,
-        "marker_mm": spec.marker_mm, "dictionary": spec.dictionary,
-    });
-    std::fs::write(dir.join("campaign.json"), campaign.to_string()).unwrap();
-}
-
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn charuco_campaign_calibrates_through_the_service() {
     let dir = tempfile::tempdir().unwrap();
-    charuco_campaign(dir.path());
-    let app = spawn_app_with(|c| c.test_validate_only = false).await;
-    let serial = "CHARUCO-1";
-    let job = upload_and_calibrate(&app, serial, dir.path()).await;
-    let session = job["session_id"].as_str().unwrap();
-    let s: Value = app
-        .get(&format!("/v1/sessions/{session}"))
-        .await
-        .json()
-        .await
-        .unwrap();
-    assert_eq!(s["target"]["kind"], "charuco", "{s}");
-    let report: Value = app
-        .get(&format!("/v1/robots/{serial}/parameter-sets/latest/report"))
-        .await
-        .json()
-        .await
-        .unwrap();
-    assert_eq!(
-        report["detection"]["images_detected"],
-        CAL_POSES + VAL_POSES,
-        "{}",
-        report["detection"]
+    let spec = board();
+    let target = json!({
+        "kind": "charuco", "squares": spec.squares, "square_mm": spec.square_mm,
+        "marker_mm": spec.marker_mm, "dictionary": spec.dictionary,
+    });
+    rerendered_campaign(
+        dir.path(),
+        51,
+        5,
+        target,
+        &|intrinsics, camera_to_target, w, h, rng| {
+            render_charuco(
+                intrinsics,
+                camera_to_target,
+                &spec,
+                w,
+                h,
+                &RenderOptions::default(),
+                rng,
+            )
+            .unwrap()
+            .image
+        },
     );
-    let before = report["before"]["mean_mm"].as_f64().unwrap();
-    let after = report["after"]["mean_mm"].as_f64().unwrap();
-    assert!(
-        before / after >= MIN_IMPROVEMENT,
-        "before {before} after {after}"
-    );
-    let rms = report["camera"]["reprojection_rms_px"].as_f64().unwrap();
-    eprintln!(
-        "charuco campaign: before {before:.3} mm, after {after:.4} mm, reprojection {rms:.3} px"
-    );
-    assert!(rms < 0.2, "reprojection {rms} px");
-    app.shutdown().await;
+    calibrates_through_the_service(dir.path(), "CHARUCO-1", "charuco").await;
 }
 
 #[tokio::test]

@@ -2,22 +2,15 @@
 //! (issue 14): OpenCV's asymmetric circle grid (printed, detected, and a
 //! whole simulated campaign re-rendered on it) and the marker-less dot grid.
 
-use rand::{rngs::StdRng, SeedableRng};
 use robocal::calib::vision::{detect_asymmetric, AsymmetricCirclesSpec};
-use robocal_calib::geometry::pose_from_matrix_rows;
-use robocal_calib::sim::campaign_io::{PoseEntry, Truth};
 use robocal_calib::sim::render::RenderOptions;
 use robocal_calib::sim::render_circles::render_circle_board;
 use robocal_calib::vision::CircleBoard;
 use serde_json::{json, Value};
 
-use crate::support::{spawn_app, spawn_app_with, upload_and_calibrate};
+use crate::board_campaign::{calibrates_through_the_service, rerendered_campaign};
+use crate::support::spawn_app;
 use crate::targets::rasterise;
-
-const CAL_POSES: usize = 24;
-const VAL_POSES: usize = 8;
-/// Same bar as the dot-board campaign (`e2e.rs`).
-const MIN_IMPROVEMENT: f64 = 12.0;
 
 /// An asymmetric grid inside the simulator's 9x9 board area (200 x 200 mm):
 /// 11 rows of 5, so every view that saw the dot board sees all of it.
@@ -30,78 +23,35 @@ fn board() -> AsymmetricCirclesSpec {
     }
 }
 
-/// The simulated campaign in `dir`, its images re-rendered as the
-/// asymmetric grid in the same target frame.
-fn asymmetric_campaign(dir: &std::path::Path) {
-    robocal::cli::campaign::simulate("irb2400", dir, CAL_POSES, VAL_POSES, 52).unwrap();
-    let read = |name: &str| std::fs::read_to_string(dir.join(name)).unwrap();
-    let truth: Truth = serde_json::from_str(&read("truth.json")).unwrap();
-    let entries: Vec<PoseEntry> = serde_json::from_str(&read("poses.json")).unwrap();
-    let spec = board();
-    let mut rng = StdRng::seed_from_u64(6);
-    for (i, entry) in entries.iter().enumerate() {
-        let camera_to_target = pose_from_matrix_rows(&truth.target_to_camera[i])
-            .unwrap()
-            .inverse();
-        let view = render_circle_board(
-            &truth.intrinsics,
-            &camera_to_target,
-            &CircleBoard::Asymmetric(spec),
-            truth.image_width as usize,
-            truth.image_height as usize,
-            &RenderOptions::default(),
-            &mut rng,
-        )
-        .unwrap();
-        view.image.to_luma8().save(dir.join(&entry.image)).unwrap();
-    }
-    let mut campaign: Value = serde_json::from_str(&read("campaign.json")).unwrap();
-    campaign["session"]["target"] = json!({
-        "kind": "asymmetric_circles", "rows": spec.rows, "cols": spec.cols,
-        "pitch_mm": spec.pitch_mm, "dot_diameter_mm": spec.dot_diameter_mm,
-    });
-    std::fs::write(dir.join("campaign.json"), campaign.to_string()).unwrap();
-}
-
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn asymmetric_grid_campaign_calibrates_through_the_service() {
     let dir = tempfile::tempdir().unwrap();
-    asymmetric_campaign(dir.path());
-    let app = spawn_app_with(|c| c.test_validate_only = false).await;
-    let serial = "ACIRCLES-1";
-    let job = upload_and_calibrate(&app, serial, dir.path()).await;
-    let session = job["session_id"].as_str().unwrap();
-    let s: Value = app
-        .get(&format!("/v1/sessions/{session}"))
-        .await
-        .json()
-        .await
-        .unwrap();
-    assert_eq!(s["target"]["kind"], "asymmetric_circles", "{s}");
-    let report: Value = app
-        .get(&format!("/v1/robots/{serial}/parameter-sets/latest/report"))
-        .await
-        .json()
-        .await
-        .unwrap();
-    assert_eq!(
-        report["detection"]["images_detected"],
-        CAL_POSES + VAL_POSES,
-        "{}",
-        report["detection"]
+    let spec = board();
+    let target = json!({
+        "kind": "asymmetric_circles", "rows": spec.rows, "cols": spec.cols,
+        "pitch_mm": spec.pitch_mm, "dot_diameter_mm": spec.dot_diameter_mm,
+    });
+    let board = CircleBoard::Asymmetric(spec);
+    rerendered_campaign(
+        dir.path(),
+        52,
+        6,
+        target,
+        &|intrinsics, camera_to_target, w, h, rng| {
+            render_circle_board(
+                intrinsics,
+                camera_to_target,
+                &board,
+                w,
+                h,
+                &RenderOptions::default(),
+                rng,
+            )
+            .unwrap()
+            .image
+        },
     );
-    let before = report["before"]["mean_mm"].as_f64().unwrap();
-    let after = report["after"]["mean_mm"].as_f64().unwrap();
-    let rms = report["camera"]["reprojection_rms_px"].as_f64().unwrap();
-    eprintln!(
-        "asymmetric circles campaign: before {before:.3} mm, after {after:.4} mm, reprojection {rms:.3} px"
-    );
-    assert!(
-        before / after >= MIN_IMPROVEMENT,
-        "before {before} after {after}"
-    );
-    assert!(rms < 0.2, "reprojection {rms} px");
-    app.shutdown().await;
+    calibrates_through_the_service(dir.path(), "ACIRCLES-1", "asymmetric_circles").await;
 }
 
 #[tokio::test]

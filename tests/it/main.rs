@@ -5,6 +5,7 @@ pub(crate) mod anonymous;
 pub(crate) mod aubo_campaign;
 pub(crate) mod auth;
 pub(crate) mod bad_json;
+pub(crate) mod board_campaign;
 pub(crate) mod camera_reuse;
 pub(crate) mod campaign_plans;
 pub(crate) mod charuco_campaign;
