@@ -79,7 +79,8 @@ fn percentile(sorted: &[f64], p: f64) -> f64 {
 async fn wait_done(client: &Client, job: &str) -> serde_json::Value {
     let start = Instant::now();
     loop {
-        let state = client.job(job).await.unwrap();
+        let state: serde_json::Value =
+            serde_json::from_str(&client.job(job).await.unwrap()).unwrap();
         if matches!(
             state["state"].as_str(),
             Some("succeeded" | "failed" | "cancelled")
@@ -160,10 +161,10 @@ async fn main() {
     let mut latencies_ms = Vec::new();
     loop {
         let t = Instant::now();
-        let a = client.job(&j2).await.unwrap();
+        let a: serde_json::Value = serde_json::from_str(&client.job(&j2).await.unwrap()).unwrap();
         latencies_ms.push(t.elapsed().as_secs_f64() * 1e3);
         let t = Instant::now();
-        let b = client.job(&j3).await.unwrap();
+        let b: serde_json::Value = serde_json::from_str(&client.job(&j3).await.unwrap()).unwrap();
         latencies_ms.push(t.elapsed().as_secs_f64() * 1e3);
         let finished =
             |v: &serde_json::Value| matches!(v["state"].as_str(), Some("succeeded" | "failed"));

@@ -15,9 +15,10 @@ use super::error::{ApiError, ApiResult, Problem};
 use super::extract::{OptionalJson, Paging};
 use super::sessions::find_session;
 use super::AppState;
-use crate::domain::{JobRecord, JobState};
+use crate::domain::JobState;
 use crate::jobs::queue::enqueue_calibration;
 use crate::schema::job::CalibrationOptions;
+use crate::store::JobRecord;
 
 pub fn router() -> OpenApiRouter<AppState> {
     OpenApiRouter::new()

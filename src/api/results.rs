@@ -14,11 +14,11 @@ use axum::response::Html;
 use super::error::{ApiError, ApiResult, Problem};
 use super::extract::{ApiJson, Paging, SerialPath};
 use super::AppState;
-use crate::domain::ParameterSetRecord;
 use crate::report::schema::IntrinsicsSchema;
 use crate::report::{render_html, render_svg, Report};
 use crate::schema::PoseOut;
 use crate::service::{evaluate, filter, results, uncertainty};
+use crate::store::ParameterSetRecord;
 
 pub fn router() -> OpenApiRouter<AppState> {
     OpenApiRouter::new()
@@ -90,7 +90,7 @@ pub struct ParameterSetFields {
     /// The identified parameters' full covariance, in the units of
     /// `parameters` (what `forward`'s predicted σ propagate). Absent for
     /// sets stored before it was kept.
-    pub covariance: Option<crate::pipeline::parameter_covariance::CovarianceDoc>,
+    pub covariance: Option<crate::domain::CovarianceDoc>,
 }
 
 #[derive(Debug, Serialize, ToSchema)]

@@ -11,8 +11,9 @@ use utoipa_axum::routes;
 use super::error::{ApiError, ApiResult, Problem};
 use super::extract::{ApiJson, Paging, SerialPath};
 use super::AppState;
-use crate::domain::{now_rfc3339, RobotRecord};
+use crate::domain::now_rfc3339;
 use crate::schema::robot::{KinematicsDoc, Preset, RobotBody};
+use crate::store::RobotRecord;
 
 pub fn router() -> OpenApiRouter<AppState> {
     OpenApiRouter::new()

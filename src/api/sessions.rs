@@ -11,10 +11,10 @@ use utoipa_axum::routes;
 use super::error::{ApiError, ApiResult, Problem};
 use super::extract::{ApiJson, Paging, SerialPath};
 use super::AppState;
-use crate::domain::SessionRecord;
 use crate::schema::session::{CameraDoc, Instrument, SessionBody, TargetDoc};
 use crate::schema::PoseDoc;
 use crate::service::camera_reuse;
+use crate::store::SessionRecord;
 
 pub fn router() -> OpenApiRouter<AppState> {
     OpenApiRouter::new()
@@ -61,7 +61,7 @@ impl TryFrom<SessionRecord> for SessionOut {
     type Error = ApiError;
     fn try_from(s: SessionRecord) -> ApiResult<SessionOut> {
         Ok(SessionOut {
-            spec: serde_json::from_value(s.spec).map_err(ApiError::internal)?,
+            spec: s.spec,
             id: s.id,
             serial: s.serial,
             pose_count: s.pose_count,
@@ -92,10 +92,9 @@ async fn create_session(
         body.camera_calibration_id =
             Some(camera_reuse::resolve_for_session(&state.store, &body, id).await?);
     }
-    let spec = serde_json::to_value(&body).map_err(ApiError::internal)?;
     let session = state
         .store
-        .create_session(&serial, body.instrument.as_str(), &spec)
+        .create_session(&serial, body.instrument.as_str(), &body)
         .await
         .map_err(|e| match e {
             crate::store::StoreError::NotFound(_) => ApiError::not_found("robot", &serial),

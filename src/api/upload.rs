@@ -117,18 +117,11 @@ async fn upload_dataset(
             poses_created: stored.len(),
             detected_points: stored
                 .iter()
-                .map(|p| found_points(p.image_detection.as_ref()).len())
+                .map(|p| p.image_detection.as_ref().map_or(0, |d| d.points.len()))
                 .collect(),
             pose_ids: stored.into_iter().map(|p| p.id).collect(),
         }),
     ))
-}
-
-/// The points of a stored `image_detection` document (none when absent).
-pub fn found_points(doc: Option<&serde_json::Value>) -> Vec<serde_json::Value> {
-    doc.and_then(|d| d["points"].as_array())
-        .cloned()
-        .unwrap_or_default()
 }
 
 /// Streams the request body into a temporary file, stopping at `max_archive_bytes`.

@@ -1,53 +1,35 @@
 //! The CLI's HTTP client: a thin typed layer over the REST contract
 //! (api.md) for `robocal upload`, `calibrate` and `report`. Problem+json
 //! answers become [`ClientError::Problem`] with the server's own words.
+//! Answers are read into the types the caller names, or handed over as the
+//! server's text where the CLI prints them as they are.
 
 use std::path::Path;
 use std::time::Duration;
 
-use serde_json::Value;
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
 
+pub use super::client_error::ClientError;
 use crate::report::Report;
 
-#[derive(Debug, thiserror::Error)]
-pub enum ClientError {
-    #[error("cannot reach the server: {}", with_causes(.0))]
-    Transport(#[from] reqwest::Error),
-    #[error("{status}: {title}{}", detail_suffix(.detail, .fields))]
-    Problem {
-        status: u16,
-        title: String,
-        detail: String,
-        fields: Vec<String>,
-    },
-    #[error("{0}")]
-    Local(String),
+/// The id of what a request created.
+#[derive(Debug, Deserialize)]
+struct Created {
+    id: Option<String>,
 }
 
-/// An error and its causes: reqwest's own message hides why a connection
-/// failed (refused, certificate not trusted...).
-fn with_causes(e: &dyn std::error::Error) -> String {
-    let mut out = e.to_string();
-    let mut source = e.source();
-    while let Some(cause) = source {
-        out.push_str(": ");
-        out.push_str(&cause.to_string());
-        source = cause.source();
-    }
-    out
+/// The job a calibration request queued.
+#[derive(Debug, Deserialize)]
+struct Accepted {
+    job_id: Option<String>,
 }
 
-fn detail_suffix(detail: &str, fields: &[String]) -> String {
-    let mut out = String::new();
-    if !detail.is_empty() {
-        out.push_str(" — ");
-        out.push_str(detail);
-    }
-    for field in fields {
-        out.push_str("\n  ");
-        out.push_str(field);
-    }
-    out
+/// How many poses a dataset upload stored.
+#[derive(Debug, Deserialize)]
+pub struct DatasetStored {
+    #[serde(default)]
+    pub poses_created: u64,
 }
 
 /// How long one request may take; uploads of whole campaigns get longer.
@@ -107,83 +89,69 @@ impl Client {
         }
     }
 
-    async fn send(&self, builder: reqwest::RequestBuilder) -> Result<Value, ClientError> {
+    /// The answer's body as the server wrote it, or its problem+json as a
+    /// [`ClientError::Problem`].
+    async fn send_text(&self, builder: reqwest::RequestBuilder) -> Result<String, ClientError> {
         let response = builder.send().await?;
         let status = response.status();
-        let body: Value = response.json().await.unwrap_or(Value::Null);
+        let body = response.text().await.unwrap_or_default();
         if status.is_success() {
             return Ok(body);
         }
-        let text = |key: &str| {
-            body.get(key)
-                .and_then(Value::as_str)
-                .unwrap_or("")
-                .to_string()
-        };
-        let fields = body
-            .get("errors")
-            .and_then(Value::as_array)
-            .map(|errors| {
-                errors
-                    .iter()
-                    .map(|e| {
-                        format!(
-                            "{}: {}",
-                            e.get("field").and_then(Value::as_str).unwrap_or("?"),
-                            e.get("message").and_then(Value::as_str).unwrap_or("")
-                        )
-                    })
-                    .collect()
-            })
-            .unwrap_or_default();
-        Err(ClientError::Problem {
-            status: status.as_u16(),
-            title: text("title"),
-            detail: text("detail"),
-            fields,
-        })
+        Err(ClientError::of_problem(status.as_u16(), &body))
     }
 
-    pub async fn put_robot(
+    /// The answer read as `T`.
+    async fn send<T: DeserializeOwned>(
         &self,
-        serial: &str,
-        body: &impl serde::Serialize,
-    ) -> Result<Value, ClientError> {
-        self.send(
+        builder: reqwest::RequestBuilder,
+    ) -> Result<T, ClientError> {
+        let text = self.send_text(builder).await?;
+        answer_of(&text)
+    }
+
+    pub async fn put_robot(&self, serial: &str, body: &impl Serialize) -> Result<(), ClientError> {
+        self.send_text(
             self.request(reqwest::Method::PUT, &format!("/v1/robots/{serial}"))
                 .json(body),
         )
         .await
+        .map(drop)
     }
 
-    /// The robot, or `None` when the server has no robot of that serial.
-    pub async fn get_robot(&self, serial: &str) -> Result<Option<Value>, ClientError> {
+    /// Whether the server has a robot of that serial.
+    pub async fn robot_exists(&self, serial: &str) -> Result<bool, ClientError> {
         match self
-            .send(self.request(reqwest::Method::GET, &format!("/v1/robots/{serial}")))
+            .send_text(self.request(reqwest::Method::GET, &format!("/v1/robots/{serial}")))
             .await
         {
-            Ok(robot) => Ok(Some(robot)),
-            Err(ClientError::Problem { status: 404, .. }) => Ok(None),
+            Ok(_) => Ok(true),
+            Err(ClientError::Problem { status: 404, .. }) => Ok(false),
             Err(e) => Err(e),
         }
     }
 
-    pub async fn get_session(&self, session_id: &str) -> Result<Value, ClientError> {
+    /// The session, read as the fields `T` names.
+    pub async fn get_session<T: DeserializeOwned>(
+        &self,
+        session_id: &str,
+    ) -> Result<T, ClientError> {
         self.send(self.request(reqwest::Method::GET, &format!("/v1/sessions/{session_id}")))
             .await
     }
 
-    /// `POST …/parameter-sets/{version}/{operation}` (`forward` or
-    /// `compensate`); `version = None` asks for the latest.
+    /// `POST …/parameter-sets/{version}/{operation}` (`forward`,
+    /// `compensate` or `filter`); `version = None` asks for the latest. The
+    /// answer as the server wrote it.
     pub async fn evaluate(
         &self,
         serial: &str,
         version: Option<i64>,
         operation: &str,
-        body: &Value,
-    ) -> Result<Value, ClientError> {
+        body: &impl Serialize,
+    ) -> Result<String, ClientError> {
         let version = version.map_or("latest".to_string(), |v| v.to_string());
-        self.send(
+        self.send_text(
             self.request(
                 reqwest::Method::POST,
                 &format!("/v1/robots/{serial}/parameter-sets/{version}/{operation}"),
@@ -193,8 +161,12 @@ impl Client {
         .await
     }
 
-    pub async fn create_session(&self, serial: &str, body: &Value) -> Result<String, ClientError> {
-        let created = self
+    pub async fn create_session(
+        &self,
+        serial: &str,
+        body: &impl Serialize,
+    ) -> Result<String, ClientError> {
+        let created: Created = self
             .send(
                 self.request(
                     reqwest::Method::POST,
@@ -203,11 +175,15 @@ impl Client {
                 .json(body),
             )
             .await?;
-        id_of(&created, "id")
+        created.id.ok_or_else(|| no_field("id"))
     }
 
     /// Streams a zip archive from disk (never whole in memory).
-    pub async fn upload_dataset(&self, session_id: &str, zip: &Path) -> Result<Value, ClientError> {
+    pub async fn upload_dataset(
+        &self,
+        session_id: &str,
+        zip: &Path,
+    ) -> Result<DatasetStored, ClientError> {
         let file = tokio::fs::File::open(zip)
             .await
             .map_err(|e| ClientError::Local(format!("{}: {e}", zip.display())))?;
@@ -233,9 +209,9 @@ impl Client {
     pub async fn start_calibration(
         &self,
         session_id: &str,
-        options: &Value,
+        options: &impl Serialize,
     ) -> Result<String, ClientError> {
-        let accepted = self
+        let accepted: Accepted = self
             .send(
                 self.request(
                     reqwest::Method::POST,
@@ -244,16 +220,21 @@ impl Client {
                 .json(options),
             )
             .await?;
-        id_of(&accepted, "job_id")
+        accepted.job_id.ok_or_else(|| no_field("job_id"))
     }
 
-    pub async fn job(&self, job_id: &str) -> Result<Value, ClientError> {
-        self.send(self.request(reqwest::Method::GET, &format!("/v1/jobs/{job_id}")))
+    /// The job document as the server wrote it.
+    pub async fn job(&self, job_id: &str) -> Result<String, ClientError> {
+        self.send_text(self.request(reqwest::Method::GET, &format!("/v1/jobs/{job_id}")))
             .await
     }
 
-    /// One page of `GET /v1/jobs` (newest first).
-    pub async fn jobs(&self, limit: u32, cursor: Option<&str>) -> Result<Value, ClientError> {
+    /// One page of `GET /v1/jobs` (newest first), read as `T`.
+    pub async fn jobs<T: DeserializeOwned>(
+        &self,
+        limit: u32,
+        cursor: Option<&str>,
+    ) -> Result<T, ClientError> {
         let mut query = vec![("limit", limit.to_string())];
         if let Some(cursor) = cursor {
             query.push(("cursor", cursor.to_string()));
@@ -283,21 +264,23 @@ impl Client {
         let again = self
             .request(reqwest::Method::GET, &path)
             .query(&[("format", format)]);
-        self.send(again).await.map(|_| Vec::new())
+        self.send_text(again).await.map(|_| Vec::new())
     }
 
-    /// `POST /v1/robots/{serial}/campaign-plans`: the plan document.
-    pub async fn create_campaign_plan(
+    /// `POST /v1/robots/{serial}/campaign-plans` with a JSON request as
+    /// the user wrote it: the plan document, read as `T`.
+    pub async fn create_campaign_plan<T: DeserializeOwned>(
         &self,
         serial: &str,
-        body: &Value,
-    ) -> Result<Value, ClientError> {
+        request_json: String,
+    ) -> Result<T, ClientError> {
         self.send(
             self.request(
                 reqwest::Method::POST,
                 &format!("/v1/robots/{serial}/campaign-plans"),
             )
-            .json(body),
+            .header(reqwest::header::CONTENT_TYPE, "application/json")
+            .body(request_json),
         )
         .await
     }
@@ -322,26 +305,26 @@ impl Client {
         let again = self
             .request(reqwest::Method::GET, &path)
             .query(&[("format", format)]);
-        self.send(again).await.map(|_| Vec::new())
+        self.send_text(again).await.map(|_| Vec::new())
     }
 
     /// `version = None` asks for the latest.
     pub async fn report(&self, serial: &str, version: Option<i64>) -> Result<Report, ClientError> {
         let version = version.map_or("latest".to_string(), |v| v.to_string());
-        let body = self
-            .send(self.request(
-                reqwest::Method::GET,
-                &format!("/v1/robots/{serial}/parameter-sets/{version}/report"),
-            ))
-            .await?;
-        serde_json::from_value(body)
-            .map_err(|e| ClientError::Local(format!("unexpected report shape: {e}")))
+        self.send(self.request(
+            reqwest::Method::GET,
+            &format!("/v1/robots/{serial}/parameter-sets/{version}/report"),
+        ))
+        .await
     }
 }
 
-fn id_of(body: &Value, key: &str) -> Result<String, ClientError> {
-    body.get(key)
-        .and_then(Value::as_str)
-        .map(str::to_string)
-        .ok_or_else(|| ClientError::Local(format!("the server's answer has no `{key}`")))
+/// A successful answer's text read as `T`.
+pub fn answer_of<T: DeserializeOwned>(text: &str) -> Result<T, ClientError> {
+    serde_json::from_str(text)
+        .map_err(|e| ClientError::Local(format!("unexpected answer from the server: {e}")))
+}
+
+fn no_field(key: &str) -> ClientError {
+    ClientError::Local(format!("the server's answer has no `{key}`"))
 }

@@ -7,12 +7,12 @@
 
 use std::path::{Path, PathBuf};
 
-use serde_json::{json, Value};
+use serde::de::DeserializeOwned;
 
-use super::client::{Client, ClientError};
-
-/// Joint angles of a 6-axis arm, and the six numbers of a target pose.
-const ROW_WIDTH: usize = 6;
+use super::client::{answer_of, Client, ClientError};
+use super::evaluate_docs::{
+    pose_doc, CompensateAnswer, CompensateBody, ForwardAnswer, ForwardBody, PoseNumbers, Seeds,
+};
 
 /// Which parameter set, and how to print the answer.
 #[derive(Debug, Clone, clap::Args)]
@@ -92,16 +92,16 @@ pub(super) fn read_input(path: &Path) -> Result<String, String> {
 
 /// A file's content: a JSON object is the request body itself; otherwise a
 /// table, one row per non-empty line (`#` starts a comment line).
-enum FileInput {
-    Body(Value),
+enum FileInput<B> {
+    Body(B),
     Rows(Vec<Vec<f64>>),
 }
 
-fn parse_file(text: &str, what: &str) -> Result<FileInput, String> {
+fn parse_file<B: DeserializeOwned>(text: &str, what: &str) -> Result<FileInput<B>, String> {
     if text.trim_start().starts_with('{') {
         return serde_json::from_str(text)
             .map(FileInput::Body)
-            .map_err(|e| format!("the file is not valid JSON: {e}"));
+            .map_err(|e| format!("the file is not a valid request body: {e}"));
     }
     text.lines()
         .map(str::trim)
@@ -112,144 +112,100 @@ fn parse_file(text: &str, what: &str) -> Result<FileInput, String> {
 }
 
 /// The `forward` request body of the flags and file.
-pub fn forward_body(args: &ForwardArgs) -> Result<Value, String> {
+pub fn forward_body(args: &ForwardArgs) -> Result<ForwardBody, String> {
     let mut rows: Vec<Vec<f64>> = args
         .joints
         .iter()
         .map(|j| parse_row(j, "--joints"))
         .collect::<Result<_, _>>()?;
-    let mut body = json!({});
+    let mut body = ForwardBody::default();
     if let Some(path) = &args.file {
         match parse_file(&read_input(path)?, "joints row")? {
             FileInput::Body(b) => body = b,
             FileInput::Rows(r) => rows.extend(r),
         }
     }
-    if !rows.is_empty() {
-        let mut all: Vec<Value> = body
-            .get("joints_deg")
-            .and_then(Value::as_array)
-            .cloned()
-            .unwrap_or_default();
-        all.extend(rows.into_iter().map(|r| json!(r)));
-        body["joints_deg"] = Value::Array(all);
-    }
-    if body.get("joints_deg").is_none() {
+    body.joints_deg.extend(rows);
+    if body.joints_deg.is_empty() {
         return Err("no joints: give --joints J1,..,J6 or --file".into());
     }
     Ok(body)
 }
 
-fn target_doc(row: &[f64]) -> Result<Value, String> {
-    if row.len() != ROW_WIDTH {
-        return Err(format!(
-            "a target has {ROW_WIDTH} numbers (x,y,z mm, rx,ry,rz deg), not {}",
-            row.len()
-        ));
-    }
-    Ok(json!({"translation_mm": &row[..3], "rotation_deg": &row[3..]}))
-}
-
 /// The `compensate` request body of the flags and file.
-pub fn compensate_body(args: &CompensateArgs) -> Result<Value, String> {
-    let mut targets: Vec<Value> = args
+pub fn compensate_body(args: &CompensateArgs) -> Result<CompensateBody, String> {
+    let target = |r: &[f64]| pose_doc(r, "a target");
+    let mut targets = args
         .targets
         .iter()
-        .map(|t| parse_row(t, "--target").and_then(|r| target_doc(&r)))
-        .collect::<Result<_, _>>()?;
-    let mut body = json!({});
+        .map(|t| parse_row(t, "--target").and_then(|r| target(&r)))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut body = CompensateBody::default();
     if let Some(path) = &args.file {
         match parse_file(&read_input(path)?, "target row")? {
             FileInput::Body(b) => body = b,
             FileInput::Rows(rows) => {
                 for r in rows {
-                    targets.push(target_doc(&r)?);
+                    targets.push(target(&r)?);
                 }
             }
         }
     }
-    if !targets.is_empty() {
-        let mut all: Vec<Value> = body
-            .get("targets")
-            .and_then(Value::as_array)
-            .cloned()
-            .unwrap_or_default();
-        all.extend(targets);
-        body["targets"] = Value::Array(all);
-    }
-    if body.get("targets").is_none() {
+    body.targets.extend(targets);
+    if body.targets.is_empty() {
         return Err("no targets: give --target X,Y,Z,RX,RY,RZ or --file".into());
     }
     if let Some(seed) = &args.seed {
-        body["seed_joints_deg"] = json!(parse_row(seed, "--seed")?);
+        body.seed_joints_deg = Some(Seeds::One(parse_row(seed, "--seed")?));
     }
     Ok(body)
 }
 
-fn numbers(v: &Value, decimals: usize) -> String {
-    v.as_array()
-        .map(|a| {
-            a.iter()
-                .map(|x| x.as_f64().map_or("?".into(), |x| format!("{x:.decimals$}")))
-                .collect::<Vec<_>>()
-                .join(" ")
-        })
-        .unwrap_or_default()
-}
-
-/// Rows' warnings (a joint outside its limits, …), when the server gives any.
-fn warning_of(row: &Value) -> String {
-    match row.get("warnings").or_else(|| row.get("warning")) {
-        Some(Value::Array(w)) if !w.is_empty() => w
-            .iter()
-            .map(|w| w.as_str().map_or(w.to_string(), str::to_string))
-            .collect::<Vec<_>>()
-            .join("; "),
-        Some(Value::String(w)) => w.clone(),
-        _ => String::new(),
-    }
+/// Numbers to `decimals` places, space-separated; `?` for a missing one.
+fn numbers(values: &[Option<f64>], decimals: usize) -> String {
+    values
+        .iter()
+        .map(|x| x.map_or("?".into(), |x| format!("{x:.decimals$}")))
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 /// `forward` as a table: per row the camera (and tool) pose in the target
 /// frame, millimetres and degrees.
-pub fn forward_table(answer: &Value) -> String {
+pub fn forward_table(answer: &ForwardAnswer) -> String {
     let mut out = String::from("row  frame   x y z (mm)                     rx ry rz (deg)\n");
-    for (i, pose) in answer["poses"].as_array().into_iter().flatten().enumerate() {
-        for (frame, key) in [("camera", "camera_in_target"), ("tool", "tool_in_target")] {
-            if let Some(p) = pose.get(key) {
+    for (i, pose) in answer.poses.iter().enumerate() {
+        let frames: [(&str, &Option<PoseNumbers>); 2] = [
+            ("camera", &pose.camera_in_target),
+            ("tool", &pose.tool_in_target),
+        ];
+        for (frame, p) in frames {
+            if let Some(p) = p {
                 out.push_str(&format!(
                     "{:<4} {frame:<7} {:<30} {}\n",
                     i + 1,
-                    numbers(&p["translation_mm"], 3),
-                    numbers(&p["rotation_deg"], 4)
+                    numbers(&p.translation_mm, 3),
+                    numbers(&p.rotation_deg, 4)
                 ));
             }
         }
-        let warning = warning_of(pose);
-        if !warning.is_empty() {
-            out.push_str(&format!("     warning: {warning}\n"));
+        if !pose.warnings.is_empty() {
+            out.push_str(&format!("     warning: {}\n", pose.warnings.join("; ")));
         }
     }
     out
 }
 
 /// `compensate` as a table: per target the joints and the model's residual.
-pub fn compensate_table(answer: &Value) -> String {
+pub fn compensate_table(answer: &CompensateAnswer) -> String {
     let mut out =
         String::from("target  joints (deg)                                  residual (mm)\n");
-    let residuals = answer["residual_mm"]
-        .as_array()
-        .cloned()
-        .unwrap_or_default();
-    for (i, joints) in answer["joints_deg"]
-        .as_array()
-        .into_iter()
-        .flatten()
-        .enumerate()
-    {
-        let residual = residuals
+    for (i, joints) in answer.joints_deg.iter().enumerate() {
+        let residual = answer
+            .residual_mm
             .get(i)
-            .and_then(Value::as_f64)
+            .copied()
+            .flatten()
             .map_or("?".into(), |r| format!("{r:.4}"));
         out.push_str(&format!(
             "{:<7} {:<45} {residual}\n",
@@ -260,15 +216,18 @@ pub fn compensate_table(answer: &Value) -> String {
     out
 }
 
-fn print_answer(set: &SetArgs, answer: &Value, table: fn(&Value) -> String) {
+/// The server's answer as it wrote it (`--json`), or its table.
+fn print_answer<T: DeserializeOwned>(
+    set: &SetArgs,
+    answer: &str,
+    table: fn(&T) -> String,
+) -> Result<(), ClientError> {
     if set.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(answer).unwrap_or_default()
-        );
+        println!("{}", answer.trim_end());
     } else {
-        print!("{}", table(answer));
+        print!("{}", table(&answer_of(answer)?));
     }
+    Ok(())
 }
 
 pub async fn forward(client: &Client, args: &ForwardArgs) -> Result<(), ClientError> {
@@ -276,8 +235,7 @@ pub async fn forward(client: &Client, args: &ForwardArgs) -> Result<(), ClientEr
     let answer = client
         .evaluate(&args.set.serial, args.set.version, "forward", &body)
         .await?;
-    print_answer(&args.set, &answer, forward_table);
-    Ok(())
+    print_answer(&args.set, &answer, forward_table)
 }
 
 pub async fn compensate(client: &Client, args: &CompensateArgs) -> Result<(), ClientError> {
@@ -285,8 +243,7 @@ pub async fn compensate(client: &Client, args: &CompensateArgs) -> Result<(), Cl
     let answer = client
         .evaluate(&args.set.serial, args.set.version, "compensate", &body)
         .await?;
-    print_answer(&args.set, &answer, compensate_table);
-    Ok(())
+    print_answer(&args.set, &answer, compensate_table)
 }
 
 #[cfg(test)]
@@ -313,18 +270,23 @@ mod tests {
         };
         assert_eq!(
             forward_body(&args).unwrap(),
-            json!({"joints_deg": [[0.0, 10.0, 10.0, 0.0, 60.0, 0.0],
-                                  [1.0, 2.0, 3.0, 4.0, 5.0, 6.0],
-                                  [-1.0, -2.0, -3.0, -4.0, -5.0, -6.0]]})
+            ForwardBody {
+                joints_deg: vec![
+                    vec![0.0, 10.0, 10.0, 0.0, 60.0, 0.0],
+                    vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0],
+                    vec![-1.0, -2.0, -3.0, -4.0, -5.0, -6.0],
+                ],
+                tool: None,
+            }
         );
     }
 
     #[test]
     fn a_json_file_is_the_request_body() {
         let mut file = tempfile::NamedTempFile::new().unwrap();
-        let body = json!({"targets": [{"translation_mm": [1, 2, 3], "rotation_deg": [0, 0, 0]}],
-                          "tool": {"translation_mm": [0, 0, 100], "rotation_deg": [0, 0, 0]}});
-        std::io::Write::write_all(&mut file, body.to_string().as_bytes()).unwrap();
+        let body = r#"{"targets": [{"translation_mm": [1, 2, 3], "rotation_deg": [0, 0, 0]}],
+                       "tool": {"translation_mm": [0, 0, 100], "rotation_deg": [0, 0, 0]}}"#;
+        std::io::Write::write_all(&mut file, body.as_bytes()).unwrap();
         let args = CompensateArgs {
             set: set(),
             targets: vec![],
@@ -332,11 +294,17 @@ mod tests {
             file: Some(file.path().to_path_buf()),
         };
         let out = compensate_body(&args).unwrap();
-        assert_eq!(out["tool"], body["tool"]);
-        assert_eq!(out["targets"], body["targets"]);
         assert_eq!(
-            out["seed_joints_deg"],
-            json!([0.0, 10.0, 10.0, 0.0, 60.0, 0.0])
+            out.tool,
+            Some(pose_doc(&[0.0, 0.0, 100.0, 0.0, 0.0, 0.0], "tool").unwrap())
+        );
+        assert_eq!(
+            out.targets,
+            [pose_doc(&[1.0, 2.0, 3.0, 0.0, 0.0, 0.0], "target").unwrap()]
+        );
+        assert_eq!(
+            out.seed_joints_deg,
+            Some(Seeds::One(vec![0.0, 10.0, 10.0, 0.0, 60.0, 0.0]))
         );
     }
 
@@ -366,19 +334,24 @@ mod tests {
 
     #[test]
     fn tables_show_every_row() {
-        let forward = json!({"poses": [
+        let forward: ForwardAnswer = serde_json::from_str(
+            r#"{"poses": [
             {"camera_in_target": {"translation_mm": [1.0, 2.0, 3.0], "rotation_deg": [4.0, 5.0, 6.0]},
              "warnings": ["joint 2 outside its limits"]},
             {"camera_in_target": {"translation_mm": [7.0, 8.0, 9.0], "rotation_deg": [0.0, 0.0, 0.0]},
-             "tool_in_target": {"translation_mm": [1.5, 0.0, 0.0], "rotation_deg": [0.0, 0.0, 0.0]}}]});
+             "tool_in_target": {"translation_mm": [1.5, 0.0, 0.0], "rotation_deg": [0.0, 0.0, 0.0]}}]}"#,
+        )
+        .unwrap();
         let t = forward_table(&forward);
         assert!(
             t.contains("1.000 2.000 3.000") && t.contains("7.000 8.000 9.000"),
             "{t}"
         );
         assert!(t.contains("tool") && t.contains("warning: joint 2"), "{t}");
-        let comp =
-            json!({"joints_deg": [[1.0, 2.0, 3.0, 4.0, 5.0, 6.0]], "residual_mm": [0.00012]});
+        let comp: CompensateAnswer = serde_json::from_str(
+            r#"{"joints_deg": [[1.0, 2.0, 3.0, 4.0, 5.0, 6.0]], "residual_mm": [0.00012]}"#,
+        )
+        .unwrap();
         let t = compensate_table(&comp);
         assert!(t.contains("1.0000 2.0000") && t.contains("0.0001"), "{t}");
     }

@@ -5,13 +5,9 @@
 use std::fmt::Write;
 use std::path::PathBuf;
 
-use serde_json::{json, Value};
-
-use super::client::{Client, ClientError};
+use super::client::{answer_of, Client, ClientError};
 use super::evaluate::{parse_row, read_input, SetArgs};
-
-/// A pose row: x, y, z (mm), rx, ry, rz (deg, fixed-axis X-Y-Z).
-const POSE_WIDTH: usize = 6;
+use super::evaluate_docs::{pose_doc, FilterAnswer, FilterBody, POSE_WIDTH};
 /// Column names of the input (a header line with letters is skipped).
 pub const INPUT_COLUMNS: &str = "x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg";
 /// Column names of the output: the filtered flange pose in the base frame
@@ -41,18 +37,8 @@ pub struct FilterArgs {
     pub seed: Option<String>,
 }
 
-fn pose_doc(row: &[f64], what: &str) -> Result<Value, String> {
-    if row.len() != POSE_WIDTH {
-        return Err(format!(
-            "{what} has {POSE_WIDTH} numbers (x,y,z mm, rx,ry,rz deg), not {}",
-            row.len()
-        ));
-    }
-    Ok(json!({"translation_mm": &row[..3], "rotation_deg": &row[3..]}))
-}
-
 /// The `filter` request body of a CSV text and the flags.
-pub fn filter_body(csv: &str, args: &FilterArgs) -> Result<Value, String> {
+pub fn filter_body(csv: &str, args: &FilterArgs) -> Result<FilterBody, String> {
     let mut targets = Vec::new();
     for (n, line) in csv.lines().enumerate() {
         let line = line.trim();
@@ -68,48 +54,46 @@ pub fn filter_body(csv: &str, args: &FilterArgs) -> Result<Value, String> {
             "no targets in the file: one {INPUT_COLUMNS} row per line"
         ));
     }
-    let mut body = json!({
-        "targets": targets,
-        "tool": pose_doc(&parse_row(&args.tool, "--tool")?, "--tool")?,
-    });
-    if let Some(seed) = &args.seed {
-        body["seed_joints_deg"] = json!(parse_row(seed, "--seed")?);
-    }
-    Ok(body)
+    Ok(FilterBody {
+        targets,
+        tool: pose_doc(&parse_row(&args.tool, "--tool")?, "--tool")?,
+        seed_joints_deg: args
+            .seed
+            .as_deref()
+            .map(|seed| parse_row(seed, "--seed"))
+            .transpose()?,
+    })
 }
 
 /// The answer as CSV ([`OUTPUT_COLUMNS`]), one line per target in order.
-pub fn filter_csv(answer: &Value) -> String {
+pub fn filter_csv(answer: &FilterAnswer) -> String {
     let mut out = format!("{OUTPUT_COLUMNS}\n");
-    let errors: Vec<(u64, &str)> = answer["errors"]
-        .as_array()
-        .into_iter()
-        .flatten()
-        .filter_map(|e| Some((e["index"].as_u64()?, e["message"].as_str()?)))
-        .collect();
-    let count = answer["nominal_targets"].as_array().map_or(0, Vec::len);
-    for i in 0..count {
-        let pose = &answer["nominal_targets"][i];
-        let numbers = |v: &Value| {
-            v.as_array()
-                .into_iter()
-                .flatten()
-                .filter_map(Value::as_f64)
-                .map(|x| format!("{x}"))
-                .collect::<Vec<_>>()
-        };
-        let mut cells = numbers(&pose["translation_mm"]);
-        cells.extend(numbers(&pose["rotation_deg"]));
+    // The numbers given (a missing one leaves its cell empty).
+    let numbers =
+        |v: &[Option<f64>]| -> Vec<String> { v.iter().flatten().map(|x| format!("{x}")).collect() };
+    for (i, pose) in answer.nominal_targets.iter().enumerate() {
+        let mut cells = Vec::new();
+        if let Some(pose) = pose {
+            cells.extend(numbers(&pose.translation_mm));
+            cells.extend(numbers(&pose.rotation_deg));
+        }
         cells.resize(POSE_WIDTH, String::new());
-        let joints = numbers(&answer["joints_deg"][i]).join(" ");
-        let residual = answer["residual_mm"][i]
-            .as_f64()
+        let joints = match answer.joints_deg.get(i) {
+            Some(Some(joints)) => numbers(joints).join(" "),
+            _ => String::new(),
+        };
+        let residual = answer
+            .residual_mm
+            .get(i)
+            .copied()
+            .flatten()
             .map_or(String::new(), |r| format!("{r}"));
-        let error = errors
+        let error = answer
+            .errors
             .iter()
-            .find(|(k, _)| *k == i as u64)
-            .map_or(String::new(), |(_, m)| {
-                format!("\"{}\"", m.replace('"', "\"\""))
+            .find(|e| e.index == i)
+            .map_or(String::new(), |e| {
+                format!("\"{}\"", e.message.replace('"', "\"\""))
             });
         let _ = writeln!(out, "{i},{},{joints},{residual},{error}", cells.join(","));
     }
@@ -123,12 +107,9 @@ pub async fn filter(client: &Client, args: &FilterArgs) -> Result<(), ClientErro
         .evaluate(&args.set.serial, args.set.version, "filter", &body)
         .await?;
     if args.set.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&answer).unwrap_or_default()
-        );
+        println!("{}", answer.trim_end());
     } else {
-        print!("{}", filter_csv(&answer));
+        print!("{}", filter_csv(&answer_of(&answer)?));
     }
     Ok(())
 }
@@ -154,10 +135,11 @@ mod tests {
     fn a_csv_with_header_and_comments_becomes_the_request() {
         let csv = "x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg\n# first\n150,0,-790,3.5,3.7,1e-3\n\n10 20 30 0 0 0\n";
         let body = filter_body(csv, &args()).unwrap();
-        assert_eq!(body["targets"].as_array().unwrap().len(), 2);
-        assert_eq!(body["targets"][0]["rotation_deg"], json!([3.5, 3.7, 0.001]));
-        assert_eq!(body["tool"]["translation_mm"], json!([0.0, 0.0, 100.0]));
-        assert_eq!(body["seed_joints_deg"][4], 60.0);
+        assert_eq!(body.targets.len(), 2);
+        assert_eq!(body.targets[0].rotation_deg, [3.5, 3.7, 0.001]);
+        assert_eq!(body.targets[1].translation_mm, [10.0, 20.0, 30.0]);
+        assert_eq!(body.tool.translation_mm, [0.0, 0.0, 100.0]);
+        assert_eq!(body.seed_joints_deg.unwrap()[4], 60.0);
     }
 
     #[test]
@@ -173,12 +155,15 @@ mod tests {
 
     #[test]
     fn the_answer_is_one_csv_line_per_target_errors_included() {
-        let answer = json!({
+        let answer: FilterAnswer = serde_json::from_str(
+            r#"{
             "nominal_targets": [
                 {"translation_mm": [1.0, 2.0, 3.0], "rotation_deg": [4.0, 5.0, 6.0]}, null],
             "joints_deg": [[1.0, 2.0, 3.0, 4.0, 5.0, 6.0], null],
             "residual_mm": [0.0001, null],
-            "errors": [{"index": 1, "message": "target out of reach"}]});
+            "errors": [{"index": 1, "message": "target out of reach"}]}"#,
+        )
+        .unwrap();
         let csv = filter_csv(&answer);
         let lines: Vec<&str> = csv.lines().collect();
         assert_eq!(lines[0], OUTPUT_COLUMNS);

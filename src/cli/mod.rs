@@ -4,7 +4,10 @@
 
 pub mod campaign;
 pub mod client;
+mod client_error;
+pub mod command;
 pub mod evaluate;
+pub mod evaluate_docs;
 pub mod filter;
 pub mod plan;
 
@@ -12,9 +15,9 @@ use std::io::{IsTerminal, Write};
 use std::path::Path;
 use std::time::Duration;
 
-use serde_json::{json, Value};
+use serde::{Deserialize, Serialize};
 
-use client::{Client, ClientError};
+use client::{answer_of, Client, ClientError};
 
 /// How often `calibrate --wait` asks for the job's progress.
 const POLL_INTERVAL: Duration = Duration::from_millis(250);
@@ -63,7 +66,7 @@ pub async fn upload(
     robot: RobotPolicy,
 ) -> Result<String, ClientError> {
     let (file, _) = campaign::read(dir).map_err(ClientError::Local)?;
-    let exists = client.get_robot(serial).await?.is_some();
+    let exists = client.robot_exists(serial).await?;
     match (exists, robot) {
         (true, RobotPolicy::CreateIfMissing) => eprintln!(
             "robot {serial} exists: its kinematics are kept (--replace-robot replaces them with the campaign's)"
@@ -77,18 +80,10 @@ pub async fn upload(
             eprintln!("robot {serial} created");
         }
     }
-    let session =
-        serde_json::to_value(&file.session).map_err(|e| ClientError::Local(e.to_string()))?;
-    let id = client.create_session(serial, &session).await?;
+    let id = client.create_session(serial, &file.session).await?;
     let archive = zip_campaign(dir).map_err(ClientError::Local)?;
     let answer = client.upload_dataset(&id, archive.path()).await?;
-    eprintln!(
-        "uploaded {} poses to session {id}",
-        answer
-            .get("poses_created")
-            .and_then(Value::as_u64)
-            .unwrap_or(0)
-    );
+    eprintln!("uploaded {} poses to session {id}", answer.poses_created);
     Ok(id)
 }
 
@@ -105,8 +100,8 @@ async fn check_session_serial(
     serial: &str,
     session: &str,
 ) -> Result<(), ClientError> {
-    let found = client.get_session(session).await?;
-    match found.get("serial").and_then(Value::as_str) {
+    let found: SessionOwner = client.get_session(session).await?;
+    match found.serial.as_deref() {
         Some(owner) if owner == serial => Ok(()),
         Some(owner) => Err(ClientError::Local(format!(
             "session {session} belongs to robot {owner}, not {serial}"
@@ -114,6 +109,63 @@ async fn check_session_serial(
         None => Err(ClientError::Local(format!(
             "the server's session {session} names no robot"
         ))),
+    }
+}
+
+/// The robot a session belongs to.
+#[derive(Debug, Deserialize)]
+struct SessionOwner {
+    serial: Option<String>,
+}
+
+/// Where a job is, as `calibrate --wait` follows it.
+#[derive(Debug, Deserialize)]
+struct JobProgress {
+    state: Option<String>,
+    #[serde(default)]
+    progress: f64,
+    stage: Option<String>,
+    error: Option<String>,
+}
+
+/// What `calibrate` did: queued a job, or (with `--wait`) saw it succeed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Calibration {
+    Started {
+        job_id: String,
+    },
+    /// The finished job's document as the server wrote it.
+    Succeeded {
+        job_id: String,
+        job: String,
+    },
+}
+
+/// What `calibrate` prints without `--wait`.
+#[derive(Serialize)]
+struct Started<'a> {
+    job_id: &'a str,
+}
+
+impl Calibration {
+    pub fn job_id(&self) -> &str {
+        match self {
+            Calibration::Started { job_id } | Calibration::Succeeded { job_id, .. } => job_id,
+        }
+    }
+}
+
+/// `{"job_id": …}`, or the finished job's document.
+impl std::fmt::Display for Calibration {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Calibration::Started { job_id } => {
+                let text =
+                    serde_json::to_string(&Started { job_id }).map_err(|_| std::fmt::Error)?;
+                f.write_str(&text)
+            }
+            Calibration::Succeeded { job, .. } => f.write_str(job.trim_end()),
+        }
     }
 }
 
@@ -161,76 +213,81 @@ pub async fn calibrate(
     serial: &str,
     session: &str,
     wait: bool,
-) -> Result<Value, ClientError> {
+) -> Result<Calibration, ClientError> {
     check_session_serial(client, serial, session).await?;
-    let job = client.start_calibration(session, &json!({})).await?;
+    let job_id = client.start_calibration(session, &NoOptions {}).await?;
     if !wait {
-        return Ok(json!({ "job_id": job }));
+        return Ok(Calibration::Started { job_id });
     }
     let mut progress = Progress::new(std::io::stderr().is_terminal());
     loop {
-        let state = client.job(&job).await?;
-        let status = state
-            .get("state")
-            .and_then(Value::as_str)
-            .unwrap_or("?")
-            .to_string();
-        let fraction = state.get("progress").and_then(Value::as_f64).unwrap_or(0.0);
-        let stage = state.get("stage").and_then(Value::as_str).unwrap_or("");
-        if let Some(text) = progress.line(fraction, stage) {
-            eprint!("{text}");
+        let text = client.job(&job_id).await?;
+        let state: JobProgress = answer_of(&text)?;
+        let status = state.state.as_deref().unwrap_or("?");
+        if let Some(line) = progress.line(state.progress, state.stage.as_deref().unwrap_or("")) {
+            eprint!("{line}");
         }
-        match status.as_str() {
+        match status {
             "succeeded" => {
                 progress.finish();
-                return Ok(state);
+                return Ok(Calibration::Succeeded { job_id, job: text });
             }
             "failed" | "cancelled" => {
                 progress.finish();
-                let error = state
-                    .get("error")
-                    .and_then(Value::as_str)
-                    .unwrap_or(&status);
-                return Err(ClientError::Local(format!("job {job} {status}: {error}")));
+                let error = state.error.as_deref().unwrap_or(status);
+                return Err(ClientError::Local(format!(
+                    "job {job_id} {status}: {error}"
+                )));
             }
             _ => tokio::time::sleep(POLL_INTERVAL).await,
         }
     }
 }
 
+/// The request body of a calibration with the server's default options.
+#[derive(Serialize)]
+struct NoOptions {}
+
+/// The fields of `GET /v1/jobs` that `robocal jobs` shows.
+#[derive(Debug, Default, Deserialize)]
+struct JobPage {
+    #[serde(default)]
+    items: Vec<JobLine>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+struct JobLine {
+    id: Option<String>,
+    state: Option<String>,
+    #[serde(default)]
+    progress: f64,
+    serial: Option<String>,
+    session_id: Option<String>,
+    created_at: Option<String>,
+}
+
 /// `robocal jobs`: the newest `limit` jobs as a table, newest first.
 pub async fn jobs(client: &Client, limit: u32) -> Result<String, ClientError> {
-    let page = client.jobs(limit, None).await?;
-    let items = page
-        .get("items")
-        .and_then(Value::as_array)
-        .cloned()
-        .unwrap_or_default();
-    Ok(jobs_table(&items))
+    let page: JobPage = client.jobs(limit, None).await?;
+    Ok(jobs_table(&page.items))
 }
 
 /// One line per job: id, state, progress, serial, session, creation time.
-fn jobs_table(items: &[Value]) -> String {
-    let text = |v: &Value, key: &str| {
-        v.get(key)
-            .and_then(Value::as_str)
-            .unwrap_or("-")
-            .to_string()
-    };
+fn jobs_table(items: &[JobLine]) -> String {
+    let text = |v: &Option<String>| v.as_deref().unwrap_or("-").to_string();
     let mut out = format!(
         "{:<36}  {:<9}  {:>4}  {:<16}  {:<36}  {}\n",
         "JOB", "STATE", "DONE", "SERIAL", "SESSION", "CREATED"
     );
     for job in items {
-        let progress = job.get("progress").and_then(Value::as_f64).unwrap_or(0.0);
         out.push_str(&format!(
             "{:<36}  {:<9}  {:>3.0}%  {:<16}  {:<36}  {}\n",
-            text(job, "id"),
-            text(job, "state"),
-            progress * 100.0,
-            text(job, "serial"),
-            text(job, "session_id"),
-            text(job, "created_at"),
+            text(&job.id),
+            text(&job.state),
+            job.progress * 100.0,
+            text(&job.serial),
+            text(&job.session_id),
+            text(&job.created_at),
         ));
     }
     out

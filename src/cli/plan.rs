@@ -4,7 +4,8 @@
 
 use std::path::PathBuf;
 
-use serde_json::Value;
+use serde::de::IgnoredAny;
+use serde::Deserialize;
 
 use super::client::Client;
 use super::write_output;
@@ -28,41 +29,68 @@ pub struct PlanArgs {
     pub out: Option<PathBuf>,
 }
 
-fn read_request(path: &PathBuf) -> Result<Value, String> {
+/// The request as the user wrote it (the server checks it), once it is
+/// known to be JSON.
+fn read_request(path: &PathBuf) -> Result<String, String> {
     let text = if path.as_os_str() == "-" {
         std::io::read_to_string(std::io::stdin()).map_err(|e| format!("stdin: {e}"))?
     } else {
         std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?
     };
-    serde_json::from_str(&text).map_err(|e| format!("{}: not JSON: {e}", path.display()))
+    serde_json::from_str::<IgnoredAny>(&text)
+        .map_err(|e| format!("{}: not JSON: {e}", path.display()))?;
+    Ok(text)
+}
+
+/// The fields of the plan document the terminal line shows.
+#[derive(Debug, Default, Deserialize)]
+pub struct PlanSummary {
+    pub id: Option<String>,
+    pub serial: Option<String>,
+    #[serde(default)]
+    pub poses: Vec<IgnoredAny>,
+    pub purpose: Option<String>,
+    #[serde(default)]
+    pub predicted: Predicted,
+    pub path_length_deg: Option<f64>,
+    pub model: Option<String>,
+}
+
+/// What the plan predicts.
+#[derive(Debug, Default, Deserialize)]
+pub struct Predicted {
+    pub validation_error_mean_mm: Option<f64>,
+    pub condition_number: Option<f64>,
 }
 
 /// One line about the plan for the terminal.
-pub fn summary(plan: &Value) -> String {
-    let poses = plan["poses"].as_array().map_or(0, Vec::len);
-    let p = &plan["predicted"];
+pub fn summary(plan: &PlanSummary) -> String {
+    let text = |v: &Option<String>| v.clone().unwrap_or_else(|| "?".into());
+    let p = &plan.predicted;
     format!(
-        "plan {} for {}: {poses} poses ({}), predicted validation error {:.4} mm, condition number {:.1}, path {:.0} deg, model {}",
-        plan["id"].as_str().unwrap_or("?"),
-        plan["serial"].as_str().unwrap_or("?"),
-        plan["purpose"].as_str().unwrap_or("?"),
-        p["validation_error_mean_mm"].as_f64().unwrap_or(f64::NAN),
-        p["condition_number"].as_f64().unwrap_or(f64::NAN),
-        plan["path_length_deg"].as_f64().unwrap_or(f64::NAN),
-        plan["model"].as_str().unwrap_or("?"),
+        "plan {} for {}: {} poses ({}), predicted validation error {:.4} mm, condition number {:.1}, path {:.0} deg, model {}",
+        text(&plan.id),
+        text(&plan.serial),
+        plan.poses.len(),
+        text(&plan.purpose),
+        p.validation_error_mean_mm.unwrap_or(f64::NAN),
+        p.condition_number.unwrap_or(f64::NAN),
+        plan.path_length_deg.unwrap_or(f64::NAN),
+        text(&plan.model),
     )
 }
 
 /// Plan, then fetch the plan in `args.format` and write it.
 pub async fn plan(client: &Client, args: &PlanArgs) -> Result<(), String> {
     let body = read_request(&args.request)?;
-    let plan = client
-        .create_campaign_plan(&args.serial, &body)
+    let plan: PlanSummary = client
+        .create_campaign_plan(&args.serial, body)
         .await
         .map_err(|e| e.to_string())?;
     eprintln!("{}", summary(&plan));
-    let id = plan["id"]
-        .as_str()
+    let id = plan
+        .id
+        .as_deref()
         .ok_or("the server's answer has no `id`")?;
     let bytes = client
         .campaign_plan(&args.serial, id, &args.format)

@@ -94,7 +94,7 @@ pub enum PoseKind {
 
 impl PoseKind {
     /// The kind of a stored pose.
-    pub fn of_stored(flange_pose: Option<&serde_json::Value>) -> PoseKind {
+    pub fn of_stored(flange_pose: Option<&FlangePoseDoc>) -> PoseKind {
         match flange_pose {
             Some(_) => PoseKind::Flange,
             None => PoseKind::Joints,
@@ -124,19 +124,45 @@ impl PoseKind {
     }
 }
 
+/// Where a checked pose says the robot was.
+#[derive(Debug, Clone, PartialEq)]
+pub enum RobotPose {
+    /// Its joint angles, checked against the robot.
+    Joints(JointsDeg),
+    /// The controller's flange pose, checked (the document as uploaded).
+    Flange(FlangePoseDoc),
+}
+
+impl RobotPose {
+    pub fn kind(&self) -> PoseKind {
+        match self {
+            RobotPose::Joints(_) => PoseKind::Joints,
+            RobotPose::Flange(_) => PoseKind::Flange,
+        }
+    }
+
+    /// The pose as a pose row keeps it: its joints, or for a flange pose no
+    /// joints (the row's `joints_deg` is empty) and the flange document.
+    pub fn into_row(self) -> (JointsDeg, Option<FlangePoseDoc>) {
+        match self {
+            RobotPose::Joints(joints) => (joints, None),
+            RobotPose::Flange(doc) => (JointsDeg::stored(Vec::new()), Some(doc)),
+        }
+    }
+}
+
 /// Checks where one pose says the robot was: exactly one of `joints_deg`
 /// (against the robot's `joint_count`) and `flange_pose`; fields are named
 /// `{prefix}joints_deg` / `{prefix}flange_pose`. The pose's kind when it
 /// names one (even if its values fail, so the caller can still report a
-/// mixed session), and the typed joints when they pass (empty for a flange
-/// pose: such a pose carries no joints).
+/// mixed session), and the checked pose when it passes.
 pub fn check_robot_pose(
     c: &mut Checker,
     prefix: &str,
     joints_deg: Option<&[f64]>,
     flange_pose: Option<&FlangePoseDoc>,
     joint_count: usize,
-) -> (Option<PoseKind>, Option<JointsDeg>) {
+) -> (Option<PoseKind>, Option<RobotPose>) {
     match (joints_deg, flange_pose) {
         (Some(_), Some(_)) => {
             c.fail(
@@ -154,13 +180,13 @@ pub fn check_robot_pose(
         }
         (Some(joints), None) => {
             let typed = JointsDeg::check(c, &format!("{prefix}joints_deg"), joints, joint_count);
-            (Some(PoseKind::Joints), typed)
+            (Some(PoseKind::Joints), typed.map(RobotPose::Joints))
         }
         (None, Some(doc)) => {
             let pose = FlangePose::check(c, &format!("{prefix}flange_pose"), doc);
             (
                 Some(PoseKind::Flange),
-                pose.map(|_| JointsDeg::stored(Vec::new())),
+                pose.map(|_| RobotPose::Flange(doc.clone())),
             )
         }
     }

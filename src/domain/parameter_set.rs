@@ -11,7 +11,7 @@ use robocal_calib::camera::Intrinsics;
 use robocal_calib::kinematics::{CalibratedModel, ParamLayout};
 use serde::{Deserialize, Serialize};
 
-use crate::pipeline::parameter_covariance::CovarianceDoc;
+use super::CovarianceDoc;
 use crate::report::ParameterReport;
 use crate::schema::robot::{doc_to_model, KinematicsDoc};
 use crate::schema::session::Instrument;

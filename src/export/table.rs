@@ -6,8 +6,8 @@ use std::fmt::Write;
 
 use serde::Serialize;
 
+use crate::domain::CovarianceDoc;
 use crate::domain::ParameterSet;
-use crate::pipeline::parameter_covariance::CovarianceDoc;
 use crate::report::{IdentifiabilityReport, ParameterReport};
 use crate::schema::robot::Convention;
 use crate::schema::session::Instrument;

@@ -12,10 +12,10 @@ use std::io::Cursor;
 use image::{ImageFormat, ImageReader};
 use robocal_calib::vision::{self, DecodeLimits, GrayImage};
 
-pub use found::{detect, ImageDetection};
+pub use found::detect;
 pub use gate::{DecodeGate, DecodePermit};
 
-use crate::domain::Target;
+use crate::domain::{ImageDetection, Target};
 use crate::schema::session::MAX_IMAGE_SIDE;
 
 /// Most bytes per pixel any accepted PNG/JPEG decodes to (16-bit RGBA).

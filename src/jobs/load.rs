@@ -3,16 +3,13 @@
 use std::sync::Arc;
 use std::time::Duration;
 
-use crate::domain::{label_or_number, ClaimedJob, FlangePose};
-use crate::imaging::{DecodeGate, ImageDetection};
+use crate::domain::{label_or_number, FlangePose};
+use crate::imaging::DecodeGate;
 use crate::pipeline::{ImageSource, Input, PoseImage, PoseInput};
-use crate::schema::flange_pose::FlangePoseDoc;
 use crate::schema::job::CalibrationOptions;
 use crate::schema::robot::KinematicsDoc;
-use crate::schema::session::{ImagePointDoc, SessionBody};
-use crate::schema::PoseDoc;
 use crate::service::camera_reuse::{self, ReuseError};
-use crate::store::{DynStore, StoreError};
+use crate::store::{ClaimedJob, DynStore, StoreError};
 
 /// Poses read per store call.
 const PAGE: i64 = 500;
@@ -43,7 +40,7 @@ pub async fn load_input(
     let bad = |what: &str, e: serde_json::Error| LoadError::Gone(format!("stored {what}: {e}"));
     let kinematics: KinematicsDoc =
         serde_json::from_value(robot.kinematics).map_err(|e| bad("kinematics", e))?;
-    let spec: SessionBody = serde_json::from_value(session.spec).map_err(|e| bad("session", e))?;
+    let spec = session.spec;
     let options: CalibrationOptions =
         serde_json::from_value(job.options.clone()).map_err(|e| bad("options", e))?;
     let fixed_camera = match &spec.camera_calibration_id {
@@ -70,31 +67,13 @@ pub async fn load_input(
                 key: meta.sha256.clone(),
                 width: meta.width,
                 height: meta.height,
-                detection: p
-                    .image_detection
-                    .clone()
-                    .and_then(|d| serde_json::from_value::<ImageDetection>(d).ok()),
+                detection: p.image_detection.clone(),
             });
-            let image_points: Vec<ImagePointDoc> =
-                serde_json::from_value(p.points).map_err(|e| bad("points", e))?;
             let measured = p.measured.unwrap_or_default();
-            let measured_position_mm: Option<[f64; 3]> =
-                serde_json::from_value(measured["measured_position_mm"].clone())
-                    .map_err(|e| bad("measured_position_mm", e))?;
-            let measured_pose: Option<PoseDoc> =
-                serde_json::from_value(measured["measured_pose"].clone())
-                    .map_err(|e| bad("measured_pose", e))?;
             let flange_pose = match &p.flange_pose {
-                Some(doc) => {
-                    let doc: FlangePoseDoc =
-                        serde_json::from_value(doc.clone()).map_err(|e| bad("flange_pose", e))?;
-                    Some(FlangePose::stored(&doc).ok_or_else(|| {
-                        LoadError::Gone(format!(
-                            "stored flange_pose of pose {} is not a pose",
-                            p.id
-                        ))
-                    })?)
-                }
+                Some(doc) => Some(FlangePose::stored(doc).ok_or_else(|| {
+                    LoadError::Gone(format!("stored flange_pose of pose {} is not a pose", p.id))
+                })?),
                 None => None,
             };
             let label = label_or_number(p.label.as_deref(), poses.len());
@@ -105,9 +84,9 @@ pub async fn load_input(
                 flange_pose,
                 set: p.set,
                 image,
-                image_points,
-                measured_position_mm,
-                measured_pose,
+                image_points: p.points,
+                measured_position_mm: measured.measured_position_mm,
+                measured_pose: measured.measured_pose,
             });
         }
         match page.next_cursor {

@@ -14,10 +14,11 @@ use tokio::time::Instant;
 
 use super::load::{load_input, LoadError};
 use super::queue::{claim_next, Lease, QueuePolicy};
-use crate::domain::{JobOutcome, LeaseStatus, PoseDetection};
+use crate::domain::LeaseStatus;
 use crate::imaging::DecodeGate;
 use crate::pipeline::{self, PipelineError, Stage};
 use crate::store::DynStore;
+use crate::store::{JobOutcome, PoseDetection};
 
 #[derive(Debug, Clone)]
 pub struct PoolConfig {
@@ -273,13 +274,13 @@ fn panic_message(join: tokio::task::JoinError) -> String {
 
 /// Test hook: gives a succeeded job without a parameter set a marker one
 /// (`{"test_marker": true, "job_id", "attempt"}`), stored like a real result.
-fn mark_test_parameter_set(outcome: &mut JobOutcome, job: &crate::domain::ClaimedJob) {
+fn mark_test_parameter_set(outcome: &mut JobOutcome, job: &crate::store::ClaimedJob) {
     if let JobOutcome::Succeeded {
         parameter_set: set @ None,
         ..
     } = outcome
     {
-        *set = Some(crate::domain::NewParameterSet {
+        *set = Some(crate::store::NewParameterSet {
             parameters: serde_json::json!({
                 "test_marker": true,
                 "job_id": job.id,

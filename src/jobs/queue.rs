@@ -4,10 +4,9 @@
 
 use std::time::Duration;
 
-use crate::domain::{
-    now_unix_ms, ClaimedJob, JobOutcome, JobRecord, LeaseStatus, NewJob, SessionRecord,
-};
+use crate::domain::{now_unix_ms, LeaseStatus};
 use crate::schema::job::CalibrationOptions;
+use crate::store::{ClaimedJob, JobOutcome, JobRecord, NewJob, SessionRecord};
 use crate::store::{DynStore, StoreResult};
 
 pub const CALIBRATION_KIND: &str = "calibration";

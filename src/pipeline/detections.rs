@@ -21,7 +21,7 @@ use serde::Serialize;
 use super::camera_stage::CameraStep;
 use super::measure::{GridPoint, Measured};
 use super::PoseInput;
-use crate::domain::PoseDetection;
+use crate::store::PoseDetection;
 
 #[derive(Debug, Clone, Serialize)]
 struct PointDoc {
@@ -89,7 +89,7 @@ fn stored(pose: &PoseInput, doc: &PoseDoc, measured: &Measured, i: usize) -> Pos
             .get(i)
             .and_then(Option::as_ref)
             .filter(|_| fresh)
-            .map(|d| d.to_value()),
+            .cloned(),
     }
 }
 

@@ -29,8 +29,8 @@ pub fn run(
     let out = super::hand_eye_results::hand_eye_output(input, measured, camera, &step, notes);
     within(Stage::Report, "done", 1.0);
     Ok(super::Output {
-        parameter_set: Some(crate::domain::NewParameterSet {
-            parameters: out.parameters,
+        parameter_set: Some(crate::store::NewParameterSet {
+            parameters: serde_json::to_value(&out.parameters).unwrap_or_default(),
             report: serde_json::to_value(&out.report).unwrap_or_default(),
         }),
         summary: out.summary,

@@ -7,7 +7,7 @@
 //! joint table with a measured hand–eye would present uncalibrated
 //! kinematics as calibrated.
 
-use nalgebra::{Matrix6, Vector3, Vector6};
+use nalgebra::Vector3;
 use robocal_calib::camera::Intrinsics;
 use robocal_calib::geometry::{pose_from_xyz_rpy_deg, Pose, PoseXyzRpy};
 use robocal_calib::handeye::PoseSigma;
@@ -16,6 +16,7 @@ use serde::{Deserialize, Serialize};
 
 use super::camera_stage::{camera_mode, camera_report, CameraStep};
 use super::flange_stage::HandEyeStep;
+use super::hand_eye_sigmas::{inverse_sigma, sigmas, Sigmas};
 use super::measure::Measured;
 use super::output::Summary;
 use super::results::residual_field;
@@ -61,76 +62,6 @@ pub struct HandEyeSetDoc {
     pub camera_calibration_id: Option<String>,
     pub fixed: Vec<String>,
     pub parameters: Vec<ParameterReport>,
-}
-
-/// The standard deviations the report stands by (the jackknife's when
-/// there were enough poses) and their source.
-struct Sigmas {
-    flange_to_camera: PoseSigma,
-    target_to_base: PoseSigma,
-    board_scale: f64,
-    source: &'static str,
-}
-
-fn sigmas(step: &HandEyeStep, camera: &CameraStep) -> Sigmas {
-    let fit = &step.fit;
-    let formal_scale = fit.board_scale_sigma.unwrap_or(0.0);
-    let s = match &fit.jackknife {
-        Some(j) => Sigmas {
-            flange_to_camera: j.flange_to_camera,
-            target_to_base: j.target_to_base,
-            board_scale: j.board_scale.unwrap_or(formal_scale),
-            source: "jackknife",
-        },
-        None => Sigmas {
-            flange_to_camera: fit.flange_to_camera_sigma,
-            target_to_base: fit.target_to_base_sigma,
-            board_scale: formal_scale,
-            source: "formal",
-        },
-    };
-    // The bundle holds the camera stage's intrinsics, so neither the
-    // formal nor the jackknife sigmas see their error; the principal
-    // point's turns every camera ray by sigma_c / f (rad), which goes
-    // straight into the hand–eye and board rotations. Added in quadrature
-    // about every axis (conservative: it acts about the camera's x and y).
-    let principal_deg = camera.calibration.std_dev.map_or(0.0, |sd| {
-        let i = camera.intrinsics();
-        (sd.cx / i.fx).hypot(sd.cy / i.fy).to_degrees()
-    });
-    let widen = |p: PoseSigma| PoseSigma {
-        rotation_deg: p.rotation_deg.map(|r| r.hypot(principal_deg)),
-        ..p
-    };
-    Sigmas {
-        flange_to_camera: widen(s.flange_to_camera),
-        target_to_base: widen(s.target_to_base),
-        ..s
-    }
-}
-
-/// Standard deviations of `pose.inverse()` from those of `pose` (taken
-/// uncorrelated), in `geometry::pose_error` coordinates: a left
-/// perturbation `(v, w)` of `T = (R, t)` moves `T^-1` by
-/// `(-R^T v - R^T [t]x w, -R^T w)`.
-fn inverse_sigma(pose: &Pose, sigma: &PoseSigma) -> PoseSigma {
-    let r_t = pose.rotation.to_rotation_matrix().into_inner().transpose();
-    let t = pose.translation.vector;
-    let mut j = Matrix6::zeros();
-    j.fixed_view_mut::<3, 3>(0, 0).copy_from(&(-r_t));
-    j.fixed_view_mut::<3, 3>(0, 3)
-        .copy_from(&(-r_t * t.cross_matrix()));
-    j.fixed_view_mut::<3, 3>(3, 3).copy_from(&(-r_t));
-    let d = Vector6::new(
-        sigma.translation_mm[0],
-        sigma.translation_mm[1],
-        sigma.translation_mm[2],
-        sigma.rotation_deg[0].to_radians(),
-        sigma.rotation_deg[1].to_radians(),
-        sigma.rotation_deg[2].to_radians(),
-    );
-    let cov = Matrix6::from_diagonal(&d.component_mul(&d));
-    PoseSigma::from_covariance(&(j * cov * j.transpose()))
 }
 
 /// The six rows of a frame: its guess (identity without one) against the
@@ -182,7 +113,7 @@ fn configured_pitch_mm(input: &Input) -> f64 {
 
 /// Everything the report stage produces for a flange-pose session.
 pub struct HandEyeOutput {
-    pub parameters: serde_json::Value,
+    pub parameters: HandEyeSetDoc,
     pub report: Report,
     pub summary: Summary,
 }
@@ -292,7 +223,7 @@ pub fn hand_eye_output(
         ..Summary::default()
     };
     HandEyeOutput {
-        parameters: serde_json::to_value(&set).unwrap_or_default(),
+        parameters: set,
         report,
         summary,
     }

@@ -7,8 +7,8 @@ use std::time::Duration;
 use robocal_calib::camera::Intrinsics;
 use robocal_calib::kinematics::RobotModel;
 
-use crate::domain::{FlangePose, JointsDeg};
-use crate::imaging::{DecodeGate, ImageDetection};
+use crate::domain::{FlangePose, ImageDetection, JointsDeg};
+use crate::imaging::DecodeGate;
 use crate::schema::job::CalibrationOptions;
 use crate::schema::robot::KinematicsDoc;
 use crate::schema::session::{ImagePointDoc, PoseSet, SessionBody};

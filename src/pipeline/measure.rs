@@ -14,8 +14,8 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Mutex;
 
 use super::{ImageSource, PipelineError, PoseImage, PoseInput};
-use crate::domain::Target;
-use crate::imaging::{self, ImageDetection};
+use crate::domain::{ImageDetection, Target};
+use crate::imaging;
 use crate::report::DetectionFailure;
 use crate::schema::session::ImagePointDoc;
 

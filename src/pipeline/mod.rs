@@ -18,11 +18,11 @@ mod flange_job;
 mod flange_stage;
 mod half_turn;
 pub mod hand_eye_results;
+mod hand_eye_sigmas;
 mod identify_stage;
 mod input;
 mod measure;
 mod output;
-pub mod parameter_covariance;
 pub mod results;
 mod screen_stage;
 mod session_cause;
@@ -36,9 +36,9 @@ use stage::stage_span;
 pub use stage::Stage;
 pub use validate::validate;
 
-use crate::domain::{NewParameterSet, PoseDetection};
 use crate::schema::session::Instrument;
 use crate::schema::{FieldError, PoseDoc};
+use crate::store::{NewParameterSet, PoseDetection};
 
 /// Fewest calibration poses a job accepts. Identification needs more
 /// observations than unknowns; the identification stage refines this check.

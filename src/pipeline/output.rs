@@ -3,8 +3,8 @@
 
 use serde::Serialize;
 
-use crate::domain::{NewParameterSet, PoseDetection};
 use crate::schema::FieldError;
+use crate::store::{NewParameterSet, PoseDetection};
 
 #[derive(Debug, Clone)]
 pub struct Output {

@@ -7,10 +7,9 @@ use robocal_calib::kinematics::{Instrument, ParamKind, ParamLayout};
 use super::camera_stage::{camera_mode, camera_report, CameraStep};
 use super::identify_stage::Identified;
 use super::measure::Measured;
-use super::parameter_covariance::CovarianceDoc;
 use super::screen_stage::Outlier;
 use super::{PoseInput, Summary};
-use crate::domain::ParameterSet;
+use crate::domain::{CovarianceDoc, ParameterSet};
 use crate::report::{
     CameraStd, DetectionReport, IdentifiabilityReport, ParameterReport, PoseReport, Report,
     ResidualSample,

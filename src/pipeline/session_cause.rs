@@ -8,8 +8,8 @@ use std::collections::BTreeMap;
 
 use super::measure::Measured;
 use super::{PipelineError, Stage};
+use crate::domain::ImageDetection;
 use crate::domain::Target;
-use crate::imaging::ImageDetection;
 
 /// What the session's images have in common when most of them (more than
 /// half) failed detection for one reason; `None` otherwise.

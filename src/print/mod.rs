@@ -10,9 +10,11 @@ pub mod page;
 pub mod pdf;
 pub mod query;
 pub mod svg;
+pub mod target;
 
 pub use page::{Page, PageFormat};
 pub use query::{parse_pairs, PrintError, PrintRequest};
+pub use target::PrintableTarget;
 
 /// `robocal target KEY=VALUE…`: the page's bytes. Errors name the key, as
 /// the HTTP route's 422 does.

@@ -5,7 +5,7 @@ use utoipa::ToSchema;
 
 use super::flange_pose::FlangePoseDoc;
 use super::{Checker, FieldError, PoseDoc, MAX_LENGTH_MM};
-use crate::domain::{check_robot_pose, JointsDeg};
+use crate::domain::{check_robot_pose, RobotPose};
 
 /// Most dots per board side.
 pub const MAX_GRID_SIDE: u32 = 1000;
@@ -109,7 +109,7 @@ pub struct CameraDoc {
 }
 
 /// `POST /v1/robots/{serial}/sessions` body.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SessionBody {
     #[serde(default)]
@@ -214,15 +214,16 @@ pub struct PoseJsonBody {
 }
 
 impl PoseJsonBody {
-    /// Checks the body against the session; its typed joints when it passes.
+    /// Checks the body against the session; where it says the robot was
+    /// when it passes.
     pub fn check(
         &self,
         instrument: Instrument,
         camera: Option<&CameraDoc>,
         joint_count: usize,
-    ) -> Result<JointsDeg, Vec<FieldError>> {
+    ) -> Result<RobotPose, Vec<FieldError>> {
         let mut c = Checker::default();
-        let (_, joints) = check_robot_pose(
+        let (_, robot_pose) = check_robot_pose(
             &mut c,
             "",
             self.joints_deg.as_deref(),
@@ -274,7 +275,7 @@ impl PoseJsonBody {
             }
         }
         c.finish()?;
-        Ok(joints.expect("checked above"))
+        Ok(robot_pose.expect("checked above"))
     }
 }
 

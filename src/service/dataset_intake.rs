@@ -5,18 +5,15 @@
 
 use std::path::Path;
 
-use serde_json::json;
-
 use super::dataset::{DatasetError, DatasetLimits, DatasetReader};
 use super::error::{ServiceError, ServiceResult};
 use super::images::inspect_and_hash;
-use super::intake::{stored_doc, PoseIntake};
+use super::intake::PoseIntake;
 use super::staged_images::StagedImages;
-use crate::domain::check_robot_pose;
-use crate::domain::JointsDeg;
-use crate::domain::{label_from_archive_path, NewPose, PoseRecord};
+use crate::domain::{check_robot_pose, label_from_archive_path, RobotPose};
 use crate::schema::session::Instrument;
 use crate::schema::Checker;
+use crate::store::{NewPose, PoseRecord};
 
 impl From<DatasetError> for ServiceError {
     fn from(e: DatasetError) -> ServiceError {
@@ -57,7 +54,7 @@ impl PoseIntake {
             c.fail("poses.json", "holds no poses");
         }
         let mut session_kind = self.pose_kind;
-        let mut joints: Vec<Option<JointsDeg>> = Vec::with_capacity(reader.manifest.len());
+        let mut robot_poses: Vec<Option<RobotPose>> = Vec::with_capacity(reader.manifest.len());
         for (i, p) in reader.manifest.iter().enumerate() {
             let prefix = format!("poses.json[{i}].");
             let (kind, typed) = check_robot_pose(
@@ -71,10 +68,12 @@ impl PoseIntake {
                 kind.check_same(&mut c, &prefix, session_kind);
                 session_kind = session_kind.or(Some(kind));
             }
-            joints.push(typed);
+            robot_poses.push(typed);
         }
         c.finish()?;
-        let mut joints = joints.into_iter().map(|q| q.expect("checked above"));
+        let mut robot_poses = robot_poses
+            .into_iter()
+            .map(|q| q.expect("checked above").into_row());
         let check = self.image_check();
         let mut staged = StagedImages::new(self.store.clone());
         let mut poses = Vec::with_capacity(reader.manifest.len());
@@ -105,15 +104,16 @@ impl PoseIntake {
             };
             self.store.put_blob(&ingested.meta, &bytes).await?;
             staged.stored(&ingested.meta.sha256);
+            let (joints_deg, flange_pose) = robot_poses.next().expect("one per manifest entry");
             poses.push(NewPose {
-                joints_deg: joints.next().expect("one per manifest entry"),
+                joints_deg,
                 set: reader.manifest[i].set,
                 image: Some(ingested.meta),
-                points: json!([]),
+                points: Vec::new(),
                 measured: None,
                 label: label_from_archive_path(&reader.manifest[i].image),
-                image_detection: ingested.detection.map(|d| d.to_value()),
-                flange_pose: stored_doc(reader.manifest[i].flange_pose.as_ref()),
+                image_detection: ingested.detection,
+                flange_pose,
             });
         }
         let stored = match self.store.add_poses(&self.session.id, &poses).await {

@@ -8,9 +8,8 @@ use std::sync::Arc;
 use sha2::{Digest, Sha256};
 
 use super::error::{ServiceError, ServiceResult};
-use crate::domain::ImageMeta;
-use crate::domain::Target;
-use crate::imaging::{self, DecodeGate, ImageDetection};
+use crate::domain::{ImageDetection, ImageMeta, Target};
+use crate::imaging::{self, DecodeGate};
 use crate::schema::session::SessionBody;
 use crate::store::DynStore;
 

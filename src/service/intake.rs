@@ -5,17 +5,14 @@
 
 use std::sync::Arc;
 
-use serde_json::json;
-
 use super::error::{ServiceError, ServiceResult};
 use super::images::{ingest_image, ImageCheck};
 use crate::domain::{check_robot_pose, PoseKind};
-use crate::domain::{NewPose, PoseRecord, SessionRecord};
 use crate::imaging::DecodeGate;
 use crate::schema::flange_pose::FlangePoseDoc;
 use crate::schema::session::{Instrument, PoseJsonBody, PoseSet, SessionBody};
 use crate::schema::Checker;
-use crate::store::DynStore;
+use crate::store::{DynStore, NewPose, PoseRecord, SessionRecord, TrackerMeasurement};
 
 /// A session about to take poses: its stored spec and its robot's joint
 /// count, looked up once.
@@ -48,11 +45,6 @@ pub async fn find_session(store: &DynStore, id: &str) -> ServiceResult<SessionRe
         .ok_or_else(|| ServiceError::not_found("session", id))
 }
 
-/// The session's stored spec (its `SessionBody`).
-pub fn session_spec(session: &SessionRecord) -> ServiceResult<SessionBody> {
-    serde_json::from_value(session.spec.clone()).map_err(ServiceError::internal)
-}
-
 /// Number of joints of the robot `serial` (0 for a joint table that is not a list).
 pub async fn robot_joint_count(store: &DynStore, serial: &str) -> ServiceResult<usize> {
     let robot = store
@@ -69,7 +61,7 @@ impl PoseIntake {
     /// Session `id` ready to take poses (404 when there is no such session).
     pub async fn open(store: &DynStore, gate: Arc<DecodeGate>, id: &str) -> ServiceResult<Self> {
         let session = find_session(store, id).await?;
-        let spec = session_spec(&session)?;
+        let spec = session.spec.clone();
         let joint_count = robot_joint_count(store, &session.serial).await?;
         let first = store.list_poses(&session.id, 1, None).await?;
         let pose_kind = first
@@ -113,27 +105,27 @@ impl PoseIntake {
         if let Some(kind) = kind_of(body.joints_deg.as_deref(), body.flange_pose.as_ref()) {
             kind.check_same(&mut c, "", self.pose_kind);
         }
-        let joints_deg = match checked {
-            Ok(joints) if c.errors.is_empty() => joints,
+        let (joints_deg, flange_pose) = match checked {
+            Ok(pose) if c.errors.is_empty() => pose.into_row(),
             Ok(_) => return Err(c.errors.into()),
             Err(mut errors) => {
                 errors.extend(c.errors);
                 return Err(errors.into());
             }
         };
-        let measured = body
-            .measured_position_mm
-            .map(|p| json!({ "measured_position_mm": p, "measured_pose": body.measured_pose }));
+        let measured = body.measured_position_mm.map(|p| TrackerMeasurement {
+            measured_position_mm: Some(p),
+            measured_pose: body.measured_pose,
+        });
         let pose = NewPose {
             joints_deg,
             set: body.set,
             image: None,
-            points: serde_json::to_value(body.image_points.unwrap_or_default())
-                .unwrap_or(json!([])),
+            points: body.image_points.unwrap_or_default(),
             measured,
             label: body.label,
             image_detection: None,
-            flange_pose: stored_doc(body.flange_pose.as_ref()),
+            flange_pose,
         };
         self.store_one(pose).await
     }
@@ -142,7 +134,7 @@ impl PoseIntake {
     /// the pose.
     pub async fn add_image(self, upload: ImagePose) -> ServiceResult<PoseRecord> {
         let mut c = Checker::default();
-        let (kind, joints_deg) = check_robot_pose(
+        let (kind, robot_pose) = check_robot_pose(
             &mut c,
             "",
             upload.joints_deg.as_deref(),
@@ -153,18 +145,18 @@ impl PoseIntake {
             kind.check_same(&mut c, "", self.pose_kind);
         }
         c.finish()?;
-        let joints_deg = joints_deg.expect("checked above");
+        let (joints_deg, flange_pose) = robot_pose.expect("checked above").into_row();
         let ingested =
             ingest_image(&self.store, upload.image, &self.image_check(), "image").await?;
         let pose = NewPose {
             joints_deg,
             set: upload.set,
             image: Some(ingested.meta),
-            points: json!([]),
+            points: Vec::new(),
             measured: None,
             label: upload.label,
-            image_detection: ingested.detection.map(|d| d.to_value()),
-            flange_pose: stored_doc(upload.flange_pose.as_ref()),
+            image_detection: ingested.detection,
+            flange_pose,
         };
         self.store_one(pose).await
     }
@@ -188,9 +180,4 @@ pub fn kind_of(
         (None, Some(_)) => Some(PoseKind::Flange),
         _ => None,
     }
-}
-
-/// A checked flange pose as its store row keeps it.
-pub fn stored_doc(doc: Option<&FlangePoseDoc>) -> Option<serde_json::Value> {
-    doc.and_then(|d| serde_json::to_value(d).ok())
 }

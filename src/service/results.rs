@@ -9,10 +9,11 @@ use super::evaluate::{
 };
 use super::filter::{self, FilterRequest, FilterResponse};
 use super::uncertainty::{self, Uncertainty, UncertaintyMapRequest, UncertaintyMapResponse};
-use crate::domain::{ParameterSet, ParameterSetRecord};
+use crate::domain::ParameterSet;
 use crate::pipeline::hand_eye_results::HAND_EYE_KIND;
 use crate::schema::robot::{doc_to_model, KinematicsDoc};
 use crate::store::DynStore;
+use crate::store::ParameterSetRecord;
 
 /// The path word that names a robot's newest parameter set.
 pub const LATEST: &str = "latest";

@@ -1,6 +1,5 @@
 use super::*;
 use robocal_calib::kinematics::{presets, Instrument};
-use serde_json::json;
 
 fn model() -> CalibratedModel {
     CalibratedModel {
@@ -24,47 +23,85 @@ fn fields(errors: Vec<FieldError>) -> Vec<String> {
     errors.into_iter().map(|e| e.field).collect()
 }
 
-fn request(v: serde_json::Value) -> UncertaintyMapRequest {
-    serde_json::from_value(v).unwrap()
+/// A request naming nothing; the tests fill in what they send.
+fn request() -> UncertaintyMapRequest {
+    UncertaintyMapRequest {
+        joints_deg: None,
+        region: None,
+        rotation_deg: None,
+        seed_joints_deg: None,
+        tool: None,
+    }
 }
+
+/// A request for the joint rows `rows`.
+fn at_joints(rows: &[&[f64]]) -> UncertaintyMapRequest {
+    UncertaintyMapRequest {
+        joints_deg: Some(rows.iter().map(|r| r.to_vec()).collect()),
+        ..request()
+    }
+}
+
+/// A request for the box from `min_mm` to `max_mm` every `step_mm`.
+fn in_box(min_mm: [f64; 3], max_mm: [f64; 3], step_mm: f64) -> UncertaintyMapRequest {
+    UncertaintyMapRequest {
+        region: Some(BoxDoc {
+            min_mm,
+            max_mm,
+            step_mm,
+        }),
+        ..request()
+    }
+}
+
+const ZERO_JOINTS: [f64; 6] = [0.0; 6];
 
 #[test]
 fn bad_requests_name_their_field() {
     let (m, u) = (model(), uncertainty());
-    let both = request(json!({"joints_deg": [[0, 0, 0, 0, 0, 0]],
-        "box": {"min_mm": [0, 0, 0], "max_mm": [1, 1, 1], "step_mm": 1}}));
+    let both = UncertaintyMapRequest {
+        joints_deg: Some(vec![ZERO_JOINTS.to_vec()]),
+        ..in_box([0.0; 3], [1.0; 3], 1.0)
+    };
     assert_eq!(fields(uncertainty_map(&m, &u, &both).unwrap_err()), ["box"]);
-    let neither = request(json!({}));
+    let neither = request();
     assert_eq!(
         fields(uncertainty_map(&m, &u, &neither).unwrap_err()),
         ["box"]
     );
-    let inverted =
-        request(json!({"box": {"min_mm": [0, 0, 0], "max_mm": [1, -1, 1], "step_mm": 1}}));
+    let inverted = in_box([0.0; 3], [1.0, -1.0, 1.0], 1.0);
     assert_eq!(
         fields(uncertainty_map(&m, &u, &inverted).unwrap_err()),
         ["box.max_mm[1]"]
     );
-    let huge =
-        request(json!({"box": {"min_mm": [0, 0, 0], "max_mm": [1000, 1000, 1000], "step_mm": 1}}));
+    let huge = in_box([0.0; 3], [1000.0; 3], 1.0);
     assert_eq!(
         fields(uncertainty_map(&m, &u, &huge).unwrap_err()),
         ["box.step_mm"]
     );
-    let zero_step =
-        request(json!({"box": {"min_mm": [0, 0, 0], "max_mm": [1, 1, 1], "step_mm": 0}}));
+    let zero_step = in_box([0.0; 3], [1.0; 3], 0.0);
     assert_eq!(
         fields(uncertainty_map(&m, &u, &zero_step).unwrap_err()),
         ["box.step_mm"]
     );
-    let short = request(json!({"joints_deg": [[0, 0, 0]]}));
+    let short = at_joints(&[&[0.0; 3]]);
     assert_eq!(
         fields(uncertainty_map(&m, &u, &short).unwrap_err()),
         ["joints_deg[0]"]
     );
-    let nan_tool = request(json!({"joints_deg": [[0, 0, 0, 0, 0, 0]],
-        "tool": {"translation_mm": [0, 0, 0], "rotation_deg": [0, 0, 0],
-                 "matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 2]]}}));
+    let nan_tool = UncertaintyMapRequest {
+        tool: Some(PoseDoc {
+            translation_mm: [0.0; 3],
+            rotation_deg: [0.0; 3],
+            matrix: Some([
+                [1.0, 0.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0, 0.0],
+                [0.0, 0.0, 1.0, 0.0],
+                [0.0, 0.0, 0.0, 2.0],
+            ]),
+        }),
+        ..at_joints(&[&ZERO_JOINTS])
+    };
     assert!(fields(uncertainty_map(&m, &u, &nan_tool).unwrap_err())[0].starts_with("tool"));
 }
 
@@ -72,10 +109,10 @@ fn bad_requests_name_their_field() {
 fn a_box_is_walked_x_fastest_and_each_point_reached() {
     let (m, u) = (model(), uncertainty());
     // Around the IRB-2400's zero-joint flange (940, 0, 1455), pointing forward.
-    let req = request(
-        json!({"box": {"min_mm": [900, -20, 1400], "max_mm": [940, 20, 1400],
-        "step_mm": 20}, "rotation_deg": [0, 90, 0]}),
-    );
+    let req = UncertaintyMapRequest {
+        rotation_deg: Some([0.0, 90.0, 0.0]),
+        ..in_box([900.0, -20.0, 1400.0], [940.0, 20.0, 1400.0], 20.0)
+    };
     let map = uncertainty_map(&m, &u, &req).unwrap();
     assert_eq!(map.points.len(), 9);
     assert!(map.errors.is_empty(), "{:?}", map.errors);
@@ -88,10 +125,10 @@ fn a_box_is_walked_x_fastest_and_each_point_reached() {
         .iter()
         .flatten()
         .all(|p| p.std.position_std_mm > 0.0));
-    let far = request(
-        json!({"box": {"min_mm": [900, 0, 1400], "max_mm": [9900, 0, 1400],
-        "step_mm": 9000}, "rotation_deg": [0, 90, 0]}),
-    );
+    let far = UncertaintyMapRequest {
+        rotation_deg: Some([0.0, 90.0, 0.0]),
+        ..in_box([900.0, 0.0, 1400.0], [9900.0, 0.0, 1400.0], 9000.0)
+    };
     let map = uncertainty_map(&m, &u, &far).unwrap();
     assert!(map.points[0].is_some() && map.points[1].is_none());
     assert_eq!(map.errors[0].index, 1);
@@ -100,8 +137,10 @@ fn a_box_is_walked_x_fastest_and_each_point_reached() {
 #[test]
 fn forward_fills_sigma_only_with_a_covariance() {
     let m = model();
-    let req: ForwardRequest =
-        serde_json::from_value(json!({"joints_deg": [[0, 10, 20, 0, 30, 0]]})).unwrap();
+    let req = ForwardRequest {
+        joints_deg: vec![vec![0.0, 10.0, 20.0, 0.0, 30.0, 0.0]],
+        tool: None,
+    };
     let without = forward(&m, None, &req).unwrap();
     assert!(without.poses[0].position_std_mm.is_none());
     let with = forward(&m, Some(&uncertainty()), &req).unwrap();

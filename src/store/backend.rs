@@ -19,7 +19,7 @@ use tokio::sync::{watch, Notify};
 
 use super::statement::Driver;
 use super::StoreResult;
-use crate::domain::RobotRecord;
+use crate::store::RobotRecord;
 
 #[async_trait]
 pub trait Backend: Send + Sync + 'static {

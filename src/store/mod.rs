@@ -15,10 +15,12 @@ use serde_json::Value;
 use tokio::sync::{watch, Notify};
 
 use crate::domain::*;
+use crate::schema::session::SessionBody;
 
 mod backend;
 mod migrations;
 pub mod postgres;
+mod records;
 mod repo;
 mod rows;
 pub mod sqlite;
@@ -39,6 +41,11 @@ pub enum StoreError {
     #[error("database error: {0}")]
     Backend(String),
 }
+
+pub use records::{
+    ClaimedJob, JobOutcome, JobRecord, NewJob, NewParameterSet, NewPose, ParameterSetRecord,
+    PoseDetection, PoseRecord, RobotRecord, SessionRecord, TrackerMeasurement,
+};
 
 pub type StoreResult<T> = Result<T, StoreError>;
 
@@ -62,7 +69,7 @@ pub trait SessionStore: Send + Sync {
         &self,
         serial: &str,
         instrument: &str,
-        spec: &Value,
+        spec: &SessionBody,
     ) -> StoreResult<SessionRecord>;
     async fn get_session(&self, id: &str) -> StoreResult<Option<SessionRecord>>;
     async fn list_sessions(

@@ -7,9 +7,9 @@ use sqlx::{Decode, Row, Type};
 
 use super::StoreError;
 use super::StoreResult;
-use crate::domain::{
-    ClaimedJob, ImageMeta, JobRecord, JobState, JointsDeg, ParameterSetRecord, PoseRecord, PoseSet,
-    RobotRecord, Scope, SessionRecord, TokenRecord,
+use crate::domain::{ImageMeta, JobState, JointsDeg, PoseSet, Scope, TokenRecord};
+use crate::store::{
+    ClaimedJob, JobRecord, ParameterSetRecord, PoseRecord, RobotRecord, SessionRecord,
 };
 
 pub fn json(text: &str) -> StoreResult<Value> {
@@ -18,6 +18,11 @@ pub fn json(text: &str) -> StoreResult<Value> {
 
 pub fn opt_json(text: Option<&str>) -> StoreResult<Option<Value>> {
     text.map(json).transpose()
+}
+
+/// A nullable JSON column read as its typed document.
+fn opt_typed<T: serde::de::DeserializeOwned>(text: Option<&str>) -> StoreResult<Option<T>> {
+    Ok(text.map(serde_json::from_str).transpose()?)
 }
 
 /// A result row of either backend, read by column name as one of the few
@@ -81,7 +86,7 @@ pub fn session(row: &impl Columns) -> StoreResult<SessionRecord> {
         id: row.string("id"),
         serial: row.string("serial"),
         instrument: row.string("instrument"),
-        spec: json(row.str("spec"))?,
+        spec: serde_json::from_str(row.str("spec"))?,
         pose_count: row.int("pose_count"),
         created_at: row.string("created_at"),
     })
@@ -100,12 +105,12 @@ pub fn pose(row: &impl Columns) -> StoreResult<PoseRecord> {
             StoreError::Backend(format!("unknown pose set {:?}", row.str("pose_set")))
         })?,
         image,
-        points: json(row.str("points"))?,
-        measured: opt_json(row.opt_str("measured"))?,
+        points: serde_json::from_str(row.str("points"))?,
+        measured: opt_typed(row.opt_str("measured"))?,
         label: row.opt_string("label"),
         detection: opt_json(row.opt_str("detection"))?,
-        image_detection: opt_json(row.opt_str("image_detection"))?,
-        flange_pose: opt_json(row.opt_str("flange_pose"))?,
+        image_detection: opt_typed(row.opt_str("image_detection"))?,
+        flange_pose: opt_typed(row.opt_str("flange_pose"))?,
         created_at: row.string("created_at"),
     })
 }

@@ -5,8 +5,9 @@
 
 use serde_json::{json, Value};
 
-use robocal::domain::{now_unix_ms, LeaseStatus, NewJob, NewParameterSet, PoseDetection};
+use robocal::domain::{now_unix_ms, ImageDetection, LeaseStatus};
 use robocal::store;
+use robocal::store::{NewJob, NewParameterSet, PoseDetection};
 
 use crate::support::*;
 
@@ -196,7 +197,7 @@ async fn detections_are_written_whole_and_only_by_the_lease_holder() {
     // whole: a pose it does not list shows no stale points.
     // A pose the job detected first keeps the detector's outcome as its
     // image_detection (issue 12), never overwritten by a later job.
-    let first_seen = json!({"points": [], "error": "first"});
+    let first_seen = ImageDetection::failed("first".into(), "no_board", true);
     let mut all: Vec<PoseDetection> = ids.iter().map(|id| detection(id, &job.id, 1.0)).collect();
     all[0].image_detection = Some(first_seen.clone());
     assert_eq!(
@@ -210,7 +211,7 @@ async fn detections_are_written_whole_and_only_by_the_lease_holder() {
         detection(&ids[0], &job.id, 5.0),
         detection(&ids[1], &job.id, 6.0),
     ];
-    two[0].image_detection = Some(json!({"points": [], "error": "second"}));
+    two[0].image_detection = Some(ImageDetection::failed("second".into(), "no_board", true));
     assert_eq!(
         s.record_detections(&job.id, "W", &two).await.unwrap(),
         LeaseStatus::Held
@@ -228,7 +229,10 @@ async fn detections_are_written_whole_and_only_by_the_lease_holder() {
     assert_eq!(xs, vec![Some(5.0), Some(6.0), None]);
     assert_eq!(page.items[0].image_detection, Some(first_seen));
     // The uploaded points stay as uploaded.
-    assert_eq!(page.items[0].points, uploaded);
+    assert_eq!(
+        serde_json::to_value(&page.items[0].points).unwrap(),
+        uploaded
+    );
 
     // A cancelled job writes nothing more.
     s.cancel_job(&job.id).await.unwrap();

@@ -5,10 +5,10 @@
 //! joints beyond the limits warns per row.
 
 use rand::{rngs::StdRng, Rng, SeedableRng};
-use robocal::domain::NewParameterSet;
 use robocal::schema::robot::model_to_doc;
 use robocal::schema::PoseOut;
 use robocal::store;
+use robocal::store::NewParameterSet;
 use robocal_calib::geometry::{pose_error, pose_from_matrix_rows, pose_from_xyz_rpy_deg};
 use robocal_calib::kinematics::CalibratedModel;
 use robocal_calib::sim::campaign::{perturb_robot, CampaignSpec};

@@ -2,8 +2,10 @@ use std::time::Duration;
 
 use serde_json::{json, Value};
 
-use robocal::domain::{now_unix_ms, JobOutcome, JobState, LeaseStatus, NewJob, NewParameterSet};
+use robocal::domain::{now_unix_ms, JobState, LeaseStatus};
+use robocal::schema::session::SessionBody;
 use robocal::store;
+use robocal::store::{JobOutcome, NewJob, NewParameterSet};
 
 use crate::support::*;
 
@@ -200,7 +202,7 @@ async fn queue_reclaims_expired_leases_until_max_attempts() {
     let dir = tempfile::tempdir().unwrap();
     let db = fresh_database(&dir);
     let s = store::connect(&db).await.unwrap();
-    let app_like = robocal::domain::RobotRecord {
+    let app_like = robocal::store::RobotRecord {
         serial: "X".into(),
         model: "m".into(),
         preset: None,
@@ -209,7 +211,10 @@ async fn queue_reclaims_expired_leases_until_max_attempts() {
         updated_at: "t".into(),
     };
     s.put_robot(&app_like).await.unwrap();
-    let session = s.create_session("X", "camera", &json!({})).await.unwrap();
+    let session = s
+        .create_session("X", "camera", &SessionBody::default())
+        .await
+        .unwrap();
     let job = s
         .enqueue_job(
             &NewJob {
@@ -254,7 +259,10 @@ async fn queue_reclaims_expired_leases_until_max_attempts() {
 
     // A job that succeeds with a parameter set stores it as the serial's next
     // version in the transaction that finishes the job.
-    let session = s.create_session("X", "camera", &json!({})).await.unwrap();
+    let session = s
+        .create_session("X", "camera", &SessionBody::default())
+        .await
+        .unwrap();
     let new = NewJob {
         kind: "calibration".into(),
         session_id: session.id,
@@ -287,7 +295,10 @@ async fn queue_reclaims_expired_leases_until_max_attempts() {
     assert_eq!(s.get_report("X", 1).await.unwrap().unwrap()["r"], 2);
 
     // A retryable failure requeues while attempts remain.
-    let session = s.create_session("X", "camera", &json!({})).await.unwrap();
+    let session = s
+        .create_session("X", "camera", &SessionBody::default())
+        .await
+        .unwrap();
     let new = NewJob {
         kind: "calibration".into(),
         session_id: session.id,

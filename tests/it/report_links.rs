@@ -5,10 +5,11 @@
 use serde_json::{json, Value};
 
 use robocal::api::report_links::sign;
-use robocal::domain::{now_unix_ms, NewParameterSet, Scope};
+use robocal::domain::{now_unix_ms, Scope};
 use robocal::report::sample::sample_report;
 use robocal::server::start;
 use robocal::store;
+use robocal::store::NewParameterSet;
 
 use crate::support::*;
 use crate::tokens::stored_token;

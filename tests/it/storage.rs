@@ -10,8 +10,8 @@ use serde_json::{json, Value};
 use sqlx::Connection;
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
 
-use robocal::domain::NewParameterSet;
 use robocal::store;
+use robocal::store::NewParameterSet;
 
 use crate::support::*;
 

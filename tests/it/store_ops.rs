@@ -9,12 +9,12 @@ use futures_util::future::join_all;
 use serde_json::json;
 
 use robocal::domain::{
-    new_id, now_rfc3339, now_unix_ms, IdempotencyClaim, IdempotencyScope, ImageMeta, JobOutcome,
-    JobState, JointsDeg, LeaseStatus, NewJob, NewParameterSet, NewPose, RobotRecord, Scope,
-    StoredResponse,
+    new_id, now_rfc3339, now_unix_ms, IdempotencyClaim, IdempotencyScope, ImageMeta, JobState,
+    JointsDeg, LeaseStatus, Scope, StoredResponse,
 };
-use robocal::schema::session::PoseSet;
+use robocal::schema::session::{ImagePointDoc, PoseSet, SessionBody};
 use robocal::store::{self, DynStore, StoreError};
+use robocal::store::{JobOutcome, NewJob, NewParameterSet, NewPose, RobotRecord};
 
 use crate::support::*;
 
@@ -51,7 +51,12 @@ fn pose(sha: Option<&ImageMeta>) -> NewPose {
         joints_deg: JointsDeg::stored(vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.5]),
         set: PoseSet::Cal,
         image: sha.cloned(),
-        points: json!([{"row": 0, "col": 1, "x": 1.5, "y": 2.25}]),
+        points: vec![ImagePointDoc {
+            row: 0,
+            col: 1,
+            x: 1.5,
+            y: 2.25,
+        }],
         measured: None,
         label: None,
         image_detection: None,
@@ -95,7 +100,11 @@ async fn every_store_operation_round_trips() {
     assert!(s.get_robot("R-3").await.unwrap().is_none());
 
     // Sessions.
-    let spec = json!({"target": {"rows": 7}, "note": "ü"});
+    // Text beyond ASCII survives the round trip.
+    let spec = SessionBody {
+        camera_calibration_id: Some("Zürich-1/3".into()),
+        ..SessionBody::default()
+    };
     let session = s.create_session("R1", "camera", &spec).await.unwrap();
     assert!(matches!(
         s.create_session("nope", "camera", &spec).await,
@@ -103,7 +112,10 @@ async fn every_store_operation_round_trips() {
     ));
     let got = s.get_session(&session.id).await.unwrap().unwrap();
     assert_eq!((got.spec, got.pose_count), (spec.clone(), 0));
-    let second = s.create_session("R1", "tracker", &json!({})).await.unwrap();
+    let second = s
+        .create_session("R1", "tracker", &SessionBody::default())
+        .await
+        .unwrap();
     let listed = s.list_sessions("R1", 10, None).await.unwrap();
     assert_eq!(listed.items.len(), 2);
     let after = s.list_sessions("R1", 10, Some(&session.id)).await.unwrap();
@@ -426,7 +438,7 @@ async fn concurrent_claimers_take_each_job_exactly_once() {
     let stores = replicas(&db, 3).await;
     stores[0].put_robot(&robot("C1")).await.unwrap();
     let session = stores[0]
-        .create_session("C1", "camera", &json!({}))
+        .create_session("C1", "camera", &SessionBody::default())
         .await
         .unwrap();
     let enqueued = join_all((0..JOBS).map(|i| {

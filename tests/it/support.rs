@@ -235,7 +235,7 @@ pub async fn upload_and_calibrate(app: &TestApp, serial: &str, dir: &std::path::
         .await
         .unwrap();
     let job = app
-        .wait_job(done["job_id"].as_str().unwrap(), CAMPAIGN_WAIT, is_finished)
+        .wait_job(done.job_id(), CAMPAIGN_WAIT, is_finished)
         .await;
     assert_eq!(job["state"], "succeeded", "{job}");
     job

@@ -11,8 +11,9 @@ use serde_json::{json, Value};
 use sqlx::{Connection, PgConnection};
 use tokio::sync::Notify;
 
-use robocal::domain::NewJob;
+use robocal::schema::session::SessionBody;
 use robocal::store;
+use robocal::store::NewJob;
 
 use crate::on_postgres;
 use crate::processes::{spawn_binaries, BinaryServer};
@@ -394,7 +395,7 @@ async fn notify_wakes_other_replicas_without_polling() {
     let wake = Arc::new(Notify::new());
     let (_stop, stop_rx) = tokio::sync::watch::channel(false);
     assert!(b.watch_jobs(wake.clone(), stop_rx));
-    a.put_robot(&robocal::domain::RobotRecord {
+    a.put_robot(&robocal::store::RobotRecord {
         serial: "N1".into(),
         model: "m".into(),
         preset: None,
@@ -404,7 +405,10 @@ async fn notify_wakes_other_replicas_without_polling() {
     })
     .await
     .unwrap();
-    let session = a.create_session("N1", "camera", &json!({})).await.unwrap();
+    let session = a
+        .create_session("N1", "camera", &SessionBody::default())
+        .await
+        .unwrap();
     // The listener connects in the background; enqueue until it hears one.
     let start = Instant::now();
     loop {

@@ -6,10 +6,11 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use utoipa::ToSchema;
 
-use crate::domain::{ImageMeta, PoseRecord};
+use crate::domain::ImageMeta;
 use crate::schema::flange_pose::FlangePoseDoc;
-use crate::schema::session::PoseSet;
+use crate::schema::session::{ImagePointDoc, PoseSet};
 use crate::schema::PoseDoc;
+use crate::store::PoseRecord;
 
 #[derive(Debug, Serialize, ToSchema)]
 pub struct PoseOut {
@@ -127,31 +128,34 @@ impl From<PoseRecord> for PoseOut {
     fn from(p: PoseRecord) -> PoseOut {
         // The last job's measurement, else the detector's at upload, else
         // the uploaded points.
-        let detected = p.detection.as_ref().or(p.image_detection.as_ref());
-        let points = detected
-            .and_then(|d| d["points"].as_array())
-            .or_else(|| p.points.as_array())
-            .cloned()
-            .unwrap_or_default();
-        let detection_error = detected
-            .and_then(|d| d["error"].as_str())
-            .map(str::to_string);
+        let uploaded = || p.points.iter().map(point_json).collect::<Vec<Value>>();
+        let (points, detection_error) = match (&p.detection, &p.image_detection) {
+            (Some(job), _) => (
+                job["points"].as_array().cloned().unwrap_or_else(uploaded),
+                job["error"].as_str().map(str::to_string),
+            ),
+            (None, Some(found)) => (
+                found.points.iter().map(point_json).collect(),
+                found.error.clone(),
+            ),
+            (None, None) => (uploaded(), None),
+        };
         let detection = p
             .detection
             .and_then(|d| serde_json::from_value::<PoseDetectionOut>(d).ok());
-        let measured = p.measured.unwrap_or(Value::Null);
         let source = if p.image.is_some() {
             "image"
-        } else if measured.is_null() {
+        } else if p.measured.is_none() {
             "image_points"
         } else {
             "measured"
         };
+        let measured = p.measured.unwrap_or_default();
         PoseOut {
             id: p.id,
             session_id: p.session_id,
             joints_deg: p.joints_deg.into_vec(),
-            flange_pose: p.flange_pose.and_then(|f| serde_json::from_value(f).ok()),
+            flange_pose: p.flange_pose,
             set: p.set,
             source: source.into(),
             detected_points: points.len(),
@@ -159,14 +163,16 @@ impl From<PoseRecord> for PoseOut {
             detection_error,
             detection,
             image: p.image,
-            measured_position_mm: serde_json::from_value(measured["measured_position_mm"].clone())
-                .ok()
-                .flatten(),
-            measured_pose: serde_json::from_value(measured["measured_pose"].clone())
-                .ok()
-                .flatten(),
+            measured_position_mm: measured.measured_position_mm,
+            measured_pose: measured.measured_pose,
             label: p.label,
             created_at: p.created_at,
         }
     }
+}
+
+/// One image point in the served form (`points` mixes these with a job's
+/// points, which carry residuals).
+fn point_json(p: &ImagePointDoc) -> Value {
+    serde_json::to_value(p).unwrap_or_default()
 }

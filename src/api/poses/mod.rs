@@ -13,10 +13,11 @@ use super::extract::{is_json, parse_json, read_limited, Paging};
 use super::sessions::find_session;
 use super::upload::{read_field_capped, read_field_limited};
 use super::AppState;
-use crate::domain::{label_from_file_name, PoseRecord};
+use crate::domain::label_from_file_name;
 use crate::schema::flange_pose::FlangePoseDoc;
 use crate::schema::session::{PoseJsonBody, PoseSet};
 use crate::service::intake::{ImagePose, PoseIntake};
+use crate::store::PoseRecord;
 
 mod docs;
 

@@ -30,7 +30,7 @@ use super::migrations::{migrator, Embedded};
 use super::repo::UPSERT_ROBOT;
 use super::statement::{run_statements, Driver};
 use super::{StoreError, StoreResult};
-use crate::domain::RobotRecord;
+use crate::store::RobotRecord;
 
 mod listen;
 

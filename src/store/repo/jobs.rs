@@ -4,13 +4,11 @@ use sqlx::Transaction;
 
 use super::page_cursor;
 use super::results::insert_parameter_set_tx;
-use crate::domain::{
-    new_id, now_rfc3339, ClaimedJob, JobOutcome, JobRecord, JobState, LeaseStatus, NewJob, Page,
-    PoseDetection,
-};
+use crate::domain::{new_id, now_rfc3339, JobState, LeaseStatus, Page};
 use crate::store::backend::{is_foreign_key_violation, Backend};
 use crate::store::rows::{claimed_job, job, Columns};
 use crate::store::statement::{query, DbRow};
+use crate::store::{ClaimedJob, JobOutcome, JobRecord, NewJob, PoseDetection};
 use crate::store::{JobStore, StoreError, StoreResult};
 
 const COLUMNS: &str = "id, kind, session_id, serial, options, state, stage, progress, attempts,
@@ -318,7 +316,12 @@ async fn write_detections_tx<B: Backend>(
              WHERE session_id = $3 AND id = $4",
         )
         .bind(d.detection.to_string())
-        .bind(d.image_detection.as_ref().map(|v| v.to_string()))
+        .bind(
+            d.image_detection
+                .as_ref()
+                .map(serde_json::to_string)
+                .transpose()?,
+        )
         .bind(session_id)
         .bind(&d.pose_id)
         .execute(&mut *tx)

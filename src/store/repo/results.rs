@@ -3,10 +3,11 @@ use serde_json::Value;
 use sqlx::Transaction;
 
 use super::page_cursor;
-use crate::domain::{now_rfc3339, NewParameterSet, Page, ParameterSetRecord};
+use crate::domain::{now_rfc3339, Page};
 use crate::store::backend::Backend;
 use crate::store::rows::{json, parameter_set, Columns};
 use crate::store::statement::query;
+use crate::store::{NewParameterSet, ParameterSetRecord};
 use crate::store::{ResultStore, StoreResult};
 
 /// Inserts the serial's next version inside the caller's writing

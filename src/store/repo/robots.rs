@@ -1,10 +1,11 @@
 use async_trait::async_trait;
 
 use super::page_cursor;
-use crate::domain::{Page, RobotRecord};
+use crate::domain::Page;
 use crate::store::backend::Backend;
 use crate::store::rows::{robot, Columns};
 use crate::store::statement::query;
+use crate::store::RobotRecord;
 use crate::store::{RobotStore, SessionStore, StoreResult};
 
 const COLUMNS: &str = "serial, model, preset, kinematics, created_at, updated_at";

@@ -1,14 +1,12 @@
 use async_trait::async_trait;
-use serde_json::Value;
 
 use super::page_cursor;
-use crate::domain::{
-    new_id, now_rfc3339, now_unix_ms, ImageMeta, NewPose, Page, PoseRecord, SessionRecord,
-};
+use crate::domain::{new_id, now_rfc3339, now_unix_ms, ImageMeta, Page};
+use crate::schema::session::SessionBody;
 use crate::store::backend::{is_foreign_key_violation, Backend};
 use crate::store::rows::{pose, session, Columns};
 use crate::store::statement::query;
-use crate::store::{SessionStore, StoreError, StoreResult};
+use crate::store::{NewPose, PoseRecord, SessionRecord, SessionStore, StoreError, StoreResult};
 
 const SESSION_COLUMNS: &str = "s.id, s.serial, s.instrument, s.spec, s.created_at,
     (SELECT count(*) FROM poses p WHERE p.session_id = s.id) AS pose_count";
@@ -21,7 +19,7 @@ impl<B: Backend> SessionStore for B {
         &self,
         serial: &str,
         instrument: &str,
-        spec: &Value,
+        spec: &SessionBody,
     ) -> StoreResult<SessionRecord> {
         let id = new_id();
         let created_at = now_rfc3339();
@@ -31,7 +29,7 @@ impl<B: Backend> SessionStore for B {
         )
         .bind(&id)
         .bind(instrument)
-        .bind(spec.to_string())
+        .bind(serde_json::to_string(spec)?)
         .bind(&created_at)
         .bind(serial)
         .execute(self.pool())
@@ -180,11 +178,29 @@ impl<B: Backend> SessionStore for B {
                     .map(serde_json::to_string)
                     .transpose()?,
             )
-            .bind(record.points.to_string())
-            .bind(record.measured.as_ref().map(|m| m.to_string()))
+            .bind(serde_json::to_string(&record.points)?)
+            .bind(
+                record
+                    .measured
+                    .as_ref()
+                    .map(serde_json::to_string)
+                    .transpose()?,
+            )
             .bind(record.label.as_deref())
-            .bind(record.image_detection.as_ref().map(|d| d.to_string()))
-            .bind(record.flange_pose.as_ref().map(|f| f.to_string()))
+            .bind(
+                record
+                    .image_detection
+                    .as_ref()
+                    .map(serde_json::to_string)
+                    .transpose()?,
+            )
+            .bind(
+                record
+                    .flange_pose
+                    .as_ref()
+                    .map(serde_json::to_string)
+                    .transpose()?,
+            )
             .bind(&record.created_at)
             .execute(&mut tx)
             .await

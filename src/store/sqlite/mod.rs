@@ -20,7 +20,7 @@ use super::repo::UPSERT_ROBOT;
 use super::statement::query;
 use super::statement::{run_statements, Driver};
 use super::{StoreError, StoreResult};
-use crate::domain::RobotRecord;
+use crate::store::RobotRecord;
 
 /// Migrations compiled into the binary, so a deployed binary needs no files.
 const MIGRATIONS: &[Embedded] = &[

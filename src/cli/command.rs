@@ -1,0 +1,247 @@
+//! The `robocal` command line's grammar: every subcommand with its
+//! arguments and their help texts. `main.rs` parses it and calls the
+//! library for each subcommand.
+
+use clap::{Parser, Subcommand};
+
+use super::client::Client;
+use crate::config::ServeConfig;
+
+#[derive(Parser)]
+#[command(name = "robocal", version, about = "Robot calibration service")]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand)]
+pub enum Command {
+    /// Run the HTTP service and its job workers.
+    Serve(ServeConfig),
+    /// Manage bearer tokens (directly in the server's database).
+    #[command(subcommand, visible_alias = "tokens")]
+    Token(TokenCommand),
+    /// Print the OpenAPI document (JSON).
+    Openapi,
+    /// Write a printable target page (1:1, scale bar, spec in the margin),
+    /// e.g. `robocal target rows=9 cols=9 pitch_mm=25 dot_diameter_mm=8
+    /// origin_marker_diameter_mm=12 format=pdf --out board.pdf`. The keys are
+    /// those of `GET /v1/targets/render`.
+    Target {
+        /// The target's fields as KEY=VALUE (kind, rows, cols, ..., format).
+        #[arg(required = true)]
+        spec: Vec<String>,
+        /// Output file (standard output when absent).
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+    },
+    /// Simulate a campaign (robot with perturbed kinematics, flange camera,
+    /// rendered images and the truth) into a directory.
+    Simulate {
+        /// Robot preset: the IRB-2400 with a 1280x1024 camera, or the
+        /// PUMA-560 with the paper's 752x582 camera.
+        #[arg(long, value_parser = ["irb2400", "puma560"], default_value = "irb2400")]
+        robot: String,
+        /// Calibration poses (images used for the fit).
+        #[arg(long, default_value_t = 60)]
+        cal: usize,
+        /// Validation poses (images held out to measure the accuracy).
+        #[arg(long, default_value_t = 30)]
+        val: usize,
+        /// Random seed of the perturbations, poses and image noise.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Output directory (campaign.json, poses.json, images/, truth.json).
+        dir: std::path::PathBuf,
+    },
+    /// Create the robot (when it does not exist) and a session, and upload a
+    /// campaign directory; prints the session id.
+    Upload {
+        /// Robot serial number.
+        #[arg(long)]
+        serial: String,
+        /// Replace an existing robot's kinematics with the campaign's
+        /// (without it an existing robot is left as it is).
+        #[arg(long)]
+        replace_robot: bool,
+        /// Campaign directory (as written by `robocal simulate`).
+        dir: std::path::PathBuf,
+        #[command(flatten)]
+        server: ServerArgs,
+    },
+    /// Start a calibration job for a session; prints the job (id, or its
+    /// final state with --wait).
+    Calibrate {
+        /// Robot serial number: the session must belong to this robot.
+        #[arg(long)]
+        serial: String,
+        /// Session id (printed by `robocal upload`).
+        #[arg(long)]
+        session: String,
+        /// Show progress until the job ends.
+        #[arg(long)]
+        wait: bool,
+        #[command(flatten)]
+        server: ServerArgs,
+    },
+    /// List jobs, newest first.
+    Jobs {
+        /// How many jobs to show (1 to 1000).
+        #[arg(long, default_value_t = 20, value_parser = clap::value_parser!(u32).range(1..=1000))]
+        limit: u32,
+        #[command(flatten)]
+        server: ServerArgs,
+    },
+    /// Print a parameter set's accuracy report as a table.
+    Report {
+        /// Robot serial number.
+        #[arg(long)]
+        serial: String,
+        /// Version number (default: the latest).
+        #[arg(long)]
+        version: Option<i64>,
+        #[command(flatten)]
+        server: ServerArgs,
+    },
+    /// Forward kinematics of a calibrated parameter set: the camera (or
+    /// tool) pose at given joints.
+    Forward {
+        #[command(flatten)]
+        args: super::evaluate::ForwardArgs,
+        #[command(flatten)]
+        server: ServerArgs,
+    },
+    /// Compensated joints: the joints that put the tool (default: the
+    /// camera) on each target according to a calibrated parameter set.
+    Compensate {
+        #[command(flatten)]
+        args: super::evaluate::CompensateArgs,
+        #[command(flatten)]
+        server: ServerArgs,
+    },
+    /// Filtered targets for a controller that runs the nominal model: the
+    /// flange poses to send so that the real robot puts the tool on each
+    /// target of FILE (CSV in, CSV out; columns below).
+    Filter {
+        #[command(flatten)]
+        args: super::filter::FilterArgs,
+        #[command(flatten)]
+        server: ServerArgs,
+    },
+    /// A parameter set for the controller or the off-line programming tool:
+    /// URDF, the identified table as JSON (`dh-json`) or CSV.
+    Export {
+        /// Robot serial number.
+        #[arg(long)]
+        serial: String,
+        /// Parameter-set version (default: the latest).
+        #[arg(long)]
+        version: Option<i64>,
+        /// `urdf`, `dh-json` or `csv`.
+        #[arg(long, value_parser = crate::export::ExportFormat::NAMES)]
+        format: String,
+        /// Output file (standard output when absent).
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+        #[command(flatten)]
+        server: ServerArgs,
+    },
+    /// Plan a campaign (which poses to shoot, the predicted accuracy) and
+    /// write it as a URScript / RAPID / KRL program, CSV or JSON.
+    Plan {
+        #[command(flatten)]
+        args: super::plan::PlanArgs,
+        #[command(flatten)]
+        server: ServerArgs,
+    },
+    /// Run the whole pipeline on a campaign directory without a server.
+    CalibrateLocal {
+        /// Campaign directory (as written by `robocal simulate`).
+        dir: std::path::PathBuf,
+        /// Also write the printable report here.
+        #[arg(long)]
+        html: Option<std::path::PathBuf>,
+    },
+}
+
+#[derive(clap::Args)]
+pub struct ServerArgs {
+    /// The service's base URL.
+    #[arg(long, env = "ROBOCAL_URL", default_value = "http://127.0.0.1:8080")]
+    pub url: String,
+    /// Bearer token, needed once the server has tokens.
+    #[arg(long, env = "ROBOCAL_TOKEN")]
+    pub token: Option<String>,
+    /// PEM certificate(s) to trust for an `https://` URL, besides the public
+    /// roots (a private CA, or a self-signed server certificate).
+    #[arg(long, env = "ROBOCAL_CA_CERT")]
+    pub ca_cert: Option<std::path::PathBuf>,
+}
+
+impl ServerArgs {
+    /// The HTTP client for these arguments.
+    pub fn client(&self) -> Result<Client, String> {
+        Client::with_ca_cert(&self.url, self.token.clone(), self.ca_cert.as_deref())
+            .map_err(|e| e.to_string())
+    }
+}
+
+#[derive(clap::Args)]
+pub struct DatabaseArg {
+    /// The server's database (as `robocal serve --database-url`).
+    #[arg(long, env = "DATABASE_URL", default_value = "sqlite://robocal.db")]
+    pub database_url: String,
+}
+
+#[derive(Subcommand)]
+pub enum TokenCommand {
+    /// Create a token, store its hash and print the token once.
+    Create {
+        /// `read` (GET, report links), `write` (also uploads, jobs) or `admin` (also tokens).
+        #[arg(long, value_parser = ["read", "write", "admin"])]
+        scope: String,
+        /// Who or what uses the token (shown by `tokens list`).
+        #[arg(long, default_value = "cli")]
+        name: String,
+        /// The token stops working after this long, e.g. `30d`, `12h` (default: never).
+        #[arg(long, value_parser = humantime::parse_duration)]
+        expires_in: Option<std::time::Duration>,
+        #[command(flatten)]
+        db: DatabaseArg,
+    },
+    /// List tokens: id, name, scope, state, expiry and last use (never secrets).
+    List {
+        #[command(flatten)]
+        db: DatabaseArg,
+    },
+    /// Revoke a token by id: it is refused from now on.
+    Revoke {
+        /// The token's id (from `tokens list`).
+        id: String,
+        #[command(flatten)]
+        db: DatabaseArg,
+    },
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::CommandFactory;
+
+    /// Every argument of every command says what it is (`--help`).
+    #[test]
+    fn every_argument_has_help_text() {
+        fn check(command: &clap::Command, path: &str) {
+            for arg in command.get_arguments() {
+                let id = arg.get_id().as_str();
+                if matches!(id, "help" | "version") {
+                    continue;
+                }
+                assert!(arg.get_help().is_some(), "{path} {id}: no help text");
+            }
+            for sub in command.get_subcommands() {
+                check(sub, &format!("{path} {}", sub.get_name()));
+            }
+        }
+        check(&super::Cli::command(), "robocal");
+    }
+}
