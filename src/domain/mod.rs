@@ -8,6 +8,7 @@ mod flange_pose;
 mod image_detection;
 mod joints;
 mod label;
+mod measured_pose;
 mod parameter_covariance;
 mod parameter_set;
 mod pose_set;
@@ -20,6 +21,7 @@ pub use label::{
     check_label, label_from_archive_path, label_from_file_name, label_or_number, LABEL_RULE,
     MAX_LABEL_CHARS,
 };
+pub use measured_pose::{MeasuredPoint, MeasuredPose};
 pub use parameter_covariance::CovarianceDoc;
 pub use parameter_set::{FrameNames, ParameterSet};
 pub use pose_set::PoseSet;

@@ -254,9 +254,7 @@ impl Worker {
 /// pose shows).
 fn stamp(job_id: &str, mut detections: Vec<PoseDetection>) -> Vec<PoseDetection> {
     for d in &mut detections {
-        if let Some(doc) = d.detection.as_object_mut() {
-            doc.insert("job_id".into(), serde_json::json!(job_id));
-        }
+        d.detection.job_id = Some(job_id.to_string());
     }
     detections
 }

@@ -16,47 +16,12 @@
 use nalgebra::{Isometry3, Point3};
 use robocal_calib::camera::Intrinsics;
 use robocal_calib::kinematics::CalibratedModel;
-use serde::Serialize;
 
 use super::camera_stage::CameraStep;
 use super::measure::{GridPoint, Measured};
 use super::PoseInput;
+use crate::domain::{MeasuredPoint, MeasuredPose};
 use crate::store::PoseDetection;
-
-#[derive(Debug, Clone, Serialize)]
-struct PointDoc {
-    row: u32,
-    col: u32,
-    /// The centre the fits use: after a successful camera stage corrected
-    /// for perspective bias, else as detected (or uploaded).
-    x: f64,
-    y: f64,
-    /// The raw centre, as detected or uploaded, when `x`, `y` are corrected.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    raw_x: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    raw_y: Option<f64>,
-    /// `[dx, dy]`, observed minus predicted (px); absent for points the
-    /// fits leave out (the origin marker).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    residual_px: Option<[f64; 2]>,
-    /// Dropped by the camera stage as an outlier.
-    #[serde(skip_serializing_if = "std::ops::Not::not")]
-    outlier: bool,
-}
-
-#[derive(Debug, Clone, Serialize)]
-struct PoseDoc {
-    /// `"image"` (detected) or `"image_points"` (as uploaded).
-    source: &'static str,
-    points: Vec<PointDoc>,
-    /// Why no point was detected on this pose's image.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    error: Option<String>,
-    /// RMS length of the residuals of this pose (px).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    residual_rms_px: Option<f64>,
-}
 
 fn source(pose: &PoseInput) -> &'static str {
     if pose.image.is_some() {
@@ -66,8 +31,8 @@ fn source(pose: &PoseInput) -> &'static str {
     }
 }
 
-fn plain(p: &GridPoint) -> PointDoc {
-    PointDoc {
+fn plain(p: &GridPoint) -> MeasuredPoint {
+    MeasuredPoint {
         row: p.row,
         col: p.col,
         x: p.x,
@@ -79,11 +44,11 @@ fn plain(p: &GridPoint) -> PointDoc {
     }
 }
 
-fn stored(pose: &PoseInput, doc: &PoseDoc, measured: &Measured, i: usize) -> PoseDetection {
+fn stored(pose: &PoseInput, doc: MeasuredPose, measured: &Measured, i: usize) -> PoseDetection {
     let fresh = measured.detected_now.get(i).copied().unwrap_or(false);
     PoseDetection {
         pose_id: pose.id.clone(),
-        detection: serde_json::to_value(doc).unwrap_or_default(),
+        detection: doc,
         image_detection: measured
             .detections
             .get(i)
@@ -100,13 +65,14 @@ pub fn detected(poses: &[PoseInput], measured: &Measured) -> Vec<PoseDetection> 
         .zip(&measured.points)
         .enumerate()
         .map(|(i, (pose, points))| {
-            let doc = PoseDoc {
+            let doc = MeasuredPose {
                 source: source(pose),
                 points: points.iter().flatten().map(plain).collect(),
                 error: points.is_none().then(|| failure(measured, &pose.id)),
                 residual_rms_px: None,
+                job_id: None,
             };
-            stored(pose, &doc, measured, i)
+            stored(pose, doc, measured, i)
         })
         .collect()
 }
@@ -158,7 +124,7 @@ pub fn with_residuals(
         let points = measured.points[i].iter().flatten().map(|p| {
             let at = (p.row, p.col);
             let fitted = corrected.iter().find(|(grid, _)| *grid == at);
-            PointDoc {
+            MeasuredPoint {
                 residual_px: residuals
                     .iter()
                     .find(|(grid, _)| *grid == at)
@@ -171,7 +137,7 @@ pub fn with_residuals(
                 ..plain(p)
             }
         });
-        let points: Vec<PointDoc> = points.collect();
+        let points: Vec<MeasuredPoint> = points.collect();
         let used: Vec<[f64; 2]> = points
             .iter()
             .filter(|p| !p.outlier)
@@ -179,13 +145,14 @@ pub fn with_residuals(
             .collect();
         let rms = (used.iter().map(|[x, y]| x * x + y * y).sum::<f64>() / used.len().max(1) as f64)
             .sqrt();
-        let doc = PoseDoc {
+        let doc = MeasuredPose {
             source: source(pose),
             points,
             error: None,
             residual_rms_px: (!used.is_empty()).then_some(rms),
+            job_id: None,
         };
-        out[i] = stored(pose, &doc, measured, i);
+        out[i] = stored(pose, doc, measured, i);
     }
     out
 }

@@ -9,7 +9,7 @@
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
-use crate::domain::{ImageDetection, ImageMeta, JobState, JointsDeg, PoseSet};
+use crate::domain::{ImageDetection, ImageMeta, JobState, JointsDeg, MeasuredPose, PoseSet};
 use crate::schema::flange_pose::FlangePoseDoc;
 use crate::schema::session::{ImagePointDoc, SessionBody};
 use crate::schema::PoseDoc;
@@ -83,7 +83,7 @@ pub struct PoseRecord {
 #[derive(Debug, Clone, PartialEq)]
 pub struct PoseDetection {
     pub pose_id: String,
-    pub detection: Value,
+    pub detection: MeasuredPose,
     /// The detector's outcome when this job was the first to detect the
     /// pose's image (stored as the pose's `image_detection` if it has none).
     pub image_detection: Option<ImageDetection>,

@@ -5,7 +5,7 @@
 
 use serde_json::{json, Value};
 
-use robocal::domain::{now_unix_ms, ImageDetection, LeaseStatus};
+use robocal::domain::{now_unix_ms, ImageDetection, LeaseStatus, MeasuredPoint, MeasuredPose};
 use robocal::store;
 use robocal::store::{NewJob, NewParameterSet, PoseDetection};
 
@@ -139,8 +139,22 @@ async fn camera_calibration_id_must_name_a_camera_calibration_of_the_same_image_
 fn detection(pose_id: &str, job: &str, x: f64) -> PoseDetection {
     PoseDetection {
         pose_id: pose_id.to_string(),
-        detection: json!({"job_id": job, "source": "image_points",
-            "points": [{"row": 0, "col": 0, "x": x, "y": 2.0}]}),
+        detection: MeasuredPose {
+            source: "image_points",
+            points: vec![MeasuredPoint {
+                row: 0,
+                col: 0,
+                x,
+                y: 2.0,
+                raw_x: None,
+                raw_y: None,
+                residual_px: None,
+                outlier: false,
+            }],
+            error: None,
+            residual_rms_px: None,
+            job_id: Some(job.to_string()),
+        },
         image_detection: None,
     }
 }

@@ -315,7 +315,7 @@ async fn write_detections_tx<B: Backend>(
             "UPDATE poses SET detection = $1, image_detection = COALESCE(image_detection, $2)
              WHERE session_id = $3 AND id = $4",
         )
-        .bind(d.detection.to_string())
+        .bind(serde_json::to_string(&d.detection)?)
         .bind(
             d.image_detection
                 .as_ref()
