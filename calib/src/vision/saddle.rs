@@ -199,6 +199,26 @@ pub fn refine_saddle(img: &GrayImage, guess_px: [f64; 2], half_window_px: f64) -
     ((p - guess).norm() <= half_window_px).then_some([p.x, p.y])
 }
 
+/// [`refine_saddle`] for a guess already within a pixel or so of the
+/// junction (a detector's candidate): the point-symmetry fit straight from
+/// the guess, which lands where `refine_saddle` does at a fraction of its
+/// cost (the quadratic's smoothing dominates it); the full two-stage fit
+/// where that fails.
+pub fn refine_saddle_near(
+    img: &GrayImage,
+    guess_px: [f64; 2],
+    half_window_px: f64,
+) -> Option<[f64; 2]> {
+    if half_window_px.is_nan() || half_window_px < MIN_HALF_WINDOW_PX {
+        return None;
+    }
+    let guess = Vector2::new(guess_px[0], guess_px[1]);
+    match symmetry_fit(img, guess, half_window_px) {
+        Some(p) if (p - guess).norm() <= half_window_px => Some([p.x, p.y]),
+        _ => refine_saddle(img, guess_px, half_window_px),
+    }
+}
+
 #[cfg(test)]
 #[path = "saddle_tests.rs"]
 mod tests;

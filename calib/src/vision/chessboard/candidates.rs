@@ -75,14 +75,21 @@ pub fn smooth(img: &GrayImage, sigma: f64) -> GrayImage {
     let (w, h) = (img.width, img.height);
     let clamp = |x: isize, n: usize| x.clamp(0, n as isize - 1) as usize;
     let mut tmp = vec![0.0f32; w * h];
+    let ru = r as usize;
     for y in 0..h {
         let row = &img.data[y * w..(y + 1) * w];
-        for x in 0..w {
-            tmp[y * w + x] = k
-                .iter()
-                .enumerate()
-                .map(|(t, kv)| kv * row[clamp(x as isize + t as isize - r, w)])
-                .sum();
+        let out = &mut tmp[y * w..(y + 1) * w];
+        for (x, o) in out.iter_mut().enumerate() {
+            // Clamped reads only within `r` of the row's ends.
+            *o = if x >= ru && x + ru < w {
+                let window = &row[x - ru..=x + ru];
+                k.iter().zip(window).map(|(kv, v)| kv * v).sum()
+            } else {
+                k.iter()
+                    .enumerate()
+                    .map(|(t, kv)| kv * row[clamp(x as isize + t as isize - r, w)])
+                    .sum()
+            };
         }
     }
     let mut out = vec![0.0f32; w * h];
