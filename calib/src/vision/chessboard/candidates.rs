@@ -48,13 +48,19 @@ pub fn decimate(img: &GrayImage, factor: usize) -> GrayImage {
     let (w, h) = (img.width / factor, img.height / factor);
     let mut data = vec![0.0f32; w * h];
     let norm = 1.0 / (factor * factor) as f32;
-    for v in 0..h {
+    // Rows are summed first (whole-row adds, which vectorise), then each
+    // block of `factor` columns of the sum.
+    let mut acc = vec![0.0f32; w * factor];
+    for (v, out) in data.chunks_exact_mut(w).enumerate() {
+        acc.fill(0.0);
         for dy in 0..factor {
-            let line = &img.data[(v * factor + dy) * img.width..];
-            for u in 0..w {
-                let s: f32 = line[u * factor..u * factor + factor].iter().sum();
-                data[v * w + u] += s * norm;
+            let line = &img.data[(v * factor + dy) * img.width..][..w * factor];
+            for (a, x) in acc.iter_mut().zip(line) {
+                *a += x;
             }
+        }
+        for (o, block) in out.iter_mut().zip(acc.chunks_exact(factor)) {
+            *o = block.iter().sum::<f32>() * norm;
         }
     }
     GrayImage {

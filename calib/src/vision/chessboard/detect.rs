@@ -32,11 +32,15 @@ pub const MIN_REFINE_HALF_WINDOW_PX: f64 = 2.0;
 pub const MAX_REFINE_HALF_WINDOW_PX: f64 = 12.0;
 
 /// The largest lattice grown from any seed (a complete one ends the search).
-fn best_lattice(cands: &[super::candidates::Candidate], spec: &ChessboardSpec) -> Option<Lattice> {
+fn best_lattice(
+    cands: &[super::candidates::Candidate],
+    spec: &ChessboardSpec,
+    smoothed: &GrayImage,
+) -> Option<Lattice> {
     let mut best: Option<Lattice> = None;
     let cap = 4 * spec.corner_count();
     for k in 0..cands.len().min(MAX_SEEDS) {
-        let Some(l) = grow(cands, k, cap) else {
+        let Some(l) = grow(cands, k, cap, smoothed) else {
             continue;
         };
         let done = l.len() >= spec.corner_count();
@@ -60,7 +64,7 @@ fn at_level(
     let level = decimate(img, factor);
     let (cands, smoothed) =
         find_candidates(&level, MAX_CANDIDATES_PER_CORNER * spec.corner_count());
-    let lattice = best_lattice(&cands, spec).ok_or_else(|| {
+    let lattice = best_lattice(&cands, spec, &smoothed).ok_or_else(|| {
         DetectError::NoBoard(format!(
             "no chessboard corner lattice found ({} saddle candidates)",
             cands.len()
