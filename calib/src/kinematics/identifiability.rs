@@ -72,7 +72,9 @@ pub struct IdentifiabilityReport {
     pub weak: Vec<String>,
     /// Identified parameters the campaign determines poorly: excitation
     /// below [`WEAK_EXCITATION`] (e.g. links whose joints take only a few
-    /// distinct values). Identified, but with a large σ.
+    /// distinct values). Identified, but with a large σ. `analyse` judges
+    /// the Jacobian it is given; `identify` replaces this with
+    /// [`poorly_determined`] on the poses' geometry.
     pub poorly_determined: Vec<String>,
     /// Indices (into the layout) of the parameters that are identified.
     pub free: Vec<usize>,
@@ -201,6 +203,29 @@ fn excitation(cols: &DMatrix<f64>) -> Vec<f64> {
             1.0 / inv.sqrt()
         })
         .collect()
+}
+
+/// The identified parameters (`free`) that the campaign's poses determine
+/// poorly: excitation below [`WEAK_EXCITATION`] on the *unweighted*
+/// stacked Jacobian at `joints_rad`, i.e. on the poses' geometry alone.
+/// The identification's whitened Jacobian also carries the measurement's
+/// noise model (a camera measures depth far worse than the image plane),
+/// which lowers nearly every column's excitation on a one-camera campaign
+/// and would hide which joints the campaign failed to move.
+pub fn poorly_determined(
+    layout: &ParamLayout,
+    model: &CalibratedModel,
+    joints_rad: &[Vec<f64>],
+    free: &[usize],
+) -> Result<Vec<String>, KinematicsError> {
+    let scaled = scale_columns(&stacked_jacobian(layout, model, joints_rad)?);
+    let cols = DMatrix::from_fn(scaled.nrows(), free.len(), |r, c| scaled[(r, free[c])]);
+    Ok(free
+        .iter()
+        .zip(excitation(&cols))
+        .filter(|(_, e)| *e < WEAK_EXCITATION)
+        .map(|(&i, _)| layout.params[i].name.clone())
+        .collect())
 }
 
 /// Analyse a campaign's (weighted) Jacobian `jac` (all layout columns):
