@@ -22,6 +22,10 @@ use crate::vision::saddle::refine_saddle_near;
 /// coarsest first (cheap: most boards are found there), then at full
 /// resolution if every level fails (small squares).
 pub const LEVEL_LONG_SIDES_PX: [usize; 2] = [400, 1000];
+/// Largest decimation factor: a candidate's position is good to a fraction
+/// of a level pixel, and the refinement must start within a pixel or two
+/// of the junction (a sharp one gives its fits no slope farther out).
+pub const MAX_LEVEL_FACTOR: usize = 4;
 /// Smallest image side accepted, pixels.
 pub const MIN_IMAGE_SIDE_PX: usize = 16;
 /// Refinement half window as a fraction of the distance to the nearest
@@ -117,7 +121,7 @@ pub fn detect_chessboard(
     let long = img.width.max(img.height);
     let mut factors: Vec<usize> = LEVEL_LONG_SIDES_PX
         .iter()
-        .map(|&side| long.div_ceil(side).max(1))
+        .map(|&side| long.div_ceil(side).clamp(1, MAX_LEVEL_FACTOR))
         .chain([1])
         .collect();
     factors.dedup();
