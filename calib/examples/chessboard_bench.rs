@@ -6,7 +6,8 @@
 //! `bench/chessboard_opencv.py DIR` runs OpenCV's findChessboardCorners +
 //! cornerSubPix on the same PNGs with the same truth.
 //!
-//! cargo run --release -p robocal-calib --example chessboard_bench -- [--views N] [--seed S] [--out DIR]
+//! cargo run --release -p robocal-calib --example chessboard_bench -- [--views N] [--seed S] [--out DIR] [--explain]
+//! (`--explain` prints why each missed board was refused)
 
 use std::fmt::Write as _;
 
@@ -103,6 +104,7 @@ fn main() {
     let views: usize = arg("--views", 8);
     let seed: u64 = arg("--seed", 14);
     let out: String = arg("--out", "/tmp/chessboard_bench".to_string());
+    let explain = std::env::args().any(|a| a == "--explain");
     std::fs::create_dir_all(&out).expect("output dir");
     let spec = board();
     let mut rng = StdRng::seed_from_u64(seed);
@@ -142,7 +144,15 @@ fn main() {
             let t0 = thread_cpu_ns();
             let det = detect_chessboard(&v.image, &spec);
             cpu_ns += thread_cpu_ns() - t0;
-            let Ok(det) = det else { continue };
+            let det = match det {
+                Ok(det) => det,
+                Err(e) => {
+                    if explain {
+                        println!("  {name}: {e}");
+                    }
+                    continue;
+                }
+            };
             boards += 1;
             for p in &det.points {
                 let t = v.truth[p.row * spec.cols() + p.col];

@@ -23,9 +23,15 @@ use crate::schema::FieldError;
 /// Screw pitches are compared at this many mm per degree of angle.
 const PITCH_MM_PER_DEG: f64 = 10.0;
 /// A pair decides when the wrong choice costs this many times the right
-/// one plus `DECIDE_MARGIN_DEG`.
+/// one plus `DECIDE_MARGIN_DEG`...
 const DECIDE_RATIO: f64 = 3.0;
 const DECIDE_MARGIN_DEG: f64 = 2.0;
+/// ...and the right one agrees with the joints within this cost (deg, or
+/// `PITCH_MM_PER_DEG` mm of pitch): nominal kinematics move the flange to
+/// a few tenths of a degree, so a pair further off than this contradicts
+/// its joints either way (a pose that lies, joints that did not move) and
+/// says nothing about the turn.
+const MAX_AGREEMENT_COST_DEG: f64 = 5.0;
 /// Most pairs allowed to contradict the chosen turns, as a fraction of the
 /// deciding pairs (a pose that lies is screened later; many are not turns).
 const MAX_CONTRADICTING_FRACTION: f64 = 0.2;
@@ -55,13 +61,64 @@ fn relative_turn(
     let a = screw(&(flange[i].inverse() * flange[j]));
     let same = cost(a, screw(&(camera[i].inverse() * camera[j])));
     let turned = cost(a, screw(&(camera[i].inverse() * turn * camera[j])));
-    if turned > DECIDE_RATIO * same + DECIDE_MARGIN_DEG {
+    if same.min(turned) > MAX_AGREEMENT_COST_DEG {
+        None
+    } else if turned > DECIDE_RATIO * same + DECIDE_MARGIN_DEG {
         Some(false)
     } else if same > DECIDE_RATIO * turned + DECIDE_MARGIN_DEG {
         Some(true)
     } else {
         None
     }
+}
+
+/// Every deciding pair `(i, j, turned relative to each other)`, `i < j`.
+fn pair_turns(
+    flange: &[Isometry3<f64>],
+    camera: &[Isometry3<f64>],
+    turn: &Isometry3<f64>,
+) -> Vec<(usize, usize, bool)> {
+    let n = flange.len();
+    (0..n)
+        .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
+        .filter_map(|(i, j)| relative_turn(flange, camera, turn, i, j).map(|t| (i, j, t)))
+        .collect()
+}
+
+/// Each view's turn relative to the view with the most deciding pairs,
+/// read along deciding pairs breadth first; `None` for views no chain of
+/// deciding pairs reaches. The reference is the best-connected view, so a
+/// view whose joints lie cannot leave the others undecided.
+fn propagate(n: usize, pairs: &[(usize, usize, bool)]) -> Vec<Option<bool>> {
+    let mut degree = vec![0usize; n];
+    for &(i, j, _) in pairs {
+        degree[i] += 1;
+        degree[j] += 1;
+    }
+    let mut turned: Vec<Option<bool>> = vec![None; n];
+    let Some(reference) = (0..n).max_by_key(|&v| (degree[v], std::cmp::Reverse(v))) else {
+        return turned;
+    };
+    if degree[reference] == 0 {
+        return turned; // no pair decides anything
+    }
+    turned[reference] = Some(false);
+    let mut queue = std::collections::VecDeque::from([reference]);
+    while let Some(v) = queue.pop_front() {
+        let base = turned[v].unwrap_or(false);
+        for &(i, j, t) in pairs {
+            let other = match (i == v, j == v) {
+                (true, _) => j,
+                (_, true) => i,
+                _ => continue,
+            };
+            if turned[other].is_none() {
+                turned[other] = Some(base != t);
+                queue.push_back(other);
+            }
+        }
+    }
+    turned
 }
 
 fn refuse(why: String) -> PipelineError {
@@ -103,23 +160,8 @@ pub fn resolve(
         .iter()
         .map(|v| v.pose.target_to_camera)
         .collect();
-    // Each view's turn relative to the first reference that decides it.
-    let mut turned: Vec<Option<bool>> = vec![None; n];
-    turned[0] = Some(false);
-    for _ in 0..n {
-        for j in 0..n {
-            if turned[j].is_some() {
-                continue;
-            }
-            turned[j] = (0..n).find_map(|r| {
-                let base = turned[r]?;
-                relative_turn(&flange, &camera, &turn, r, j).map(|t| t != base)
-            });
-        }
-        if turned.iter().all(Option::is_some) {
-            break;
-        }
-    }
+    let pairs = pair_turns(&flange, &camera, &turn);
+    let turned = propagate(n, &pairs);
     let names = |views: Vec<usize>| -> String {
         views
             .iter()
@@ -135,17 +177,11 @@ pub fn resolve(
         )));
     }
     let turned: Vec<bool> = turned.into_iter().map(|t| t.unwrap_or(false)).collect();
-    let (mut deciding, mut contradicting) = (0usize, 0usize);
-    for i in 0..n {
-        for j in i + 1..n {
-            if let Some(t) = relative_turn(&flange, &camera, &turn, i, j) {
-                deciding += 1;
-                if t != (turned[i] != turned[j]) {
-                    contradicting += 1;
-                }
-            }
-        }
-    }
+    let deciding = pairs.len();
+    let contradicting = pairs
+        .iter()
+        .filter(|&&(i, j, t)| t != (turned[i] != turned[j]))
+        .count();
     if contradicting as f64 > MAX_CONTRADICTING_FRACTION * deciding as f64 {
         return Err(refuse(format!(
             "a {cols} x {rows} chessboard looks the same after a half turn and the joints disagree on which way it lies ({contradicting} of {deciding} pose pairs contradict); use a board with one odd and one even side"
@@ -163,6 +199,7 @@ pub fn resolve(
         }
         let fit = &mut step.calibration.views[v];
         fit.pose.target_to_camera = turn * fit.pose.target_to_camera;
+        fit.camera_to_target = fit.pose.target_to_camera.inverse();
         // The covariance is in the target frame: x and y change sign.
         let d = nalgebra::Matrix6::from_diagonal(&nalgebra::Vector6::new(
             -1.0, -1.0, 1.0, -1.0, -1.0, 1.0,

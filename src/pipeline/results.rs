@@ -202,6 +202,12 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSet) -> Report {
             ident.weak.join(", ")
         ));
     }
+    if !ident.poorly_determined.is_empty() {
+        notes.push(format!(
+            "The poses determine {} poorly (little excitation: their joints take few distinct values, or they trade against other parameters); they are identified but their σ is large. Add poses that move these joints more widely.",
+            ident.poorly_determined.join(", ")
+        ));
+    }
     Report {
         serial: ctx.serial.to_string(),
         version: 0,
@@ -222,7 +228,12 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSet) -> Report {
             condition_number: ident.condition_number,
             observability_index: ident.observability_index,
             fixed: ident.fixed.clone(),
-            weak: ident.weak.clone(),
+            weak: ident
+                .weak
+                .iter()
+                .chain(&ident.poorly_determined)
+                .cloned()
+                .collect(),
         },
         residual_field: ctx.camera.map(residual_field).unwrap_or_default(),
         hand_eye: None,

@@ -159,8 +159,10 @@ pub struct IdentifiabilityReport {
     pub condition_number: f64,
     pub observability_index: f64,
     pub fixed: Vec<String>,
-    /// The subset of `fixed` this campaign's poses did not determine (the
-    /// rest is structurally redundant): vary the poses to identify them.
+    /// The parameters this campaign's poses determine poorly or not at
+    /// all: those of `fixed` they did not determine (held at nominal; the
+    /// rest of `fixed` is structurally redundant) and identified ones with
+    /// little excitation (large σ). Vary the poses to identify them well.
     #[serde(default)]
     pub weak: Vec<String>,
 }

@@ -17,6 +17,7 @@ pub(crate) mod e2e_points;
 pub(crate) mod export;
 pub(crate) mod filter;
 pub(crate) mod flange_pose;
+pub(crate) mod half_turn;
 pub(crate) mod hostile;
 pub(crate) mod hostile_uploads;
 pub(crate) mod http_errors;

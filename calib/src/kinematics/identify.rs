@@ -13,7 +13,9 @@
 
 use nalgebra::{DMatrix, DVector, Vector3};
 
-use super::identifiability::{analyse, IdentifiabilityReport};
+use super::identifiability::{
+    analyse, poorly_determined, IdentifiabilityError, IdentifiabilityReport,
+};
 pub use super::identify_error::IdentifyError;
 pub use super::identify_options::{IdentifyMode, IdentifyOptions, JointNoise};
 pub use super::measurement::{
@@ -145,7 +147,11 @@ pub fn identify(
     let (_, jac_all) = probe
         .evaluate(&before, true)
         .ok_or(IdentifyError::NoPoses)?;
-    let identifiability = analyse(&layout, &before, &jac_all)?;
+    let mut identifiability = analyse(&layout, &before, &jac_all)?;
+    let joints: Vec<Vec<f64>> = cal.iter().map(|m| m.joints_rad.clone()).collect();
+    identifiability.poorly_determined =
+        poorly_determined(&layout, &before, &joints, &identifiability.free)
+            .map_err(IdentifiabilityError::from)?;
     let free = identifiability.free.clone();
     let fit = |w: &[DMatrix<f64>], x0: DVector<f64>| {
         let problem = PoseFit {

@@ -7,42 +7,24 @@ use serde::{Deserialize, Serialize};
 
 use super::asymmetric::AsymmetricCirclesSpec;
 use super::bias::perspective_bias;
-use super::blobs::{find_blobs, Blob};
 use super::circle_board::CircleBoard;
-use super::ellipse::{refine_dot, DotQuality, Ellipse, Rejection};
+use super::detect_failure::explain_failure;
+pub use super::detect_failure::SMALL_DOT_AREA_PX;
+use super::dot_candidates::{candidates, grey_range, SIZE_RATIO_SLACK};
+pub use super::dot_candidates::{MAX_CANDIDATES, MIN_DOT_AREA_PX};
+use super::ellipse::{DotQuality, Ellipse};
 use super::error::DetectError;
-use super::grid::{grow_lattices, Candidates, Lattice, MIN_LATTICE_DOTS};
+use super::grid::{grow_lattices, Candidates, MIN_LATTICE_DOTS};
 use super::image::GrayImage;
 use super::order::{order_lattice, Ordering};
 use super::target::TargetSpec;
-use super::threshold::{auto_window_radius, local_threshold};
 
 /// Smallest accepted image side, pixels.
 pub const MIN_IMAGE_SIDE_PX: usize = 16;
 /// An image whose 1st-99th percentile grey range is below this has no board.
 pub const MIN_IMAGE_RANGE_GREY: f32 = 20.0;
-/// Blobs below this area are noise.
-const MIN_BLOB_AREA_PX: f64 = 3.0;
-/// Dots below this area are too small for a sub-pixel centre.
-pub const MIN_DOT_AREA_PX: f64 = 12.0;
-/// An incomplete lattice of dots below this area is reported as too small.
-pub const SMALL_DOT_AREA_PX: f64 = 30.0;
-/// Accepted thresholded-area / moment-ellipse-area range (convexity proxy).
-const MIN_FILL_RATIO: f64 = 0.8;
-const MAX_FILL_RATIO: f64 = 1.25;
-/// Smallest accepted minor/major axis ratio (60 degree tilt gives ~0.5).
-const MIN_AXIS_RATIO: f64 = 0.15;
-/// More dot-like blobs than this is clutter or noise, not a board.
-pub const MAX_CANDIDATES: usize = 5000;
-/// Pixel step of the grey-range sampling.
-const RANGE_SAMPLE_STEP: usize = 7;
-/// Fraction of a lattice step beyond the next dot that must still be inside
-/// the image for that dot to count as visible.
-const EDGE_FIT_FRACTION: f64 = 0.5;
 /// A partial view must show at least this fraction of the board's dots.
 pub const MIN_VIEW_FRACTION: f64 = 0.25;
-/// Area ratio slack between lattice neighbours beyond the marker's own ratio.
-const SIZE_RATIO_SLACK: f64 = 2.0;
 
 /// Detector settings.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -111,93 +93,6 @@ pub fn detect_dynamic(img: &DynamicImage, target: &TargetSpec) -> Result<Detecti
     detect(&GrayImage::from_dynamic(img), target)
 }
 
-/// Grey range between the 1st and 99th percentile of a pixel sample.
-fn grey_range(img: &GrayImage) -> f32 {
-    let mut hist = [0usize; 256];
-    let mut n = 0usize;
-    for v in img.data.iter().step_by(RANGE_SAMPLE_STEP) {
-        hist[v.clamp(0.0, 255.0) as usize] += 1;
-        n += 1;
-    }
-    let pct = |f: f64| {
-        let goal = (f * n as f64) as usize;
-        let mut acc = 0usize;
-        hist.iter()
-            .position(|&h| {
-                acc += h;
-                acc > goal
-            })
-            .unwrap_or(255) as f32
-    };
-    pct(0.99) - pct(0.01)
-}
-
-/// Dot-like blobs and why others were dropped.
-struct CandidateSet {
-    blobs: Vec<Blob>,
-    dots: Vec<super::ellipse::RefinedDot>,
-    /// Centres and areas of dot-like blobs too small to refine.
-    too_small: Vec<(Vector2<f64>, f64)>,
-    /// Centres and areas of dot-like blobs rejected for contrast or edges.
-    unsharp: Vec<(Vector2<f64>, f64)>,
-}
-
-fn candidates(img: &GrayImage, board: &CircleBoard, opts: &DetectOptions) -> CandidateSet {
-    let radius = opts
-        .threshold_radius_px
-        .unwrap_or_else(|| auto_window_radius(img.width, img.height));
-    let thr = local_threshold(img, radius);
-    let max_area = (img.width * img.height) as f64 / board.dot_count() as f64;
-    let mut set = CandidateSet {
-        blobs: Vec::new(),
-        dots: Vec::new(),
-        too_small: Vec::new(),
-        unsharp: Vec::new(),
-    };
-    for b in find_blobs(img, &thr, MIN_BLOB_AREA_PX) {
-        if b.area > max_area || b.touches_border(img.width, img.height) {
-            continue;
-        }
-        let fill = b.area / b.moment_ellipse_area().max(f64::MIN_POSITIVE);
-        let (major, minor) = b.moment_semi_axes();
-        if !(MIN_FILL_RATIO..=MAX_FILL_RATIO).contains(&fill) || minor < MIN_AXIS_RATIO * major {
-            continue;
-        }
-        if b.area < MIN_DOT_AREA_PX {
-            set.too_small.push((Vector2::new(b.cx, b.cy), b.area));
-            continue;
-        }
-        match refine_dot(img, &b) {
-            Ok(d) => {
-                set.blobs.push(b);
-                set.dots.push(d);
-            }
-            Err(Rejection::NotAnEllipse) => {}
-            Err(_) => set.unsharp.push((Vector2::new(b.cx, b.cy), b.area)),
-        }
-    }
-    set
-}
-
-/// Whether the lattice continues past its border outside the image.
-fn runs_off_image(lat: &Lattice, c: &[Vector2<f64>], w: usize, h: usize) -> bool {
-    let inside = |p: Vector2<f64>| p.x >= 0.0 && p.y >= 0.0 && p.x < w as f64 && p.y < h as f64;
-    lat.nodes.iter().any(|(&(i, j), &k)| {
-        [(1, 0), (-1, 0), (0, 1), (0, -1)].iter().any(|&(di, dj)| {
-            let beyond = (i + di, j + dj);
-            let back = (i - di, j - dj);
-            match (lat.nodes.get(&beyond), lat.nodes.get(&back)) {
-                (None, Some(&kb)) => {
-                    let step = c[k] - c[kb];
-                    // The next dot would not fit with its half-pitch surround.
-                    !inside(c[k] + step * (1.0 + EDGE_FIT_FRACTION))
-                }
-                _ => false,
-            }
-        })
-    })
-}
-
 /// Finds the board described by `target` in a grey image.
 pub fn detect_with(
     img: &GrayImage,
@@ -245,7 +140,7 @@ pub fn detect_board(
     if range < MIN_IMAGE_RANGE_GREY {
         return Err(DetectError::NoContrast { range });
     }
-    let set = candidates(img, board, opts);
+    let set = candidates(img, board, opts.threshold_radius_px);
     let n_dots = board.dot_count();
     if set.dots.len() > MAX_CANDIDATES {
         return Err(DetectError::NoBoard(format!(
@@ -345,85 +240,4 @@ pub fn detect_board(
         equivalent_turns: ordering.equivalent_turns,
         perspective_corrected: opts.correct_perspective_bias,
     })
-}
-
-/// Median area of a lattice of at least half the board's dots among
-/// rejected blobs, if there is one (the board is there but unusable).
-fn rejected_lattice(rejected: &[(Vector2<f64>, f64)], n_dots: usize) -> Option<f64> {
-    if rejected.len() < n_dots / 2 || rejected.len() > MAX_CANDIDATES {
-        return None;
-    }
-    let centres: Vec<Vector2<f64>> = rejected.iter().map(|r| r.0).collect();
-    let areas: Vec<f64> = rejected.iter().map(|r| r.1).collect();
-    let cand = Candidates {
-        centres: &centres,
-        sizes: &areas,
-        max_size_ratio: SIZE_RATIO_SLACK * 2.0,
-    };
-    let best = grow_lattices(&cand).into_iter().next()?;
-    if best.nodes.len() < n_dots / 2 {
-        return None;
-    }
-    let mut a: Vec<f64> = best.nodes.values().map(|&k| areas[k]).collect();
-    a.sort_by(f64::total_cmp);
-    Some(a[a.len() / 2])
-}
-
-/// The clearest error when no board was read: the first lattice's
-/// ordering error if there was one, else what the candidates show.
-fn explain_failure(
-    lattices: &[Lattice],
-    set: &CandidateSet,
-    centres: &[Vector2<f64>],
-    img: &GrayImage,
-    board: &CircleBoard,
-    ordering_error: Option<DetectError>,
-) -> DetectError {
-    let n_dots = board.dot_count();
-    let Some(best) = lattices.first() else {
-        if let Some(median_area_px) = rejected_lattice(&set.too_small, n_dots) {
-            return DetectError::DotsTooSmall {
-                median_area_px,
-                min_area_px: MIN_DOT_AREA_PX,
-            };
-        }
-        if let Some(area) = rejected_lattice(&set.unsharp, n_dots) {
-            return DetectError::DotsTooBlurred(format!(
-                "a lattice of dots (median area {area:.0} px) has too little contrast or ragged edges"
-            ));
-        }
-        return DetectError::NoBoard(format!("no lattice among {} dot candidates", centres.len()));
-    };
-    let (ni, nj) = best.shape();
-    let (rows, cols) = (board.rows(), board.cols());
-    if best.nodes.len() > n_dots {
-        return DetectError::GridMismatch(format!(
-            "found a lattice of {} dots ({ni}x{nj}), more than the {rows}x{cols} target (clutter in line with the board?)",
-            best.nodes.len()
-        ));
-    }
-    let mut areas: Vec<f64> = best.nodes.values().map(|&k| set.blobs[k].area).collect();
-    areas.sort_by(f64::total_cmp);
-    let median_area_px = areas[areas.len() / 2];
-    if median_area_px < SMALL_DOT_AREA_PX && best.nodes.len() < n_dots {
-        return DetectError::DotsTooSmall {
-            median_area_px,
-            min_area_px: SMALL_DOT_AREA_PX,
-        };
-    }
-    if let Some(e) = ordering_error {
-        return e;
-    }
-    if runs_off_image(best, centres, img.width, img.height) {
-        return DetectError::BoardPartlyOutside {
-            found_rows: ni.min(nj),
-            found_cols: ni.max(nj),
-            rows,
-            cols,
-        };
-    }
-    DetectError::NoBoard(format!(
-        "best lattice has {} dots in a {ni}x{nj} box, target is {rows}x{cols} (dots occluded or unreadable?)",
-        best.nodes.len(),
-    ))
 }

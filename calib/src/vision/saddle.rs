@@ -143,8 +143,10 @@ fn sample(img: &GrayImage, x: f64, y: f64) -> Option<(f64, f64, f64)> {
     Some((v, gx, gy))
 }
 
-/// Gauss–Newton on the point-symmetry residual from `start`.
-fn symmetry_fit(img: &GrayImage, start: Vector2<f64>, half: f64) -> Option<Vector2<f64>> {
+/// Gauss–Newton on the point-symmetry residual from `start`: the centre,
+/// and whether the last step was below `CONVERGED_PX` (a start far off a
+/// sharp junction runs out of iterations first).
+fn symmetry_fit(img: &GrayImage, start: Vector2<f64>, half: f64) -> Option<(Vector2<f64>, bool)> {
     let r = half.floor() as isize;
     let sw = SYMMETRY_WEIGHT_FRACTION * half;
     // Half of the point pairs: the upper half-plane plus the positive x axis.
@@ -177,10 +179,10 @@ fn symmetry_fit(img: &GrayImage, start: Vector2<f64>, half: f64) -> Option<Vecto
         c += dc;
         g += Vector2::new(step[2], step[3]);
         if dc.norm() < CONVERGED_PX {
-            break;
+            return Some((c, true));
         }
     }
-    Some(c)
+    Some((c, false))
 }
 
 /// The X-junction near `guess_px` within `half_window_px` (the window must
@@ -195,8 +197,28 @@ pub fn refine_saddle(img: &GrayImage, guess_px: [f64; 2], half_window_px: f64) -
     // blur, a window clipped by the image) start from the guess.
     let start =
         quadratic_saddle(img, guess_px, half_window_px).map_or(guess, |q| Vector2::new(q[0], q[1]));
-    let p = symmetry_fit(img, start, half_window_px)?;
+    let (p, _) = symmetry_fit(img, start, half_window_px)?;
     ((p - guess).norm() <= half_window_px).then_some([p.x, p.y])
+}
+
+/// [`refine_saddle`] for a guess already within a pixel or so of the
+/// junction (a detector's candidate): the point-symmetry fit straight from
+/// the guess, which lands where `refine_saddle` does at a fraction of its
+/// cost (the quadratic's smoothing dominates it); the full two-stage fit
+/// where that fails.
+pub fn refine_saddle_near(
+    img: &GrayImage,
+    guess_px: [f64; 2],
+    half_window_px: f64,
+) -> Option<[f64; 2]> {
+    if half_window_px.is_nan() || half_window_px < MIN_HALF_WINDOW_PX {
+        return None;
+    }
+    let guess = Vector2::new(guess_px[0], guess_px[1]);
+    match symmetry_fit(img, guess, half_window_px) {
+        Some((p, true)) if (p - guess).norm() <= half_window_px => Some([p.x, p.y]),
+        _ => refine_saddle(img, guess_px, half_window_px),
+    }
 }
 
 #[cfg(test)]

@@ -48,13 +48,19 @@ pub fn decimate(img: &GrayImage, factor: usize) -> GrayImage {
     let (w, h) = (img.width / factor, img.height / factor);
     let mut data = vec![0.0f32; w * h];
     let norm = 1.0 / (factor * factor) as f32;
-    for v in 0..h {
+    // Rows are summed first (whole-row adds, which vectorise), then each
+    // block of `factor` columns of the sum.
+    let mut acc = vec![0.0f32; w * factor];
+    for (v, out) in data.chunks_exact_mut(w).enumerate() {
+        acc.fill(0.0);
         for dy in 0..factor {
-            let line = &img.data[(v * factor + dy) * img.width..];
-            for u in 0..w {
-                let s: f32 = line[u * factor..u * factor + factor].iter().sum();
-                data[v * w + u] += s * norm;
+            let line = &img.data[(v * factor + dy) * img.width..][..w * factor];
+            for (a, x) in acc.iter_mut().zip(line) {
+                *a += x;
             }
+        }
+        for (o, block) in out.iter_mut().zip(acc.chunks_exact(factor)) {
+            *o = block.iter().sum::<f32>() * norm;
         }
     }
     GrayImage {
@@ -75,14 +81,21 @@ pub fn smooth(img: &GrayImage, sigma: f64) -> GrayImage {
     let (w, h) = (img.width, img.height);
     let clamp = |x: isize, n: usize| x.clamp(0, n as isize - 1) as usize;
     let mut tmp = vec![0.0f32; w * h];
+    let ru = r as usize;
     for y in 0..h {
         let row = &img.data[y * w..(y + 1) * w];
-        for x in 0..w {
-            tmp[y * w + x] = k
-                .iter()
-                .enumerate()
-                .map(|(t, kv)| kv * row[clamp(x as isize + t as isize - r, w)])
-                .sum();
+        let out = &mut tmp[y * w..(y + 1) * w];
+        for (x, o) in out.iter_mut().enumerate() {
+            // Clamped reads only within `r` of the row's ends.
+            *o = if x >= ru && x + ru < w {
+                let window = &row[x - ru..=x + ru];
+                k.iter().zip(window).map(|(kv, v)| kv * v).sum()
+            } else {
+                k.iter()
+                    .enumerate()
+                    .map(|(t, kv)| kv * row[clamp(x as isize + t as isize - r, w)])
+                    .sum()
+            };
         }
     }
     let mut out = vec![0.0f32; w * h];

@@ -16,11 +16,16 @@ use super::spec::ChessboardSpec;
 use crate::vision::board_point::{BoardDetection, BoardPoint};
 use crate::vision::error::DetectError;
 use crate::vision::image::GrayImage;
-use crate::vision::saddle::refine_saddle;
+use crate::vision::saddle::refine_saddle_near;
 
-/// Candidates are searched on a copy decimated to at most this long side
-/// first (then at full resolution if that fails: small squares).
-pub const COARSE_LONG_SIDE_PX: usize = 1000;
+/// Candidates are searched on copies decimated to at most these long sides,
+/// coarsest first (cheap: most boards are found there), then at full
+/// resolution if every level fails (small squares).
+pub const LEVEL_LONG_SIDES_PX: [usize; 2] = [400, 1000];
+/// Largest decimation factor: a candidate's position is good to a fraction
+/// of a level pixel, and the refinement must start within a pixel or two
+/// of the junction (a sharp one gives its fits no slope farther out).
+pub const MAX_LEVEL_FACTOR: usize = 4;
 /// Smallest image side accepted, pixels.
 pub const MIN_IMAGE_SIDE_PX: usize = 16;
 /// Refinement half window as a fraction of the distance to the nearest
@@ -31,11 +36,15 @@ pub const MIN_REFINE_HALF_WINDOW_PX: f64 = 2.0;
 pub const MAX_REFINE_HALF_WINDOW_PX: f64 = 12.0;
 
 /// The largest lattice grown from any seed (a complete one ends the search).
-fn best_lattice(cands: &[super::candidates::Candidate], spec: &ChessboardSpec) -> Option<Lattice> {
+fn best_lattice(
+    cands: &[super::candidates::Candidate],
+    spec: &ChessboardSpec,
+    smoothed: &GrayImage,
+) -> Option<Lattice> {
     let mut best: Option<Lattice> = None;
     let cap = 4 * spec.corner_count();
     for k in 0..cands.len().min(MAX_SEEDS) {
-        let Some(l) = grow(cands, k, cap) else {
+        let Some(l) = grow(cands, k, cap, smoothed) else {
             continue;
         };
         let done = l.len() >= spec.corner_count();
@@ -59,7 +68,7 @@ fn at_level(
     let level = decimate(img, factor);
     let (cands, smoothed) =
         find_candidates(&level, MAX_CANDIDATES_PER_CORNER * spec.corner_count());
-    let lattice = best_lattice(&cands, spec).ok_or_else(|| {
+    let lattice = best_lattice(&cands, spec, &smoothed).ok_or_else(|| {
         DetectError::NoBoard(format!(
             "no chessboard corner lattice found ({} saddle candidates)",
             cands.len()
@@ -109,24 +118,29 @@ pub fn detect_chessboard(
             min_side: MIN_IMAGE_SIDE_PX,
         });
     }
-    let coarse = img
-        .width
-        .max(img.height)
-        .div_ceil(COARSE_LONG_SIDE_PX)
-        .max(1);
-    let (grid, unique) = match at_level(img, spec, coarse) {
-        Ok(found) => found,
-        Err(e @ DetectError::GridMismatch(_)) => return Err(e),
-        Err(e) if coarse == 1 => return Err(e),
-        Err(_) => at_level(img, spec, 1)?,
-    };
+    let long = img.width.max(img.height);
+    let mut factors: Vec<usize> = LEVEL_LONG_SIDES_PX
+        .iter()
+        .map(|&side| long.div_ceil(side).clamp(1, MAX_LEVEL_FACTOR))
+        .chain([1])
+        .collect();
+    factors.dedup();
+    let mut found = Err(DetectError::NoBoard("no decimation level tried".into()));
+    for factor in factors {
+        found = at_level(img, spec, factor);
+        match &found {
+            Ok(_) | Err(DetectError::GridMismatch(_)) => break,
+            Err(_) => {}
+        }
+    }
+    let (grid, unique) = found?;
     let points = grid
         .iter()
         .enumerate()
         .filter_map(|(k, p)| {
             let half = (REFINE_WINDOW_FRACTION * neighbour_gap(&grid, spec, k))
                 .clamp(MIN_REFINE_HALF_WINDOW_PX, MAX_REFINE_HALF_WINDOW_PX);
-            let [x_px, y_px] = refine_saddle(img, [p.x, p.y], half)?;
+            let [x_px, y_px] = refine_saddle_near(img, [p.x, p.y], half)?;
             let (row, col) = (k / spec.cols(), k % spec.cols());
             Some(BoardPoint {
                 row,

@@ -12,14 +12,12 @@ use std::collections::HashMap;
 use nalgebra::Vector2;
 
 use super::candidates::Candidate;
+use super::seed::seed_neighbours;
+use crate::vision::image::GrayImage;
 
 /// A candidate must lie within this fraction of the local corner spacing of
 /// the predicted position.
 const ACCEPT_FRACTION: f64 = 0.3;
-/// Opposite neighbours of a seed: `|a + b - 2c|` below this fraction of the spacing.
-const SEED_PAIR_FRACTION: f64 = 0.25;
-/// Row and column neighbours of a seed differ in length by at most this ratio.
-const SEED_MAX_ASPECT: f64 = 3.0;
 /// Seeds tried, strongest candidates first.
 pub const MAX_SEEDS: usize = 40;
 
@@ -37,49 +35,6 @@ fn nearest(cands: &[Candidate], p: Vector2<f64>, used: &[bool]) -> Option<(usize
         .min_by(|a, b| a.1.total_cmp(&b.1))
 }
 
-/// The seed's row and column steps, or `None` if `k` is no lattice corner.
-fn seed_steps(cands: &[Candidate], k: usize) -> Option<(Vector2<f64>, Vector2<f64>)> {
-    let c = cands[k].pos;
-    let mut near: Vec<(usize, f64)> = cands
-        .iter()
-        .enumerate()
-        .filter(|(j, _)| *j != k)
-        .map(|(j, o)| (j, (o.pos - c).norm()))
-        .collect();
-    if near.len() < 4 {
-        return None;
-    }
-    near.select_nth_unstable_by(3, |a, b| a.1.total_cmp(&b.1));
-    near.truncate(4);
-    near.sort_by(|a, b| a.1.total_cmp(&b.1));
-    let first = cands[near[0].0].pos - c;
-    // The opposite of the nearest, then the remaining pair.
-    let opp = (1..4).min_by(|&a, &b| {
-        let ea = (cands[near[a].0].pos - c + first).norm();
-        let eb = (cands[near[b].0].pos - c + first).norm();
-        ea.total_cmp(&eb)
-    })?;
-    let rest: Vec<usize> = (1..4).filter(|&j| j != opp).collect();
-    let second = cands[near[rest[0]].0].pos - c;
-    let third = cands[near[rest[1]].0].pos - c;
-    let pair_ok = |a: Vector2<f64>, b: Vector2<f64>| {
-        (a + b).norm() <= SEED_PAIR_FRACTION * a.norm().min(b.norm())
-    };
-    if !pair_ok(first, cands[near[opp].0].pos - c) || !pair_ok(second, third) {
-        return None;
-    }
-    let (la, lb) = (first.norm(), second.norm());
-    if la.max(lb) > SEED_MAX_ASPECT * la.min(lb) {
-        return None;
-    }
-    // The two steps must not be parallel.
-    let cos = first.dot(&second) / (la * lb);
-    if cos.abs() > 0.8 {
-        return None;
-    }
-    Some((first, second))
-}
-
 /// Predicted position of `cell` from its known neighbours, and the local spacing.
 fn predict(
     lattice: &Lattice,
@@ -91,7 +46,12 @@ fn predict(
     let (mut sum, mut spacing, mut n) = (Vector2::zeros(), 0.0, 0usize);
     for (di, dj) in STEPS {
         if let (Some(p1), Some(p2)) = (at(i - di, j - dj), at(i - 2 * di, j - 2 * dj)) {
-            sum += 2.0 * p1 - p2;
+            // Quadratic extrapolation where a third corner is known: it
+            // follows perspective's shrinking steps, the linear one lags.
+            sum += match at(i - 3 * di, j - 3 * dj) {
+                Some(p3) => 3.0 * p1 - 3.0 * p2 + p3,
+                None => 2.0 * p1 - p2,
+            };
             spacing += (p1 - p2).norm();
             n += 1;
         }
@@ -114,24 +74,20 @@ fn predict(
     (n > 0).then(|| (sum / n as f64, spacing / n as f64))
 }
 
-/// Grows the lattice from seed candidate `k`, or `None` if `k` is no seed.
-pub fn grow(cands: &[Candidate], k: usize, max_cells: usize) -> Option<Lattice> {
-    let (u, v) = seed_steps(cands, k)?;
-    let c = cands[k].pos;
+/// Grows the lattice from seed candidate `k`, or `None` if `k` is no seed
+/// (`smoothed`: the level image the candidates were found on).
+pub fn grow(
+    cands: &[Candidate],
+    k: usize,
+    max_cells: usize,
+    smoothed: &GrayImage,
+) -> Option<Lattice> {
+    let seed = seed_neighbours(cands, k, smoothed)?;
     let mut used = vec![false; cands.len()];
     let mut lattice = Lattice::new();
     lattice.insert((0, 0), k);
     used[k] = true;
-    for (cell, p) in [
-        ((1, 0), c + u),
-        ((-1, 0), c - u),
-        ((0, 1), c + v),
-        ((0, -1), c - v),
-    ] {
-        let (j, d) = nearest(cands, p, &used)?;
-        if d > ACCEPT_FRACTION * u.norm().min(v.norm()) {
-            return None;
-        }
+    for (cell, j) in [(1, 0), (-1, 0), (0, 1), (0, -1)].into_iter().zip(seed) {
         lattice.insert(cell, j);
         used[j] = true;
     }

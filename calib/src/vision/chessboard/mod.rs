@@ -7,6 +7,7 @@ pub mod detect;
 pub mod drawing;
 pub mod lattice;
 pub mod orient;
+mod seed;
 pub mod spec;
 
 pub use detect::detect_chessboard;
