@@ -42,12 +42,24 @@ fn main() -> Result<(), String> {
             let set = run_local(dir.path(), "SIGMA")?
                 .parameter_set
                 .ok_or("no parameter set")?;
+            let notes: Vec<String> = set.report["notes"]
+                .as_array()
+                .into_iter()
+                .flatten()
+                .filter_map(|n| n.as_str())
+                .filter(|n| n.contains("noise"))
+                .map(str::to_string)
+                .collect();
+            let report: robocal::report::Report =
+                serde_json::from_value(set.report.clone()).map_err(|e| e.to_string())?;
+            let dot_px = robocal::testkit::accuracy::dot_noise_px(&report)?;
             let set: ParameterSet =
                 serde_json::from_value(set.parameters).map_err(|e| e.to_string())?;
             let model = set.model()?;
             let u = Uncertainty::of(&set, &model).ok_or("no covariance")??;
             let truth = campaign.truth.model().map_err(|e| e.to_string())?;
             let (mut sp, mut sr, mut n) = (0.0, 0.0, 0.0);
+            let (mut ep, mut gp) = (0.0, 0.0);
             for pose in campaign.poses.iter().filter(|p| p.set == PoseSet::Val) {
                 let q = &pose.joints_rad;
                 let bent = compliance(&truth.robot, q, campaign.truth.compliance_rad_per_m);
@@ -57,13 +69,17 @@ fn main() -> Result<(), String> {
                 );
                 let s = u.at(&model, q, None)?;
                 sp += (e.rows(0, 3).norm() / s.position_std_mm).powi(2);
+                ep += e.rows(0, 3).norm_squared();
+                gp += s.position_std_mm.powi(2);
                 sr += (e.rows(3, 3).norm() / s.rotation_std_deg.to_radians()).powi(2);
                 n += 1.0;
             }
             println!(
-                "{preset} seed {seed}: RMS(error/σ) position {:.3}, rotation {:.3}",
+                "{preset} seed {seed}: RMS(error/σ) position {:.3}, rotation {:.3}; RMS error {:.4} mm, RMS σ {:.4} mm; dot noise {dot_px:.4} px; {notes:?}",
                 (sp / n).sqrt(),
-                (sr / n).sqrt()
+                (sr / n).sqrt(),
+                (ep / n).sqrt(),
+                (gp / n).sqrt(),
             );
             all_p += sp;
             all_r += sr;

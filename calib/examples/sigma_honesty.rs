@@ -6,7 +6,7 @@
 //! and orientation in the target frame; the Mahalanobis check of the
 //! parameter estimate `d^T Σ^+ d / rank` against the true model refitted in
 //! the identified parameterisation. Pooled over all campaigns at the end.
-//! `RUNS=40 PRESET=irb2400 CAL=24 VAL=16 [PIXEL=0.1] [SEED_START=0] [RENDERED_CAMERA=1]
+//! `RUNS=40 PRESET=irb2400 CAL=24 VAL=16 [PIXEL=0.1] [SEED_START=0] [RENDERED_CAMERA=1] [ENCODER_DEG=1e-4]
 //! cargo run --release -p robocal-calib --example sigma_honesty`
 use robocal_calib::geometry::pose_error;
 use robocal_calib::kinematics::identify::{
@@ -48,6 +48,9 @@ fn main() {
                 k3: 0.0,
             };
             spec.image_size = (1280, 1024);
+        }
+        if let Some(v) = env("ENCODER_DEG") {
+            spec.encoder_sigma_deg = v;
         }
         if let Some(v) = env("PIXEL") {
             spec.pixel_sigma_px = v;
