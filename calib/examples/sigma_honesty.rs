@@ -35,19 +35,39 @@ fn main() {
         spec.cal_poses = env("CAL").unwrap_or(24.0) as usize;
         spec.val_poses = env("VAL").unwrap_or(16.0) as usize;
         if std::env::var("RENDERED_CAMERA").is_ok() {
-            // The camera `robocal simulate` renders for the IRB 2400 preset.
-            spec.intrinsics = robocal_calib::camera::model::Intrinsics {
-                fx: 2100.0,
-                fy: 2100.0,
-                cx: 641.0,
-                cy: 511.0,
-                k1: -0.09,
-                k2: 0.07,
-                p1: 2e-4,
-                p2: -1e-4,
-                k3: 0.0,
+            // The cameras `robocal simulate` renders for each preset.
+            let (intrinsics, size) = match preset.as_str() {
+                "puma560" => (
+                    robocal_calib::camera::model::Intrinsics {
+                        fx: 1100.0,
+                        fy: 1100.0 * 0.9825,
+                        cx: 377.5,
+                        cy: 289.0,
+                        k1: -0.12,
+                        k2: 0.08,
+                        p1: 3e-4,
+                        p2: -2e-4,
+                        k3: 0.0,
+                    },
+                    (752, 582),
+                ),
+                _ => (
+                    robocal_calib::camera::model::Intrinsics {
+                        fx: 2100.0,
+                        fy: 2100.0,
+                        cx: 641.0,
+                        cy: 511.0,
+                        k1: -0.09,
+                        k2: 0.07,
+                        p1: 2e-4,
+                        p2: -1e-4,
+                        k3: 0.0,
+                    },
+                    (1280, 1024),
+                ),
             };
-            spec.image_size = (1280, 1024);
+            spec.intrinsics = intrinsics;
+            spec.image_size = size;
         }
         if let Some(v) = env("ENCODER_DEG") {
             spec.encoder_sigma_deg = v;

@@ -150,7 +150,7 @@ async fn one_campaign(
 // what the rendered detection does differently is open. Two campaigns are
 // also too few for this band (one campaign's ratio ranges 0.2-2 when σ is
 // exact). Issue 15 stays open.
-#[ignore = "rendered-pipeline σ about 2x pessimistic in position (RMS 0.52 over 6 IRB campaigns) while calib-level σ is honest; issue 15 open"]
+#[ignore = "rendered-pipeline σ about 2x pessimistic (position RMS 0.52 over 6 IRB campaigns, rotation 0.26 over 2 PUMA) while calib-level σ is honest; issue 15 open"]
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn predicted_sigma_is_honest_on_simulated_campaigns() {
     let app = spawn_app_with(|c| c.test_validate_only = false).await;
