@@ -17,6 +17,23 @@ use robocal_calib::kinematics::ik::{nearest_within_limits, IkStart};
 use robocal_calib::kinematics::CalibratedModel;
 use robocal_calib::sim::campaign::{perturb_robot, CampaignSpec};
 
+/// CPU time of this thread (s), from Linux's `/proc/thread-self/schedstat`
+/// (nanoseconds on a core): the rate per core on a loaded machine, where
+/// the wall clock also counts other processes' turns. `None` elsewhere.
+fn thread_cpu_s() -> Option<f64> {
+    let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    let ns: f64 = text.split_whitespace().next()?.parse().ok()?;
+    Some(ns * 1e-9)
+}
+
+/// Targets per CPU second between two [`thread_cpu_s`] readings.
+fn cpu_rate(targets: usize, from: Option<f64>) -> String {
+    match (from, thread_cpu_s()) {
+        (Some(a), Some(b)) if b > a => format!("{:.0} targets per CPU s", targets as f64 / (b - a)),
+        _ => "CPU time unavailable".into(),
+    }
+}
+
 /// Joint spread (rad) of the "near the seed" targets.
 const NEAR_SPREAD_RAD: f64 = 0.3;
 
@@ -52,6 +69,7 @@ fn main() {
                 })
                 .collect();
             let (mut seeded, mut branch, mut failed, mut iterations) = (0, 0, 0, 0);
+            let cpu = thread_cpu_s();
             let start = Instant::now();
             for target in &poses {
                 match nearest_within_limits(&model, target, &seed) {
@@ -68,15 +86,17 @@ fn main() {
             }
             let seconds = start.elapsed().as_secs_f64();
             println!(
-                "{preset} {label}: {targets} targets in {seconds:.3} s = {rate:.0} targets/s; \
+                "{preset} {label}: {targets} targets in {seconds:.3} s = {rate:.0} targets/s ({}); \
                  answered by the seed {seeded}, by a branch seed {branch}, failed {failed}; \
                  {mean:.1} iterations per answered target",
+                cpu_rate(targets, cpu),
                 rate = targets as f64 / seconds,
                 mean = iterations as f64 / (seeded + branch).max(1) as f64
             );
             // Filter: the calibrated IK, the nominal FK and the replayed
             // controller IK per target.
             let (mut filtered, mut unfiltered) = (0, 0);
+            let cpu = thread_cpu_s();
             let start = Instant::now();
             for target in &poses {
                 match filter_target(&model, &spec.nominal, target, &seed) {
@@ -86,8 +106,9 @@ fn main() {
             }
             let seconds = start.elapsed().as_secs_f64();
             println!(
-                "{preset} {label} filter: {targets} targets in {seconds:.3} s = {rate:.0} targets/s; \
+                "{preset} {label} filter: {targets} targets in {seconds:.3} s = {rate:.0} targets/s ({}); \
                  filtered {filtered}, failed {unfiltered}",
+                cpu_rate(targets, cpu),
                 rate = targets as f64 / seconds
             );
         }

@@ -139,11 +139,18 @@ async fn one_campaign(
     (pos, rot, joints_deg.len())
 }
 
-// Fails today: on the IRB 2400 campaign RMS(error/σ) is 0.445 (position)
-// and 0.335 (rotation), under issue 15's 0.5–2 band: the predicted σ is
-// about twice the true error. Kept (run with `--ignored`) until the
-// propagation is fixed; issue 15 stays open (docs/notes/session6-deploy.md).
-#[ignore = "predicted σ about 2x pessimistic (RMS error/σ 0.445); issue 15 open"]
+// Fails today, and the cause is not found yet (docs/notes/session7-deploy.md):
+// through the service's rendered pipeline the IRB 2400 campaigns of seeds
+// 5-10 give position RMS(error/σ) 0.30-0.70 (pooled 0.52), while the same
+// campaigns identified at calib level with Gaussian dot noise of the
+// measured size (0.006 px) give 1.09 pooled, and 200 such campaigns 0.97
+// (`calib::kinematics::uncertainty::honesty_tests` pins the calib-level
+// propagation to 0.8-1.25 over 100 campaigns per preset). So the stored
+// covariance and its propagation are honest for the noise they assume;
+// what the rendered detection does differently is open. Two campaigns are
+// also too few for this band (one campaign's ratio ranges 0.2-2 when σ is
+// exact). Issue 15 stays open.
+#[ignore = "rendered-pipeline σ about 2x pessimistic (position RMS 0.52 over 6 IRB campaigns, rotation 0.26 over 2 PUMA) while calib-level σ is honest; issue 15 open"]
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn predicted_sigma_is_honest_on_simulated_campaigns() {
     let app = spawn_app_with(|c| c.test_validate_only = false).await;

@@ -40,7 +40,9 @@ pub enum IkError {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum IkStart {
-    /// The caller's seed (the first one, when several were given).
+    /// The caller's seed (the first one, when several were given), or
+    /// for compensation of a far target on a spherical-wrist arm the
+    /// closed-form solution nearest it: the seed's own branch.
     #[default]
     Seed,
     /// A closed-form branch seed of a spherical-wrist arm.
@@ -310,6 +312,25 @@ impl<'a> Search<'a> {
         true
     }
 
+    /// Runs from `starts` (ordered by their distance from the seed) until
+    /// none can refine to a nearer in-limit answer than the best so far;
+    /// the run from index `own_branch` counts as the seed's.
+    fn run_branches(&mut self, starts: &[(f64, Vec<f64>)], own_branch: Option<usize>) {
+        for (k, (distance, start)) in starts.iter().enumerate() {
+            if let Some((best, _)) = &self.found {
+                if *distance > best.sqrt() + BRANCH_MARGIN_RAD {
+                    break;
+                }
+            }
+            let how = if own_branch == Some(k) {
+                IkStart::Seed
+            } else {
+                IkStart::Branch
+            };
+            self.run(start, how);
+        }
+    }
+
     fn finish(self) -> Result<IkSolution, IkError> {
         match (self.found, self.limit_error) {
             (Some((_, s)), _) => Ok(IkSolution {
@@ -350,16 +371,35 @@ pub fn inverse_kinematics(
     search.finish()
 }
 
+/// A seed this close (rad, joint-space norm) to the nearest closed-form
+/// solution is near its target: its own run answers in a few iterations.
+/// Farther seeds start from the closed-form solutions instead (a run from
+/// a far seed takes tens of iterations, or wanders into another branch).
+const NEAR_SEED_RAD: f64 = 0.5;
+/// A closed-form start farther (rad) from the seed than the best answer
+/// so far plus this cannot refine to a nearer one: the calibrated model's
+/// solution lies within milliradians of the nominal formula's, except near
+/// the shoulder singularity, which the ring of shoulder seeds covers.
+const BRANCH_MARGIN_RAD: f64 = 0.5;
+/// Shoulder x elbow x wrist: the closed form's solutions before any ring.
+const BRANCHES: usize = 8;
+
 /// Compensation (api.md "compensate"): the in-limit joints nearest `seed`
 /// (joint-space distance, whole turns included) that put the tool at
 /// `world_to_tool`.
 ///
-/// The seed's own run answers when it lands within limits: the usual case
-/// costs one Levenberg–Marquardt run. Otherwise every branch is refined —
-/// the closed-form seeds of a spherical-wrist arm, or the [`default_seeds`]
-/// grid for other arms — and the in-limit solution nearest the seed wins.
-/// A target no branch reaches within limits is an error naming the nearest
-/// solution's offending joint.
+/// A spherical-wrist arm first gets its closed-form solutions (Pieper's
+/// decomposition of its own link geometry), turned toward the seed and
+/// ordered by their distance from it. A seed near the nearest one runs
+/// itself (a few iterations); otherwise the nearest closed-form solution
+/// starts the run, reported as the seed's ([`IkStart::Seed`]: its own
+/// branch). When that answer leaves the limits, the other branches are
+/// refined in order of distance until none can be nearer than the best
+/// in-limit answer; near the shoulder singularity, the ring of shoulder
+/// seeds follows when none of the eight answers. Other arms: the seed's
+/// run, then the [`default_seeds`]
+/// grid. A target no start reaches within limits is an error naming the
+/// nearest solution's offending joint.
 pub fn nearest_within_limits(
     model: &CalibratedModel,
     world_to_tool: &Pose,
@@ -367,20 +407,45 @@ pub fn nearest_within_limits(
 ) -> Result<IkSolution, IkError> {
     model.robot.base_to_flange(seed)?;
     let mut search = Search::new(model, world_to_tool, seed, Turns::TowardReference);
-    if search.run(seed, IkStart::Seed) {
+    let Some(arm) = SphericalWristArm::of(&model.robot) else {
+        if !search.run(seed, IkStart::Seed) {
+            for mut start in default_seeds(model) {
+                move_by_turns(model, &mut start, seed, Turns::TowardReference);
+                search.run(&start, IkStart::MultiStart);
+            }
+        }
+        return search.finish();
+    };
+    let base_to_flange =
+        model.world_to_base.inverse() * world_to_tool * model.flange_to_tool.inverse();
+    let mut starts: Vec<(f64, Vec<f64>)> = arm
+        .branch_seeds(&base_to_flange)
+        .into_iter()
+        .map(|mut start| {
+            move_by_turns(model, &mut start, seed, Turns::TowardReference);
+            (squared_distance(&start, seed).sqrt(), start)
+        })
+        .collect();
+    // The eight branches of the formula's own shoulder angles first; the
+    // ring near the shoulder singularity only when none of them answers.
+    let ring = starts.split_off(starts.len().min(BRANCHES));
+    let by_distance = |v: &mut Vec<(f64, Vec<f64>)>| v.sort_by(|a, b| a.0.total_cmp(&b.0));
+    by_distance(&mut starts);
+    let near = starts.first().is_none_or(|(d, _)| *d <= NEAR_SEED_RAD);
+    if near && search.run(seed, IkStart::Seed) {
         return search.finish();
     }
-    let (starts, how) = match SphericalWristArm::of(&model.robot) {
-        Some(arm) => {
-            let base_to_flange =
-                model.world_to_base.inverse() * world_to_tool * model.flange_to_tool.inverse();
-            (arm.branch_seeds(&base_to_flange), IkStart::Branch)
-        }
-        None => (default_seeds(model), IkStart::MultiStart),
-    };
-    for mut start in starts {
-        move_by_turns(model, &mut start, seed, Turns::TowardReference);
-        search.run(&start, how);
+    let own_branch = (!near).then_some(0);
+    search.run_branches(&starts, own_branch);
+    if search.found.is_none() && !ring.is_empty() {
+        let mut ring = ring;
+        by_distance(&mut ring);
+        search.run_branches(&ring, None);
+    }
+    // The closed form missed (a calibrated model far from its structure):
+    // the seed's own run, as for other arms.
+    if search.found.is_none() && !near {
+        search.run(seed, IkStart::Seed);
     }
     search.finish()
 }

@@ -86,7 +86,7 @@ fn isolated(model: &CalibratedModel, q: &[f64], target: &Pose) -> bool {
     };
     arm.branch_seeds(&base_to_flange).iter().all(|b| {
         let d = distance(&wrapped(b), q);
-        d < SAME_BRANCH_RAD || d > MIN_BRANCH_GAP_RAD
+        !(SAME_BRANCH_RAD..=MIN_BRANCH_GAP_RAD).contains(&d)
     })
 }
 

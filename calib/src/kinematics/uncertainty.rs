@@ -134,3 +134,7 @@ pub fn pose_std(
 #[cfg(test)]
 #[path = "uncertainty_tests.rs"]
 mod tests;
+
+#[cfg(test)]
+#[path = "uncertainty_honesty_tests.rs"]
+mod honesty_tests;
