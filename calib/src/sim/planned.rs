@@ -61,7 +61,16 @@ pub fn shoot(
     campaign: &Campaign,
     joints: &[Vec<f64>],
 ) -> Result<Vec<ImagePose>, ExperimentError> {
-    let truth = campaign.truth.model()?;
+    shoot_with(spec, &campaign.truth.model()?, joints)
+}
+
+/// [`shoot`] by the robot `truth` (e.g. the cell's true robot after a
+/// drift of its joint zeros or base, for a quick check).
+pub fn shoot_with(
+    spec: &CampaignSpec,
+    truth: &CalibratedModel,
+    joints: &[Vec<f64>],
+) -> Result<Vec<ImagePose>, ExperimentError> {
     let mut rng = StdRng::seed_from_u64(spec.seed ^ IMAGE_NOISE_SEED);
     let spec_error = |e: rand_distr::NormalError| SimError::Spec(e.to_string());
     let px = Normal::new(0.0, spec.pixel_sigma_px).map_err(spec_error)?;
