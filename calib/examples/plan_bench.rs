@@ -11,11 +11,10 @@ use std::time::Instant;
 
 use robocal_calib::plan::candidates::{generate, limited_model};
 use robocal_calib::plan::information::{pose_factor, Columns};
-use robocal_calib::plan::predict::predict;
-use robocal_calib::plan::{plan_campaign, PlanCriterion, PlanPurpose, PlanRequest};
+use robocal_calib::plan::{plan_campaign, PlanCriterion, PlanPurpose};
 use robocal_calib::sim::campaign::{simulate_campaign, Campaign, CampaignSpec};
 use robocal_calib::sim::campaign_io::PoseSet;
-use robocal_calib::sim::planned::{calibrate_images, plan_request, shoot};
+use robocal_calib::sim::planned::{calibrate_images, expected_error, plan_request, shoot};
 
 const PLANNED: usize = 30;
 const COUNTS: [usize; 4] = [10, 20, 30, 60];
@@ -32,26 +31,6 @@ fn achieved(spec: &CampaignSpec, campaign: &Campaign, joints: &[Vec<f64>]) -> Re
     calibrate_images(spec, campaign, &images)
         .map(|s| s.norm.mean_mm)
         .map_err(|e| e.to_string())
-}
-
-/// The planner's predicted validation error (mm) for any `joints` (the
-/// random baseline's expectation), over the campaign's `val` poses.
-fn expected(request: &PlanRequest, campaign: &Campaign, joints: &[Vec<f64>]) -> Option<f64> {
-    let columns = Columns::of(request, &request.model).ok()?;
-    let factors: Vec<_> = joints
-        .iter()
-        .filter_map(|q| pose_factor(request, &request.model, &columns, q))
-        .collect();
-    let refs: Vec<_> = factors.iter().collect();
-    let val: Vec<Vec<f64>> = campaign
-        .poses
-        .iter()
-        .filter(|p| p.set == PoseSet::Val)
-        .map(|p| p.joints_rad.clone())
-        .collect();
-    predict(&request.model, &columns, &refs, &val)
-        .ok()
-        .map(|p| p.validation_error_mean_mm)
 }
 
 /// CPU time of the calling thread (s), from `/proc/thread-self/schedstat`
@@ -154,7 +133,7 @@ fn main() {
                         plan.poses.iter().map(|p| p.joints_rad.clone()).collect();
                     let predicted = plan.prediction.validation_error_mean_mm;
                     predicted_sum[k][c].add(Some(predicted));
-                    expected_sum[k][c].add(expected(&request, &campaign, &joints));
+                    expected_sum[k][c].add(expected_error(&request, &campaign, &joints).ok());
                     match achieved(&spec, &campaign, &joints) {
                         Ok(mm) => {
                             achieved_sum[k][c].add(Some(mm));
@@ -176,7 +155,7 @@ fn main() {
                     Ok(mm) => random_sum[k].add(Some(mm)),
                     Err(e) => println!("{preset} cell {seed}: {n} random failed: {e}"),
                 }
-                random_expected[k].add(expected(&request, &campaign, &random[..n]));
+                random_expected[k].add(expected_error(&request, &campaign, &random[..n]).ok());
             }
         }
         for (k, &n) in COUNTS.iter().enumerate() {

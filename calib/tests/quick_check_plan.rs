@@ -123,7 +123,7 @@ fn detect(
             .map(|(&i, s)| x[i] / s),
     );
     let noncentrality = (delta.transpose() * &m * &delta)[(0, 0)];
-    let images = shoot_with(spec, &drifted, joints).unwrap();
+    let images = shoot_with(spec, &drifted, joints, 0).unwrap();
     let noise = ImageNoise {
         sigma_px: spec.pixel_sigma_px,
         joint: JointNoise::default(),

@@ -1,5 +1,6 @@
 //! Selection on the low-rank pose factors of [`super::information`]:
-//! greedy D-optimal, then exchange (Fedorov's) passes, for either of two
+//! greedy D-optimal (lazy, [`lazy_greedy`]), then exchange (Fedorov's)
+//! passes, for either of two
 //! criteria ([`Criterion`]): D (the determinant of the information) or I
 //! (the predicted camera-position variance at validation poses, what a
 //! job's validation error measures).
@@ -12,6 +13,9 @@
 //! of its information flipped, so one [`Woodbury`] step serves the greedy
 //! additions and both halves of every exchange, for both criteria: the
 //! I criterion's change is `tr(S^-1 W V W^T)` for the weight `V`.
+
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
 
 use nalgebra::{Cholesky, DMatrix, Dyn};
 
@@ -159,21 +163,50 @@ pub fn select(
 ) -> Vec<usize> {
     let mut p = DMatrix::<f64>::identity(parameters, parameters);
     let mut taken = vec![false; factors.len()];
+    let mut chosen = lazy_greedy(&mut p, factors, &mut taken, count);
+    // The exchange for the plan's own criterion only: an I plan starts its
+    // exchange from the greedy D plan (a D exchange first would cost as
+    // much again for little).
+    exchange(&mut p, factors, &mut taken, &mut chosen, criterion);
+    chosen
+}
+
+/// Greedy D-optimal additions, lazily: `ln det` is submodular (a pose's
+/// gain only shrinks as others are added), so a gain computed earlier is
+/// an upper bound, and a candidate whose fresh gain beats every other
+/// bound is the greedy choice without re-evaluating the rest. Gains of
+/// additions are `>= 0`, so their bit patterns order like the values.
+fn lazy_greedy(
+    p: &mut DMatrix<f64>,
+    factors: &[DMatrix<f64>],
+    taken: &mut [bool],
+    count: usize,
+) -> Vec<usize> {
+    let mut bounds: BinaryHeap<(u64, Reverse<usize>)> = factors
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| !taken[*k])
+        .filter_map(|(k, g)| {
+            Woodbury::new(p, g, Sign::Add, Criterion::D)
+                .map(|step| (step.gain.max(0.0).to_bits(), Reverse(k)))
+        })
+        .collect();
     let mut chosen = Vec::with_capacity(count);
     while chosen.len() < count {
-        let Some((k, _)) = best_addition(&p, factors, &taken, Criterion::D) else {
+        let Some((_, Reverse(k))) = bounds.pop() else {
             break;
         };
-        let Some(addition) = Woodbury::new(&p, &factors[k], Sign::Add, Criterion::D) else {
-            break;
+        let Some(step) = Woodbury::new(p, &factors[k], Sign::Add, Criterion::D) else {
+            continue;
         };
-        p = addition.apply(&p);
-        taken[k] = true;
-        chosen.push(k);
-    }
-    exchange(&mut p, factors, &mut taken, &mut chosen, Criterion::D);
-    if let Criterion::I(_) = criterion {
-        exchange(&mut p, factors, &mut taken, &mut chosen, criterion);
+        let fresh = step.gain.max(0.0).to_bits();
+        if bounds.peek().is_none_or(|&(bound, _)| fresh >= bound) {
+            *p = step.apply(p);
+            taken[k] = true;
+            chosen.push(k);
+        } else {
+            bounds.push((fresh, Reverse(k)));
+        }
     }
     chosen
 }
