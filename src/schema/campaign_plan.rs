@@ -82,7 +82,8 @@ pub struct CampaignPlanBody {
     /// Where the robot stands before the campaign; the path starts here.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub start_joints_deg: Option<Vec<f64>>,
-    /// Dot noise for the prediction (px); default 0.1 px.
+    /// Dot noise for the prediction (px per image axis); default: what the
+    /// robot's newest camera job measured on images of this size, else 0.1 px.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sigma_px: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -172,8 +173,14 @@ pub struct PredictedDoc {
     pub parameter_std_devs: BTreeMap<String, f64>,
     /// `s_max / s_min` of the column-scaled image-level Jacobian.
     pub condition_number: f64,
-    /// The dot noise the prediction assumed (px).
+    /// The dot noise the prediction assumed (px per image axis).
     pub sigma_px: f64,
+    /// Where `sigma_px` came from: `"request"` (the body's `sigma_px`), the
+    /// parameter set `"{serial}/{version}"` whose job measured it (its
+    /// report's reprojection RMS / sqrt 2, on images of the plan's size), or
+    /// `"default"` (0.1 px). Absent only in plans stored before it existed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sigma_px_source: Option<String>,
 }
 
 /// How many candidate poses survived one filter.

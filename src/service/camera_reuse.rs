@@ -10,6 +10,7 @@ use robocal_calib::camera::Intrinsics;
 use serde::Deserialize;
 
 use super::error::{ServiceError, ServiceResult};
+use super::report_camera::report_camera;
 use crate::pipeline::FixedCamera;
 use crate::schema::session::{CameraDoc, Instrument, SessionBody};
 use crate::store::{DynStore, StoreError};
@@ -86,19 +87,6 @@ struct StoredCamera {
     camera: Option<Intrinsics>,
 }
 
-/// What this check reads of a stored report: the size of the images the
-/// camera was calibrated on.
-#[derive(Deserialize)]
-struct CalibratedImages {
-    camera: Option<ImageSize>,
-}
-
-#[derive(Deserialize)]
-struct ImageSize {
-    image_width: u32,
-    image_height: u32,
-}
-
 /// Looks the calibration up and checks it fits a session whose camera is
 /// `camera`: it has intrinsics, measured on images of the same size.
 pub async fn resolve(
@@ -121,16 +109,8 @@ pub async fn resolve(
             ))
         })?;
     if let Some(camera) = camera {
-        let calibrated = store
-            .get_report(serial, set.version)
-            .await?
-            .and_then(|r| serde_json::from_value::<CalibratedImages>(r).ok())
-            .and_then(|r| r.camera);
-        if let Some(ImageSize {
-            image_width: w,
-            image_height: h,
-        }) = calibrated
-        {
+        let calibrated = report_camera(store, serial, set.version).await?;
+        if let Some((w, h)) = calibrated.map(|c| c.image_size()) {
             if (w, h) != (camera.width, camera.height) {
                 return Err(ReuseError::Unusable(format!(
                     "parameter set {resolved} calibrated {w}x{h} images, the session camera is {}x{}",

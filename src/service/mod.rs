@@ -6,6 +6,9 @@
 //! (`api/error.rs`).
 
 pub mod camera_reuse;
+pub mod campaign_plan_doc;
+pub mod campaign_plan_inputs;
+pub mod campaign_plan_noise;
 pub mod campaign_plans;
 pub mod dataset;
 pub mod dataset_intake;
@@ -15,6 +18,7 @@ pub mod export;
 pub mod filter;
 pub mod images;
 pub mod intake;
+pub mod report_camera;
 pub mod results;
 pub mod staged_images;
 pub mod uncertainty;

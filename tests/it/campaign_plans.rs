@@ -1,8 +1,12 @@
 //! Campaign plans over HTTP (issue 16): the contract of `POST
 //! /v1/robots/{serial}/campaign-plans`, every export format carrying the
-//! same joint values as the JSON plan, and infeasible or bad requests as
-//! 422/404 problem+json naming the constraint or field.
+//! same joint values as the JSON plan, the dot noise the prediction uses
+//! (the request's, the robot's earlier camera job's, or the default), and
+//! infeasible or bad requests as 422/404 problem+json naming the constraint
+//! or field.
 
+use robocal::domain::NewParameterSet;
+use robocal::store;
 use robocal_calib::geometry::{pose_to_xyz_rpy_deg, Pose};
 use robocal_calib::kinematics::presets;
 use serde_json::{json, Value};
@@ -119,6 +123,9 @@ async fn plan_contract_and_exports_round_trip_joints() {
     assert!(predicted["parameter_std_devs"]["a_2"].as_f64().unwrap() > 0.0);
     assert_eq!(plan["purpose"], "calibration");
     assert_eq!(plan["model"], "nominal");
+    // No earlier job: the stated default, and the plan says so.
+    assert_eq!(predicted["sigma_px"], 0.1);
+    assert_eq!(predicted["sigma_px_source"], "default");
     let id = plan["id"].as_str().unwrap();
     let base = format!("/v1/robots/PLAN-1/campaign-plans/{id}");
 
@@ -236,4 +243,67 @@ async fn infeasible_and_bad_requests_name_the_constraint() {
         .post_json("/v1/robots/NOPE/campaign-plans", &body(CAL_POSES, 0))
         .await;
     assert_eq!(r.status(), 404);
+}
+
+/// A camera parameter set as a job stores one, as far as the planner reads
+/// it: the report's camera section with the image size and the dots'
+/// reprojection RMS (no calibrated model: the plan keeps the nominal one).
+fn camera_job(width: u32, height: u32, rms_px: f64) -> NewParameterSet {
+    NewParameterSet {
+        parameters: json!({"instrument": "camera"}),
+        report: json!({"camera": {"mode": "refined", "image_width": width,
+            "image_height": height, "reprojection_rms_px": rms_px}}),
+    }
+}
+
+#[tokio::test]
+async fn plan_predicts_with_the_dot_noise_of_the_robots_earlier_job() {
+    let app = spawn_app().await;
+    robot(&app, "PLAN-3").await;
+    let url = "/v1/robots/PLAN-3/campaign-plans";
+    let predicted = |b: Value| {
+        let app = &app;
+        async move {
+            let r = app.post_json(url, &b).await;
+            assert_eq!(r.status(), 201);
+            r.json::<Value>().await.unwrap()["predicted"].clone()
+        }
+    };
+    let default = predicted(body(CAL_POSES, 0)).await;
+    assert_eq!(default["sigma_px_source"], "default");
+
+    // Version 1: a camera job on the plan's 2048x1536 images, 0.3 px RMS
+    // per dot; 2: a tracker job (no camera); 3: a camera job on other
+    // images (another camera: says nothing of this one's noise).
+    let store = store::connect(&app.database_url).await.unwrap();
+    let tracker = NewParameterSet {
+        parameters: json!({"instrument": "tracker"}),
+        report: json!({}),
+    };
+    for set in [
+        camera_job(2048, 1536, 0.3),
+        tracker,
+        camera_job(1280, 1024, 0.9),
+    ] {
+        store
+            .insert_parameter_set("PLAN-3", None, &set)
+            .await
+            .unwrap();
+    }
+    let measured = predicted(body(CAL_POSES, 0)).await;
+    assert_eq!(measured["sigma_px_source"], "PLAN-3/1", "{measured}");
+    let sigma = measured["sigma_px"].as_f64().unwrap();
+    assert!((sigma - 0.3 / 2f64.sqrt()).abs() < 1e-12, "{sigma}");
+    // The predicted error scales with the dot noise (2.1x here; the plan
+    // itself may differ a little, its selection starts from a fixed prior).
+    let ratio = measured["validation_error_mean_mm"].as_f64().unwrap()
+        / default["validation_error_mean_mm"].as_f64().unwrap();
+    assert!(ratio > 1.8 && ratio < 2.5, "{ratio}");
+
+    // A stated noise wins over the measured one.
+    let mut stated = body(CAL_POSES, 0);
+    stated["sigma_px"] = json!(0.05);
+    let stated = predicted(stated).await;
+    assert_eq!(stated["sigma_px_source"], "request");
+    assert_eq!(stated["sigma_px"], 0.05);
 }

@@ -168,6 +168,19 @@ pub fn structural_redundancies(
     layout: &ParamLayout,
     model: &CalibratedModel,
 ) -> Result<Vec<usize>, KinematicsError> {
+    let all: Vec<usize> = (0..layout.len()).collect();
+    structural_redundancies_among(layout, model, &all)
+}
+
+/// The structural redundancies when only `columns` are estimated and every
+/// other parameter is known: a re-check with the hand–eye known determines
+/// the last joint's zero, which in a full calibration trades against the
+/// hand–eye's rotation. Returns a subset of `columns`.
+pub fn structural_redundancies_among(
+    layout: &ParamLayout,
+    model: &CalibratedModel,
+    columns: &[usize],
+) -> Result<Vec<usize>, KinematicsError> {
     let mut rng = StdRng::seed_from_u64(REFERENCE_SEED);
     let poses: Vec<Vec<f64>> = (0..REFERENCE_POSES)
         .map(|_| {
@@ -180,7 +193,11 @@ pub fn structural_redundancies(
         })
         .collect();
     let jac = stacked_jacobian(layout, model, &poses)?;
-    Ok(select(&scale_columns(&jac), &offer_order(layout), STRUCTURAL_TOL).1)
+    let order: Vec<usize> = offer_order(layout)
+        .into_iter()
+        .filter(|i| columns.contains(i))
+        .collect();
+    Ok(select(&scale_columns(&jac), &order, STRUCTURAL_TOL).1)
 }
 
 /// Per column of `cols` (unit columns), its distance from the span of the

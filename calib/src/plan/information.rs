@@ -12,7 +12,7 @@ use nalgebra::{DMatrix, SMatrix};
 
 use super::error::PlanError;
 use super::request::{PlanPurpose, PlanRequest};
-use crate::kinematics::identifiability::structural_redundancies;
+use crate::kinematics::identifiability::structural_redundancies_among;
 use crate::kinematics::jacobian::tool_pose_jacobian;
 use crate::kinematics::projection::{project_with_jacobians, INTRINSIC_NAMES};
 use crate::kinematics::{CalibratedModel, Instrument, ParamKind, ParamLayout};
@@ -55,11 +55,8 @@ impl Columns {
     /// check the joint zeros and the base, the rest known.
     pub fn of(request: &PlanRequest, model: &CalibratedModel) -> Result<Self, PlanError> {
         let layout = ParamLayout::new(&model.robot, Instrument::Camera);
-        let structural =
-            structural_redundancies(&layout, model).map_err(|e| PlanError::Model(e.to_string()))?;
         let quick = request.purpose == PlanPurpose::QuickCheck;
-        let free: Vec<usize> = (0..layout.len())
-            .filter(|i| !structural.contains(i))
+        let estimated: Vec<usize> = (0..layout.len())
             .filter(|&i| {
                 !quick
                     || matches!(
@@ -67,6 +64,14 @@ impl Columns {
                         ParamKind::JointOffset | ParamKind::Base(_)
                     )
             })
+            .collect();
+        // Redundant among the estimated ones only: with the hand–eye known,
+        // a quick check sees the last joint's zero drift.
+        let structural = structural_redundancies_among(&layout, model, &estimated)
+            .map_err(|e| PlanError::Model(e.to_string()))?;
+        let free: Vec<usize> = estimated
+            .into_iter()
+            .filter(|i| !structural.contains(i))
             .collect();
         let intrinsics = if quick || request.hold_intrinsics {
             0

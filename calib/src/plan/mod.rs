@@ -7,7 +7,9 @@
 //! greedy D-optimal selection with exchange on the information of the
 //! image-level identification a job runs (method.md §6 **beyond**: the
 //! kinematics, `target_to_base`, `flange_to_camera` and the intrinsics on
-//! the raw dots). The chosen poses are ordered into a short joint-space
+//! the raw dots); a calibration plan then exchanges poses for the predicted
+//! camera-position variance at random validation poses (I-optimal). The
+//! chosen poses are ordered into a short joint-space
 //! path; the predicted parameter covariance `sigma_px^2 (J^T J)^-1` is
 //! propagated to random validation poses in the same ranges.
 
@@ -23,4 +25,4 @@ pub mod station;
 
 pub use error::{FilterCount, PlanError};
 pub use planner::{plan_campaign, CampaignPlan, PlannedPose};
-pub use request::{KeepOutBox, PlanPurpose, PlanRequest};
+pub use request::{KeepOutBox, PlanCriterion, PlanPurpose, PlanRequest};

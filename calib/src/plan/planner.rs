@@ -7,12 +7,17 @@ use super::candidates::{anchor_joints, binding_constraint, generate, limited_mod
 use super::error::{FilterCount, PlanError};
 use super::information::{pose_factor, Columns};
 use super::path::{order_path, path_length};
-use super::predict::{predict, Prediction};
-use super::request::{PlanPurpose, PlanRequest, QUICK_CHECK_MAX_POSES, QUICK_CHECK_MIN_POSES};
-use super::select::d_optimal;
+use super::predict::{position_weight, predict, Prediction};
+use super::request::{
+    PlanCriterion, PlanPurpose, PlanRequest, QUICK_CHECK_MAX_POSES, QUICK_CHECK_MIN_POSES,
+};
+use super::select::{select, Criterion};
 
 /// Random feasible poses the validation error is predicted over.
 pub const PREDICTION_POSES: usize = 200;
+/// Further random feasible poses the I criterion weighs (not the
+/// prediction's: a plan fitted to its own test poses would flatter itself).
+pub const WEIGHT_POSES: usize = 200;
 /// Seeds the validation and prediction draws apart from the candidates.
 const VALIDATION_SEED: u64 = 0x7a_11d;
 /// Largest view angle (deg): beyond it the board is seen edge-on.
@@ -123,7 +128,28 @@ pub fn plan_campaign(request: &PlanRequest) -> Result<CampaignPlan, PlanError> {
         .take(PREDICTION_POSES)
         .map(|&k| feasible[k].clone())
         .collect();
-    let chosen = d_optimal(&factors, columns.len(), request.poses);
+    let criterion = request
+        .criterion
+        .unwrap_or(PlanCriterion::for_purpose(request.purpose));
+    let chosen = match criterion {
+        PlanCriterion::D => select(&factors, columns.len(), request.poses, Criterion::D),
+        PlanCriterion::I => {
+            let weighed: Vec<Vec<f64>> = shuffled
+                .iter()
+                .skip(PREDICTION_POSES)
+                .take(WEIGHT_POSES)
+                .map(|&k| feasible[k].clone())
+                .collect();
+            let weighed = if weighed.is_empty() { &probe } else { &weighed };
+            let weight = position_weight(&model, &columns, weighed)?;
+            select(
+                &factors,
+                columns.len(),
+                request.poses,
+                Criterion::I(&weight),
+            )
+        }
+    };
     let validation: Vec<usize> = shuffled
         .iter()
         .rev()

@@ -116,7 +116,7 @@ pub fn predict(
 /// `sum A_v^T A_v` over `validation_joints_rad`, with `A_v` the camera
 /// position's Jacobian in the scaled columns (zero for the intrinsics):
 /// `tr(W Cov)` is the summed position variance at those poses, what the
-/// selection's exchange minimises.
+/// selection's I criterion minimises.
 pub fn position_weight(
     model: &CalibratedModel,
     columns: &Columns,

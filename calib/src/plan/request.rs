@@ -52,6 +52,30 @@ pub enum PlanPurpose {
     QuickCheck,
 }
 
+/// What the selection optimises after its D-optimal start. By default
+/// ([`PlanCriterion::for_purpose`]) a calibration plan is I-optimal: on the
+/// simulator it is the one that beats 60 random poses with 30 (BENCHMARKS.md,
+/// "Session 7 — campaign planner"); a quick check is D-optimal, every drift
+/// parameter counting alike.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PlanCriterion {
+    /// The determinant of the information: every parameter at once.
+    D,
+    /// The predicted camera-position variance at random validation poses
+    /// (what a job's validation error measures), by exchange from the
+    /// D-optimal plan.
+    I,
+}
+
+impl PlanCriterion {
+    pub fn for_purpose(purpose: PlanPurpose) -> Self {
+        match purpose {
+            PlanPurpose::Calibration => PlanCriterion::I,
+            PlanPurpose::QuickCheck => PlanCriterion::D,
+        }
+    }
+}
+
 /// A plan request in the numerics' units (radians inside, `_deg` in names).
 #[derive(Debug, Clone, PartialEq)]
 pub struct PlanRequest {
@@ -82,6 +106,8 @@ pub struct PlanRequest {
     /// The job will hold the intrinsics (a reused camera calibration).
     pub hold_intrinsics: bool,
     pub purpose: PlanPurpose,
+    /// `None`: [`PlanCriterion::for_purpose`].
+    pub criterion: Option<PlanCriterion>,
     pub candidates: usize,
     pub image_margin_px: f64,
     pub min_singular_mm: f64,
@@ -121,6 +147,7 @@ impl PlanRequest {
             sigma_px: DEFAULT_SIGMA_PX,
             hold_intrinsics: false,
             purpose,
+            criterion: None,
             candidates: DEFAULT_CANDIDATES,
             image_margin_px: DEFAULT_IMAGE_MARGIN_PX,
             min_singular_mm: DEFAULT_MIN_SINGULAR_MM,

@@ -1,45 +1,85 @@
-//! D-optimal selection: greedy, then exchange (Fedorov's), on the low-rank
-//! pose factors of [`super::information`].
+//! Selection on the low-rank pose factors of [`super::information`]:
+//! greedy D-optimal (lazy, [`lazy_greedy`]), then exchange (Fedorov's)
+//! passes, for either of two
+//! criteria ([`Criterion`]): D (the determinant of the information) or I
+//! (the predicted camera-position variance at validation poses, what a
+//! job's validation error measures).
 //!
 //! With `P = M^-1` the inverse information so far, adding a pose with
 //! factor `G` multiplies `det M` by `det(I + G P G^T)` and changes `P` by
 //! Woodbury's identity, `P - W^T S^-1 W` with `W = G P`, `S = I + W G^T`:
 //! one candidate costs `O(m p^2)` for `m <= 14` rows and `p` parameters,
 //! never a `p x p` factorisation. Removing a pose is the same with the sign
-//! of its information flipped.
-//!
-//! [`i_optimal_exchange`] minimises instead the predicted variance of the
-//! camera position at validation poses (`tr(W P)`, `W = sum A_v^T A_v`; a
-//! swap changes it by `-+ tr(S^-1 W_g W W_g^T)`). The planner does not use
-//! it: on the simulator it chose poses at the edge of the image (a board
-//! point left the image on the true robot) and did worse than D-optimal
-//! (see docs/notes/session6-plan.md).
-#![allow(clippy::needless_range_loop)] // the exchange writes back into `chosen[slot]`
+//! of its information flipped, so one [`Woodbury`] step serves the greedy
+//! additions and both halves of every exchange, for both criteria: the
+//! I criterion's change is `tr(S^-1 W V W^T)` for the weight `V`.
 
-use nalgebra::DMatrix;
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
+use nalgebra::{Cholesky, DMatrix, Dyn};
 
 /// Exchange passes at most (each tries every chosen pose once).
 pub const EXCHANGE_PASSES: usize = 2;
-/// A swap must raise `ln det M` by this much to be taken.
+/// A swap must improve the criterion by this fraction (at least this much
+/// in absolute terms) to be taken.
 const EXCHANGE_MIN_GAIN: f64 = 1e-6;
 
-/// `ln det(I + sign G P G^T)` and `W = G P`; `None` if not positive definite.
-fn gain(
-    p: &DMatrix<f64>,
-    g: &DMatrix<f64>,
-    sign: f64,
-) -> Option<(f64, DMatrix<f64>, DMatrix<f64>)> {
-    let w = g * p;
-    let s = DMatrix::identity(g.nrows(), g.nrows()) + (&w * g.transpose()) * sign;
-    let chol = s.clone().cholesky()?;
-    let logdet = 2.0 * chol.l().diagonal().iter().map(|d| d.ln()).sum::<f64>();
-    Some((logdet, w, s))
+/// What a selection maximises.
+#[derive(Debug, Clone, Copy)]
+pub enum Criterion<'a> {
+    /// `ln det M`: every parameter at once.
+    D,
+    /// `-tr(V P)`: the summed predicted variance of what `V = sum A^T A`
+    /// weighs (the camera position at validation poses,
+    /// [`super::predict::position_weight`]).
+    I(&'a DMatrix<f64>),
 }
 
-/// `P` after adding (`sign = 1`) or removing (`-1`) a pose with factor `g`.
-fn update(p: &DMatrix<f64>, w: &DMatrix<f64>, s: &DMatrix<f64>, sign: f64) -> Option<DMatrix<f64>> {
-    let s_inv_w = s.clone().cholesky()?.solve(w);
-    Some(p - (w.transpose() * s_inv_w) * sign)
+/// Adding or removing one pose's information `G^T G`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Sign {
+    Add,
+    Remove,
+}
+
+impl Sign {
+    fn value(self) -> f64 {
+        match self {
+            Sign::Add => 1.0,
+            Sign::Remove => -1.0,
+        }
+    }
+}
+
+/// One Woodbury step, with how much it raises the criterion.
+struct Woodbury {
+    /// Change of the criterion (`ln det M`, or `-tr(V P)`).
+    gain: f64,
+    w: DMatrix<f64>,
+    s: Cholesky<f64, Dyn>,
+    sign: Sign,
+}
+
+impl Woodbury {
+    /// `None` if `I + sign G P G^T` is not positive definite (removing a
+    /// pose the information cannot lose, or a non-finite factor).
+    fn new(p: &DMatrix<f64>, g: &DMatrix<f64>, sign: Sign, criterion: Criterion) -> Option<Self> {
+        let w = g * p;
+        let s = DMatrix::identity(g.nrows(), g.nrows()) + (&w * g.transpose()) * sign.value();
+        let s = s.cholesky()?;
+        let gain = match criterion {
+            Criterion::D => 2.0 * s.l().diagonal().iter().map(|d| d.ln()).sum::<f64>(),
+            // tr(V P) changes by -sign tr(S^-1 W V W^T).
+            Criterion::I(v) => sign.value() * s.solve(&(&w * v * w.transpose())).trace(),
+        };
+        gain.is_finite().then_some(Self { gain, w, s, sign })
+    }
+
+    /// `P` after the step: `P - sign W^T S^-1 W`.
+    fn apply(&self, p: &DMatrix<f64>) -> DMatrix<f64> {
+        p - (self.w.transpose() * self.s.solve(&self.w)) * self.sign.value()
+    }
 }
 
 /// The best candidate (not in `taken`) to add to `p`, with its gain.
@@ -47,159 +87,133 @@ fn best_addition(
     p: &DMatrix<f64>,
     factors: &[DMatrix<f64>],
     taken: &[bool],
+    criterion: Criterion,
 ) -> Option<(usize, f64)> {
     factors
         .iter()
         .enumerate()
         .filter(|(k, _)| !taken[*k])
-        .filter_map(|(k, g)| gain(p, g, 1.0).map(|(v, _, _)| (k, v)))
+        .filter_map(|(k, g)| Woodbury::new(p, g, Sign::Add, criterion).map(|step| (k, step.gain)))
         .max_by(|a, b| a.1.total_cmp(&b.1))
+}
+
+/// One exchange of the pose in `chosen[slot]`: remove it, add back the best
+/// candidate if it beats the removed pose by [`EXCHANGE_MIN_GAIN`], else the
+/// removed pose. Returns whether the slot changed; `p`, `taken` and
+/// `chosen` are left consistent either way.
+fn exchange_slot(
+    p: &mut DMatrix<f64>,
+    factors: &[DMatrix<f64>],
+    taken: &mut [bool],
+    chosen: &mut [usize],
+    slot: usize,
+    criterion: Criterion,
+) -> bool {
+    let out = chosen[slot];
+    let Some(removal) = Woodbury::new(p, &factors[out], Sign::Remove, criterion) else {
+        return false;
+    };
+    let without = removal.apply(p);
+    taken[out] = false;
+    // Adding `out` back gains exactly what removing it lost.
+    let back = -removal.gain;
+    let k = match best_addition(&without, factors, taken, criterion) {
+        Some((k, gain)) if gain > back + EXCHANGE_MIN_GAIN * back.abs().max(1.0) => k,
+        _ => out,
+    };
+    let Some(addition) = Woodbury::new(&without, &factors[k], Sign::Add, criterion) else {
+        taken[out] = true;
+        return false;
+    };
+    *p = addition.apply(&without);
+    taken[k] = true;
+    chosen[slot] = k;
+    k != out
+}
+
+/// Up to [`EXCHANGE_PASSES`] exchange passes on `chosen` (inverse
+/// information `p`) for `criterion`; stops early when a pass swaps nothing.
+fn exchange(
+    p: &mut DMatrix<f64>,
+    factors: &[DMatrix<f64>],
+    taken: &mut [bool],
+    chosen: &mut [usize],
+    criterion: Criterion,
+) {
+    for _ in 0..EXCHANGE_PASSES {
+        let mut swapped = false;
+        for slot in 0..chosen.len() {
+            swapped |= exchange_slot(p, factors, taken, chosen, slot, criterion);
+        }
+        if !swapped {
+            break;
+        }
+    }
 }
 
 /// Choose `count` of the candidates' factors maximising `ln det(prior +
-/// sum G^T G)` (`prior = I` in the scaled units); returns their indices in
-/// the order chosen. Fewer than `count` only if fewer candidates exist.
-pub fn d_optimal(factors: &[DMatrix<f64>], parameters: usize, count: usize) -> Vec<usize> {
+/// sum G^T G)` (`prior = I` in the scaled units) greedily, then exchange
+/// for `criterion`; returns their indices. Fewer than `count` only if
+/// fewer candidates exist.
+pub fn select(
+    factors: &[DMatrix<f64>],
+    parameters: usize,
+    count: usize,
+    criterion: Criterion,
+) -> Vec<usize> {
     let mut p = DMatrix::<f64>::identity(parameters, parameters);
     let mut taken = vec![false; factors.len()];
-    let mut chosen = Vec::with_capacity(count);
-    while chosen.len() < count {
-        let Some((k, _)) = best_addition(&p, factors, &taken) else {
-            break;
-        };
-        let Some((_, w, s)) = gain(&p, &factors[k], 1.0) else {
-            break;
-        };
-        let Some(next) = update(&p, &w, &s, 1.0) else {
-            break;
-        };
-        p = next;
-        taken[k] = true;
-        chosen.push(k);
-    }
-    for _ in 0..EXCHANGE_PASSES {
-        let mut swapped = false;
-        for slot in 0..chosen.len() {
-            let out = chosen[slot];
-            // P without the pose in this slot.
-            let Some((loss, w, s)) = gain(&p, &factors[out], -1.0) else {
-                continue;
-            };
-            let Some(without) = update(&p, &w, &s, -1.0) else {
-                continue;
-            };
-            taken[out] = false;
-            let back = -loss;
-            let best = best_addition(&without, factors, &taken);
-            let k = match best {
-                Some((k, v)) if v > back + EXCHANGE_MIN_GAIN => k,
-                _ => out,
-            };
-            let Some((_, w, s)) = gain(&without, &factors[k], 1.0) else {
-                taken[out] = true;
-                continue;
-            };
-            let Some(next) = update(&without, &w, &s, 1.0) else {
-                taken[out] = true;
-                continue;
-            };
-            swapped |= k != out;
-            p = next;
-            taken[k] = true;
-            chosen[slot] = k;
-        }
-        if !swapped {
-            break;
-        }
-    }
+    let mut chosen = lazy_greedy(&mut p, factors, &mut taken, count);
+    // The exchange for the plan's own criterion only: an I plan starts its
+    // exchange from the greedy D plan (a D exchange first would cost as
+    // much again for little).
+    exchange(&mut p, factors, &mut taken, &mut chosen, criterion);
     chosen
 }
 
-/// `tr(S^-1 Wg W Wg^T)`: how much adding (`sign = 1`) or removing (`-1`)
-/// the pose with factor `g` changes `tr(W P)` (in magnitude), with `Wg = G P`.
-fn variance_change(
-    p: &DMatrix<f64>,
-    g: &DMatrix<f64>,
-    weight: &DMatrix<f64>,
-    sign: f64,
-) -> Option<(f64, DMatrix<f64>, DMatrix<f64>)> {
-    let w = g * p;
-    let s = DMatrix::identity(g.nrows(), g.nrows()) + (&w * g.transpose()) * sign;
-    let ww = &w * weight;
-    let m = &ww * w.transpose();
-    let chol = s.clone().cholesky()?;
-    let change = chol.solve(&m).trace();
-    Some((change, w, s))
-}
-
-/// The candidate (not in `taken`) whose addition to `p` lowers `tr(W P)` most.
-fn best_for_variance(
-    p: &DMatrix<f64>,
+/// Greedy D-optimal additions, lazily: `ln det` is submodular (a pose's
+/// gain only shrinks as others are added), so a gain computed earlier is
+/// an upper bound, and a candidate whose fresh gain beats every other
+/// bound is the greedy choice without re-evaluating the rest. Gains of
+/// additions are `>= 0`, so their bit patterns order like the values.
+fn lazy_greedy(
+    p: &mut DMatrix<f64>,
     factors: &[DMatrix<f64>],
-    taken: &[bool],
-    weight: &DMatrix<f64>,
-) -> Option<(usize, f64)> {
-    factors
+    taken: &mut [bool],
+    count: usize,
+) -> Vec<usize> {
+    let mut bounds: BinaryHeap<(u64, Reverse<usize>)> = factors
         .iter()
         .enumerate()
         .filter(|(k, _)| !taken[*k])
-        .filter_map(|(k, g)| variance_change(p, g, weight, 1.0).map(|(v, _, _)| (k, v)))
-        .max_by(|a, b| a.1.total_cmp(&b.1))
-}
-
-/// Exchange passes on `chosen` minimising `tr(weight (prior + sum G^T
-/// G)^-1)` (see the module doc); `chosen` keeps its length.
-pub fn i_optimal_exchange(
-    factors: &[DMatrix<f64>],
-    parameters: usize,
-    mut chosen: Vec<usize>,
-    weight: &DMatrix<f64>,
-) -> Vec<usize> {
-    let mut m = DMatrix::<f64>::identity(parameters, parameters);
-    for &k in &chosen {
-        m += factors[k].transpose() * &factors[k];
-    }
-    let Some(mut p) = m.cholesky().map(|c| c.inverse()) else {
-        return chosen;
-    };
-    let mut taken = vec![false; factors.len()];
-    for &k in &chosen {
-        taken[k] = true;
-    }
-    for _ in 0..EXCHANGE_PASSES {
-        let mut swapped = false;
-        for slot in 0..chosen.len() {
-            let out = chosen[slot];
-            let Some((loss, w, s)) = variance_change(&p, &factors[out], weight, -1.0) else {
-                continue;
-            };
-            let Some(without) = update(&p, &w, &s, -1.0) else {
-                continue;
-            };
-            taken[out] = false;
-            // Putting it back lowers the variance by exactly what removing it raised.
-            let k = match best_for_variance(&without, factors, &taken, weight) {
-                Some((k, v)) if v > loss * (1.0 + EXCHANGE_MIN_GAIN) => k,
-                _ => out,
-            };
-            let Some((_, w, s)) = gain(&without, &factors[k], 1.0) else {
-                taken[out] = true;
-                continue;
-            };
-            let Some(next) = update(&without, &w, &s, 1.0) else {
-                taken[out] = true;
-                continue;
-            };
-            swapped |= k != out;
-            p = next;
-            taken[k] = true;
-            chosen[slot] = k;
-        }
-        if !swapped {
+        .filter_map(|(k, g)| {
+            Woodbury::new(p, g, Sign::Add, Criterion::D)
+                .map(|step| (step.gain.max(0.0).to_bits(), Reverse(k)))
+        })
+        .collect();
+    let mut chosen = Vec::with_capacity(count);
+    while chosen.len() < count {
+        let Some((_, Reverse(k))) = bounds.pop() else {
             break;
+        };
+        let Some(step) = Woodbury::new(p, &factors[k], Sign::Add, Criterion::D) else {
+            continue;
+        };
+        let fresh = step.gain.max(0.0).to_bits();
+        if bounds.peek().is_none_or(|&(bound, _)| fresh >= bound) {
+            *p = step.apply(p);
+            taken[k] = true;
+            chosen.push(k);
+        } else {
+            bounds.push((fresh, Reverse(k)));
         }
     }
     chosen
+}
+
+/// [`select`] for the D criterion.
+pub fn d_optimal(factors: &[DMatrix<f64>], parameters: usize, count: usize) -> Vec<usize> {
+    select(factors, parameters, count, Criterion::D)
 }
 
 #[cfg(test)]
@@ -221,8 +235,29 @@ mod tests {
             .sum()
     }
 
-    /// The rank-one updates agree with the direct determinant, and the
-    /// selection beats every one of many random subsets.
+    /// One Woodbury step agrees with the direct inverse and determinant,
+    /// and removing the pose again restores `P`.
+    #[test]
+    fn woodbury_step_matches_direct_inverse() {
+        let mut rng = StdRng::seed_from_u64(3);
+        let p = 7;
+        let g = DMatrix::from_fn(3, p, |_, _| rng.random_range(-1.0..1.0));
+        let start = DMatrix::<f64>::identity(p, p) * 0.5;
+        let add = Woodbury::new(&start, &g, Sign::Add, Criterion::D).unwrap();
+        let added = add.apply(&start);
+        let direct = (start.clone().try_inverse().unwrap() + g.transpose() * &g)
+            .try_inverse()
+            .unwrap();
+        assert!((&added - &direct).amax() < 1e-12);
+        let det_ratio = direct.determinant().recip() * start.determinant();
+        assert!((add.gain - det_ratio.ln()).abs() < 1e-10);
+        let removed = Woodbury::new(&added, &g, Sign::Remove, Criterion::D)
+            .unwrap()
+            .apply(&added);
+        assert!((&removed - &start).amax() < 1e-12);
+    }
+
+    /// The selection beats every one of many random subsets.
     #[test]
     fn selection_beats_random_subsets() {
         let mut rng = StdRng::seed_from_u64(7);
@@ -243,9 +278,10 @@ mod tests {
         }
     }
 
-    /// The exchange never raises the weighted variance it minimises.
+    /// The I exchange never raises the weighted variance it minimises, and
+    /// its step's gain is the exact change of `tr(V P)`.
     #[test]
-    fn exchange_lowers_the_weighted_variance() {
+    fn i_exchange_lowers_the_weighted_variance() {
         let mut rng = StdRng::seed_from_u64(9);
         let p = 6;
         let factors: Vec<DMatrix<f64>> = (0..50)
@@ -267,8 +303,12 @@ mod tests {
             (&weight * m.try_inverse().unwrap()).trace()
         };
         let start = d_optimal(&factors, p, 5);
-        let better = i_optimal_exchange(&factors, p, start.clone(), &weight);
+        let better = select(&factors, p, 5, Criterion::I(&weight));
         assert_eq!(better.len(), 5);
         assert!(variance(&better) <= variance(&start) * (1.0 + 1e-12));
+        let id = DMatrix::<f64>::identity(p, p);
+        let step = Woodbury::new(&id, &factors[0], Sign::Add, Criterion::I(&weight)).unwrap();
+        let direct = variance(&[]) - variance(&[0]);
+        assert!((step.gain - direct).abs() < 1e-12 * direct.abs().max(1.0));
     }
 }

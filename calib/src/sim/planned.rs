@@ -20,11 +20,15 @@ use crate::kinematics::identify::{
 };
 use crate::kinematics::joint_refine::{joint_refine, ImageNoise, ImagePose};
 use crate::kinematics::{CalibratedModel, Instrument};
-use crate::plan::PlanRequest;
+use crate::plan::information::{pose_factor, Columns};
+use crate::plan::predict::predict;
+use crate::plan::{PlanError, PlanRequest};
 use crate::stats::AccuracyStats;
 
 /// Seeds the dot and encoder noise of [`shoot`] apart from the campaign's.
 const IMAGE_NOISE_SEED: u64 = 0xd07;
+/// Separates the seeds of successive noise draws of [`shoot_with`].
+const DRAW_STRIDE: u64 = 0x9e37_79b9_7f4a_7c15;
 
 /// The plan request for `spec`'s cell: nominal robot, the hand–eye guess,
 /// the board where the simulator placed it, the camera's true intrinsics
@@ -61,8 +65,21 @@ pub fn shoot(
     campaign: &Campaign,
     joints: &[Vec<f64>],
 ) -> Result<Vec<ImagePose>, ExperimentError> {
-    let truth = campaign.truth.model()?;
-    let mut rng = StdRng::seed_from_u64(spec.seed ^ IMAGE_NOISE_SEED);
+    shoot_with(spec, &campaign.truth.model()?, joints, 0)
+}
+
+/// [`shoot`] by the robot `truth` (e.g. the cell's true robot after a
+/// drift of its joint zeros or base, for a quick check), with noise draw
+/// number `draw` (one draw's validation error scatters by half its mean:
+/// tests average several).
+pub fn shoot_with(
+    spec: &CampaignSpec,
+    truth: &CalibratedModel,
+    joints: &[Vec<f64>],
+    draw: u64,
+) -> Result<Vec<ImagePose>, ExperimentError> {
+    let mut rng =
+        StdRng::seed_from_u64(spec.seed ^ IMAGE_NOISE_SEED ^ draw.wrapping_mul(DRAW_STRIDE));
     let spec_error = |e: rand_distr::NormalError| SimError::Spec(e.to_string());
     let px = Normal::new(0.0, spec.pixel_sigma_px).map_err(spec_error)?;
     let enc = Normal::new(0.0, spec.encoder_sigma_deg.to_radians()).map_err(spec_error)?;
@@ -137,4 +154,27 @@ pub fn calibrate_images(
     )?;
     let val = truth_measurements(campaign, PoseSet::Val);
     Ok(validate(&fit.model, &val)?.0)
+}
+
+/// The planner's expected validation error (mm) of a campaign shot at
+/// `joints` (any poses: planned or random), at the campaign's `val` poses:
+/// the noise-free comparison of two pose sets on one cell.
+pub fn expected_error(
+    request: &PlanRequest,
+    campaign: &Campaign,
+    joints: &[Vec<f64>],
+) -> Result<f64, PlanError> {
+    let columns = Columns::of(request, &request.model)?;
+    let factors: Vec<_> = joints
+        .iter()
+        .filter_map(|q| pose_factor(request, &request.model, &columns, q))
+        .collect();
+    let refs: Vec<_> = factors.iter().collect();
+    let val: Vec<Vec<f64>> = campaign
+        .poses
+        .iter()
+        .filter(|p| p.set == PoseSet::Val)
+        .map(|p| p.joints_rad.clone())
+        .collect();
+    Ok(predict(&request.model, &columns, &refs, &val)?.validation_error_mean_mm)
 }
