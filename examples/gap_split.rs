@@ -128,24 +128,18 @@ fn main() -> Result<(), String> {
                     .map_err(|e| e.to_string())?
                     .inverse();
                 let (mut det, mut syn) = (Vec::new(), Vec::new());
-                for p in doc.detection["points"].as_array().into_iter().flatten() {
-                    if p["outlier"].as_bool() == Some(true) || p.get("residual_px").is_none() {
+                for p in &doc.detection.points {
+                    let Some(residual) = p.residual_px.filter(|_| !p.outlier) else {
                         continue;
-                    }
-                    let (row, col) = (p["row"].as_u64().unwrap(), p["col"].as_u64().unwrap());
-                    let m = target.dot_centre_mm(row as usize, col as usize);
+                    };
+                    let m = target.dot_centre_mm(p.row as usize, p.col as usize);
                     let point = Point3::new(m[0], m[1], m[2]);
-                    // The stored x, y are the raw ellipse centres; the fits use the
-                    // bias-corrected ones = prediction + stored residual.
-                    let residual = &p["residual_px"];
+                    // The fits use the bias-corrected centres = prediction +
+                    // stored residual.
                     let predicted = intr_pipe
                         .project(&(model_camera_to_target * point))
                         .ok_or("behind")?;
-                    let observed = predicted
-                        + nalgebra::Vector2::new(
-                            residual[0].as_f64().unwrap(),
-                            residual[1].as_f64().unwrap(),
-                        );
+                    let observed = predicted + nalgebra::Vector2::new(residual[0], residual[1]);
                     let ideal = truth.project(&(camera_to_target * point)).ok_or("behind")?;
                     let e = observed - ideal;
                     bias_sum += e;

@@ -5,8 +5,8 @@
 //! infeasible or bad requests as 422/404 problem+json naming the constraint
 //! or field.
 
-use robocal::domain::NewParameterSet;
 use robocal::store;
+use robocal::store::NewParameterSet;
 use robocal_calib::geometry::{pose_to_xyz_rpy_deg, Pose};
 use robocal_calib::kinematics::presets;
 use serde_json::{json, Value};

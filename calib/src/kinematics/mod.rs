@@ -14,6 +14,7 @@ mod ik_limits_tests;
 mod ik_newton;
 #[cfg(test)]
 mod ik_proptests;
+mod ik_seeds;
 #[cfg(test)]
 mod ik_tests;
 mod image_fit;
