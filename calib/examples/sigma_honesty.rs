@@ -9,9 +9,7 @@
 //! `RUNS=40 PRESET=irb2400 CAL=24 VAL=16 [PIXEL=0.1] [SEED_START=0] [RENDERED_CAMERA=1] [ENCODER_DEG=1e-4]
 //! cargo run --release -p robocal-calib --example sigma_honesty`
 use robocal_calib::geometry::pose_error;
-use robocal_calib::kinematics::identify::{
-    fit_parameters, identify, IdentifyMode, IdentifyOptions, JointNoise, Measurement, Observed,
-};
+use robocal_calib::kinematics::identify::{identify, IdentifyMode, IdentifyOptions, JointNoise};
 use robocal_calib::kinematics::joint_covariance::joint_refine_covariance;
 use robocal_calib::kinematics::joint_refine::{joint_refine, ImageNoise};
 use robocal_calib::kinematics::uncertainty::{pose_std, PoseFrame};
@@ -19,6 +17,7 @@ use robocal_calib::kinematics::Instrument;
 use robocal_calib::sim::campaign::CampaignSpec;
 use robocal_calib::sim::campaign_io::PoseSet;
 use robocal_calib::sim::experiment::{prepare, start_model};
+use robocal_calib::sim::oracle::equivalent_truth;
 
 fn env(k: &str) -> Option<f64> {
     std::env::var(k).ok().and_then(|v| v.parse().ok())
@@ -101,26 +100,7 @@ fn main() {
         let truth = p.campaign.truth.model().unwrap();
         // Mahalanobis distance of the parameter error (the correlations
         // matter for the propagation, not only the diagonal).
-        let exact: Vec<Measurement> = p
-            .campaign
-            .poses
-            .iter()
-            .map(|q| Measurement {
-                joints_rad: q.joints_rad.clone(),
-                observed: Observed::Pose {
-                    world_to_tool: truth.world_to_tool(&q.joints_rad).unwrap(),
-                    covariance: None,
-                },
-            })
-            .collect();
-        let (eq, _) = fit_parameters(
-            &wid.before,
-            Instrument::Camera,
-            &exact,
-            &free,
-            IdentifyMode::Weighted.into(),
-        )
-        .unwrap();
+        let eq = equivalent_truth(&p.campaign, &wid.before, &free).unwrap();
         let diff = joint.layout.difference(&joint.model, &eq);
         let d = nalgebra::DVector::from_iterator(free.len(), free.iter().map(|&i| diff[i]));
         let c = nalgebra::DMatrix::from_fn(free.len(), free.len(), |a, b| cov[(free[a], free[b])]);

@@ -10,7 +10,10 @@ use crate::solver::finite_difference_jacobian;
 /// A two-view problem with every unknown free and flange corrections, at
 /// a point away from the reference, with its views (kept alive by the
 /// caller through the returned vectors).
-fn two_views() -> (BundleModel, Vec<Pose>, Vec<(Point3<f64>, Point2<f64>)>) {
+/// The reference model, the views' flange poses and their (shared) point pairs.
+type TwoViews = (BundleModel, Vec<Pose>, Vec<(Point3<f64>, Point2<f64>)>);
+
+fn two_views() -> TwoViews {
     let intrinsics = Intrinsics {
         fx: 1500.0,
         fy: 1490.0,
