@@ -1,6 +1,7 @@
 //! A dataset upload: the archive (already spooled to a file by the HTTP
 //! edge) is opened, its manifest checked as a whole, then each image read,
-//! checked, detected and stored one at a time; all poses are stored in one
+//! checked and detected on up to the decode gate's size of threads at once
+//! and stored in manifest order; all poses are stored in one
 //! transaction, or none (and the images stored on the way are discarded).
 
 use std::path::Path;
@@ -75,46 +76,67 @@ impl PoseIntake {
             .into_iter()
             .map(|q| q.expect("checked above").into_row());
         let check = self.image_check();
+        // Images are read from the archive one after another, but checked and
+        // detected on up to `gate.size()` blocking threads at once (the
+        // decode gate bounds the memory either way), and stored in manifest
+        // order.
+        let in_flight_max = check.gate.size();
+        let count = reader.manifest.len();
+        let mut in_flight = std::collections::VecDeque::with_capacity(in_flight_max);
         let mut staged = StagedImages::new(self.store.clone());
-        let mut poses = Vec::with_capacity(reader.manifest.len());
-        for i in 0..reader.manifest.len() {
-            let doc = reader.manifest[i].clone();
-            let field = format!("poses.json[{i}].image");
-            let check = check.clone();
-            let (back, result) = tokio::task::spawn_blocking(move || {
-                let result = reader
-                    .read_image(&doc.image)
-                    .map_err(ServiceError::from)
-                    .and_then(|bytes| {
+        let mut poses = Vec::with_capacity(count);
+        for i in 0..=count {
+            if i < count {
+                let name = reader.manifest[i].image.clone();
+                let field = format!("poses.json[{i}].image");
+                let (back, bytes) = tokio::task::spawn_blocking(move || {
+                    let bytes = reader.read_image(&name).map_err(ServiceError::from);
+                    (reader, bytes)
+                })
+                .await
+                .map_err(ServiceError::internal)?;
+                reader = back;
+                let check = check.clone();
+                in_flight.push_back(bytes.map(|bytes| {
+                    tokio::task::spawn_blocking(move || {
                         inspect_and_hash(&bytes, &check)
                             .map(|ingested| (ingested, bytes))
                             .map_err(|m| ServiceError::invalid(field, m))
-                    });
-                (reader, result)
-            })
-            .await
-            .map_err(ServiceError::internal)?;
-            reader = back;
-            let (ingested, bytes) = match result {
-                Ok(ok) => ok,
-                Err(e) => {
-                    staged.discard().await;
-                    return Err(e);
-                }
-            };
-            self.store.put_blob(&ingested.meta, &bytes).await?;
-            staged.stored(&ingested.meta.sha256);
-            let (joints_deg, flange_pose) = robot_poses.next().expect("one per manifest entry");
-            poses.push(NewPose {
-                joints_deg,
-                set: reader.manifest[i].set,
-                image: Some(ingested.meta),
-                points: Vec::new(),
-                measured: None,
-                label: label_from_archive_path(&reader.manifest[i].image),
-                image_detection: ingested.detection,
-                flange_pose,
-            });
+                    })
+                }));
+            }
+            // Accept the oldest image once the gate's worth is in flight,
+            // and every remaining one after the last read.
+            while in_flight.len() >= in_flight_max || (i == count && !in_flight.is_empty()) {
+                let k = poses.len();
+                let result = match in_flight.pop_front().expect("not empty") {
+                    Ok(task) => task.await.map_err(ServiceError::internal).and_then(|r| r),
+                    Err(e) => Err(e),
+                };
+                let (ingested, bytes) = match result {
+                    Ok(ok) => ok,
+                    Err(e) => {
+                        for task in in_flight.drain(..).flatten() {
+                            task.abort();
+                        }
+                        staged.discard().await;
+                        return Err(e);
+                    }
+                };
+                self.store.put_blob(&ingested.meta, &bytes).await?;
+                staged.stored(&ingested.meta.sha256);
+                let (joints_deg, flange_pose) = robot_poses.next().expect("one per manifest entry");
+                poses.push(NewPose {
+                    joints_deg,
+                    set: reader.manifest[k].set,
+                    image: Some(ingested.meta),
+                    points: Vec::new(),
+                    measured: None,
+                    label: label_from_archive_path(&reader.manifest[k].image),
+                    image_detection: ingested.detection,
+                    flange_pose,
+                });
+            }
         }
         let stored = match self.store.add_poses(&self.session.id, &poses).await {
             Ok(stored) => stored,
