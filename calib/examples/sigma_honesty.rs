@@ -18,6 +18,7 @@ use robocal_calib::sim::campaign::CampaignSpec;
 use robocal_calib::sim::campaign_io::PoseSet;
 use robocal_calib::sim::experiment::{prepare, start_model};
 use robocal_calib::sim::oracle::equivalent_truth;
+use robocal_calib::sim::rendered_camera::rendered_camera;
 
 fn env(k: &str) -> Option<f64> {
     std::env::var(k).ok().and_then(|v| v.parse().ok())
@@ -34,37 +35,7 @@ fn main() {
         spec.cal_poses = env("CAL").unwrap_or(24.0) as usize;
         spec.val_poses = env("VAL").unwrap_or(16.0) as usize;
         if std::env::var("RENDERED_CAMERA").is_ok() {
-            // The cameras `robocal simulate` renders for each preset.
-            let (intrinsics, size) = match preset.as_str() {
-                "puma560" => (
-                    robocal_calib::camera::model::Intrinsics {
-                        fx: 1100.0,
-                        fy: 1100.0 * 0.9825,
-                        cx: 377.5,
-                        cy: 289.0,
-                        k1: -0.12,
-                        k2: 0.08,
-                        p1: 3e-4,
-                        p2: -2e-4,
-                        k3: 0.0,
-                    },
-                    (752, 582),
-                ),
-                _ => (
-                    robocal_calib::camera::model::Intrinsics {
-                        fx: 2100.0,
-                        fy: 2100.0,
-                        cx: 641.0,
-                        cy: 511.0,
-                        k1: -0.09,
-                        k2: 0.07,
-                        p1: 2e-4,
-                        p2: -1e-4,
-                        k3: 0.0,
-                    },
-                    (1280, 1024),
-                ),
-            };
+            let (intrinsics, size, _) = rendered_camera(&preset);
             spec.intrinsics = intrinsics;
             spec.image_size = size;
         }

@@ -8,11 +8,11 @@ use std::path::Path;
 use std::sync::atomic::AtomicBool;
 
 use rand::{rngs::StdRng, SeedableRng};
-use robocal_calib::camera::Intrinsics;
 use robocal_calib::sim::campaign::{simulate_campaign, Campaign, CampaignSpec};
 use robocal_calib::sim::campaign_io::{image_name, PoseEntry, PoseSet as SimPoseSet};
 use robocal_calib::sim::render::RenderOptions;
 use robocal_calib::sim::render_circles::render_target;
+use robocal_calib::sim::rendered_camera::rendered_camera;
 use robocal_calib::vision::TargetSpec;
 use serde::{Deserialize, Serialize};
 use serde_json::json;
@@ -34,44 +34,6 @@ pub fn simulated_target() -> TargetSpec {
     TargetSpec::robocal_9x9()
 }
 
-/// A simulated camera per preset: the IRB-2400 campaign uses a modern
-/// 1280x1024 sensor (`fy/fx` = 1), the PUMA-560 one a camera like the
-/// paper's, 752x582 with `fy/fx` = 0.9825 (issue 6).
-fn simulated_camera(preset: &str) -> (Intrinsics, (u32, u32), f64) {
-    match preset {
-        "puma560" => (
-            Intrinsics {
-                fx: 1100.0,
-                fy: 1100.0 * 0.9825,
-                cx: 377.5,
-                cy: 289.0,
-                k1: -0.12,
-                k2: 0.08,
-                p1: 3e-4,
-                p2: -2e-4,
-                k3: 0.0,
-            },
-            (752, 582),
-            8.6,
-        ),
-        _ => (
-            Intrinsics {
-                fx: 2100.0,
-                fy: 2100.0,
-                cx: 641.0,
-                cy: 511.0,
-                k1: -0.09,
-                k2: 0.07,
-                p1: 2e-4,
-                p2: -1e-4,
-                k3: 0.0,
-            },
-            (1280, 1024),
-            5.3,
-        ),
-    }
-}
-
 /// `campaign.json`.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct CampaignFile {
@@ -90,7 +52,7 @@ pub fn rendered_spec(
     seed: u64,
 ) -> Result<CampaignSpec, String> {
     let mut spec = CampaignSpec::standard(preset, seed).map_err(|e| e.to_string())?;
-    let (intrinsics, image_size, _) = simulated_camera(preset);
+    let (intrinsics, image_size, _) = rendered_camera(preset);
     spec.intrinsics = intrinsics;
     spec.image_size = image_size;
     spec.cal_poses = cal;
@@ -108,7 +70,7 @@ pub fn simulate(
     seed: u64,
 ) -> Result<(CampaignSpec, Campaign), String> {
     let spec = rendered_spec(preset, cal, val, seed)?;
-    let (intrinsics, (width, height), pixel_um) = simulated_camera(preset);
+    let (intrinsics, (width, height), pixel_um) = rendered_camera(preset);
     let campaign = simulate_campaign(&spec).map_err(|e| e.to_string())?;
     std::fs::create_dir_all(out.join("images")).map_err(|e| e.to_string())?;
     let target = simulated_target();

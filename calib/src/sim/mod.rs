@@ -17,6 +17,7 @@ pub mod render_charuco;
 pub mod render_chessboard;
 /// Circle boards: symmetric dot grids and OpenCV's asymmetric grid.
 pub mod render_circles;
+pub mod rendered_camera;
 pub mod start_model;
 /// Laser-tracker campaigns with optional non-geometric errors (issue 19).
 pub mod tracker_campaign;
