@@ -1,20 +1,24 @@
 //! A dataset upload: the archive (already spooled to a file by the HTTP
 //! edge) is opened, its manifest checked as a whole, then each image read,
-//! checked and detected on up to the decode gate's size of threads at once
-//! and stored in manifest order; all poses are stored in one
+//! checked, detected and stored by its own task (bounded by the decode
+//! gate) and taken in manifest order; all poses are stored in one
 //! transaction, or none (and the images stored on the way are discarded).
 
 use std::path::Path;
 
 use super::dataset::{DatasetError, DatasetLimits, DatasetReader};
 use super::error::{ServiceError, ServiceResult};
-use super::images::inspect_and_hash;
+use super::images::ingest_image;
 use super::intake::PoseIntake;
 use super::staged_images::StagedImages;
 use crate::domain::{check_robot_pose, label_from_archive_path, RobotPose};
 use crate::schema::session::Instrument;
 use crate::schema::Checker;
 use crate::store::{NewPose, PoseRecord};
+
+/// Images in flight per decode slot: one being detected, one being stored
+/// or waiting for a slot.
+const IN_FLIGHT_PER_DECODE: usize = 2;
 
 impl From<DatasetError> for ServiceError {
     fn from(e: DatasetError) -> ServiceError {
@@ -76,17 +80,20 @@ impl PoseIntake {
             .into_iter()
             .map(|q| q.expect("checked above").into_row());
         let check = self.image_check();
-        // Images are read from the archive one after another, but checked and
-        // detected on up to `gate.size()` blocking threads at once (the
-        // decode gate bounds the memory either way), and stored in manifest
-        // order.
-        let in_flight_max = check.gate.size();
+        // Images are read from the archive one after another; each is then
+        // checked, detected (on a blocking thread, under the decode gate)
+        // and stored by its own task, so storing one image overlaps with
+        // detecting the next. At most `IN_FLIGHT_PER_DECODE` images per
+        // decode slot are in flight (their compressed bytes bound the
+        // memory); results are taken, and poses built, in manifest order.
+        let in_flight_max = check.gate.size() * IN_FLIGHT_PER_DECODE;
         let count = reader.manifest.len();
         let mut in_flight = std::collections::VecDeque::with_capacity(in_flight_max);
         let mut staged = StagedImages::new(self.store.clone());
         let mut poses = Vec::with_capacity(count);
+        let mut failure = None;
         for i in 0..=count {
-            if i < count {
+            if i < count && failure.is_none() {
                 let name = reader.manifest[i].image.clone();
                 let field = format!("poses.json[{i}].image");
                 let (back, bytes) = tokio::task::spawn_blocking(move || {
@@ -96,35 +103,35 @@ impl PoseIntake {
                 .await
                 .map_err(ServiceError::internal)?;
                 reader = back;
-                let check = check.clone();
-                in_flight.push_back(bytes.map(|bytes| {
-                    tokio::task::spawn_blocking(move || {
-                        inspect_and_hash(&bytes, &check)
-                            .map(|ingested| (ingested, bytes))
-                            .map_err(|m| ServiceError::invalid(field, m))
-                    })
-                }));
+                match bytes {
+                    Ok(bytes) => in_flight.push_back(tokio::spawn(ingest_image(
+                        self.store.clone(),
+                        bytes,
+                        check.clone(),
+                        field,
+                    ))),
+                    Err(e) => failure = Some(e),
+                }
             }
-            // Accept the oldest image once the gate's worth is in flight,
-            // and every remaining one after the last read.
-            while in_flight.len() >= in_flight_max || (i == count && !in_flight.is_empty()) {
-                let k = poses.len();
-                let result = match in_flight.pop_front().expect("not empty") {
-                    Ok(task) => task.await.map_err(ServiceError::internal).and_then(|r| r),
-                    Err(e) => Err(e),
-                };
-                let (ingested, bytes) = match result {
-                    Ok(ok) => ok,
-                    Err(e) => {
-                        for task in in_flight.drain(..).flatten() {
-                            task.abort();
-                        }
-                        staged.discard().await;
-                        return Err(e);
+            // Take the oldest image once the pipeline is full, and every
+            // remaining one after the last read (or a failure: the images
+            // in flight are still awaited so that those stored are discarded).
+            while in_flight.len() >= in_flight_max
+                || ((i == count || failure.is_some()) && !in_flight.is_empty())
+            {
+                let task = in_flight.pop_front().expect("not empty");
+                let ingested = match task.await.map_err(ServiceError::internal) {
+                    Ok(Ok(ingested)) => ingested,
+                    Ok(Err(e)) | Err(e) => {
+                        failure.get_or_insert(e);
+                        continue;
                     }
                 };
-                self.store.put_blob(&ingested.meta, &bytes).await?;
                 staged.stored(&ingested.meta.sha256);
+                if failure.is_some() {
+                    continue;
+                }
+                let k = poses.len();
                 let (joints_deg, flange_pose) = robot_poses.next().expect("one per manifest entry");
                 poses.push(NewPose {
                     joints_deg,
@@ -137,6 +144,13 @@ impl PoseIntake {
                     flange_pose,
                 });
             }
+            if failure.is_some() && in_flight.is_empty() {
+                break;
+            }
+        }
+        if let Some(e) = failure {
+            staged.discard().await;
+            return Err(e);
         }
         let stored = match self.store.add_poses(&self.session.id, &poses).await {
             Ok(stored) => stored,

@@ -44,12 +44,11 @@ impl ImageCheck {
 /// stores it; returns it once it is durable. `field` names the image in
 /// the error.
 pub async fn ingest_image(
-    store: &DynStore,
+    store: DynStore,
     bytes: Vec<u8>,
-    check: &ImageCheck,
-    field: &str,
+    check: ImageCheck,
+    field: String,
 ) -> ServiceResult<Ingested> {
-    let check = check.clone();
     let (ingested, bytes) = tokio::task::spawn_blocking(move || {
         inspect_and_hash(&bytes, &check).map(|ingested| (ingested, bytes))
     })

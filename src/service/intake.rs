@@ -146,8 +146,13 @@ impl PoseIntake {
         }
         c.finish()?;
         let (joints_deg, flange_pose) = robot_pose.expect("checked above").into_row();
-        let ingested =
-            ingest_image(&self.store, upload.image, &self.image_check(), "image").await?;
+        let ingested = ingest_image(
+            self.store.clone(),
+            upload.image,
+            self.image_check(),
+            "image".into(),
+        )
+        .await?;
         let pose = NewPose {
             joints_deg,
             set: upload.set,
