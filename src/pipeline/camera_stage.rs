@@ -4,19 +4,17 @@
 //! the session reuses an earlier calibration's intrinsics).
 
 use nalgebra::{Point2, Point3};
-use robocal_calib::camera::calibrate::{calibrate, CalibrationMode, CalibrationOptions};
+use robocal_calib::camera::calibrate::{CalibrationMode, CalibrationOptions};
+use robocal_calib::camera::leave_out::{calibrate_leaving_out, CalibrationLeavingOut};
 use robocal_calib::camera::observations::{DotObservation, ImageSize, ViewObservations};
 use robocal_calib::camera::pose::PoseEstimate;
-use robocal_calib::camera::{CameraCalibration, CameraError, Intrinsics};
+use robocal_calib::camera::{CameraCalibration, Intrinsics};
 
 use super::measure::{GridPoint, Measured};
 use super::{FixedCamera, PipelineError, PoseInput, Stage};
 use crate::domain::Target;
 use crate::report::{CameraReport, CameraStd, ViewReport};
 use crate::schema::session::CameraDoc;
-
-/// At most one view in this many may be left out as degenerate.
-const MAX_LEFT_OUT_FRACTION_DIV: usize = 4;
 
 /// The camera step's outcome, per pose where the pose had a usable image.
 pub struct CameraStep {
@@ -79,7 +77,7 @@ pub fn calibrate_camera(
         width: camera.width,
         height: camera.height,
     };
-    let (mut views, mut view_pose) = (Vec::new(), Vec::new());
+    let (mut views, mut view_pose) = (Vec::new(), Vec::<usize>::new());
     for (i, points) in measured.points.iter().enumerate() {
         if let Some(points) = points {
             views.push(view_of(points, target, size));
@@ -99,27 +97,25 @@ pub fn calibrate_camera(
         dot_diameter_mm: target.dot_diameter_mm(),
         ..CalibrationOptions::default()
     };
-    // A view the calibration cannot start from (a partial or nearly
-    // degenerate image) is left out and named rather than failing the whole
-    // job, as long as most views remain.
-    let mut left_out = Vec::new();
-    let max_left_out = views.len() / MAX_LEFT_OUT_FRACTION_DIV;
-    let calibration = loop {
-        match calibrate(&views, &options) {
-            Err(CameraError::DegenerateView { view, reason })
-                if left_out.len() < max_left_out && view < views.len() =>
-            {
-                views.remove(view);
-                left_out.push((view_pose.remove(view), reason));
-            }
-            other => {
-                break other.map_err(|e| PipelineError::Numerical {
-                    stage: Stage::CalibrateCamera.as_str(),
-                    message: describe_camera_error(&e.to_string(), &view_pose, poses),
-                })?
-            }
+    // A view the calibration cannot start from is left out and named
+    // rather than failing the whole job, as long as most views remain.
+    let CalibrationLeavingOut {
+        calibration,
+        kept,
+        left_out,
+    } = calibrate_leaving_out(&views, &options).map_err(|failed| {
+        let seen: Vec<usize> = failed.kept.iter().map(|&v| view_pose[v]).collect();
+        PipelineError::Numerical {
+            stage: Stage::CalibrateCamera.as_str(),
+            message: describe_camera_error(&failed.error.to_string(), &seen, poses),
         }
-    };
+    })?;
+    let left_out = left_out
+        .into_iter()
+        .map(|l| (view_pose[l.view], l.reason))
+        .collect();
+    let views: Vec<&ViewObservations> = kept.iter().map(|&v| &views[v]).collect();
+    let view_pose: Vec<usize> = kept.iter().map(|&v| view_pose[v]).collect();
     let observations = views
         .iter()
         .zip(&calibration.views)

@@ -3,6 +3,7 @@
 pub mod bias;
 pub mod calibrate;
 pub mod error;
+pub mod leave_out;
 pub mod model;
 pub mod normal_blocks;
 pub mod observations;
