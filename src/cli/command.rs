@@ -160,7 +160,7 @@ pub enum Command {
     /// Run the whole pipeline on a campaign directory without a server.
     CalibrateLocal {
         /// Campaign directory (as written by `robocal simulate`: campaign.json,
-        /// poses.json, images), or a zip holding those files.
+        /// poses.json with joints or flange poses, images).
         dir: std::path::PathBuf,
         /// Also write the printable report here.
         #[arg(long)]

@@ -275,6 +275,19 @@ async fn flange_pose_campaign_uploads_and_calibrates_through_the_binary() {
         "{yaw}"
     );
 
+    // The same directory calibrated without a server.
+    let out = tokio::task::spawn_blocking({
+        let dir = campaign.to_str().unwrap().to_string();
+        move || run_binary(&["calibrate-local", &dir])
+    })
+    .await
+    .unwrap();
+    assert!(
+        ok(&out).starts_with("Calibration report"),
+        "{}",
+        text(&out.stdout)
+    );
+
     // The same campaign zipped (campaign.json, poses.json, images) is sent as is.
     let read = |name: &str| std::fs::read(campaign.join(name)).unwrap();
     let names: Vec<String> = ["campaign.json".to_string(), "poses.json".to_string()]

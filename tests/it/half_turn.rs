@@ -78,12 +78,16 @@ fn flange_pose(c: &Campaign, i: usize) -> Value {
 }
 
 fn campaign() -> Campaign {
+    campaign_of(ROWS, COLS)
+}
+
+fn campaign_of(rows: usize, cols: usize) -> Campaign {
     let mut spec = CampaignSpec::standard("irb2400", SEED).unwrap();
     spec.cal_poses = CAL_POSES;
     spec.val_poses = VAL_POSES;
     spec.board = Board {
-        rows: ROWS,
-        cols: COLS,
+        rows,
+        cols,
         pitch_mm: SQUARE_MM,
         dot_diameter_mm: DOT_MM,
     };
@@ -95,17 +99,20 @@ fn label(i: usize) -> String {
 }
 
 /// The JSON pose of view `i`: where the robot was as `data` says, its
-/// corners numbered from the other corner when `turned`.
-fn pose_body(c: &Campaign, i: usize, turned: bool, data: RobotData) -> Value {
+/// features numbered as if the board were turned by `quarter_turns` (2:
+/// from the other corner; 1 and 3 only for a square grid).
+fn pose_body_turned(c: &Campaign, i: usize, quarter_turns: u8, data: RobotData) -> Value {
     let p = &c.poses[i];
-    let points: Vec<Value> = (0..ROWS)
-        .flat_map(|r| (0..COLS).map(move |col| (r, col)))
+    let (rows, cols) = (c.truth.board.rows, c.truth.board.cols);
+    let points: Vec<Value> = (0..rows)
+        .flat_map(|r| (0..cols).map(move |col| (r, col)))
         .map(|(r, col)| {
-            let px = p.observed_px[r * COLS + col];
-            let (row, col) = if turned {
-                (ROWS - 1 - r, COLS - 1 - col)
-            } else {
-                (r, col)
+            let px = p.observed_px[r * cols + col];
+            let (row, col) = match quarter_turns {
+                1 => (col, rows - 1 - r),
+                2 => (rows - 1 - r, cols - 1 - col),
+                3 => (cols - 1 - col, r),
+                _ => (r, col),
             };
             json!({"row": row, "col": col, "x": px.x, "y": px.y})
         })
@@ -141,6 +148,21 @@ async fn run(
     target: Value,
     data: RobotData,
 ) -> (Value, Value) {
+    let turns: Vec<u8> = (0..c.poses.len())
+        .map(|i| if TURNED.contains(&i) { 2 } else { 0 })
+        .collect();
+    run_turned(app, serial, c, target, data, &turns).await
+}
+
+/// [`run`] with view `i` numbered as turned by `turns[i]` quarter turns.
+async fn run_turned(
+    app: &TestApp,
+    serial: &str,
+    c: &Campaign,
+    target: Value,
+    data: RobotData,
+    turns: &[u8],
+) -> (Value, Value) {
     let r = app
         .put_json(
             &format!("/v1/robots/{serial}"),
@@ -164,7 +186,7 @@ async fn run(
         .unwrap()
         .to_string();
     for i in 0..c.poses.len() {
-        let body = pose_body(c, i, TURNED.contains(&i), data);
+        let body = pose_body_turned(c, i, turns[i], data);
         let r = app
             .post_json(&format!("/v1/sessions/{id}/poses"), &body)
             .await;
@@ -241,6 +263,43 @@ async fn half_turned_views_are_relabelled_from_the_joints_and_said_so() {
             "{serial}: validation mean {val_mean} mm"
         );
     }
+    app.shutdown().await;
+}
+
+/// A square marker-less grid looks the same after any quarter turn: views
+/// numbered a quarter, half and three quarters turned are all relabelled.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn quarter_turned_views_of_a_square_grid_are_relabelled_from_the_joints() {
+    const SIDE: usize = 6;
+    const QUARTER: [(usize, u8); 4] = [(2, 1), (7, 2), (11, 3), (19, 1)];
+    let c = campaign_of(SIDE, SIDE);
+    let app = spawn_app_with(|c| c.test_validate_only = false).await;
+    let turns: Vec<u8> = (0..c.poses.len())
+        .map(|i| QUARTER.iter().find(|q| q.0 == i).map_or(0, |q| q.1))
+        .collect();
+    let target = json!({"kind": "dots", "rows": SIDE, "cols": SIDE, "pitch_mm": SQUARE_MM,
+                        "dot_diameter_mm": DOT_MM});
+    let (job, report) =
+        run_turned(&app, "QUARTER-TURN", &c, target, RobotData::Joints, &turns).await;
+    assert_eq!(job["state"], "succeeded", "{job}");
+    let notes: Vec<&str> = report["notes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(Value::as_str)
+        .collect();
+    let note = notes
+        .iter()
+        .find(|n| n.contains("quarter or half turn"))
+        .unwrap_or_else(|| panic!("no quarter-turn note in {notes:?}"));
+    let expected: Vec<String> = QUARTER.iter().map(|&(i, _)| label(i)).collect();
+    assert!(
+        note.ends_with(&format!("relabelled: {}.", expected.join(", "))),
+        "{note}"
+    );
+    let val_mean = report["after"]["mean_mm"].as_f64().unwrap();
+    eprintln!("QUARTER-TURN: {note}; validation mean {val_mean:.4} mm");
+    assert!(val_mean < MAX_VAL_MEAN_MM, "validation mean {val_mean} mm");
     app.shutdown().await;
 }
 
