@@ -43,8 +43,13 @@ const MAX_STEP_PX: f64 = 2.0;
 /// `COARSE_STRIDE`-th row and column of point pairs...
 const COARSE_MIN_HALF_WINDOW_PX: f64 = 6.0;
 const COARSE_STRIDE: isize = 2;
-/// ...until a step is below this, pixels (then all pairs to `CONVERGED_PX`).
-const COARSE_CONVERGED_PX: f64 = 0.05;
+/// ...until a step is below this, pixels (then all pairs to
+/// `SYMMETRY_CONVERGED_PX`).
+const COARSE_CONVERGED_PX: f64 = 0.02;
+/// The symmetry fit stops after a step below this, pixels: Gauss–Newton
+/// near its fixed point leaves a small fraction of its last step, far
+/// below the corners' 0.015 px error on sharp rendered boards.
+const SYMMETRY_CONVERGED_PX: f64 = 5e-3;
 /// Smallest half window the fits accept, pixels.
 pub const MIN_HALF_WINDOW_PX: f64 = 1.5;
 
@@ -244,7 +249,7 @@ fn gradient_block(offsets: &[(f64, f64, f64)]) -> Matrix2<f64> {
 }
 
 /// Gauss–Newton on the point-symmetry residual from `start`: the centre,
-/// and whether the last step was below `CONVERGED_PX` (a start far off a
+/// and whether the last step was below `SYMMETRY_CONVERGED_PX` (a start far off a
 /// sharp junction runs out of iterations first). Wide windows first
 /// iterate on every `COARSE_STRIDE`-th row and column of pairs until the
 /// step is below `COARSE_CONVERGED_PX` (a quarter of the cost per step),
@@ -257,7 +262,7 @@ fn symmetry_fit(img: &GrayImage, start: Vector2<f64>, half: f64) -> Option<(Vect
     if half >= COARSE_MIN_HALF_WINDOW_PX {
         stages.push((coarse_offsets(&offsets), COARSE_CONVERGED_PX));
     }
-    stages.push((offsets, CONVERGED_PX));
+    stages.push((offsets, SYMMETRY_CONVERGED_PX));
     let last = stages.len() - 1;
     for (stage, (offsets, converged)) in stages.iter().enumerate() {
         let dd = gradient_block(offsets);
