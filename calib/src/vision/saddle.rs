@@ -35,7 +35,7 @@ const KERNEL_SIGMAS: f64 = 3.0;
 /// Gauss–Newton iterations of the symmetry fit.
 const SYMMETRY_ITERATIONS: usize = 8;
 /// Weight sigma of the symmetry fit as a fraction of the half window.
-const SYMMETRY_WEIGHT_FRACTION: f64 = 0.5;
+const SYMMETRY_WEIGHT_FRACTION: f64 = 0.75;
 /// Largest single Gauss–Newton step, pixels (a larger one means the fit
 /// left the junction's basin).
 const MAX_STEP_PX: f64 = 2.0;
