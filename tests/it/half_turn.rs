@@ -185,8 +185,8 @@ async fn run_turned(
         .as_str()
         .unwrap()
         .to_string();
-    for i in 0..c.poses.len() {
-        let body = pose_body_turned(c, i, turns[i], data);
+    for (i, &turn) in turns.iter().enumerate().take(c.poses.len()) {
+        let body = pose_body_turned(c, i, turn, data);
         let r = app
             .post_json(&format!("/v1/sessions/{id}/poses"), &body)
             .await;
