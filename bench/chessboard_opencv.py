@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """OpenCV peer for the robocal chessboard benchmark (issue 14).
 
-Usage: /tmp/bench-venv/bin/python bench/chessboard_opencv.py DIR
+Usage: /tmp/bench-venv/bin/python bench/chessboard_opencv.py DIR [KIND]
+(KIND: one of fronto, steep, blurred, uneven; all when absent)
 DIR holds the PNGs and truth.csv written by
 `cargo run --release -p robocal-calib --example chessboard_bench`.
 Runs cv2.findChessboardCorners (9x6, default flags ADAPTIVE_THRESH |
@@ -26,6 +27,7 @@ PATTERN = (9, 6)
 
 def main():
     folder = sys.argv[1]
+    kinds = [sys.argv[2]] if len(sys.argv) > 2 else KINDS
     cv2.setNumThreads(1)
     truth = defaultdict(dict)
     with open(f"{folder}/truth.csv") as f:
@@ -34,7 +36,7 @@ def main():
     crit = (cv2.TERM_CRITERIA_EPS + cv2.TERM_CRITERIA_COUNT, 40, 0.001)
     for win in [(5, 5), (11, 11)]:
         print(f"OpenCV {cv2.__version__} findChessboardCorners + cornerSubPix{win}, {folder}")
-        for kind in KINDS:
+        for kind in kinds:
             names = sorted(n for n in truth if n.startswith(kind + "_"))
             boards = found = wrong = flipped = 0
             sq, worst, cpu = 0.0, 0.0, 0.0

@@ -6,9 +6,13 @@
 //! `bench/chessboard_opencv.py DIR` runs OpenCV's findChessboardCorners +
 //! cornerSubPix on the same PNGs with the same truth.
 //!
-//! cargo run --release -p robocal-calib --example chessboard_bench -- [--views N] [--seed S] [--out DIR] [--explain]
-//! (`--explain` prints why each missed board was refused)
+//! cargo run --release -p robocal-calib --example chessboard_bench -- [--views N] [--seed S] [--out DIR] [--explain] [--from DIR] [--kind K]
+//! (`--explain` prints why each missed board was refused; `--from DIR`
+//! detects on the PNGs and truth of an earlier run instead of rendering,
+//! so runs can be repeated cheaply on a loaded machine; `--kind K` runs one
+//! kind only)
 
+use std::collections::HashMap;
 use std::fmt::Write as _;
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
@@ -17,6 +21,7 @@ use robocal_calib::sim::render::RenderOptions;
 use robocal_calib::sim::render_chessboard::render_chessboard;
 use robocal_calib::sim::views::reference_camera;
 use robocal_calib::vision::chessboard::{detect_chessboard, ChessboardSpec};
+use robocal_calib::vision::GrayImage;
 
 const WIDTH: usize = 1280;
 const HEIGHT: usize = 1024;
@@ -100,49 +105,74 @@ fn view(kind: &str, rng: &mut StdRng) -> (Isometry3<f64>, RenderOptions) {
     (iso, opts)
 }
 
+/// The true corner positions of an earlier run's `truth.csv`, by image.
+fn read_truth(dir: &str) -> HashMap<String, Vec<[f64; 2]>> {
+    let text = std::fs::read_to_string(format!("{dir}/truth.csv")).expect("truth.csv");
+    let mut out: HashMap<String, Vec<[f64; 2]>> = HashMap::new();
+    for line in text.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let xy = [f[4].parse().expect("x"), f[5].parse().expect("y")];
+        out.entry(f[0].to_string()).or_default().push(xy);
+    }
+    out
+}
+
 fn main() {
     let views: usize = arg("--views", 8);
     let seed: u64 = arg("--seed", 14);
     let out: String = arg("--out", "/tmp/chessboard_bench".to_string());
+    let from = Some(arg("--from", String::new())).filter(|d| !d.is_empty());
+    let only: String = arg("--kind", String::new());
     let explain = std::env::args().any(|a| a == "--explain");
     std::fs::create_dir_all(&out).expect("output dir");
     let spec = board();
     let mut rng = StdRng::seed_from_u64(seed);
     let mut csv = String::from("image,id,row,col,x,y,visible\n");
+    let truth_of = from.as_deref().map(read_truth);
     println!("robocal chessboard 9x6, {WIDTH}x{HEIGHT}, {views} views per kind, seed {seed}");
-    for kind in KINDS {
+    for kind in KINDS.into_iter().filter(|k| only.is_empty() || *k == only) {
         let (mut boards, mut found, mut wrong, mut sum2, mut worst, mut cpu_ns) =
             (0, 0, 0, 0.0, 0.0f64, 0u64);
         for k in 0..views {
-            let (iso, opts) = view(kind, &mut rng);
-            let v = render_chessboard(
-                &reference_camera(),
-                &iso,
-                &spec,
-                WIDTH,
-                HEIGHT,
-                &opts,
-                &mut rng,
-            )
-            .expect("render");
             let name = format!("{kind}_{k:03}.png");
-            v.image
-                .to_luma8()
-                .save(format!("{out}/{name}"))
-                .expect("write png");
-            for (id, t) in v.truth.iter().enumerate() {
-                let _ = writeln!(
-                    csv,
-                    "{name},{id},{},{},{:.6},{:.6},{}",
-                    t.row,
-                    t.col,
-                    t.x,
-                    t.y,
-                    u8::from(t.visible)
-                );
-            }
+            let (image, truth): (GrayImage, Vec<[f64; 2]>) = match (&from, &truth_of) {
+                (Some(dir), Some(all)) => {
+                    let img = image::open(format!("{dir}/{name}")).expect("read png");
+                    (GrayImage::from_dynamic(&img), all[&name].clone())
+                }
+                _ => {
+                    let (iso, opts) = view(kind, &mut rng);
+                    let v = render_chessboard(
+                        &reference_camera(),
+                        &iso,
+                        &spec,
+                        WIDTH,
+                        HEIGHT,
+                        &opts,
+                        &mut rng,
+                    )
+                    .expect("render");
+                    v.image
+                        .to_luma8()
+                        .save(format!("{out}/{name}"))
+                        .expect("write png");
+                    for (id, t) in v.truth.iter().enumerate() {
+                        let _ = writeln!(
+                            csv,
+                            "{name},{id},{},{},{:.6},{:.6},{}",
+                            t.row,
+                            t.col,
+                            t.x,
+                            t.y,
+                            u8::from(t.visible)
+                        );
+                    }
+                    let truth = v.truth.iter().map(|t| [t.x, t.y]).collect();
+                    (v.image, truth)
+                }
+            };
             let t0 = thread_cpu_ns();
-            let det = detect_chessboard(&v.image, &spec);
+            let det = detect_chessboard(&image, &spec);
             cpu_ns += thread_cpu_ns() - t0;
             let det = match det {
                 Ok(det) => det,
@@ -155,8 +185,8 @@ fn main() {
             };
             boards += 1;
             for p in &det.points {
-                let t = v.truth[p.row * spec.cols() + p.col];
-                let e = (p.x_px - t.x).hypot(p.y_px - t.y);
+                let t = truth[p.row * spec.cols() + p.col];
+                let e = (p.x_px - t[0]).hypot(p.y_px - t[1]);
                 if e > WRONG_ID_PX {
                     wrong += 1;
                     continue;
@@ -172,6 +202,9 @@ fn main() {
             worst,
             cpu_ns as f64 / 1e6 / views as f64
         );
+    }
+    if from.is_some() {
+        return;
     }
     std::fs::write(format!("{out}/truth.csv"), csv).expect("write truth");
     println!(

@@ -1,15 +1,17 @@
 //! Campaign directories: what `robocal simulate` writes, what `robocal
 //! upload` zips and what `robocal calibrate-local` calibrates without a
 //! server. Layout: `campaign.json` (robot and session documents),
-//! `poses.json` (`[{"joints_deg","image","set"}]`, the dataset upload's
-//! index), `images/`, and for simulated campaigns `truth.json`.
+//! `poses.json` (the dataset upload's index: `[{"joints_deg","image","set"}]`,
+//! or for a hand–eye campaign `[{"flange_pose","image","set"}]` with the
+//! controller's flange poses instead of joints), `images/`, and for
+//! simulated campaigns `truth.json`.
 
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
 
 use rand::{rngs::StdRng, SeedableRng};
 use robocal_calib::sim::campaign::{simulate_campaign, Campaign, CampaignSpec};
-use robocal_calib::sim::campaign_io::{image_name, PoseEntry, PoseSet as SimPoseSet};
+use robocal_calib::sim::campaign_io::image_name;
 use robocal_calib::sim::render::RenderOptions;
 use robocal_calib::sim::render_circles::render_target;
 use robocal_calib::sim::rendered_camera::rendered_camera;
@@ -17,12 +19,12 @@ use robocal_calib::vision::TargetSpec;
 use serde::{Deserialize, Serialize};
 use serde_json::json;
 
-use crate::domain::JointsDeg;
+use crate::domain::{check_robot_pose, FlangePose, JointsDeg, RobotPose};
 use crate::pipeline::{self, Input, PoseImage, PoseInput};
 use crate::report::Report;
 use crate::schema::job::CalibrationOptions;
 use crate::schema::robot::RobotBody;
-use crate::schema::session::{PoseSet, SessionBody};
+use crate::schema::session::{DatasetPoseDoc, SessionBody};
 use crate::schema::Checker;
 
 /// Spreads per-pose noise seeds apart (the golden-ratio constant).
@@ -33,6 +35,9 @@ const NOISE_SEED_STRIDE: u64 = 0x9e37_79b9_7f4a_7c15;
 pub fn simulated_target() -> TargetSpec {
     TargetSpec::robocal_9x9()
 }
+
+/// The name of a campaign's robot and session documents.
+pub const CAMPAIGN_FILE: &str = "campaign.json";
 
 /// `campaign.json`.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -156,10 +161,12 @@ fn read_json<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T, String> {
     serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
 }
 
-/// Reads `campaign.json` and `poses.json` of a campaign directory.
-pub fn read(dir: &Path) -> Result<(CampaignFile, Vec<PoseEntry>), String> {
+/// Reads `campaign.json` and `poses.json` of a campaign directory (each
+/// pose with its joints or the controller's flange pose, as the dataset
+/// upload takes them).
+pub fn read(dir: &Path) -> Result<(CampaignFile, Vec<DatasetPoseDoc>), String> {
     Ok((
-        read_json(&dir.join("campaign.json"))?,
+        read_json(&dir.join(CAMPAIGN_FILE))?,
         read_json(&dir.join("poses.json"))?,
     ))
 }
@@ -201,26 +208,13 @@ pub fn run_local_with(
             height,
             detection: None,
         };
-        let mut c = Checker::default();
-        let field = format!("poses.json[{i}].joints_deg");
-        let joints = JointsDeg::check(&mut c, &field, &entry.joints_deg, kinematics.joints.len());
-        let joints_deg = joints.ok_or_else(|| {
-            let errors: Vec<String> = c
-                .errors
-                .iter()
-                .map(|e| format!("{}: {}", e.field, e.message))
-                .collect();
-            errors.join("; ")
-        })?;
+        let (joints_deg, flange_pose) = robot_pose(entry, i, kinematics.joints.len())?;
         poses.push(PoseInput {
             id: format!("p{:03}", i + 1),
             label: entry.image.clone(),
             joints_deg,
-            flange_pose: None,
-            set: match entry.set {
-                SimPoseSet::Cal => PoseSet::Cal,
-                SimPoseSet::Val => PoseSet::Val,
-            },
+            flange_pose,
+            set: entry.set,
             image: Some(image),
             image_points: Vec::new(),
             measured_position_mm: None,
@@ -241,6 +235,41 @@ pub fn run_local_with(
         validate_only: false,
     };
     pipeline::run(&input, &|_, _, _| {}, &AtomicBool::new(false)).map_err(|e| e.to_string())
+}
+
+/// Where pose `i` of `poses.json` says the robot was: its joints, or (a
+/// hand–eye campaign) no joints and the controller's flange pose; every
+/// problem named by its field.
+fn robot_pose(
+    entry: &DatasetPoseDoc,
+    i: usize,
+    joint_count: usize,
+) -> Result<(JointsDeg, Option<FlangePose>), String> {
+    let mut c = Checker::default();
+    let prefix = format!("poses.json[{i}].");
+    let (_, checked) = check_robot_pose(
+        &mut c,
+        &prefix,
+        entry.joints_deg.as_deref(),
+        entry.flange_pose.as_ref(),
+        joint_count,
+    );
+    let typed = match checked {
+        Some(RobotPose::Joints(joints)) => Some((joints, None)),
+        Some(RobotPose::Flange(doc)) => {
+            FlangePose::check(&mut c, &format!("{prefix}flange_pose"), &doc)
+                .map(|f| (JointsDeg::stored(Vec::new()), Some(f)))
+        }
+        None => None,
+    };
+    typed.ok_or_else(|| {
+        let errors: Vec<String> = c
+            .errors
+            .iter()
+            .map(|e| format!("{}: {}", e.field, e.message))
+            .collect();
+        errors.join("; ")
+    })
 }
 
 /// Reads a campaign's images from disk (keys are paths), one decode per

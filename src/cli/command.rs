@@ -55,7 +55,9 @@ pub enum Command {
         dir: std::path::PathBuf,
     },
     /// Create the robot (when it does not exist) and a session, and upload a
-    /// campaign directory; prints the session id.
+    /// campaign directory (or a zip of one); prints the session id. Its
+    /// poses.json gives each image's joints_deg or, for a hand–eye
+    /// campaign, the controller's flange_pose.
     Upload {
         /// Robot serial number.
         #[arg(long)]
@@ -64,7 +66,8 @@ pub enum Command {
         /// (without it an existing robot is left as it is).
         #[arg(long)]
         replace_robot: bool,
-        /// Campaign directory (as written by `robocal simulate`).
+        /// Campaign directory (as written by `robocal simulate`: campaign.json,
+        /// poses.json, images), or a zip holding those files.
         dir: std::path::PathBuf,
         #[command(flatten)]
         server: ServerArgs,
@@ -156,7 +159,8 @@ pub enum Command {
     },
     /// Run the whole pipeline on a campaign directory without a server.
     CalibrateLocal {
-        /// Campaign directory (as written by `robocal simulate`).
+        /// Campaign directory (as written by `robocal simulate`: campaign.json,
+        /// poses.json with joints or flange poses, images).
         dir: std::path::PathBuf,
         /// Also write the printable report here.
         #[arg(long)]

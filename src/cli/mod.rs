@@ -56,16 +56,38 @@ pub enum RobotPolicy {
     Replace,
 }
 
+/// `campaign.json` of a campaign zipped as the dataset upload takes it
+/// (`poses.json` and the images, with `campaign.json` beside them; the
+/// service ignores entries its manifest does not name).
+fn campaign_in_zip(path: &Path) -> Result<campaign::CampaignFile, String> {
+    let name = campaign::CAMPAIGN_FILE;
+    let file = std::fs::File::open(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut zip = zip::ZipArchive::new(file)
+        .map_err(|e| format!("{}: not a zip archive: {e}", path.display()))?;
+    let entry = zip
+        .by_name(name)
+        .map_err(|e| format!("{}: {name}: {e}", path.display()))?;
+    serde_json::from_reader(entry).map_err(|e| format!("{}: {name}: {e}", path.display()))
+}
+
 /// Creates the robot (from `campaign.json`) when it does not exist (or
 /// replaces it under [`RobotPolicy::Replace`]) and a session, then uploads
-/// the campaign as one archive. Returns the session id.
+/// the campaign as one archive. `campaign` is a campaign directory, or a
+/// zip of one (sent as is). Its poses carry joints or, for a hand–eye
+/// campaign, the controller's flange poses. Returns the session id.
 pub async fn upload(
     client: &Client,
     serial: &str,
-    dir: &Path,
+    campaign: &Path,
     robot: RobotPolicy,
 ) -> Result<String, ClientError> {
-    let (file, _) = campaign::read(dir).map_err(ClientError::Local)?;
+    let zipped = campaign.is_file();
+    let file = if zipped {
+        campaign_in_zip(campaign)
+    } else {
+        campaign::read(campaign).map(|(file, _)| file)
+    }
+    .map_err(ClientError::Local)?;
     let exists = client.robot_exists(serial).await?;
     match (exists, robot) {
         (true, RobotPolicy::CreateIfMissing) => eprintln!(
@@ -81,8 +103,12 @@ pub async fn upload(
         }
     }
     let id = client.create_session(serial, &file.session).await?;
-    let archive = zip_campaign(dir).map_err(ClientError::Local)?;
-    let answer = client.upload_dataset(&id, archive.path()).await?;
+    let answer = if zipped {
+        client.upload_dataset(&id, campaign).await?
+    } else {
+        let archive = zip_campaign(campaign).map_err(ClientError::Local)?;
+        client.upload_dataset(&id, archive.path()).await?
+    };
     eprintln!("uploaded {} poses to session {id}", answer.poses_created);
     Ok(id)
 }

@@ -14,6 +14,7 @@ mod parameter_set;
 mod pose_set;
 mod serial;
 mod target;
+mod target_symmetry;
 pub use flange_pose::{check_robot_pose, FlangePose, PoseKind, RobotPose};
 pub use image_detection::ImageDetection;
 pub use joints::{JointsDeg, MAX_JOINT_DEG};
@@ -27,6 +28,7 @@ pub use parameter_set::{FrameNames, ParameterSet};
 pub use pose_set::PoseSet;
 pub use serial::{InvalidSerial, Serial, MAX_SERIAL_LEN, SERIAL_RULE};
 pub use target::{FoundPoint, Target};
+pub use target_symmetry::BoardSymmetry;
 
 /// Metadata of a stored image; the bytes live in the content-addressed blob store.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq, utoipa::ToSchema)]

@@ -147,9 +147,10 @@ impl Target {
     /// Every feature found in `image` (raw positions: for dots the ellipse
     /// centres, whose perspective bias the camera stage corrects from the
     /// calibrated model). A circle grid whose symmetry leaves the dot
-    /// identities open in this image (a marker-less grid, an asymmetric grid
-    /// with an even number of rows) is refused with `OrderingAmbiguous`:
-    /// identities that might differ from image to image would bend the fit.
+    /// identities open in this image beyond the board's own symmetry (which
+    /// the job settles from the robot data, [`Target::symmetry`]) is refused
+    /// with `OrderingAmbiguous`: identities that might differ from image to
+    /// image would bend the fit.
     pub fn detect(&self, image: &GrayImage) -> Result<Vec<FoundPoint>, DetectError> {
         let board = match self {
             Target::Dots(t) => CircleBoard::Dots(*t),
@@ -164,7 +165,10 @@ impl Target {
             ..DetectOptions::default()
         };
         let found = vision::detect_board(image, &board, &options)?;
-        if !found.ordering_unique {
+        let settled_later = self
+            .symmetry()
+            .is_some_and(|s| found.equivalent_turns.iter().all(|k| s.turns.contains(k)));
+        if !found.ordering_unique && !settled_later {
             let turns: Vec<String> = found
                 .equivalent_turns
                 .iter()
@@ -196,24 +200,6 @@ impl Target {
             Target::AsymmetricCircles(t) => t.rows % 2 == 1,
             Target::Charuco(_) => true,
             Target::Chessboard(t) => !t.ambiguous_180(),
-        }
-    }
-
-    /// For a board whose order images fix only up to a half turn (a
-    /// chessboard with both sides even or both odd): its inner corners
-    /// `[cols, rows]` and the span of its corners in x and y (mm), so that
-    /// the half turn maps `(row, col)` to `(rows-1-row, cols-1-col)` and
-    /// `(x, y)` to `(span_x - x, span_y - y)`.
-    pub fn half_turn(&self) -> Option<([u32; 2], [f64; 2])> {
-        match self {
-            Target::Chessboard(t) if t.ambiguous_180() => Some((
-                [t.cols() as u32, t.rows() as u32],
-                [
-                    (t.cols() - 1) as f64 * t.square_mm,
-                    (t.rows() - 1) as f64 * t.square_mm,
-                ],
-            )),
-            _ => None,
         }
     }
 

@@ -1,25 +1,29 @@
-//! Half-turn-symmetric chessboards (issue 14): a board with both sides even
-//! or both odd looks the same after a half turn, so each image's corner
-//! order is known only up to one. The robot's joints settle it: for every
-//! pair of poses the flange motion `A = F_i⁻¹ F_j` (nominal kinematics) and
-//! the camera motion `B = T_i⁻¹ T_j` (camera in the board frame) satisfy
-//! `A X = X B`, so their rotation angles and screw pitches agree whatever
-//! the hand–eye `X` is. Turning one view's board by a half turn changes
-//! `B` grossly (by ~180° when the poses are close), so the relative turn of
-//! every view is read off against a reference view, checked on all pairs,
-//! and applied to the labels before the kinematic stages. A view no pair
-//! decides, or pairs that contradict each other, make the job fail with an
-//! error naming `target.inner_corners`: never a silent guess.
+//! Boards whose images fix the feature order only up to a turn (issue 14;
+//! `domain::BoardSymmetry`): a chessboard with both sides even or both odd,
+//! a dot grid without its origin marker, an asymmetric grid with even rows.
+//! Each image's order is known only up to such a turn. The robot data
+//! settle it: for every pair of poses the flange motion `A = F_i⁻¹ F_j`
+//! (nominal kinematics from the joints, or the controller's flange poses)
+//! and the camera motion `B = T_i⁻¹ T_j` (camera in the board frame)
+//! satisfy `A X = X B`, so their rotation angles and screw pitches agree
+//! whatever the hand–eye `X` is. Turning one view's board changes `B`
+//! grossly (by ~90° or ~180° when the poses are close), so the relative turn
+//! of every view is read off against a reference view, checked on all
+//! pairs, and applied to the labels before the kinematic (or hand–eye)
+//! stages. A view no pair decides, or pairs that contradict each other, make
+//! the job fail with an error naming the target field: never a silent guess.
 
-use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Matrix3, Matrix6};
 use robocal_calib::kinematics::RobotModel;
 
 use super::camera_stage::CameraStep;
 use super::measure::Measured;
 use super::{PipelineError, PoseInput};
-use crate::domain::Target;
+use crate::domain::{BoardSymmetry, Target};
 use crate::schema::FieldError;
 
+/// Quarter turns in a full turn: relative turns add modulo this.
+const QUARTERS: u8 = 4;
 /// Screw pitches are compared at this many mm per degree of angle.
 const PITCH_MM_PER_DEG: f64 = 10.0;
 /// A pair decides when the wrong choice costs this many times the right
@@ -49,71 +53,73 @@ fn cost(a: (f64, f64), b: (f64, f64)) -> f64 {
     (a.0 - b.0).abs() + (a.1 - b.1).abs() / PITCH_MM_PER_DEG
 }
 
-/// Whether views `i` and `j` are turned relative to each other: `Some(true)`
-/// turned, `Some(false)` not, `None` undecided.
+/// The turn of view `j` relative to view `i` (quarter turns, `0` for
+/// none) when the pair decides it, `None` otherwise.
 fn relative_turn(
     flange: &[Isometry3<f64>],
     camera: &[Isometry3<f64>],
-    turn: &Isometry3<f64>,
+    symmetry: &BoardSymmetry,
     i: usize,
     j: usize,
-) -> Option<bool> {
+) -> Option<u8> {
     let a = screw(&(flange[i].inverse() * flange[j]));
-    let same = cost(a, screw(&(camera[i].inverse() * camera[j])));
-    let turned = cost(a, screw(&(camera[i].inverse() * turn * camera[j])));
-    if same.min(turned) > MAX_AGREEMENT_COST_DEG {
-        None
-    } else if turned > DECIDE_RATIO * same + DECIDE_MARGIN_DEG {
-        Some(false)
-    } else if same > DECIDE_RATIO * turned + DECIDE_MARGIN_DEG {
-        Some(true)
-    } else {
-        None
-    }
+    let mut costs: Vec<(f64, u8)> = std::iter::once(0)
+        .chain(symmetry.turns.iter().copied())
+        .map(|k| {
+            let b = camera[i].inverse() * symmetry.turn(k) * camera[j];
+            (cost(a, screw(&b)), k)
+        })
+        .collect();
+    costs.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let (best, k) = costs[0];
+    let second = costs.get(1).map_or(f64::INFINITY, |c| c.0);
+    (best <= MAX_AGREEMENT_COST_DEG && second > DECIDE_RATIO * best + DECIDE_MARGIN_DEG)
+        .then_some(k)
 }
 
-/// Every deciding pair `(i, j, turned relative to each other)`, `i < j`.
+/// Every deciding pair `(i, j, turn of j relative to i)`, `i < j`.
 fn pair_turns(
     flange: &[Isometry3<f64>],
     camera: &[Isometry3<f64>],
-    turn: &Isometry3<f64>,
-) -> Vec<(usize, usize, bool)> {
+    symmetry: &BoardSymmetry,
+) -> Vec<(usize, usize, u8)> {
     let n = flange.len();
     (0..n)
         .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
-        .filter_map(|(i, j)| relative_turn(flange, camera, turn, i, j).map(|t| (i, j, t)))
+        .filter_map(|(i, j)| relative_turn(flange, camera, symmetry, i, j).map(|t| (i, j, t)))
         .collect()
 }
 
 /// Each view's turn relative to the view with the most deciding pairs,
 /// read along deciding pairs breadth first; `None` for views no chain of
 /// deciding pairs reaches. The reference is the best-connected view, so a
-/// view whose joints lie cannot leave the others undecided.
-fn propagate(n: usize, pairs: &[(usize, usize, bool)]) -> Vec<Option<bool>> {
+/// view whose robot data lie cannot leave the others undecided. Turns about
+/// one centre add: view `j` turned by `t` against `i` is `turn(i) + t`.
+fn propagate(n: usize, pairs: &[(usize, usize, u8)]) -> Vec<Option<u8>> {
     let mut degree = vec![0usize; n];
     for &(i, j, _) in pairs {
         degree[i] += 1;
         degree[j] += 1;
     }
-    let mut turned: Vec<Option<bool>> = vec![None; n];
+    let mut turned: Vec<Option<u8>> = vec![None; n];
     let Some(reference) = (0..n).max_by_key(|&v| (degree[v], std::cmp::Reverse(v))) else {
         return turned;
     };
     if degree[reference] == 0 {
         return turned; // no pair decides anything
     }
-    turned[reference] = Some(false);
+    turned[reference] = Some(0);
     let mut queue = std::collections::VecDeque::from([reference]);
     while let Some(v) = queue.pop_front() {
-        let base = turned[v].unwrap_or(false);
+        let base = turned[v].unwrap_or(0);
         for &(i, j, t) in pairs {
-            let other = match (i == v, j == v) {
-                (true, _) => j,
-                (_, true) => i,
+            let (other, value) = match (i == v, j == v) {
+                (true, _) => (j, (base + t) % QUARTERS),
+                (_, true) => (i, (base + QUARTERS - t) % QUARTERS),
                 _ => continue,
             };
             if turned[other].is_none() {
-                turned[other] = Some(base != t);
+                turned[other] = Some(value);
                 queue.push_back(other);
             }
         }
@@ -121,37 +127,111 @@ fn propagate(n: usize, pairs: &[(usize, usize, bool)]) -> Vec<Option<bool>> {
     turned
 }
 
-fn refuse(why: String) -> PipelineError {
-    PipelineError::Invalid(vec![FieldError::new("target.inner_corners", why)])
+fn refuse(symmetry: &BoardSymmetry, why: String) -> PipelineError {
+    PipelineError::Invalid(vec![FieldError::new(symmetry.field, why)])
 }
 
-/// Settles the half turn of every view of a half-turn-symmetric board and
-/// relabels the turned ones in `step` and `measured`; returns the indices
-/// (into the session's poses) of the turned poses. Boards with a unique
-/// order are left alone.
+/// The turns the views need: the most common turn is taken as none, so
+/// most views keep the detector's order (ties keep the reference view's).
+fn corrections(turned: &[u8]) -> Vec<u8> {
+    let count = |k: u8| turned.iter().filter(|&&t| t == k).count();
+    let common = (0..QUARTERS)
+        .max_by_key(|&k| (count(k), std::cmp::Reverse(k)))
+        .unwrap_or(0);
+    turned
+        .iter()
+        .map(|&t| (t + QUARTERS - common) % QUARTERS)
+        .collect()
+}
+
+/// Relabels view `v` of `step` (and the pose's measured points) as turned
+/// by `k` quarter turns.
+fn relabel_view(
+    symmetry: &BoardSymmetry,
+    k: u8,
+    v: usize,
+    step: &mut CameraStep,
+    measured: &mut Measured,
+) {
+    let turn = symmetry.turn(k);
+    let mut labels = std::collections::HashMap::new();
+    for (g, (p, _)) in step.grid[v].iter_mut().zip(step.observations[v].iter_mut()) {
+        if let Some((label, q)) = symmetry.relabel(k, p) {
+            labels.insert(*g, label);
+            *g = label;
+            *p = q;
+        }
+    }
+    let relabel = |row: &mut u32, col: &mut u32| {
+        if let Some(&(r, c)) = labels.get(&(*row, *col)) {
+            (*row, *col) = (r, c);
+        }
+    };
+    let fit = &mut step.calibration.views[v];
+    fit.pose.target_to_camera = turn * fit.pose.target_to_camera;
+    fit.camera_to_target = fit.pose.target_to_camera.inverse();
+    // The covariance is in the target frame: its rotation and translation
+    // parts turn with the board.
+    let r: Matrix3<f64> = *turn.rotation.to_rotation_matrix().matrix();
+    let mut d = Matrix6::zeros();
+    d.fixed_view_mut::<3, 3>(0, 0).copy_from(&r);
+    d.fixed_view_mut::<3, 3>(3, 3).copy_from(&r);
+    fit.pose.covariance_6x6 = d * fit.pose.covariance_6x6 * d.transpose();
+    for o in step.calibration.outliers.iter_mut().filter(|o| o.view == v) {
+        relabel(&mut o.row, &mut o.col);
+    }
+    let pose = step.view_pose[v];
+    if let Some(Some(points)) = measured.points.get_mut(pose) {
+        for p in points.iter_mut() {
+            relabel(&mut p.row, &mut p.col);
+        }
+    }
+}
+
+/// Settles the turn of every view of a board whose images fix its order
+/// only up to a turn, and relabels the turned ones in `step` and
+/// `measured`; returns the report's note naming the relabelled poses, if
+/// any. The robot data are the poses' flange poses when they
+/// carry them (a hand–eye session), else the nominal kinematics at their
+/// joints. Boards with a unique order are left alone.
 pub fn resolve(
     robot: &RobotModel,
     poses: &[PoseInput],
     target: &Target,
     step: &mut CameraStep,
     measured: &mut Measured,
-) -> Result<Vec<usize>, PipelineError> {
-    let Some(([cols, rows], size_mm)) = target.half_turn() else {
-        return Ok(Vec::new());
+) -> Result<Option<String>, PipelineError> {
+    let Some(symmetry) = target.symmetry() else {
+        return Ok(None);
     };
     let n = step.view_pose.len();
     if n < 2 {
-        return Ok(Vec::new());
+        return Ok(None);
     }
-    // p_old = turn * p_new: a half turn about the board's z through its centre.
-    let turn = Translation3::new(size_mm[0], size_mm[1], 0.0)
-        * UnitQuaternion::from_axis_angle(&Vector3::z_axis(), std::f64::consts::PI);
+    let looks_same = format!(
+        "a {} looks the same after {}",
+        symmetry.board_words(),
+        symmetry.turn_words()
+    );
+    let flange_session = poses.first().is_some_and(|p| p.flange_pose.is_some());
+    let data = if flange_session {
+        "flange poses"
+    } else {
+        "joints"
+    };
     let mut flange = Vec::with_capacity(n);
     for &p in &step.view_pose {
-        let q = poses[p].joints_deg.to_radians();
-        let f = robot
-            .base_to_flange(&q)
-            .map_err(|e| refuse(format!("cannot settle the board's half turn: {e}")))?;
+        let f = match &poses[p].flange_pose {
+            Some(f) => f.base_to_flange(),
+            None => robot
+                .base_to_flange(&poses[p].joints_deg.to_radians())
+                .map_err(|e| {
+                    refuse(
+                        &symmetry,
+                        format!("{looks_same}, and the {data} cannot settle it: {e}"),
+                    )
+                })?,
+        };
         flange.push(f);
     }
     let camera: Vec<Isometry3<f64>> = step
@@ -160,7 +240,7 @@ pub fn resolve(
         .iter()
         .map(|v| v.pose.target_to_camera)
         .collect();
-    let pairs = pair_turns(&flange, &camera, &turn);
+    let pairs = pair_turns(&flange, &camera, &symmetry);
     let turned = propagate(n, &pairs);
     let names = |views: Vec<usize>| -> String {
         views
@@ -171,49 +251,43 @@ pub fn resolve(
     };
     let undecided: Vec<usize> = (0..n).filter(|&v| turned[v].is_none()).collect();
     if !undecided.is_empty() {
-        return Err(refuse(format!(
-            "a {cols} x {rows} chessboard looks the same after a half turn and the joints cannot tell which way it lies in pose(s) {}; use a board with one odd and one even side",
-            names(undecided)
-        )));
+        return Err(refuse(
+            &symmetry,
+            format!(
+                "{looks_same} and the {data} cannot tell which way it lies in pose(s) {}; {}",
+                names(undecided),
+                symmetry.advice
+            ),
+        ));
     }
-    let turned: Vec<bool> = turned.into_iter().map(|t| t.unwrap_or(false)).collect();
+    let turned: Vec<u8> = turned.into_iter().map(|t| t.unwrap_or(0)).collect();
     let deciding = pairs.len();
     let contradicting = pairs
         .iter()
-        .filter(|&&(i, j, t)| t != (turned[i] != turned[j]))
+        .filter(|&&(i, j, t)| t != (turned[j] + QUARTERS - turned[i]) % QUARTERS)
         .count();
     if contradicting as f64 > MAX_CONTRADICTING_FRACTION * deciding as f64 {
-        return Err(refuse(format!(
-            "a {cols} x {rows} chessboard looks the same after a half turn and the joints disagree on which way it lies ({contradicting} of {deciding} pose pairs contradict); use a board with one odd and one even side"
-        )));
-    }
-    // Turn the minority, so most views keep the detector's order.
-    let flip_value = turned.iter().filter(|&&t| t).count() * 2 <= n;
-    let mut out = Vec::new();
-    for v in (0..n).filter(|&v| turned[v] == flip_value) {
-        let pose = step.view_pose[v];
-        let relabel = |row: u32, col: u32| (rows - 1 - row, cols - 1 - col);
-        for (g, (p, _)) in step.grid[v].iter_mut().zip(step.observations[v].iter_mut()) {
-            *g = relabel(g.0, g.1);
-            *p = Point3::new(size_mm[0] - p.x, size_mm[1] - p.y, p.z);
-        }
-        let fit = &mut step.calibration.views[v];
-        fit.pose.target_to_camera = turn * fit.pose.target_to_camera;
-        fit.camera_to_target = fit.pose.target_to_camera.inverse();
-        // The covariance is in the target frame: x and y change sign.
-        let d = nalgebra::Matrix6::from_diagonal(&nalgebra::Vector6::new(
-            -1.0, -1.0, 1.0, -1.0, -1.0, 1.0,
+        return Err(refuse(
+            &symmetry,
+            format!(
+                "{looks_same} and the {data} disagree on which way it lies ({contradicting} of {deciding} pose pairs contradict); {}",
+                symmetry.advice
+            ),
         ));
-        fit.pose.covariance_6x6 = d * fit.pose.covariance_6x6 * d;
-        for o in step.calibration.outliers.iter_mut().filter(|o| o.view == v) {
-            (o.row, o.col) = relabel(o.row, o.col);
-        }
-        if let Some(Some(points)) = measured.points.get_mut(pose) {
-            for p in points.iter_mut() {
-                (p.row, p.col) = relabel(p.row, p.col);
-            }
-        }
-        out.push(pose);
     }
-    Ok(out)
+    let mut relabelled = Vec::new();
+    for (v, k) in corrections(&turned).into_iter().enumerate() {
+        if k != 0 {
+            relabel_view(&symmetry, k, v, step, measured);
+            relabelled.push(poses[step.view_pose[v]].label.as_str());
+        }
+    }
+    Ok((!relabelled.is_empty()).then(|| {
+        format!(
+            "The board looks the same after {}; the {data} showed it turned in {} image(s), relabelled: {}.",
+            symmetry.turn_words(),
+            relabelled.len(),
+            relabelled.join(", ")
+        )
+    }))
 }

@@ -141,7 +141,7 @@ fn run_stages(
                 input.options.refine_intrinsics,
                 input.fixed_camera.as_ref(),
             )?;
-            let turned = half_turn::resolve(
+            let turned_note = half_turn::resolve(
                 &input.robot,
                 &input.poses,
                 &target,
@@ -160,17 +160,7 @@ fn run_stages(
                     names.join(", ")
                 ));
             }
-            if !turned.is_empty() {
-                let names: Vec<&str> = turned
-                    .iter()
-                    .map(|&i| input.poses[i].label.as_str())
-                    .collect();
-                notes.push(format!(
-                    "The board looks the same after a half turn; the joints showed it turned in {} image(s), relabelled: {}.",
-                    turned.len(),
-                    names.join(", ")
-                ));
-            }
+            notes.extend(turned_note);
             if let Some(fixed) = &input.fixed_camera {
                 notes.push(format!(
                     "Camera intrinsics held fixed at those of calibration {} (camera_calibration_id); only the camera poses were fitted.",

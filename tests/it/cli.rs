@@ -1,13 +1,15 @@
 //! The `robocal` client commands, run as the real binary against a server:
 //! `upload` keeps an existing robot unless `--replace-robot`, `calibrate`
 //! checks `--serial` and logs plain progress lines off a terminal,
-//! `forward` and `compensate` print tables or JSON.
+//! `forward` and `compensate` print tables or JSON; a hand–eye campaign
+//! (flange poses instead of joints) uploads as a directory or a zip.
 
 use std::process::Output;
 
 use serde_json::{json, Value};
 
-use crate::support::{run_binary, spawn_app_with, TestApp};
+use crate::flange_pose::{rct_dir, rct_flange_pose, rct_session, RCT_IMAGES};
+use crate::support::{run_binary, spawn_app_with, zip_bytes, TestApp};
 
 /// A small rendered PUMA-560 campaign: enough rows to identify the model.
 const CAL_POSES: usize = 16;
@@ -16,6 +18,10 @@ const SEED: u64 = 21;
 const SERIAL: &str = "CLI-1";
 /// Compensated joints reproduce the forward pose to well below a micron.
 const MAX_RESIDUAL_MM: f64 = 1e-3;
+/// RCT's hand–eye turns the camera by about -90 deg about its axis
+/// (`tests/it/flange_pose.rs` holds the full check of that campaign).
+const RCT_HAND_EYE_YAW_DEG: f64 = -90.0;
+const RCT_YAW_TOLERANCE_DEG: f64 = 3.0;
 
 /// `robocal <args> --url <server>` off the async runtime (the server runs
 /// in this process).
@@ -181,4 +187,146 @@ async fn upload_calibrate_forward_and_compensate_through_the_binary() {
         table.lines().nth(1).is_some_and(|l| l.starts_with("1 ")),
         "{table}"
     );
+}
+
+/// A hand–eye campaign as a user lays it out: RCT's wrist-camera photos
+/// with the controller's flange poses in `poses.json` (no joints).
+fn rct_campaign(dir: &std::path::Path) {
+    let rct = rct_dir();
+    std::fs::create_dir_all(dir.join("images")).unwrap();
+    let poses: Vec<Value> = (0..RCT_IMAGES)
+        .map(|k| {
+            let image = format!("images/{k}.png");
+            std::fs::copy(rct.join(&image), dir.join(&image)).unwrap();
+            json!({"flange_pose": rct_flange_pose(&rct, k), "image": image, "set": "cal"})
+        })
+        .collect();
+    let campaign = json!({
+        "robot": {"model": "RCT wrist-camera cell", "preset": "irb2400"},
+        "session": rct_session(),
+    });
+    let write = |name: &str, v: &Value| {
+        std::fs::write(dir.join(name), serde_json::to_vec_pretty(v).unwrap()).unwrap()
+    };
+    write("campaign.json", &campaign);
+    write("poses.json", &json!(poses));
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn flange_pose_campaign_uploads_and_calibrates_through_the_binary() {
+    let app = spawn_app_with(|c| c.test_validate_only = false).await;
+    let dir = tempfile::tempdir().unwrap();
+    let campaign = dir.path().join("rct");
+    rct_campaign(&campaign);
+    let serial = "CLI-RCT";
+
+    // A directory: the robot is created, every pose stored with its flange pose.
+    let out = robocal(
+        &app,
+        &["upload", "--serial", serial, campaign.to_str().unwrap()],
+    )
+    .await;
+    let session = ok(&out).trim().to_string();
+    let log = text(&out.stderr);
+    assert!(
+        log.contains(&format!("uploaded {RCT_IMAGES} poses")),
+        "{log}"
+    );
+    let poses: Value = app
+        .get(&format!("/v1/sessions/{session}/poses"))
+        .await
+        .json()
+        .await
+        .unwrap();
+    let items = poses["items"].as_array().unwrap();
+    assert_eq!(items.len(), RCT_IMAGES, "{poses}");
+    assert!(
+        items.iter().all(|p| p["flange_pose"]["matrix"].is_array()
+            && p["joints_deg"].as_array().is_some_and(|j| j.is_empty())),
+        "{poses}"
+    );
+
+    // The hand–eye job from the binary.
+    let out = robocal(
+        &app,
+        &[
+            "calibrate",
+            "--serial",
+            serial,
+            "--session",
+            &session,
+            "--wait",
+        ],
+    )
+    .await;
+    ok(&out);
+    let report: Value = app
+        .get(&format!("/v1/robots/{serial}/parameter-sets/latest/report"))
+        .await
+        .json()
+        .await
+        .unwrap();
+    let yaw = report["hand_eye"]["flange_to_camera"]["rotation_deg"][2]
+        .as_f64()
+        .unwrap_or_else(|| panic!("no hand-eye in {report}"));
+    eprintln!("CLI RCT: hand-eye yaw {yaw:.2} deg");
+    assert!(
+        (yaw - RCT_HAND_EYE_YAW_DEG).abs() < RCT_YAW_TOLERANCE_DEG,
+        "{yaw}"
+    );
+
+    // The same directory calibrated without a server.
+    let out = tokio::task::spawn_blocking({
+        let dir = campaign.to_str().unwrap().to_string();
+        move || run_binary(&["calibrate-local", &dir])
+    })
+    .await
+    .unwrap();
+    assert!(
+        ok(&out).starts_with("Calibration report"),
+        "{}",
+        text(&out.stdout)
+    );
+
+    // The same campaign zipped (campaign.json, poses.json, images) is sent as is.
+    let read = |name: &str| std::fs::read(campaign.join(name)).unwrap();
+    let names: Vec<String> = ["campaign.json".to_string(), "poses.json".to_string()]
+        .into_iter()
+        .chain((0..RCT_IMAGES).map(|k| format!("images/{k}.png")))
+        .collect();
+    let bytes: Vec<(String, Vec<u8>)> = names.iter().map(|n| (n.clone(), read(n))).collect();
+    let entries: Vec<(&str, &[u8])> = bytes
+        .iter()
+        .map(|(n, b)| (n.as_str(), b.as_slice()))
+        .collect();
+    let zip = dir.path().join("rct.zip");
+    std::fs::write(&zip, zip_bytes(&entries)).unwrap();
+    let out = robocal(&app, &["upload", "--serial", serial, zip.to_str().unwrap()]).await;
+    ok(&out);
+    assert!(
+        text(&out.stderr).contains(&format!("uploaded {RCT_IMAGES} poses")),
+        "{}",
+        text(&out.stderr)
+    );
+
+    // A pose with both joints and a flange pose: refused naming the field.
+    let mut bad: Vec<Value> = serde_json::from_slice(&read("poses.json")).unwrap();
+    bad[3]["joints_deg"] = json!([0, 0, 0, 0, 0, 0]);
+    std::fs::write(
+        campaign.join("poses.json"),
+        serde_json::to_vec(&bad).unwrap(),
+    )
+    .unwrap();
+    let out = robocal(
+        &app,
+        &["upload", "--serial", serial, campaign.to_str().unwrap()],
+    )
+    .await;
+    assert!(!out.status.success());
+    assert!(
+        text(&out.stderr).contains("poses.json[3].flange_pose"),
+        "{}",
+        text(&out.stderr)
+    );
+    app.shutdown().await;
 }

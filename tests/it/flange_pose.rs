@@ -204,10 +204,10 @@ async fn simulated_flange_campaign_gives_the_true_hand_eye_and_flags_the_lie() {
 }
 
 /// RCT's wrist-camera set (see its PROVENANCE.md).
-fn rct_dir() -> PathBuf {
+pub(crate) fn rct_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("calib/tests/data/rct_wrist_circles_10x10")
 }
-const RCT_IMAGES: usize = 15;
+pub(crate) const RCT_IMAGES: usize = 15;
 const M_TO_MM: f64 = 1000.0;
 /// The spacing `target.yaml` configures (0.0254 m) and the sheet's print.
 const RCT_CONFIGURED_PITCH_MM: f64 = 25.4;
@@ -226,7 +226,7 @@ const MAX_RMS_PX: f64 = 1.0;
 
 /// The flange pose of RCT's `poses/N.yaml` (metres, quaternion) in the
 /// contract's form, as a user would convert it.
-fn rct_flange_pose(dir: &Path, k: usize) -> Value {
+pub(crate) fn rct_flange_pose(dir: &Path, k: usize) -> Value {
     let text = std::fs::read_to_string(dir.join(format!("poses/{k}.yaml"))).unwrap();
     let value = |key: &str| -> f64 {
         text.lines()
@@ -251,7 +251,7 @@ fn rct_flange_pose(dir: &Path, k: usize) -> Value {
     })
 }
 
-fn rct_session() -> Value {
+pub(crate) fn rct_session() -> Value {
     json!({
         "instrument": "camera",
         "target": {"rows": 10, "cols": 10, "pitch_mm": RCT_CONFIGURED_PITCH_MM,
