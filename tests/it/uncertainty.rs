@@ -14,12 +14,14 @@
 //! Two campaigns cannot pin that ratio. The served covariance can be
 //! pinned by the same errors: the Mahalanobis form `e^T C^+ e` of all the
 //! validation poses' 6-D errors stacked, `C = J Σ J^T` with the set's
-//! stored covariance `Σ`, is χ² with rank(C) (about 30 per campaign)
-//! degrees of freedom when `Σ` is right. Over two campaigns its mean per
-//! degree of freedom lies in [0.55, 1.6] with probability 0.999; a σ off by
-//! a factor of 2 either way gives 0.25 or 4. `forward`'s σ is then checked
-//! to be `sqrt(trace)` of `C`'s blocks, so what it serves is what was
-//! tested.
+//! stored covariance `Σ`, is χ² with rank(C) (30 per campaign here)
+//! degrees of freedom when `Σ` is right. Over the two campaigns (60) its
+//! mean per degree of freedom lies in [0.50, 1.71] with probability 0.999;
+//! a σ off by a factor of 2 either way gives about 0.25 or 4. `forward`'s
+//! σ is then checked to be `sqrt(trace)` of `C`'s blocks, so what it
+//! serves is what was tested. The per-pose ratio is printed: with these
+//! two campaigns 0.41 (position) and 0.30 (rotation), while
+//! `e^T C^+ e / rank` is 0.81 and 1.53.
 
 use nalgebra::{DMatrix, DVector, Vector6};
 use robocal::domain::ParameterSet;
