@@ -10,7 +10,7 @@
 //! validation poses of one campaign share ONE draw of the parameter
 //! error, so the per-pose RMS(error/σ) of one campaign spreads
 //! from about 0.2 to 2 even with an exact σ (over 20 rendered campaigns
-//! per preset, `examples/sigma_pipeline.rs`, the pooled ratio is 0.9-1.0).
+//! per preset, `examples/sigma_pipeline.rs`, the pooled ratio is 0.92-1.10).
 //! Two campaigns cannot pin that ratio. The served covariance can be
 //! pinned by the same errors: the Mahalanobis form `e^T C^+ e` of all the
 //! validation poses' 6-D errors stacked, `C = J Σ J^T` with the set's
