@@ -13,10 +13,7 @@ fn model() -> CalibratedModel {
 fn uncertainty() -> Uncertainty {
     let layout = ParamLayout::new(&model().robot, Instrument::Camera);
     let n = layout.len();
-    Uncertainty {
-        layout,
-        covariance: DMatrix::identity(n, n) * 1e-4,
-    }
+    Uncertainty::from_covariance(layout, DMatrix::identity(n, n) * 1e-4).unwrap()
 }
 
 fn fields(errors: Vec<FieldError>) -> Vec<String> {

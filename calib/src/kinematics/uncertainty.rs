@@ -97,6 +97,25 @@ pub fn pose_std(
     frame: PoseFrame,
 ) -> Result<PoseStd, UncertaintyError> {
     check_covariance(layout, covariance)?;
+    let jac = frame_jacobian(layout, model, q_rad, frame)?;
+    let pose_cov = &jac * covariance * jac.transpose();
+    let position_covariance: Matrix3<f64> = pose_cov.fixed_view::<3, 3>(0, 0).into_owned();
+    let rotation_trace = pose_cov.fixed_view::<3, 3>(3, 3).trace();
+    Ok(PoseStd {
+        position_mm: position_covariance.trace().max(0.0).sqrt(),
+        rotation_rad: rotation_trace.max(0.0).sqrt(),
+        position_covariance,
+    })
+}
+
+/// The identification Jacobian of the pose `frame` (6 x layout), with the
+/// columns of the parameters that do not move that pose zeroed.
+fn frame_jacobian(
+    layout: &ParamLayout,
+    model: &CalibratedModel,
+    q_rad: &[f64],
+    frame: PoseFrame,
+) -> Result<DMatrix<f64>, UncertaintyError> {
     let (at, keep_base, keep_tool) = match frame {
         PoseFrame::FlangeInBase => (
             CalibratedModel {
@@ -121,14 +140,69 @@ pub fn pose_std(
             jac.column_mut(i).fill(0.0);
         }
     }
-    let pose_cov = &jac * covariance * jac.transpose();
-    let position_covariance: Matrix3<f64> = pose_cov.fixed_view::<3, 3>(0, 0).into_owned();
-    let rotation_trace = pose_cov.fixed_view::<3, 3>(3, 3).trace();
-    Ok(PoseStd {
-        position_mm: position_covariance.trace().max(0.0).sqrt(),
-        rotation_rad: rotation_trace.max(0.0).sqrt(),
-        position_covariance,
-    })
+    Ok(jac)
+}
+
+/// Relative size below which an eigenvalue of the covariance is dropped
+/// from its factor (rounding of a positive semi-definite matrix).
+const FACTOR_RANK_TOLERANCE: f64 = 1e-14;
+
+/// A covariance ready to be propagated to many poses (a `forward` of
+/// 10,000 rows): `Σ = L L^T` with `L` (layout x rank) from its symmetric
+/// eigen-decomposition, computed once. Per pose `J L` (6 x rank) replaces
+/// `J Σ J^T`, and the checks run once. A factor, not a Cholesky: a stored
+/// covariance is singular (zero rows at fixed parameters, unidentifiable
+/// combinations) and may carry rounding below zero.
+#[derive(Debug, Clone)]
+pub struct CovarianceFactor {
+    layout: ParamLayout,
+    /// `L`, layout x rank.
+    factor: DMatrix<f64>,
+}
+
+impl CovarianceFactor {
+    pub fn new(layout: &ParamLayout, covariance: &DMatrix<f64>) -> Result<Self, UncertaintyError> {
+        check_covariance(layout, covariance)?;
+        let symmetric = (covariance + covariance.transpose()) * 0.5;
+        let eigen = symmetric.symmetric_eigen();
+        let largest = eigen.eigenvalues.iter().cloned().fold(0.0, f64::max);
+        let kept: Vec<usize> = (0..eigen.eigenvalues.len())
+            .filter(|&k| eigen.eigenvalues[k] > FACTOR_RANK_TOLERANCE * largest)
+            .collect();
+        let n = layout.len();
+        let factor = DMatrix::from_fn(n, kept.len(), |i, c| {
+            let k = kept[c];
+            eigen.eigenvectors[(i, k)] * eigen.eigenvalues[k].sqrt()
+        });
+        Ok(Self {
+            layout: layout.clone(),
+            factor,
+        })
+    }
+
+    pub fn layout(&self) -> &ParamLayout {
+        &self.layout
+    }
+
+    /// [`pose_std`] of `frame` at joints `q_rad` through the factor.
+    pub fn pose_std(
+        &self,
+        model: &CalibratedModel,
+        q_rad: &[f64],
+        frame: PoseFrame,
+    ) -> Result<PoseStd, UncertaintyError> {
+        let jac = frame_jacobian(&self.layout, model, q_rad, frame)?;
+        let spread = jac * &self.factor;
+        let position = spread.rows(0, 3);
+        let position_covariance: Matrix3<f64> =
+            Matrix3::from_fn(|a, b| position.row(a).dot(&position.row(b)));
+        let rotation_trace = spread.rows(3, 3).norm_squared();
+        Ok(PoseStd {
+            position_mm: position_covariance.trace().max(0.0).sqrt(),
+            rotation_rad: rotation_trace.max(0.0).sqrt(),
+            position_covariance,
+        })
+    }
 }
 
 #[cfg(test)]

@@ -145,3 +145,51 @@ fn a_misshapen_or_non_finite_covariance_is_refused() {
         Err(UncertaintyError::Kinematics(_))
     ));
 }
+
+/// The precomputed factor answers what `J Σ J^T` answers, for a dense
+/// correlated covariance with fixed parameters (zero rows and columns, so
+/// singular) in every frame.
+#[test]
+fn the_covariance_factor_propagates_as_the_full_matrix() {
+    let m = model();
+    let layout = ParamLayout::new(&m.robot, Instrument::Camera);
+    let mut rng = StdRng::seed_from_u64(11);
+    let mut cov = covariance(&layout, &mut rng);
+    for fixed in [3, layout.tool_start() + 2] {
+        cov.row_mut(fixed).fill(0.0);
+        cov.column_mut(fixed).fill(0.0);
+    }
+    let factor = CovarianceFactor::new(&layout, &cov).unwrap();
+    let tool = pose_from_xyz_rpy_deg([10.0, 0.0, 200.0], [0.0, 90.0, 0.0]).unwrap();
+    for q in [
+        [0.1, -0.3, 0.4, 1.0, -0.7, 2.0],
+        [-1.2, 0.5, -0.2, -2.0, 1.1, 0.3],
+    ] {
+        for frame in [
+            PoseFrame::FlangeInBase,
+            PoseFrame::ToolInWorld,
+            PoseFrame::GivenToolInWorld(tool),
+        ] {
+            let full = pose_std(&layout, &m, &cov, &q, frame).unwrap();
+            let fast = factor.pose_std(&m, &q, frame).unwrap();
+            let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b;
+            assert!(
+                close(fast.position_mm, full.position_mm),
+                "{frame:?}: {fast:?} vs {full:?}"
+            );
+            assert!(
+                close(fast.rotation_rad, full.rotation_rad),
+                "{frame:?}: {fast:?} vs {full:?}"
+            );
+            assert!(
+                (fast.position_covariance - full.position_covariance).norm()
+                    <= 1e-9 * full.position_covariance.norm()
+            );
+        }
+    }
+    let nan = DMatrix::from_element(layout.len(), layout.len(), f64::NAN);
+    assert_eq!(
+        CovarianceFactor::new(&layout, &nan).unwrap_err(),
+        UncertaintyError::NotFinite
+    );
+}
