@@ -26,14 +26,25 @@ pub fn run(
             measured.points.len()
         ));
     }
-    let out = super::hand_eye_results::hand_eye_output(input, measured, camera, &step, notes);
+    let mut out = super::hand_eye_results::hand_eye_output(input, measured, camera, &step, notes);
+    // A hand–eye set holds no kinematics to evaluate on another set's
+    // terms: the gate compares it with its own "before" (the flange poses
+    // as the controller reports them).
+    let (before, after) = (
+        out.report.before.norm.mean_mm,
+        out.report.after.norm.mean_mm,
+    );
+    let gate = super::gate::outcome(after, before, "nominal".into(), before, Vec::new());
+    out.report.gate = Some(gate.report);
     within(Stage::Report, "done", 1.0);
     Ok(super::Output {
         parameter_set: Some(crate::store::NewParameterSet {
             parameters: serde_json::to_value(&out.parameters).unwrap_or_default(),
             report: serde_json::to_value(&out.report).unwrap_or_default(),
+            release: gate.release,
         }),
         summary: out.summary,
         detections: Vec::new(),
+        check: None,
     })
 }

@@ -152,14 +152,19 @@ pub fn before_fit(report: &Report) -> &'static str {
 }
 
 /// The one-line summary used as the header of every rendering.
+/// A set worse than before says so first (the release gate, issue 17).
 pub fn headline(report: &Report) -> String {
-    format!(
+    let line = format!(
         "mean 3-D error at {} validation poses: {} mm before → {} mm after ({} smaller)",
         report.after.norm.n,
         mm(report.before.norm.mean_mm),
         mm(report.after.norm.mean_mm),
         improvement_text(report)
-    )
+    );
+    match super::gate::worse_line(report) {
+        Some(worse) => format!("{worse} {line}"),
+        None => line,
+    }
 }
 
 #[cfg(test)]

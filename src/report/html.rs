@@ -127,6 +127,13 @@ fn page_footer_rule(report: &Report) -> String {
 }
 
 fn header(page: &mut String, report: &Report) {
+    if let Some(worse) = super::gate::worse_line(report) {
+        let _ = writeln!(
+            page,
+            "<p class=\"worse\"><strong>{}</strong></p>",
+            escape_xml(&worse)
+        );
+    }
     let _ = write!(
         page,
         "<header>\n<h1>Robot calibration accuracy report</h1>\n<table class=\"meta\">\

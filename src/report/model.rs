@@ -214,6 +214,10 @@ pub struct Report {
     /// reports stored before it was drawn, or when no point was reachable).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub uncertainty_map: Option<UncertaintyMapReport>,
+    /// The release gate's comparison (absent in reports stored before it,
+    /// and in sets stored without a job).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gate: Option<super::gate::GateReport>,
 }
 
 /// Predicted 1σ of the tool (camera or tracker tool point) position over a
