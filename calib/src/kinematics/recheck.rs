@@ -13,12 +13,14 @@
 //! [`SIGNIFICANCE`] (a false alarm in 1 % of checks of an unchanged robot).
 //!
 //! Otherwise the world-to-base transform alone is re-fitted (the board,
-//! or the tracker, or the robot's base moved): when the re-fitted residual
-//! passes the same test with `n·rows − 6` degrees of freedom, the verdict
-//! is **base moved**. Else it is **drift**, and every identified kinematic
-//! parameter is ranked by how much of the whitened residual it explains
-//! beyond the base (the chi-square drop of adding it alone, linearised):
-//! the first are the suspects.
+//! or the tracker, or the robot's base moved), and every identified
+//! kinematic parameter is ranked by how much of the whitened residual it
+//! explains beyond the base (the chi-square drop of adding it alone,
+//! linearised). The verdict is **base moved** when the re-fitted residual
+//! passes the same test with `n·rows − 6` degrees of freedom and no single
+//! parameter explains significantly more (its drop, chi-square with 1
+//! degree of freedom, under `SIGNIFICANCE / parameters tried`); else it is
+//! **drift**, naming the first-ranked parameters as the suspects.
 
 use nalgebra::{DMatrix, DVector};
 
@@ -175,8 +177,13 @@ fn project_out(b: &DMatrix<f64>, v: &DVector<f64>) -> DVector<f64> {
 }
 
 /// Kinematic parameters ranked by the chi-square drop each explains beyond
-/// the base, at the base-refitted model's whitened residual.
-fn rank_suspects(layout: &ParamLayout, w: &Whitened, covariance: &DMatrix<f64>) -> Vec<Suspect> {
+/// the base, at the base-refitted model's whitened residual, and how many
+/// were tried.
+fn rank_suspects(
+    layout: &ParamLayout,
+    w: &Whitened,
+    covariance: &DMatrix<f64>,
+) -> (Vec<Suspect>, usize) {
     let base = base_indices(layout);
     let b = DMatrix::from_fn(w.jacobian.nrows(), base.len(), |r, c| {
         w.jacobian[(r, base[c])]
@@ -205,9 +212,10 @@ fn rank_suspects(layout: &ParamLayout, w: &Whitened, covariance: &DMatrix<f64>) 
             })
         })
         .collect();
+    let tried = suspects.len();
     suspects.sort_by(|x, y| y.chi2_drop.total_cmp(&x.chi2_drop));
     suspects.truncate(MAX_SUSPECTS);
-    suspects
+    (suspects, tried)
 }
 
 /// Judges the check's measurements against the set (see the module doc).
@@ -244,15 +252,23 @@ pub fn recheck(input: &RecheckInput) -> Result<Recheck, RecheckError> {
     let at_base = whiten(input, &refitted)?;
     let base_p_value = chi_square_p_value(at_base.residual.norm_squared(), dof - BASE_DOF)
         .ok_or(RecheckError::NotPositiveDefinite)?;
+    let (suspects, tried) = rank_suspects(&layout, &at_base, input.covariance);
+    // Nested models: does one kinematic parameter on top of the base
+    // explain significantly more (a 1-dof chi-square drop, at the level
+    // shared among the parameters tried, Bonferroni)?
+    let kinematic = suspects.first().is_some_and(|s| {
+        chi_square_p_value(s.chi2_drop, 1)
+            .is_some_and(|p| p < SIGNIFICANCE / tried.max(1) as f64)
+    });
     let verdict = if p_value >= SIGNIFICANCE {
         Verdict::Pass
-    } else if base_p_value >= SIGNIFICANCE {
+    } else if base_p_value >= SIGNIFICANCE && !kinematic {
         Verdict::BaseMoved
     } else {
         Verdict::Drift
     };
     let suspects = match verdict {
-        Verdict::Drift => rank_suspects(&layout, &at_base, input.covariance),
+        Verdict::Drift => suspects,
         _ => Vec::new(),
     };
     Ok(Recheck {
