@@ -138,9 +138,11 @@ pub fn run(
         },
         approved.id
     ));
+    // No nominal model takes part in a partial scope: "before" is the
+    // approved set, the only comparison.
     let gate = super::gate::outcome(
         after.norm.mean_mm,
-        before.norm.mean_mm,
+        f64::INFINITY,
         approved.id.clone(),
         before.norm.mean_mm,
         Vec::new(),
