@@ -28,13 +28,17 @@ pub fn run(
     }
     let mut out = super::hand_eye_results::hand_eye_output(input, measured, camera, &step, notes);
     // A hand–eye set holds no kinematics to evaluate on another set's
-    // terms: the gate compares it with its own "before" (the flange poses
-    // as the controller reports them).
-    let (before, after) = (
-        out.report.before.norm.mean_mm,
-        out.report.after.norm.mean_mm,
+    // terms, and its `before` is its `after` (the flange poses against the
+    // images): nothing to be better than, so only a non-finite result is
+    // held back, as before the gate every such set was served.
+    let after = out.report.after.norm.mean_mm;
+    let gate = super::gate::outcome(
+        after,
+        f64::INFINITY,
+        "no earlier set (a hand–eye calibration)".into(),
+        f64::INFINITY,
+        Vec::new(),
     );
-    let gate = super::gate::outcome(after, before, "nominal".into(), before, Vec::new());
     out.report.gate = Some(gate.report);
     within(Stage::Report, "done", 1.0);
     Ok(super::Output {
