@@ -19,7 +19,7 @@ use robocal_calib::kinematics::{CalibratedModel, Instrument, ParamLayout};
 use super::identify_stage::Identified;
 use super::input::ApprovedSet;
 use crate::domain::{Release, ReleaseStatus};
-use crate::report::gate::GateReport;
+use crate::report::GateReport;
 
 /// What [`GateReport::compared_with`] says for the nominal model.
 const NOMINAL: &str = "nominal";

@@ -161,10 +161,23 @@ pub fn headline(report: &Report) -> String {
         mm(report.after.norm.mean_mm),
         improvement_text(report)
     );
-    match super::gate::worse_line(report) {
+    match worse_line(report) {
         Some(worse) => format!("{worse} {line}"),
         None => line,
     }
+}
+
+/// The warning that opens every rendering of a set worse than before (the
+/// release gate, issue 17).
+pub fn worse_line(report: &Report) -> Option<String> {
+    let gate = report.gate.as_ref().filter(|g| g.worse)?;
+    Some(format!(
+        "WORSE THAN BEFORE: {} mm against {} mm for {} on the same validation poses; \
+         held back as a candidate, not served as latest.",
+        mm(gate.mean_mm),
+        mm(gate.compared_mean_mm),
+        gate.compared_with
+    ))
 }
 
 #[cfg(test)]

@@ -9,7 +9,6 @@ mod field;
 mod field_key;
 mod field_marks;
 pub mod format;
-pub mod gate;
 pub mod hand_eye;
 mod html;
 mod html_sections;

@@ -140,6 +140,11 @@ pub fn robot(row: &impl Columns) -> StoreResult<RobotRecord> {
     })
 }
 
+/// The columns [`job`] reads, for `SELECT` and `RETURNING`.
+pub const JOB_COLUMNS: &str =
+    "id, kind, session_id, serial, options, state, stage, progress, attempts,
+    max_attempts, error, result, created_at, started_at, finished_at";
+
 pub fn job(row: &impl Columns) -> StoreResult<JobRecord> {
     let state = row.str("state");
     Ok(JobRecord {

@@ -257,8 +257,7 @@ pub fn recheck(input: &RecheckInput) -> Result<Recheck, RecheckError> {
     // explain significantly more (a 1-dof chi-square drop, at the level
     // shared among the parameters tried, Bonferroni)?
     let kinematic = suspects.first().is_some_and(|s| {
-        chi_square_p_value(s.chi2_drop, 1)
-            .is_some_and(|p| p < SIGNIFICANCE / tried.max(1) as f64)
+        chi_square_p_value(s.chi2_drop, 1).is_some_and(|p| p < SIGNIFICANCE / tried.max(1) as f64)
     });
     let verdict = if p_value >= SIGNIFICANCE {
         Verdict::Pass

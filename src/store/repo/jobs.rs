@@ -11,9 +11,7 @@ use crate::store::statement::{query, DbRow};
 use crate::store::{ClaimedJob, JobOutcome, JobRecord, NewJob, PoseDetection};
 use crate::store::{JobStore, StoreError, StoreResult};
 
-pub(super) const COLUMNS: &str =
-    "id, kind, session_id, serial, options, state, stage, progress, attempts,
-    max_attempts, error, result, created_at, started_at, finished_at";
+use crate::store::rows::JOB_COLUMNS as COLUMNS;
 
 #[async_trait]
 impl<B: Backend> JobStore for B {

@@ -6,7 +6,7 @@ use sqlx::Transaction;
 
 use crate::domain::{now_rfc3339, Decision, Release};
 use crate::store::backend::Backend;
-use crate::store::rows::{job, parameter_set, release_status, Columns};
+use crate::store::rows::{job, parameter_set, release_status, Columns, JOB_COLUMNS};
 use crate::store::statement::query;
 use crate::store::{JobRecord, ParameterSetRecord, ReleaseStore, StoreResult};
 
@@ -121,7 +121,7 @@ impl<B: Backend> ReleaseStore for B {
         let rows = query(format!(
             "SELECT {} FROM jobs WHERE serial = $1 AND kind = $2 AND state = 'succeeded'
              ORDER BY id DESC LIMIT $3",
-            super::jobs::COLUMNS
+            JOB_COLUMNS
         ))
         .bind(serial)
         .bind(CHECK_KIND)
