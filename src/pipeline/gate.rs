@@ -110,8 +110,9 @@ pub fn outcome(
     mut blockers: Vec<String>,
 ) -> Gate {
     // NaN-safe: anything not shown better is worse.
-    let worse = !(mean_mm < compared_mean_mm);
-    let worse_than_nominal = !(mean_mm <= nominal_mm);
+    let worse = mean_mm.partial_cmp(&compared_mean_mm) != Some(std::cmp::Ordering::Less);
+    let worse_than_nominal =
+        mean_mm.partial_cmp(&nominal_mm) == Some(std::cmp::Ordering::Greater) || mean_mm.is_nan();
     if worse_than_nominal && compared_with != NOMINAL {
         blockers.push(format!(
             "hard warning: worse than the nominal model ({mean_mm:.3} mm against {nominal_mm:.3} mm)"

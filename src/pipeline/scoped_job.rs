@@ -37,10 +37,12 @@ fn invalid(field: &str, message: String) -> PipelineError {
 /// The layout indices a scope re-fits.
 fn refitted(layout: &ParamLayout, scope: CalibrationScope) -> Vec<usize> {
     (0..layout.len())
-        .filter(|&i| match (layout.params[i].kind, scope) {
-            (ParamKind::Base(_), CalibrationScope::Base) => true,
-            (ParamKind::Tool(_), CalibrationScope::HandEye) => true,
-            _ => false,
+        .filter(|&i| {
+            matches!(
+                (layout.params[i].kind, scope),
+                (ParamKind::Base(_), CalibrationScope::Base)
+                    | (ParamKind::Tool(_), CalibrationScope::HandEye)
+            )
         })
         .collect()
 }
