@@ -196,7 +196,7 @@ fn a_board_moved_by_15_mm_is_base_moved_and_8_poses_recalibrate_it() {
     // world_to_base: the board's frame seen from the base; moving the board
     // by `d` in the base frame changes it by the inverse.
     let moved = Translation3::new(BOARD_MOVE_MM * 0.6, -BOARD_MOVE_MM * 0.8, 0.0);
-    truth.world_to_base = truth.world_to_base * moved.inverse();
+    truth.world_to_base *= moved.inverse();
     let mut rng = StdRng::seed_from_u64(11);
     let val = set.val_poses();
     let chosen = sample(&val, &mut rng);
