@@ -8,6 +8,7 @@
 
 pub mod arrow;
 pub mod camera;
+pub mod chi_square;
 pub mod covariance;
 pub mod geometry;
 pub mod handeye;

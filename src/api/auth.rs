@@ -44,6 +44,8 @@ pub enum Principal {
     Anonymous,
     Token {
         id: String,
+        /// The token's name, for the record of who decided what.
+        name: String,
         scope: Scope,
     },
     /// A signed, read-only link to one report (no header).
@@ -56,6 +58,15 @@ impl Principal {
             Principal::Anonymous => "anonymous".into(),
             Principal::Token { id, .. } => format!("token:{id}"),
             Principal::ReportLink => "report-link".into(),
+        }
+    }
+
+    /// Who this is in a record of decisions (a parameter set's approval):
+    /// `token:{id} ({name})`, or `anonymous`.
+    pub fn actor(&self) -> String {
+        match self {
+            Principal::Token { id, name, .. } => format!("token:{id} ({name})"),
+            other => other.key(),
         }
     }
 }
@@ -246,6 +257,7 @@ async fn authenticate_token(
     }
     Ok(Principal::Token {
         id: record.id,
+        name: record.name,
         scope: record.scope,
     })
 }

@@ -199,6 +199,9 @@ impl From<ServiceError> for ApiError {
             ServiceError::Malformed { field, message } => ApiError::malformed(field, message),
             ServiceError::TooLarge { limit, bytes } => ApiError::too_large(limit, bytes),
             ServiceError::Conflict(detail) => ApiError::conflict(detail),
+            ServiceError::ConflictField { field, message } => {
+                ApiError::conflict(format!("{field}: {message}")).with_field(field, message)
+            }
             ServiceError::Store(e) => e.into(),
             ServiceError::Internal(cause) => ApiError::internal(cause),
         }

@@ -16,7 +16,6 @@ use super::extract::{OptionalJson, Paging};
 use super::sessions::find_session;
 use super::AppState;
 use crate::domain::JobState;
-use crate::jobs::queue::enqueue_calibration;
 use crate::schema::job::CalibrationOptions;
 use crate::store::JobRecord;
 
@@ -97,15 +96,18 @@ pub struct JobAccepted {
     request_body(content = Option<CalibrationOptions>, content_type = "application/json", description = "Optional: all fields optional, and no body (or an empty one) takes the defaults"),
     responses((status = 202, description = "The job is queued; `Location` is its URL", body = JobAccepted, headers(("Location" = String, description = "/v1/jobs/{job_id}"))),
               (status = 404, body = Problem, content_type = "application/problem+json"),
+              (status = 409, description = "A partial `scope` (`base`, `hand_eye`) and the robot has no approved parameter set to hold (names `scope`)", body = Problem, content_type = "application/problem+json"),
+              (status = 422, body = Problem, content_type = "application/problem+json"),
               (status = 429, description = "The queue is full (`--max-queued`): retry after `Retry-After` seconds", body = Problem, content_type = "application/problem+json")))]
 async fn start_calibration(
     State(state): State<AppState>,
     Path(id): Path<String>,
     OptionalJson(options): OptionalJson<CalibrationOptions>,
 ) -> ApiResult<Response> {
-    options.check()?;
     let session = find_session(&state, &id).await?;
-    let job = enqueue_calibration(&state.store, &state.policy, &session, &options).await?;
+    let job =
+        crate::service::checks::start_calibration(&state.store, &state.policy, &session, &options)
+            .await?;
     state.wake.notify_one();
     let location = format!("/v1/jobs/{}", job.id);
     Ok((

@@ -38,6 +38,7 @@ pub mod jobs;
 pub mod ops;
 pub mod poses;
 pub mod problem_fallback;
+pub mod release;
 pub mod report_links;
 pub mod results;
 pub mod robots;
@@ -97,6 +98,7 @@ fn api_router() -> OpenApiRouter<AppState> {
         .merge(upload::router())
         .merge(jobs::router())
         .merge(results::router())
+        .merge(release::router())
         .merge(export::router())
         .merge(report_links::router())
         .merge(tokens::router())

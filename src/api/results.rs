@@ -1,8 +1,8 @@
 //! Results per robot serial: versioned parameter sets and their reports.
 
-use axum::extract::{Path, State};
+use axum::extract::{Path, Query, State};
 use axum::Json;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
 use utoipa::ToSchema;
 use utoipa_axum::router::OpenApiRouter;
@@ -14,10 +14,11 @@ use axum::response::Html;
 use super::error::{ApiError, ApiResult, Problem};
 use super::extract::{ApiJson, Paging, SerialPath};
 use super::AppState;
+use crate::domain::ReleaseStatus;
 use crate::report::schema::IntrinsicsSchema;
 use crate::report::{render_html, render_svg, Report};
 use crate::schema::PoseOut;
-use crate::service::{evaluate, filter, results, uncertainty};
+use crate::service::{evaluate, filter, release, results, uncertainty};
 use crate::store::ParameterSetRecord;
 
 pub fn router() -> OpenApiRouter<AppState> {
@@ -40,6 +41,16 @@ pub struct ParameterSetOut {
     pub version: i64,
     pub job_id: Option<String>,
     pub created_at: String,
+    /// The release gate: `approved` (what `latest` serves, the newest
+    /// one), `candidate` (waits for a person) or `rejected`.
+    #[schema(value_type = String, example = "approved")]
+    pub status: ReleaseStatus,
+    /// Why it has its status (the gate's comparison, or a person's reason).
+    pub status_reason: Option<String>,
+    /// Who gave it (`gate`, `token:{id} ({name})`, `anonymous`; `null` for
+    /// sets approved when the gate was introduced) and when.
+    pub status_by: Option<String>,
+    pub status_at: Option<String>,
     /// Kinematics, `target_to_base`, `flange_to_camera`, intrinsics, fixed parameters.
     #[serde(flatten)]
     #[schema(value_type = ParameterSetFields)]
@@ -110,6 +121,10 @@ impl From<ParameterSetRecord> for ParameterSetOut {
             version: p.version,
             job_id: p.job_id,
             created_at: p.created_at,
+            status: p.status,
+            status_reason: p.status_reason,
+            status_by: p.status_by,
+            status_at: p.status_at,
             parameters,
         }
     }
@@ -167,18 +182,43 @@ async fn get_parameter_set(
     Ok(Json(find(&state, &serial, &version).await?.into()))
 }
 
-/// The accuracy report of a parameter set.
+/// The report's query: another version to compare with.
+#[derive(Debug, Default, Deserialize, utoipa::IntoParams)]
+#[into_params(parameter_in = Query)]
+pub struct ReportQuery {
+    /// Another version of the same robot: the report gains `comparison`
+    /// (that version's status, mean validation error and each kinematic
+    /// parameter's change from it to this one, in σ units).
+    pub compare: Option<String>,
+}
+
+/// The accuracy report of a parameter set (`latest`: the newest approved).
+/// `status` is the set's current release status; `?compare={v2}` adds
+/// `comparison`, version v2 side by side.
 #[utoipa::path(get, path = "/v1/robots/{serial}/parameter-sets/{version}/report", tag = "results",
     params(("serial" = String, Path, description = "Robot serial number"),
-           ("version" = String, Path, pattern = r"^(latest|[1-9][0-9]{0,17})$", description = "Version number (1, 2, ...) or `latest`")),
+           ("version" = String, Path, pattern = r"^(latest|[1-9][0-9]{0,17})$", description = "Version number (1, 2, ...) or `latest`"),
+           ReportQuery),
     responses((status = 200, description = "The accuracy report: before/after statistics on the validation poses, per-pose errors, identified parameters, camera fit, notes", body = Report),
               (status = 404, description = "No such robot, parameter set or report", body = Problem, content_type = "application/problem+json")))]
 async fn get_report(
     State(state): State<AppState>,
     SerialPath(serial): SerialPath,
     Path((_serial, version)): Path<(String, String)>,
+    Query(query): Query<ReportQuery>,
 ) -> ApiResult<Json<Value>> {
-    Ok(Json(report_json(&state, &serial, &version).await?))
+    let mut report = report_json(&state, &serial, &version).await?;
+    if let Some(other) = query.compare.as_deref() {
+        let set = find(&state, &serial, &version).await?;
+        let comparison = release::compare(&state.store, &set, other).await?;
+        if let Some(obj) = report.as_object_mut() {
+            obj.insert(
+                "comparison".into(),
+                serde_json::to_value(comparison).map_err(ApiError::internal)?,
+            );
+        }
+    }
+    Ok(Json(report))
 }
 
 /// The stored report with the parameter set's identity filled in (the
@@ -195,6 +235,7 @@ async fn report_json(state: &AppState, serial: &str, version: &str) -> ApiResult
         obj.insert("version".into(), Value::from(set.version));
         obj.insert("job_id".into(), Value::from(set.job_id.unwrap_or_default()));
         obj.insert("created_at".into(), Value::from(set.created_at));
+        obj.insert("status".into(), Value::from(set.status.as_str()));
     }
     Ok(report)
 }

@@ -233,6 +233,8 @@ pub fn run_local_with(
         images: local_images(),
         test_stage_delay: std::time::Duration::ZERO,
         validate_only: false,
+        approved: None,
+        check: false,
     };
     pipeline::run(&input, &|_, _, _| {}, &AtomicBool::new(false)).map_err(|e| e.to_string())
 }

@@ -4,6 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
+mod check;
 mod flange_pose;
 mod image_detection;
 mod joints;
@@ -12,9 +13,12 @@ mod measured_pose;
 mod parameter_covariance;
 mod parameter_set;
 mod pose_set;
+mod release;
 mod serial;
 mod target;
 mod target_symmetry;
+
+pub use check::{CheckDoc, CheckSuspect, CheckVerdict};
 pub use flange_pose::{check_robot_pose, FlangePose, PoseKind, RobotPose};
 pub use image_detection::ImageDetection;
 pub use joints::{JointsDeg, MAX_JOINT_DEG};
@@ -26,6 +30,7 @@ pub use measured_pose::{MeasuredPoint, MeasuredPose};
 pub use parameter_covariance::CovarianceDoc;
 pub use parameter_set::{FrameNames, ParameterSet};
 pub use pose_set::PoseSet;
+pub use release::{Decision, Release, ReleaseStatus, ANONYMOUS_ACTOR, GATE_ACTOR};
 pub use serial::{InvalidSerial, Serial, MAX_SERIAL_LEN, SERIAL_RULE};
 pub use target::{FoundPoint, Target};
 pub use target_symmetry::BoardSymmetry;

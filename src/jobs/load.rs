@@ -3,13 +3,13 @@
 use std::sync::Arc;
 use std::time::Duration;
 
-use crate::domain::{label_or_number, FlangePose};
+use crate::domain::{label_or_number, FlangePose, ParameterSet};
 use crate::imaging::DecodeGate;
-use crate::pipeline::{ImageSource, Input, PoseImage, PoseInput};
+use crate::pipeline::{ApprovedSet, FixedCamera, ImageSource, Input, PoseImage, PoseInput};
 use crate::schema::job::CalibrationOptions;
 use crate::schema::robot::KinematicsDoc;
 use crate::service::camera_reuse::{self, ReuseError};
-use crate::store::{ClaimedJob, DynStore, StoreError};
+use crate::store::{ClaimedJob, DynStore, StoreError, CHECK_KIND};
 
 /// Poses read per store call.
 const PAGE: i64 = 500;
@@ -43,6 +43,8 @@ pub async fn load_input(
     let spec = session.spec;
     let options: CalibrationOptions =
         serde_json::from_value(job.options.clone()).map_err(|e| bad("options", e))?;
+    let check = job.kind == CHECK_KIND;
+    let approved = approved_set(store, &session.serial).await?;
     let fixed_camera = match &spec.camera_calibration_id {
         Some(id) => Some(
             camera_reuse::resolve(store, id, spec.camera.as_ref())
@@ -52,6 +54,13 @@ pub async fn load_input(
                     e => LoadError::Gone(format!("{}: {e}", camera_reuse::FIELD)),
                 })?,
         ),
+        // A re-check or a partial scope holds the approved set's camera.
+        None if check || !options.scope.is_full() => approved.as_ref().and_then(|a| {
+            Some(FixedCamera {
+                calibration_id: a.id.clone(),
+                intrinsics: a.set.camera?,
+            })
+        }),
         None => None,
     };
     let mut poses = Vec::new();
@@ -106,7 +115,24 @@ pub async fn load_input(
         images: store_images(store, gate),
         test_stage_delay,
         validate_only: false,
+        approved,
+        check,
     })
+}
+
+/// The serial's newest approved set, typed; `None` when it has none, or
+/// when that set holds no calibrated model (a hand–eye set, a test marker):
+/// the gate then compares with the nominal model.
+async fn approved_set(store: &DynStore, serial: &str) -> Result<Option<ApprovedSet>, LoadError> {
+    let Some(record) = store.get_parameter_set(serial, None).await? else {
+        return Ok(None);
+    };
+    Ok(serde_json::from_value::<ParameterSet>(record.parameters)
+        .ok()
+        .map(|set| ApprovedSet {
+            id: format!("{serial}/{}", record.version),
+            set,
+        }))
 }
 
 /// Reads images from the store's blobs, from the job's blocking thread.

@@ -211,6 +211,7 @@ impl Worker {
                 parameter_set: out.parameter_set,
                 summary: serde_json::to_value(&out.summary).unwrap_or_default(),
                 detections: stamp(&job_id, out.detections),
+                check: out.check.and_then(|c| serde_json::to_value(c).ok()),
             },
             Ok(Err(PipelineError::Cancelled)) if releasing => {
                 tracing::info!("shutdown: job released to the queue");
@@ -278,13 +279,13 @@ fn mark_test_parameter_set(outcome: &mut JobOutcome, job: &crate::store::Claimed
         ..
     } = outcome
     {
-        *set = Some(crate::store::NewParameterSet {
-            parameters: serde_json::json!({
+        *set = Some(crate::store::NewParameterSet::approved(
+            serde_json::json!({
                 "test_marker": true,
                 "job_id": job.id,
                 "attempt": job.attempt,
             }),
-            report: serde_json::json!({ "test_marker": true }),
-        });
+            serde_json::json!({ "test_marker": true }),
+        ));
     }
 }

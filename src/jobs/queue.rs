@@ -46,6 +46,22 @@ pub async fn enqueue_calibration(
     store.enqueue_job(&job, policy.max_queued).await
 }
 
+/// Writes a quick re-check job (issue 17): no options.
+pub async fn enqueue_check(
+    store: &DynStore,
+    policy: &QueuePolicy,
+    session: &SessionRecord,
+) -> StoreResult<JobRecord> {
+    let job = NewJob {
+        kind: crate::store::CHECK_KIND.to_string(),
+        session_id: session.id.clone(),
+        serial: session.serial.clone(),
+        options: serde_json::json!({}),
+        max_attempts: policy.max_attempts,
+    };
+    store.enqueue_job(&job, policy.max_queued).await
+}
+
 /// A job held by this worker under a lease.
 pub struct Lease {
     pub store: DynStore,

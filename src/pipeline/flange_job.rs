@@ -26,14 +26,29 @@ pub fn run(
             measured.points.len()
         ));
     }
-    let out = super::hand_eye_results::hand_eye_output(input, measured, camera, &step, notes);
+    let mut out = super::hand_eye_results::hand_eye_output(input, measured, camera, &step, notes);
+    // A hand–eye set holds no kinematics to evaluate on another set's
+    // terms, and its `before` is its `after` (the flange poses against the
+    // images): nothing to be better than, so only a non-finite result is
+    // held back, as before the gate every such set was served.
+    let after = out.report.after.norm.mean_mm;
+    let gate = super::gate::outcome(
+        after,
+        f64::INFINITY,
+        "no earlier set (a hand–eye calibration)".into(),
+        f64::INFINITY,
+        Vec::new(),
+    );
+    out.report.gate = Some(gate.report);
     within(Stage::Report, "done", 1.0);
     Ok(super::Output {
         parameter_set: Some(crate::store::NewParameterSet {
             parameters: serde_json::to_value(&out.parameters).unwrap_or_default(),
             report: serde_json::to_value(&out.report).unwrap_or_default(),
+            release: gate.release,
         }),
         summary: out.summary,
         detections: Vec::new(),
+        check: None,
     })
 }

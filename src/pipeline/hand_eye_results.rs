@@ -343,5 +343,6 @@ fn report(
         }),
         notes,
         uncertainty_map: None,
+        gate: None,
     }
 }

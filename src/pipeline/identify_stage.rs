@@ -52,6 +52,10 @@ pub struct Identified {
     /// The same for each pose left out by the screening (how far its joints
     /// and its image disagree), where its image gives a camera pose.
     pub outlier_errors: Vec<(usize, Vector3<f64>, Vector3<f64>)>,
+    /// The calibration and validation measurements (the release gate
+    /// compares the approved set on the same poses).
+    pub cal_data: Vec<Measurement>,
+    pub val_data: Vec<Measurement>,
 }
 
 fn numerical(stage: Stage, message: impl std::fmt::Display) -> PipelineError {
@@ -62,7 +66,7 @@ fn numerical(stage: Stage, message: impl std::fmt::Display) -> PipelineError {
 }
 
 /// The calibration and validation split (indices into `usable`).
-fn split(
+pub(super) fn split(
     poses: &[PoseInput],
     usable: &[usize],
     validation: Validation,
@@ -81,7 +85,7 @@ fn split(
 
 /// One pose's measurement: the camera pose from the camera step, or the
 /// tracker's position.
-fn measurement_of(
+pub(super) fn measurement_of(
     pose: &PoseInput,
     index: usize,
     camera: Option<&CameraStep>,
@@ -260,5 +264,7 @@ pub fn identify_robot(
         after,
         val_errors,
         outlier_errors,
+        cal_data,
+        val_data,
     })
 }

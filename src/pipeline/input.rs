@@ -7,7 +7,7 @@ use std::time::Duration;
 use robocal_calib::camera::Intrinsics;
 use robocal_calib::kinematics::RobotModel;
 
-use crate::domain::{FlangePose, ImageDetection, JointsDeg};
+use crate::domain::{FlangePose, ImageDetection, JointsDeg, ParameterSet};
 use crate::imaging::DecodeGate;
 use crate::schema::job::CalibrationOptions;
 use crate::schema::robot::KinematicsDoc;
@@ -35,6 +35,20 @@ pub struct Input {
     pub test_stage_delay: Duration,
     /// Test hook (`ROBOCAL_TEST_VALIDATE_ONLY`): stop after validation.
     pub validate_only: bool,
+    /// The robot's newest approved calibrated set when the job was loaded:
+    /// the release gate compares with it, partial scopes and re-checks
+    /// hold it.
+    pub approved: Option<ApprovedSet>,
+    /// A quick re-check (issue 17) instead of a calibration.
+    pub check: bool,
+}
+
+/// An approved parameter set, typed, with its name.
+#[derive(Debug, Clone)]
+pub struct ApprovedSet {
+    /// `"{serial}/{version}"`.
+    pub id: String,
+    pub set: ParameterSet,
 }
 
 impl Input {

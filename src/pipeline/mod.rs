@@ -13,9 +13,11 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 
 mod camera_stage;
+mod check_job;
 mod detections;
 mod flange_job;
 mod flange_stage;
+mod gate;
 mod half_turn;
 pub mod hand_eye_results;
 mod hand_eye_sigmas;
@@ -24,13 +26,14 @@ mod input;
 mod measure;
 mod output;
 pub mod results;
+mod scoped_job;
 mod screen_stage;
 mod session_cause;
 mod stage;
 mod uncertainty_map;
 mod validate;
 
-pub use input::{FixedCamera, ImageSource, Input, PoseImage, PoseInput, ReadImage};
+pub use input::{ApprovedSet, FixedCamera, ImageSource, Input, PoseImage, PoseInput, ReadImage};
 pub use output::{Output, PipelineError, Summary};
 use stage::stage_span;
 pub use stage::Stage;
@@ -94,6 +97,7 @@ fn run_stages(
             parameter_set: None,
             summary: checked,
             detections: Vec::new(),
+            check: None,
         });
     }
     // Intrinsics not re-estimated (fixed from an earlier calibration, or the
@@ -179,6 +183,12 @@ fn run_stages(
     within(Stage::MeasurePoses, "camera poses measured", 1.0);
     if let (true, Some(m), Some(step)) = (input.is_flange_session(), &measured, &camera) {
         return flange_job::run(input, m, step, notes, &within);
+    }
+    if input.check {
+        return check_job::run(input, camera.as_ref(), &within);
+    }
+    if !input.options.scope.is_full() {
+        return scoped_job::run(input, measured.as_ref(), camera.as_ref(), notes, &within);
     }
     let usable: Vec<usize> = (0..input.poses.len())
         .filter(|&i| camera.as_ref().is_none_or(|c| c.view_pose.contains(&i)))
@@ -276,7 +286,14 @@ fn run_stages(
         notes,
     };
     let set = results::parameter_set(&context, &identified);
-    let report = results::report(&context, &identified, &set);
+    let mut report = results::report(&context, &identified, &set);
+    let gate = gate::decide(
+        &identified,
+        context.instrument,
+        input.approved.as_ref(),
+        paper_camera && camera.is_some(),
+    );
+    report.gate = Some(gate.report);
     let detections = match (&measured, &camera) {
         (Some(m), Some(step)) => detections::with_residuals(
             &input.poses,
@@ -293,9 +310,11 @@ fn run_stages(
         parameter_set: Some(NewParameterSet {
             parameters: serde_json::to_value(&set).unwrap_or_default(),
             report: serde_json::to_value(&report).unwrap_or_default(),
+            release: gate.release,
         }),
         summary: results::summary(&identified),
         detections,
+        check: None,
     })
 }
 

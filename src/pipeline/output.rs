@@ -16,6 +16,9 @@ pub struct Output {
     /// Every camera pose's image points with their reprojection residuals
     /// (empty for tracker sessions and validation-only runs).
     pub detections: Vec<PoseDetection>,
+    /// A quick re-check's verdict (issue 17): the job's `result` then
+    /// holds its fields.
+    pub check: Option<crate::domain::CheckDoc>,
 }
 
 /// The job's `result.summary`: the poses it used and, after a calibration,

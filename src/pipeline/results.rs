@@ -239,6 +239,7 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSet) -> Report {
         hand_eye: None,
         notes,
         uncertainty_map: super::uncertainty_map::workspace_map(id, ctx.poses),
+        gate: None,
     }
 }
 

@@ -152,14 +152,32 @@ pub fn before_fit(report: &Report) -> &'static str {
 }
 
 /// The one-line summary used as the header of every rendering.
+/// A set worse than before says so first (the release gate, issue 17).
 pub fn headline(report: &Report) -> String {
-    format!(
+    let line = format!(
         "mean 3-D error at {} validation poses: {} mm before → {} mm after ({} smaller)",
         report.after.norm.n,
         mm(report.before.norm.mean_mm),
         mm(report.after.norm.mean_mm),
         improvement_text(report)
-    )
+    );
+    match worse_line(report) {
+        Some(worse) => format!("{worse} {line}"),
+        None => line,
+    }
+}
+
+/// The warning that opens every rendering of a set worse than before (the
+/// release gate, issue 17).
+pub fn worse_line(report: &Report) -> Option<String> {
+    let gate = report.gate.as_ref().filter(|g| g.worse)?;
+    Some(format!(
+        "WORSE THAN BEFORE: {} mm against {} mm for {} on the same validation poses; \
+         held back as a candidate, not served as latest.",
+        mm(gate.mean_mm),
+        mm(gate.compared_mean_mm),
+        gate.compared_with
+    ))
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 //! A4 print layout, the SVG charts inline, no external assets. Every string
 //! from the report is escaped. The sections live in `html_sections.rs`.
 
-use super::format::{before_fit, escape_xml, improvement_text, mm};
+use super::format::{before_fit, escape_xml, improvement_text, mm, worse_line};
 use super::html_sections::*;
 use super::model::Report;
 use super::svg::{
@@ -127,6 +127,13 @@ fn page_footer_rule(report: &Report) -> String {
 }
 
 fn header(page: &mut String, report: &Report) {
+    if let Some(worse) = worse_line(report) {
+        let _ = writeln!(
+            page,
+            "<p class=\"worse\"><strong>{}</strong></p>",
+            escape_xml(&worse)
+        );
+    }
     let _ = write!(
         page,
         "<header>\n<h1>Robot calibration accuracy report</h1>\n<table class=\"meta\">\

@@ -214,6 +214,10 @@ pub struct Report {
     /// reports stored before it was drawn, or when no point was reachable).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub uncertainty_map: Option<UncertaintyMapReport>,
+    /// The release gate's comparison (absent in reports stored before it,
+    /// and in sets stored without a job).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gate: Option<GateReport>,
 }
 
 /// Predicted 1σ of the tool (camera or tracker tool point) position over a
@@ -242,4 +246,26 @@ pub struct UncertaintyCell {
     /// `sqrt(trace)` of the tool position's 3x3 covariance in the target
     /// (or tracker) frame: the RMS length of its 3-D error (mm).
     pub position_std_mm: f64,
+}
+
+/// The release gate's comparison in a report (issue 17): what the set was
+/// compared with on the same validation poses.
+/// What the gate compared at the end of the job.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+pub struct GateReport {
+    /// The status the gate gave: `approved` or `candidate`.
+    pub status: String,
+    /// Why, in a sentence.
+    pub reason: String,
+    /// What it was compared with: `nominal`, or the approved set
+    /// `"{serial}/{version}"` (its kinematics with the base and hand–eye
+    /// frames re-fitted on this session's calibration poses, as the
+    /// nominal "before" is).
+    pub compared_with: String,
+    /// Mean 3-D validation error of what it was compared with (mm).
+    pub compared_mean_mm: f64,
+    /// Mean 3-D validation error of this set (mm).
+    pub mean_mm: f64,
+    /// This set predicts the same validation poses worse than before.
+    pub worse: bool,
 }

@@ -34,6 +34,36 @@ pub enum Validation {
     Holdout(Holdout),
 }
 
+/// What a calibration re-fits (issue 17).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum CalibrationScope {
+    /// Kinematics, base and hand–eye frames, intrinsics: a whole calibration.
+    #[default]
+    Full,
+    /// Only `target_to_base` (`instrument_to_base`): the board moved. The
+    /// kinematics, the hand–eye transform and the camera intrinsics are
+    /// held at the robot's latest approved set.
+    Base,
+    /// Only `flange_to_camera` (`flange_to_tool`): the camera was
+    /// re-mounted. Everything else is held at the latest approved set.
+    HandEye,
+}
+
+impl CalibrationScope {
+    pub fn is_full(&self) -> bool {
+        *self == CalibrationScope::Full
+    }
+
+    pub fn as_str(self) -> &'static str {
+        match self {
+            CalibrationScope::Full => "full",
+            CalibrationScope::Base => "base",
+            CalibrationScope::HandEye => "hand_eye",
+        }
+    }
+}
+
 /// `POST /v1/sessions/{id}/calibrations` body; every field optional.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
@@ -52,6 +82,10 @@ pub struct CalibrationOptions {
     pub joint_refinement: bool,
     #[serde(default = "val_set")]
     pub validation: Validation,
+    /// `full` (default), `base` or `hand_eye`: a partial re-fit from a few
+    /// poses holding everything else at the latest approved set.
+    #[serde(default, skip_serializing_if = "CalibrationScope::is_full")]
+    pub scope: CalibrationScope,
 }
 
 fn yes() -> bool {
@@ -68,6 +102,7 @@ impl Default for CalibrationOptions {
             refine_intrinsics: true,
             joint_refinement: true,
             validation: val_set(),
+            scope: CalibrationScope::Full,
         }
     }
 }

@@ -28,6 +28,12 @@ pub enum ServiceError {
     /// The resource exists but cannot serve this request: 409.
     #[error("{0}")]
     Conflict(String),
+    /// The state of what a field names forbids the request: 409 naming it.
+    #[error("{field}: {message}")]
+    ConflictField {
+        field: &'static str,
+        message: String,
+    },
     #[error(transparent)]
     Store(#[from] StoreError),
     /// A fault of the service itself (a task that died, a stored document

@@ -22,6 +22,7 @@ mod migrations;
 pub mod postgres;
 mod records;
 mod repo;
+pub use repo::CHECK_KIND;
 mod rows;
 pub mod sqlite;
 mod statement;
@@ -171,13 +172,32 @@ pub trait ResultStore: Send + Sync {
         limit: i64,
         before_version: Option<i64>,
     ) -> StoreResult<Page<ParameterSetRecord>>;
-    /// `version = None` means the latest.
+    /// `version = None` means the latest **approved** set (the release gate).
     async fn get_parameter_set(
         &self,
         serial: &str,
         version: Option<i64>,
     ) -> StoreResult<Option<ParameterSetRecord>>;
     async fn get_report(&self, serial: &str, version: i64) -> StoreResult<Option<Value>>;
+}
+
+/// The release gate (issue 17): status changes with who and when, and a
+/// robot's finished re-checks.
+#[async_trait]
+pub trait ReleaseStore: Send + Sync {
+    /// Gives set `serial`/`version` the status `release`, decided by
+    /// `actor`, and logs the decision; `None` when there is no such set.
+    async fn set_release(
+        &self,
+        serial: &str,
+        version: i64,
+        release: &Release,
+        actor: &str,
+    ) -> StoreResult<Option<ParameterSetRecord>>;
+    /// Every decision on the serial's sets, oldest first.
+    async fn list_decisions(&self, serial: &str) -> StoreResult<Vec<Decision>>;
+    /// The serial's succeeded re-check jobs, newest first.
+    async fn list_checks(&self, serial: &str, limit: i64) -> StoreResult<Vec<JobRecord>>;
 }
 
 #[async_trait]
@@ -264,7 +284,7 @@ pub trait CampaignPlanStore: Send + Sync {
 
 #[async_trait]
 pub trait Store:
-    RobotStore + SessionStore + JobStore + ResultStore + AuthStore + CampaignPlanStore
+    RobotStore + SessionStore + JobStore + ResultStore + ReleaseStore + AuthStore + CampaignPlanStore
 {
     /// Readiness probe: the database answers.
     async fn ping(&self) -> StoreResult<()>;

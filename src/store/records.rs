@@ -9,7 +9,9 @@
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
-use crate::domain::{ImageDetection, ImageMeta, JobState, JointsDeg, MeasuredPose, PoseSet};
+use crate::domain::{
+    ImageDetection, ImageMeta, JobState, JointsDeg, MeasuredPose, PoseSet, Release, ReleaseStatus,
+};
 use crate::schema::flange_pose::FlangePoseDoc;
 use crate::schema::session::{ImagePointDoc, SessionBody};
 use crate::schema::PoseDoc;
@@ -140,6 +142,8 @@ pub struct NewJob {
 #[derive(Debug, Clone)]
 pub struct ClaimedJob {
     pub id: String,
+    /// `calibration` or `check`.
+    pub kind: String,
     pub session_id: String,
     pub serial: String,
     pub options: Value,
@@ -157,6 +161,9 @@ pub enum JobOutcome {
         /// Every pose's final image points with residuals (empty: keep
         /// what the detect stage stored).
         detections: Vec<PoseDetection>,
+        /// A quick re-check's verdict document (issue 17), merged into the
+        /// job's `result` at its top level.
+        check: Option<Value>,
     },
     /// Failed for good (bad input): no retry.
     Failed { error: String },
@@ -168,6 +175,20 @@ pub enum JobOutcome {
 pub struct NewParameterSet {
     pub parameters: Value,
     pub report: Value,
+    /// The release gate's decision (recorded as decided by `gate`).
+    pub release: Release,
+}
+
+impl NewParameterSet {
+    /// A set stored outside a job's gate: approved (see
+    /// [`Release::stored_directly`]).
+    pub fn approved(parameters: Value, report: Value) -> NewParameterSet {
+        NewParameterSet {
+            parameters,
+            report,
+            release: Release::stored_directly(),
+        }
+    }
 }
 
 #[derive(Debug, Clone)]
@@ -177,4 +198,10 @@ pub struct ParameterSetRecord {
     pub job_id: Option<String>,
     pub parameters: Value,
     pub created_at: String,
+    pub status: ReleaseStatus,
+    pub status_reason: Option<String>,
+    /// Who gave the current status (`gate`, a token, `anonymous`); `None`
+    /// for sets approved by the migration that introduced the gate.
+    pub status_by: Option<String>,
+    pub status_at: Option<String>,
 }

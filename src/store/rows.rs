@@ -7,7 +7,7 @@ use sqlx::{Decode, Row, Type};
 
 use super::StoreError;
 use super::StoreResult;
-use crate::domain::{ImageMeta, JobState, JointsDeg, PoseSet, Scope, TokenRecord};
+use crate::domain::{ImageMeta, JobState, JointsDeg, PoseSet, ReleaseStatus, Scope, TokenRecord};
 use crate::store::{
     ClaimedJob, JobRecord, ParameterSetRecord, PoseRecord, RobotRecord, SessionRecord,
 };
@@ -140,6 +140,11 @@ pub fn robot(row: &impl Columns) -> StoreResult<RobotRecord> {
     })
 }
 
+/// The columns [`job`] reads, for `SELECT` and `RETURNING`.
+pub const JOB_COLUMNS: &str =
+    "id, kind, session_id, serial, options, state, stage, progress, attempts,
+    max_attempts, error, result, created_at, started_at, finished_at";
+
 pub fn job(row: &impl Columns) -> StoreResult<JobRecord> {
     let state = row.str("state");
     Ok(JobRecord {
@@ -169,12 +174,21 @@ pub fn parameter_set(row: &impl Columns) -> StoreResult<ParameterSetRecord> {
         job_id: row.opt_string("job_id"),
         parameters: json(row.str("parameters"))?,
         created_at: row.string("created_at"),
+        status: release_status(row.str("status"))?,
+        status_reason: row.opt_string("status_reason"),
+        status_by: row.opt_string("status_by"),
+        status_at: row.opt_string("status_at"),
     })
+}
+
+pub fn release_status(s: &str) -> StoreResult<ReleaseStatus> {
+    ReleaseStatus::parse(s).ok_or_else(|| StoreError::Backend(format!("unknown status {s:?}")))
 }
 
 pub fn claimed_job(row: &impl Columns) -> StoreResult<ClaimedJob> {
     Ok(ClaimedJob {
         id: row.string("id"),
+        kind: row.string("kind"),
         session_id: row.string("session_id"),
         serial: row.string("serial"),
         options: json(row.str("options"))?,

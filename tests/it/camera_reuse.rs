@@ -35,10 +35,10 @@ fn session_reusing(id: &str) -> Value {
 fn camera_set(fx: f64, width: u32, height: u32) -> NewParameterSet {
     let intrinsics = json!({"fx": fx, "fy": fx, "cx": 32.0, "cy": 24.0,
         "k1": -0.1, "k2": 0.05, "p1": 0.0, "p2": 0.0, "k3": 0.0});
-    NewParameterSet {
-        parameters: json!({"instrument": "camera", "camera": intrinsics}),
-        report: json!({"camera": {"mode": "refined", "image_width": width, "image_height": height}}),
-    }
+    NewParameterSet::approved(
+        json!({"instrument": "camera", "camera": intrinsics}),
+        json!({"camera": {"mode": "refined", "image_width": width, "image_height": height}}),
+    )
 }
 
 #[tokio::test]
@@ -61,10 +61,7 @@ async fn camera_calibration_id_must_name_a_camera_calibration_of_the_same_image_
     let store = store::connect(&app.database_url).await.unwrap();
     // Version 1: no camera (a tracker calibration); 2: a 64x48 camera;
     // 3: a camera of another image size.
-    let tracker = NewParameterSet {
-        parameters: json!({"instrument": "tracker"}),
-        report: json!({}),
-    };
+    let tracker = NewParameterSet::approved(json!({"instrument": "tracker"}), json!({}));
     store
         .insert_parameter_set("CAM-1", None, &tracker)
         .await

@@ -249,11 +249,11 @@ async fn infeasible_and_bad_requests_name_the_constraint() {
 /// it: the report's camera section with the image size and the dots'
 /// reprojection RMS (no calibrated model: the plan keeps the nominal one).
 fn camera_job(width: u32, height: u32, rms_px: f64) -> NewParameterSet {
-    NewParameterSet {
-        parameters: json!({"instrument": "camera"}),
-        report: json!({"camera": {"mode": "refined", "image_width": width,
+    NewParameterSet::approved(
+        json!({"instrument": "camera"}),
+        json!({"camera": {"mode": "refined", "image_width": width,
             "image_height": height, "reprojection_rms_px": rms_px}}),
-    }
+    )
 }
 
 #[tokio::test]
@@ -276,10 +276,7 @@ async fn plan_predicts_with_the_dot_noise_of_the_robots_earlier_job() {
     // per dot; 2: a tracker job (no camera); 3: a camera job on other
     // images (another camera: says nothing of this one's noise).
     let store = store::connect(&app.database_url).await.unwrap();
-    let tracker = NewParameterSet {
-        parameters: json!({"instrument": "tracker"}),
-        report: json!({}),
-    };
+    let tracker = NewParameterSet::approved(json!({"instrument": "tracker"}), json!({}));
     for set in [
         camera_job(2048, 1536, 0.3),
         tracker,

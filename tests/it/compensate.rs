@@ -53,10 +53,7 @@ async fn stored_model(app: &TestApp, preset: &str, serial: &str) -> (CalibratedM
         .insert_parameter_set(
             serial,
             None,
-            &NewParameterSet {
-                parameters,
-                report: json!({}),
-            },
+            &NewParameterSet::approved(parameters, json!({})),
         )
         .await
         .unwrap();

@@ -393,6 +393,23 @@ async fn detected_points_residuals_and_a_reused_camera_through_the_service() {
     assert_eq!(report2["camera"]["fx"], set2["camera"]["fx"]);
     assert_ne!(set2["camera"]["fx"], set1["camera"]["fx"]);
     assert_warns_iff_worse(&report2);
+    // The release gate (issue 17): set 1 was better than nominal and is
+    // approved; the paper-mode set is held as a candidate (a hard
+    // warning), `latest` stays 1, and its report says so first.
+    assert_eq!(set1["status"], "approved", "{}", set1["status_reason"]);
+    assert_eq!(set2["status"], "candidate", "{}", set2["status_reason"]);
+    assert_eq!(job2["result"]["status"], "candidate");
+    let latest = json_of(&app, "/v1/robots/PUMA-PTS/parameter-sets/latest").await;
+    assert_eq!(latest["version"], 1);
+    assert_eq!(
+        report2["gate"]["compared_with"], "PUMA-PTS/1",
+        "{}",
+        report2["gate"]
+    );
+    eprintln!("paper set against set 1: {}", report2["gate"]["reason"]);
+    // Quick re-checks and a base-only recalibration of the same robot,
+    // from this campaign's validation poses sent again as image points.
+    crate::release_gate::recheck_through_the_service(&app, "PUMA-PTS", &session_body, &poses).await;
     // Uploaded images are untouched by the jobs.
     for (pose, entry) in poses.iter().zip(&entries) {
         let id = pose["id"].as_str().unwrap();

@@ -245,6 +245,7 @@ async fn queue_reclaims_expired_leases_until_max_attempts() {
         parameter_set: None,
         summary: json!({}),
         detections: vec![],
+        check: None,
     };
     assert_eq!(
         s.finish_job(&job.id, "A", &outcome).await.unwrap(),
@@ -274,12 +275,10 @@ async fn queue_reclaims_expired_leases_until_max_attempts() {
     let w = s.claim_job("W", now, now + 60_000).await.unwrap().unwrap();
     assert_eq!(w.id, job.id);
     let outcome = JobOutcome::Succeeded {
-        parameter_set: Some(NewParameterSet {
-            parameters: json!({"p": 1}),
-            report: json!({"r": 2}),
-        }),
+        parameter_set: Some(NewParameterSet::approved(json!({"p": 1}), json!({"r": 2}))),
         summary: json!({"ok": true}),
         detections: vec![],
+        check: None,
     };
     assert_eq!(
         s.finish_job(&job.id, "W", &outcome).await.unwrap(),
@@ -330,9 +329,11 @@ async fn parameter_sets_are_versioned_per_serial_and_served() {
     app.robot_and_session("V2").await;
     let s = store::connect(&app.database_url).await.unwrap();
     let _ = session;
-    let set = |k: f64| NewParameterSet {
-        parameters: json!({"kinematics": {"joints": []}, "k": k}),
-        report: json!({"after": {"rms_mm": k}}),
+    let set = |k: f64| {
+        NewParameterSet::approved(
+            json!({"kinematics": {"joints": []}, "k": k}),
+            json!({"after": {"rms_mm": k}}),
+        )
     };
     assert_eq!(
         s.insert_parameter_set("V1", None, &set(1.0)).await.unwrap(),

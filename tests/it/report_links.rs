@@ -23,10 +23,7 @@ async fn reports(app: &TestApp) {
         assert_eq!(r.status(), 201);
     }
     let s = store::connect(&app.database_url).await.unwrap();
-    let set = NewParameterSet {
-        parameters: json!({}),
-        report: serde_json::to_value(sample_report()).unwrap(),
-    };
+    let set = NewParameterSet::approved(json!({}), serde_json::to_value(sample_report()).unwrap());
     for serial in ["RL-1", "RL-1", "RL-2"] {
         s.insert_parameter_set(serial, None, &set).await.unwrap();
     }

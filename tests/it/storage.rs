@@ -150,10 +150,7 @@ async fn a_deleted_robots_past_does_not_come_back() {
         .unwrap();
     let job = job["job_id"].as_str().unwrap().to_string();
     let store = store::connect(&app.database_url).await.unwrap();
-    let set = NewParameterSet {
-        parameters: json!({"kinematics": {"joints": []}}),
-        report: json!({}),
-    };
+    let set = NewParameterSet::approved(json!({"kinematics": {"joints": []}}), json!({}));
     assert_eq!(
         store
             .insert_parameter_set("GONE-1", Some(&job), &set)

@@ -40,10 +40,7 @@ fn new_job(session_id: &str, serial: &str) -> NewJob {
 }
 
 fn set(n: usize) -> NewParameterSet {
-    NewParameterSet {
-        parameters: json!({"n": n}),
-        report: json!({"rms_mm": n as f64 * 0.01}),
-    }
+    NewParameterSet::approved(json!({"n": n}), json!({"rms_mm": n as f64 * 0.01}))
 }
 
 fn pose(sha: Option<&ImageMeta>) -> NewPose {
@@ -208,6 +205,7 @@ async fn every_store_operation_round_trips() {
         parameter_set: Some(set(1)),
         summary: json!({"ok": true}),
         detections: vec![],
+        check: None,
     };
     assert_eq!(
         s.finish_job(&c1.id, "w1", &done).await.unwrap(),
@@ -463,6 +461,7 @@ async fn concurrent_claimers_take_each_job_exactly_once() {
                     parameter_set: Some(set(0)),
                     summary: json!({}),
                     detections: vec![],
+                    check: None,
                 };
                 assert_eq!(
                     s.finish_job(&job.id, &worker, &outcome).await.unwrap(),

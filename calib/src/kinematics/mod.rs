@@ -30,6 +30,7 @@ pub mod params;
 mod pose_fit;
 pub mod presets;
 pub mod projection;
+pub mod recheck;
 mod term_cv;
 mod term_fit;
 pub mod term_selection;

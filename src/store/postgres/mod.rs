@@ -78,6 +78,11 @@ const MIGRATIONS: &[Embedded] = &[
         "campaign plans",
         include_str!("../../../migrations/postgres/0008_campaign_plans.sql"),
     ),
+    (
+        9,
+        "release gate",
+        include_str!("../../../migrations/postgres/0009_release_gate.sql"),
+    ),
 ];
 
 /// Connections per replica. Each worker holds at most one while it claims or

@@ -11,8 +11,7 @@ use crate::store::statement::{query, DbRow};
 use crate::store::{ClaimedJob, JobOutcome, JobRecord, NewJob, PoseDetection};
 use crate::store::{JobStore, StoreError, StoreResult};
 
-const COLUMNS: &str = "id, kind, session_id, serial, options, state, stage, progress, attempts,
-    max_attempts, error, result, created_at, started_at, finished_at";
+use crate::store::rows::JOB_COLUMNS as COLUMNS;
 
 #[async_trait]
 impl<B: Backend> JobStore for B {
@@ -130,7 +129,7 @@ impl<B: Backend> JobStore for B {
                             OR (state = 'running' AND lease_expires_at < $4
                                 AND attempts < max_attempts)
                          ORDER BY id LIMIT 1{})
-             RETURNING id, session_id, serial, options, attempts",
+             RETURNING id, kind, session_id, serial, options, attempts",
             B::FOR_UPDATE_SKIP_LOCKED
         ))
         .bind(worker_id)
@@ -186,6 +185,7 @@ impl<B: Backend> JobStore for B {
                 parameter_set,
                 summary,
                 detections,
+                check,
             } => {
                 if !detections.is_empty() {
                     write_detections_tx::<B>(&mut tx, held.str("session_id"), detections).await?;
@@ -196,6 +196,15 @@ impl<B: Backend> JobStore for B {
                         insert_parameter_set_tx::<B>(&mut tx, &serial, Some(job_id), set).await?;
                     result["serial"] = json!(serial);
                     result["version"] = json!(version);
+                    result["status"] = json!(set.release.status.as_str());
+                    if let Some(reason) = &set.release.reason {
+                        result["status_reason"] = json!(reason);
+                    }
+                }
+                if let (Some(serde_json::Value::Object(fields)), Some(out)) =
+                    (check, result.as_object_mut())
+                {
+                    out.extend(fields.clone());
                 }
                 ("succeeded", None, Some(result.to_string()))
             }

@@ -15,10 +15,12 @@ use super::{Store, StoreResult};
 mod auth;
 mod campaign_plans;
 mod jobs;
+mod release;
 mod results;
 mod robots;
 mod sessions;
 
+pub use release::CHECK_KIND;
 pub use robots::UPSERT_ROBOT;
 
 #[async_trait]

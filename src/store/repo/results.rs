@@ -3,7 +3,8 @@ use serde_json::Value;
 use sqlx::Transaction;
 
 use super::page_cursor;
-use crate::domain::{now_rfc3339, Page};
+use super::release::record_decision_tx;
+use crate::domain::{now_rfc3339, Page, GATE_ACTOR};
 use crate::store::backend::Backend;
 use crate::store::rows::{json, parameter_set, Columns};
 use crate::store::statement::query;
@@ -24,17 +25,24 @@ pub(super) async fn insert_parameter_set_tx<B: Backend>(
         .fetch_one(&mut *tx)
         .await?
         .int("version");
+    let now = now_rfc3339();
+    let release = &set.release;
     query(
-        "INSERT INTO parameter_sets (serial, version, job_id, parameters, created_at)
-         VALUES ($1, $2, $3, $4, $5)",
+        "INSERT INTO parameter_sets (serial, version, job_id, parameters, created_at,
+           status, status_reason, status_by, status_at)
+         VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $5)",
     )
     .bind(serial)
     .bind(version)
     .bind(job_id)
     .bind(set.parameters.to_string())
-    .bind(now_rfc3339())
+    .bind(&now)
+    .bind(release.status.as_str())
+    .bind(release.reason.as_deref())
+    .bind(GATE_ACTOR)
     .execute(&mut *tx)
     .await?;
+    record_decision_tx::<B>(tx, serial, version, release, GATE_ACTOR, &now).await?;
     query("INSERT INTO reports (serial, version, report) VALUES ($1, $2, $3)")
         .bind(serial)
         .bind(version)
@@ -65,7 +73,8 @@ impl<B: Backend> ResultStore for B {
         before_version: Option<i64>,
     ) -> StoreResult<Page<ParameterSetRecord>> {
         let rows = query(
-            "SELECT serial, version, job_id, parameters, created_at FROM parameter_sets
+            "SELECT serial, version, job_id, parameters, created_at,
+                    status, status_reason, status_by, status_at FROM parameter_sets
              WHERE serial = $1 AND version < $2 ORDER BY version DESC LIMIT $3",
         )
         .bind(serial)
@@ -87,8 +96,10 @@ impl<B: Backend> ResultStore for B {
         version: Option<i64>,
     ) -> StoreResult<Option<ParameterSetRecord>> {
         let row = query(
-            "SELECT serial, version, job_id, parameters, created_at FROM parameter_sets
-             WHERE serial = $1 AND (CAST($2 AS BIGINT) IS NULL OR version = $2)
+            "SELECT serial, version, job_id, parameters, created_at,
+                    status, status_reason, status_by, status_at FROM parameter_sets
+             WHERE serial = $1
+               AND (CAST($2 AS BIGINT) IS NULL AND status = 'approved' OR version = $2)
              ORDER BY version DESC LIMIT 1",
         )
         .bind(serial)

@@ -64,6 +64,11 @@ const MIGRATIONS: &[Embedded] = &[
         "campaign plans",
         include_str!("../../../migrations/sqlite/0008_campaign_plans.sql"),
     ),
+    (
+        9,
+        "release gate",
+        include_str!("../../../migrations/sqlite/0009_release_gate.sql"),
+    ),
 ];
 
 /// How long a statement waits for a competing writer before giving up.

@@ -1,0 +1,288 @@
+//! A quick re-check of a calibrated set (issue 17): a few measured poses
+//! judged against what the set predicts, with the set's own uncertainty.
+//!
+//! The test (method.md §7 residuals, §6 covariance): stack every pose's
+//! residual `r` (measured minus predicted tool pose, 6 rows, or position,
+//! 3 rows). If nothing changed, `r` is zero-mean with covariance
+//! `C = J Σ Jᵀ + R`: `J` the identification Jacobian at the check's joints
+//! (every pose at once, so the parameter error is shared across poses),
+//! `Σ` the set's parameter covariance, `R` block-diagonal, each pose's
+//! measurement covariance plus its joint noise ([`PoseCovariances`]). Then
+//! `T = rᵀ C⁻¹ r` is chi-square with `n·rows` degrees of freedom, and the
+//! check **passes** when its upper-tail p-value is at least
+//! [`SIGNIFICANCE`] (a false alarm in 1 % of checks of an unchanged robot).
+//!
+//! Otherwise the world-to-base transform alone is re-fitted (the board,
+//! or the tracker, or the robot's base moved), and every identified
+//! kinematic parameter is ranked by how much of the whitened residual it
+//! explains beyond the base (the chi-square drop of adding it alone,
+//! linearised). The verdict is **base moved** when the re-fitted residual
+//! passes the same test with `n·rows − 6` degrees of freedom and no single
+//! parameter explains significantly more (its drop, chi-square with 1
+//! degree of freedom, under `SIGNIFICANCE / parameters tried`); else it is
+//! **drift**, naming the first-ranked parameters as the suspects.
+
+use nalgebra::{DMatrix, DVector};
+
+use super::identify::{
+    fit_parameters, IdentifyError, IdentifyMode, IdentifyOptions, JointNoise, Measurement,
+};
+use super::jacobian::tool_pose_jacobian;
+use super::params::{CalibratedModel, Instrument, ParamKind, ParamLayout};
+use super::pose_fit::unweighted_residuals;
+use super::weights::PoseCovariances;
+use crate::chi_square::chi_square_p_value;
+
+/// The test's level: a re-check of an unchanged robot fails this often.
+pub const SIGNIFICANCE: f64 = 0.01;
+/// Fewest poses a re-check takes (the base re-fit needs more rows than 6).
+pub const MIN_CHECK_POSES: usize = 3;
+/// Suspects named at most.
+pub const MAX_SUSPECTS: usize = 3;
+/// World-to-base components re-fitted for "base moved".
+const BASE_DOF: usize = 6;
+
+#[derive(Debug, thiserror::Error)]
+pub enum RecheckError {
+    #[error("a re-check needs at least {MIN_CHECK_POSES} measured poses, got {0}")]
+    TooFewPoses(usize),
+    #[error("the set's covariance is {got}x{got}, its layout has {expected} parameters")]
+    CovarianceShape { expected: usize, got: usize },
+    #[error("the predicted covariance of the residuals is not positive definite")]
+    NotPositiveDefinite,
+    #[error(transparent)]
+    Identify(#[from] IdentifyError),
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Verdict {
+    Pass,
+    Drift,
+    BaseMoved,
+}
+
+/// A parameter that may have changed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Suspect {
+    /// Its name in the layout (`dtheta_2`, `a_3`, ...).
+    pub name: String,
+    pub kind: ParamKind,
+    /// The change that explains the residual best (mm or rad).
+    pub change: f64,
+    /// `change` over the set's standard deviation of the parameter.
+    pub change_sigmas: f64,
+    /// How much of the chi-square statistic it explains beyond the base.
+    pub chi2_drop: f64,
+}
+
+/// What the re-check found.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Recheck {
+    pub verdict: Verdict,
+    /// Mean length of the position residuals (mm).
+    pub mean_mm: f64,
+    /// What the set predicts for it: the mean over poses of the RMS length
+    /// of the position residual, `sqrt(trace)` of its 3x3 block of `C`.
+    pub expected_mean_mm: f64,
+    /// `rᵀ C⁻¹ r` and its degrees of freedom.
+    pub chi2: f64,
+    pub dof: usize,
+    pub p_value: f64,
+    /// The same after re-fitting the world-to-base transform alone.
+    pub base_p_value: f64,
+    /// The re-fitted world-to-base transform (the model's otherwise).
+    pub refitted_world_to_base: crate::geometry::Pose,
+    /// Most likely changed parameters, most likely first (drift only).
+    pub suspects: Vec<Suspect>,
+}
+
+/// What is checked: the set's model and covariance, the joint noise, and
+/// the check's measurements.
+pub struct RecheckInput<'a> {
+    pub model: &'a CalibratedModel,
+    pub instrument: Instrument,
+    /// The set's parameter covariance (layout order, internal units).
+    pub covariance: &'a DMatrix<f64>,
+    pub joint_sigma_rad: f64,
+    pub data: &'a [Measurement],
+}
+
+/// The stacked residual, its prediction covariance's Cholesky factor and
+/// the Jacobian at `model`.
+struct Whitened {
+    /// `L⁻¹ r`.
+    residual: DVector<f64>,
+    /// `L⁻¹ J` (every layout column).
+    jacobian: DMatrix<f64>,
+    /// Mean position residual length, and its prediction.
+    mean_mm: f64,
+    expected_mean_mm: f64,
+}
+
+fn whiten(input: &RecheckInput, model: &CalibratedModel) -> Result<Whitened, RecheckError> {
+    let layout = ParamLayout::new(&model.robot, input.instrument);
+    let rows = input.instrument.rows();
+    let n = input.data.len();
+    let residuals = unweighted_residuals(&layout, model, input.data)?;
+    let covariances = PoseCovariances::new(&layout, model, input.data)?;
+    let mut r = DVector::zeros(n * rows);
+    let mut jac = DMatrix::zeros(n * rows, layout.len());
+    let mut c = DMatrix::zeros(n * rows, n * rows);
+    for (k, m) in input.data.iter().enumerate() {
+        r.rows_mut(k * rows, rows).copy_from(&residuals[k]);
+        let (_, j) = tool_pose_jacobian(&layout, model, &m.joints_rad)
+            .map_err(|source| IdentifyError::Pose { pose: k, source })?;
+        jac.rows_mut(k * rows, rows).copy_from(&j.rows(0, rows));
+        c.view_mut((k * rows, k * rows), (rows, rows))
+            .copy_from(&covariances.covariance(k, input.joint_sigma_rad));
+    }
+    c += &jac * input.covariance * jac.transpose();
+    let mean_mm = residuals.iter().map(|e| e.rows(0, 3).norm()).sum::<f64>() / n as f64;
+    let expected_mean_mm = (0..n)
+        .map(|k| {
+            let block = c.view((k * rows, k * rows), (3, 3));
+            block.trace().max(0.0).sqrt()
+        })
+        .sum::<f64>()
+        / n as f64;
+    let l = c.cholesky().ok_or(RecheckError::NotPositiveDefinite)?.l();
+    let residual = l
+        .solve_lower_triangular(&r)
+        .ok_or(RecheckError::NotPositiveDefinite)?;
+    let jacobian = l
+        .solve_lower_triangular(&jac)
+        .ok_or(RecheckError::NotPositiveDefinite)?;
+    Ok(Whitened {
+        residual,
+        jacobian,
+        mean_mm,
+        expected_mean_mm,
+    })
+}
+
+/// Layout indices of the world-to-base components.
+fn base_indices(layout: &ParamLayout) -> Vec<usize> {
+    (0..layout.len())
+        .filter(|&i| matches!(layout.params[i].kind, ParamKind::Base(_)))
+        .collect()
+}
+
+/// `v` with its projection on the columns of `b` removed (least squares).
+fn project_out(b: &DMatrix<f64>, v: &DVector<f64>) -> DVector<f64> {
+    let normal = b.transpose() * b;
+    match normal.cholesky() {
+        Some(chol) => v - b * chol.solve(&(b.transpose() * v)),
+        None => v.clone(),
+    }
+}
+
+/// Kinematic parameters ranked by the chi-square drop each explains beyond
+/// the base, at the base-refitted model's whitened residual, and how many
+/// were tried.
+fn rank_suspects(
+    layout: &ParamLayout,
+    w: &Whitened,
+    covariance: &DMatrix<f64>,
+) -> (Vec<Suspect>, usize) {
+    let base = base_indices(layout);
+    let b = DMatrix::from_fn(w.jacobian.nrows(), base.len(), |r, c| {
+        w.jacobian[(r, base[c])]
+    });
+    let residual = project_out(&b, &w.residual);
+    let mut suspects: Vec<Suspect> = (0..layout.len())
+        .filter(|&i| {
+            let p = &layout.params[i];
+            p.joint.is_some() && covariance[(i, i)] > 0.0
+        })
+        .filter_map(|i| {
+            // The residual is measured minus predicted; the prediction
+            // moves by J δ, so δ = a·w / a·a along the column a.
+            let a = project_out(&b, &w.jacobian.column(i).into_owned());
+            let aa = a.dot(&a);
+            (aa > 0.0).then(|| {
+                let aw = a.dot(&residual);
+                let change = aw / aa;
+                Suspect {
+                    name: layout.params[i].name.clone(),
+                    kind: layout.params[i].kind,
+                    change,
+                    change_sigmas: change / covariance[(i, i)].sqrt(),
+                    chi2_drop: aw * aw / aa,
+                }
+            })
+        })
+        .collect();
+    let tried = suspects.len();
+    suspects.sort_by(|x, y| y.chi2_drop.total_cmp(&x.chi2_drop));
+    suspects.truncate(MAX_SUSPECTS);
+    (suspects, tried)
+}
+
+/// Judges the check's measurements against the set (see the module doc).
+pub fn recheck(input: &RecheckInput) -> Result<Recheck, RecheckError> {
+    let n = input.data.len();
+    if n < MIN_CHECK_POSES {
+        return Err(RecheckError::TooFewPoses(n));
+    }
+    let layout = ParamLayout::new(&input.model.robot, input.instrument);
+    let size = input.covariance.nrows();
+    if size != layout.len() || input.covariance.ncols() != size {
+        return Err(RecheckError::CovarianceShape {
+            expected: layout.len(),
+            got: size,
+        });
+    }
+    let dof = n * input.instrument.rows();
+    let at_set = whiten(input, input.model)?;
+    let chi2 = at_set.residual.norm_squared();
+    let p_value = chi_square_p_value(chi2, dof).ok_or(RecheckError::NotPositiveDefinite)?;
+    let options = IdentifyOptions {
+        mode: IdentifyMode::Weighted,
+        joint_noise: JointNoise::Known {
+            sigma_rad: input.joint_sigma_rad,
+        },
+    };
+    let (refitted, _) = fit_parameters(
+        input.model,
+        input.instrument,
+        input.data,
+        &base_indices(&layout),
+        options,
+    )?;
+    let at_base = whiten(input, &refitted)?;
+    let base_p_value = chi_square_p_value(at_base.residual.norm_squared(), dof - BASE_DOF)
+        .ok_or(RecheckError::NotPositiveDefinite)?;
+    let (suspects, tried) = rank_suspects(&layout, &at_base, input.covariance);
+    // Nested models: does one kinematic parameter on top of the base
+    // explain significantly more (a 1-dof chi-square drop, at the level
+    // shared among the parameters tried, Bonferroni)?
+    let kinematic = suspects.first().is_some_and(|s| {
+        chi_square_p_value(s.chi2_drop, 1).is_some_and(|p| p < SIGNIFICANCE / tried.max(1) as f64)
+    });
+    let verdict = if p_value >= SIGNIFICANCE {
+        Verdict::Pass
+    } else if base_p_value >= SIGNIFICANCE && !kinematic {
+        Verdict::BaseMoved
+    } else {
+        Verdict::Drift
+    };
+    let suspects = match verdict {
+        Verdict::Drift => suspects,
+        _ => Vec::new(),
+    };
+    Ok(Recheck {
+        verdict,
+        mean_mm: at_set.mean_mm,
+        expected_mean_mm: at_set.expected_mean_mm,
+        chi2,
+        dof,
+        p_value,
+        base_p_value,
+        refitted_world_to_base: refitted.world_to_base,
+        suspects,
+    })
+}
+
+#[cfg(test)]
+#[path = "recheck_tests.rs"]
+mod tests;

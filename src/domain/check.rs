@@ -1,0 +1,60 @@
+//! A quick re-check's verdict (issue 17), as the job's `result` holds it:
+//! a short session judged against the robot's latest approved set by the
+//! chi-square test of `robocal_calib::kinematics::recheck`.
+
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+/// `pass`, `drift` or `base_moved`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum CheckVerdict {
+    /// The residuals are what the set's covariance and the measurement
+    /// noise predict.
+    Pass,
+    /// They are not, and re-fitting the base alone does not explain them.
+    Drift,
+    /// Re-fitting the board's (or tracker's) transform alone explains them.
+    BaseMoved,
+}
+
+/// A parameter that may have changed, most likely first.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+pub struct CheckSuspect {
+    /// Its name in the parameter set (`dtheta_2`, `a_3`, ...).
+    pub name: String,
+    /// `deg` or `mm`.
+    pub unit: String,
+    /// The change that best explains the residuals beyond the base.
+    pub change: f64,
+    /// `change` in units of the set's standard deviation of the parameter.
+    pub change_sigmas: f64,
+    /// The part of the chi-square statistic it explains.
+    pub chi2_drop: f64,
+}
+
+/// The re-check job's `result`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+pub struct CheckDoc {
+    pub verdict: CheckVerdict,
+    /// Mean length of the position residuals against the set (mm).
+    pub mean_mm: f64,
+    /// What the set predicts for it (mm): the mean over poses of the RMS
+    /// length its covariance and the measurement noise give.
+    pub expected_mean_mm: f64,
+    /// Upper-tail probability of the chi-square statistic.
+    pub p_value: f64,
+    /// The same after re-fitting the base transform alone.
+    pub base_p_value: f64,
+    pub chi2: f64,
+    pub dof: usize,
+    /// The test's level: `pass` when `p_value` is at least this.
+    pub significance: f64,
+    /// The test, in a sentence.
+    pub test: String,
+    /// The set judged: `"{serial}/{version}"`.
+    pub checked_against: String,
+    /// Poses measured.
+    pub poses: usize,
+    pub suspects: Vec<CheckSuspect>,
+}

@@ -1,0 +1,142 @@
+//! A quick re-check job (issue 17): the session's few poses measured with
+//! the camera held at the approved set's intrinsics, then judged against
+//! that set by `robocal_calib::kinematics::recheck` (a chi-square test of
+//! the residuals against the set's covariance and the measurement noise).
+//! No parameter set is stored; the verdict is the job's `result`.
+
+use robocal_calib::kinematics::recheck::{recheck, RecheckInput, Verdict, SIGNIFICANCE};
+use robocal_calib::kinematics::{Instrument, ParamLayout};
+
+use super::camera_stage::CameraStep;
+use super::identify_stage::measurement_of;
+use super::{Input, Output, PipelineError, Stage, Summary};
+use crate::domain::{CheckDoc, CheckSuspect, CheckVerdict};
+use crate::schema::job::Measurement as MeasurementKind;
+use crate::schema::FieldError;
+
+/// Joint noise (encoders, repeatability) assumed in the check's
+/// covariance: the sets do not store the refinement's estimate, and an
+/// industrial robot's repeatability is about this (0.02 mm at 1 m).
+const CHECK_JOINT_SIGMA_DEG: f64 = 1e-3;
+
+fn numerical(message: impl std::fmt::Display) -> PipelineError {
+    PipelineError::Numerical {
+        stage: Stage::Identify.as_str(),
+        message: message.to_string(),
+    }
+}
+
+fn invalid(field: &str, message: String) -> PipelineError {
+    PipelineError::Invalid(vec![FieldError::new(field, message)])
+}
+
+/// Runs the re-check after the camera stage (camera sessions) or directly
+/// (tracker sessions).
+pub fn run(
+    input: &Input,
+    camera: Option<&CameraStep>,
+    within: &dyn Fn(Stage, &str, f64),
+) -> Result<Output, PipelineError> {
+    let approved = input.approved.as_ref().ok_or_else(|| {
+        invalid(
+            "serial",
+            format!(
+                "robot {} has no approved parameter set to check against",
+                input.serial
+            ),
+        )
+    })?;
+    let instrument = approved.set.layout_instrument();
+    if (instrument == Instrument::Camera) != camera.is_some() {
+        return Err(invalid(
+            "session",
+            format!(
+                "the approved set {} was calibrated with another instrument than this session's",
+                approved.id
+            ),
+        ));
+    }
+    let model = approved.set.model().map_err(numerical)?;
+    let covariance = approved
+        .set
+        .covariance_matrix()
+        .ok_or_else(|| {
+            invalid(
+                "serial",
+                format!(
+                    "the approved set {} was stored without its covariance: calibrate again to check against it",
+                    approved.id
+                ),
+            )
+        })?
+        .map_err(numerical)?;
+    within(Stage::Identify, "re-check against the approved set", 0.0);
+    let kind = match instrument {
+        Instrument::Camera => MeasurementKind::Pose,
+        Instrument::Tracker => MeasurementKind::Position,
+    };
+    let data: Vec<_> = (0..input.poses.len())
+        .filter_map(|i| measurement_of(&input.poses[i], i, camera, None, kind))
+        .collect();
+    let found = recheck(&RecheckInput {
+        model: &model,
+        instrument,
+        covariance: &covariance,
+        joint_sigma_rad: CHECK_JOINT_SIGMA_DEG.to_radians(),
+        data: &data,
+    })
+    .map_err(numerical)?;
+    let layout = ParamLayout::new(&model.robot, instrument);
+    let suspects = found
+        .suspects
+        .iter()
+        .map(|s| {
+            let angle = layout.index_of(&s.name).is_some_and(|i| layout.is_angle(i));
+            CheckSuspect {
+                name: s.name.clone(),
+                unit: if angle { "deg" } else { "mm" }.into(),
+                change: if angle {
+                    s.change.to_degrees()
+                } else {
+                    s.change
+                },
+                change_sigmas: s.change_sigmas,
+                chi2_drop: s.chi2_drop,
+            }
+        })
+        .collect();
+    let doc = CheckDoc {
+        verdict: match found.verdict {
+            Verdict::Pass => CheckVerdict::Pass,
+            Verdict::Drift => CheckVerdict::Drift,
+            Verdict::BaseMoved => CheckVerdict::BaseMoved,
+        },
+        mean_mm: found.mean_mm,
+        expected_mean_mm: found.expected_mean_mm,
+        p_value: found.p_value,
+        base_p_value: found.base_p_value,
+        chi2: found.chi2,
+        dof: found.dof,
+        significance: SIGNIFICANCE,
+        test: format!(
+            "chi-square of the residuals whitened by J Σ Jᵀ + R (the set's parameter covariance \
+             propagated to the poses, plus each pose's measurement and joint noise), {} degrees \
+             of freedom: pass at p ≥ {SIGNIFICANCE}; base_moved when the base transform re-fitted \
+             alone passes the same test",
+            found.dof
+        ),
+        checked_against: approved.id.clone(),
+        poses: data.len(),
+        suspects,
+    };
+    within(Stage::Report, "done", 1.0);
+    Ok(Output {
+        parameter_set: None,
+        summary: Summary {
+            validation_poses: data.len(),
+            ..Summary::default()
+        },
+        detections: Vec::new(),
+        check: Some(doc),
+    })
+}

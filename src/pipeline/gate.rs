@@ -1,0 +1,187 @@
+//! The release gate at the end of a job (issue 17): a set is approved
+//! automatically only when it predicts this session's validation poses
+//! better than the robot's currently approved set does on the same poses
+//! (or than the nominal model, for the first set) and no hard warning
+//! fired; otherwise it stays a `candidate`, with the reason, until a
+//! person approves or rejects it. `latest` serves approved sets only.
+//!
+//! The approved set is evaluated as the nominal "before" is (method.md §7):
+//! its kinematics held, the base and hand–eye frames re-fitted on this
+//! session's calibration poses (the board may have moved between the two
+//! sessions, the camera may have been re-mounted), then its mean 3-D error
+//! at this session's validation poses.
+
+use robocal_calib::kinematics::identify::{
+    fit_parameters, frame_indices, validate, IdentifyMode, IdentifyOptions, JointNoise,
+};
+use robocal_calib::kinematics::{CalibratedModel, Instrument, ParamLayout};
+
+use super::identify_stage::Identified;
+use super::input::ApprovedSet;
+use crate::domain::{Release, ReleaseStatus};
+use crate::report::GateReport;
+
+/// What [`GateReport::compared_with`] says for the nominal model.
+const NOMINAL: &str = "nominal";
+
+/// The gate's decision and what the report shows of it.
+pub struct Gate {
+    pub release: Release,
+    pub report: GateReport,
+}
+
+/// The approved set's mean 3-D error at `id`'s validation poses, its
+/// frames re-fitted on `id`'s calibration poses (from `id`'s own frames,
+/// close to the truth whatever happened to the cell since).
+fn approved_mean_mm(
+    approved: &ApprovedSet,
+    instrument: Instrument,
+    id: &Identified,
+) -> Result<f64, String> {
+    if approved.set.layout_instrument() != instrument {
+        return Err("it was calibrated with another instrument".into());
+    }
+    let model = approved.set.model()?;
+    let (theirs, ours) = (model.robot.joints.len(), id.model.robot.joints.len());
+    if theirs != ours {
+        return Err(format!(
+            "its joint table has {theirs} joints, this job's {ours}"
+        ));
+    }
+    let start = CalibratedModel {
+        world_to_base: id.model.world_to_base,
+        flange_to_tool: id.model.flange_to_tool,
+        ..model
+    };
+    let layout = ParamLayout::new(&start.robot, instrument);
+    let options = IdentifyOptions {
+        mode: IdentifyMode::Weighted,
+        joint_noise: JointNoise::default(),
+    };
+    let which = frame_indices(&layout, true);
+    let (refit, _) = fit_parameters(&start, instrument, &id.cal_data, &which, options)
+        .map_err(|e| e.to_string())?;
+    let (stats, _) = validate(&refit, &id.val_data).map_err(|e| e.to_string())?;
+    Ok(stats.norm.mean_mm)
+}
+
+/// The gate's decision for a job's identified set. `paper_camera`: the
+/// set's intrinsics are the paper's Tsai sequence (`refine_intrinsics:
+/// false`), a hard warning: its one radial term does not fit a real lens
+/// (method.md §4), and its validation poses are measured through that
+/// same camera, so its figures flatter it.
+pub fn decide(
+    id: &Identified,
+    instrument: Instrument,
+    approved: Option<&ApprovedSet>,
+    paper_camera: bool,
+) -> Gate {
+    let (mean, nominal) = (id.after.norm.mean_mm, id.before.norm.mean_mm);
+    let mut blockers = Vec::new();
+    if paper_camera {
+        blockers.push(
+            "hard warning: the paper's camera model (refine_intrinsics: false) measured its own validation poses"
+                .to_string(),
+        );
+    }
+    let compared = match approved.map(|a| (a, approved_mean_mm(a, instrument, id))) {
+        Some((a, Ok(m))) => Some((a.id.clone(), m)),
+        Some((a, Err(why))) => {
+            blockers.push(format!(
+                "the approved set {} could not be evaluated on these poses ({why})",
+                a.id
+            ));
+            None
+        }
+        None => None,
+    };
+    let (compared_with, compared_mean) = compared.unwrap_or_else(|| (NOMINAL.to_string(), nominal));
+    outcome(mean, nominal, compared_with, compared_mean, blockers)
+}
+
+/// The decision from the figures: approved only when the set is better
+/// than `compared_with` and than nominal, and nothing in `blockers` (hard
+/// warnings, a comparison that could not be made) holds it back.
+pub fn outcome(
+    mean_mm: f64,
+    nominal_mm: f64,
+    compared_with: String,
+    compared_mean_mm: f64,
+    mut blockers: Vec<String>,
+) -> Gate {
+    // NaN-safe: anything not shown better is worse.
+    let worse = mean_mm.partial_cmp(&compared_mean_mm) != Some(std::cmp::Ordering::Less);
+    let worse_than_nominal =
+        mean_mm.partial_cmp(&nominal_mm) == Some(std::cmp::Ordering::Greater) || mean_mm.is_nan();
+    if worse_than_nominal && compared_with != NOMINAL {
+        blockers.push(format!(
+            "hard warning: worse than the nominal model ({mean_mm:.3} mm against {nominal_mm:.3} mm)"
+        ));
+    }
+    let approved = !worse && !worse_than_nominal && blockers.is_empty();
+    let comparison = format!(
+        "{mean_mm:.3} mm mean 3-D validation error against {compared_mean_mm:.3} mm for {compared_with} on the same poses"
+    );
+    let mut reason = if approved {
+        format!("approved by the gate: better than before ({comparison})")
+    } else if worse {
+        format!("held as a candidate: not better than before ({comparison})")
+    } else {
+        format!("held as a candidate ({comparison})")
+    };
+    if !blockers.is_empty() {
+        reason = format!("{reason}; {}", blockers.join("; "));
+    }
+    let status = if approved {
+        ReleaseStatus::Approved
+    } else {
+        ReleaseStatus::Candidate
+    };
+    Gate {
+        release: Release {
+            status,
+            reason: Some(reason.clone()),
+        },
+        report: GateReport {
+            status: status.as_str().to_string(),
+            reason,
+            compared_with,
+            compared_mean_mm,
+            mean_mm,
+            worse: worse || worse_than_nominal,
+        },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The issue's case: a paper-mode set worse than nominal (11.36 → 11.75 mm).
+    #[test]
+    fn a_set_worse_than_nominal_is_a_candidate() {
+        let gate = outcome(11.75, 11.36, NOMINAL.into(), 11.36, Vec::new());
+        assert_eq!(gate.release.status, ReleaseStatus::Candidate);
+        assert!(gate.report.worse);
+        assert!(gate.release.reason.unwrap().contains("11.360"));
+    }
+
+    #[test]
+    fn better_than_the_approved_set_but_worse_than_nominal_is_a_candidate() {
+        let gate = outcome(2.0, 1.5, "R/1".into(), 3.0, Vec::new());
+        assert_eq!(gate.release.status, ReleaseStatus::Candidate);
+        assert!(gate.release.reason.unwrap().contains("hard warning"));
+    }
+
+    #[test]
+    fn better_than_before_is_approved_and_nan_never_is() {
+        let gate = outcome(0.1, 5.0, "R/1".into(), 0.2, Vec::new());
+        assert_eq!(gate.release.status, ReleaseStatus::Approved);
+        assert!(!gate.report.worse);
+        let gate = outcome(f64::NAN, 5.0, NOMINAL.into(), 5.0, Vec::new());
+        assert_eq!(gate.release.status, ReleaseStatus::Candidate);
+        // A hard warning (a paper-mode camera) holds back even a better set.
+        let gate = outcome(0.1, 5.0, NOMINAL.into(), 5.0, vec!["paper".into()]);
+        assert_eq!(gate.release.status, ReleaseStatus::Candidate);
+    }
+}

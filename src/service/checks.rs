@@ -1,0 +1,53 @@
+//! Starting jobs that hold the robot's latest approved set (issue 17): a
+//! quick re-check of a short session, and a calibration whose `scope` is
+//! partial (`base`, `hand_eye`). Both refuse up front (409 naming the
+//! field) when the robot has no approved set, instead of queueing a job
+//! that can only fail.
+
+use super::error::{ServiceError, ServiceResult};
+use crate::jobs::queue::{enqueue_calibration, enqueue_check, QueuePolicy};
+use crate::schema::job::CalibrationOptions;
+use crate::store::{DynStore, JobRecord, SessionRecord};
+
+/// 409 naming `field` when `serial` has no approved parameter set.
+async fn require_approved(
+    store: &DynStore,
+    serial: &str,
+    field: &'static str,
+) -> ServiceResult<()> {
+    if store.get_parameter_set(serial, None).await?.is_some() {
+        return Ok(());
+    }
+    Err(ServiceError::ConflictField {
+        field,
+        message: format!(
+            "robot {serial} has no approved parameter set to hold: calibrate it in full, or \
+             approve a set (POST /v1/robots/{serial}/parameter-sets/{{version}}/approve)"
+        ),
+    })
+}
+
+/// Queues a calibration; a partial scope needs an approved set.
+pub async fn start_calibration(
+    store: &DynStore,
+    policy: &QueuePolicy,
+    session: &SessionRecord,
+    options: &CalibrationOptions,
+) -> ServiceResult<JobRecord> {
+    options.check()?;
+    if !options.scope.is_full() {
+        require_approved(store, &session.serial, "scope").await?;
+    }
+    Ok(enqueue_calibration(store, policy, session, options).await?)
+}
+
+/// Queues a quick re-check of the session against the robot's latest
+/// approved set (409 naming `serial` when it has none).
+pub async fn start_check(
+    store: &DynStore,
+    policy: &QueuePolicy,
+    session: &SessionRecord,
+) -> ServiceResult<JobRecord> {
+    require_approved(store, &session.serial, "serial").await?;
+    Ok(enqueue_check(store, policy, session).await?)
+}
