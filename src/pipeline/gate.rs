@@ -119,9 +119,13 @@ pub fn outcome(
         ));
     }
     let approved = !worse && !worse_than_nominal && blockers.is_empty();
-    let comparison = format!(
-        "{mean_mm:.3} mm mean 3-D validation error against {compared_mean_mm:.3} mm for {compared_with} on the same poses"
-    );
+    let comparison = if compared_mean_mm.is_finite() {
+        format!(
+            "{mean_mm:.3} mm mean 3-D validation error against {compared_mean_mm:.3} mm for {compared_with} on the same poses"
+        )
+    } else {
+        format!("{mean_mm:.3} mm mean 3-D error; {compared_with}")
+    };
     let mut reason = if approved {
         format!("approved by the gate: better than before ({comparison})")
     } else if worse {
@@ -146,8 +150,8 @@ pub fn outcome(
             status: status.as_str().to_string(),
             reason,
             compared_with,
-            compared_mean_mm,
-            mean_mm,
+            compared_mean_mm: compared_mean_mm.is_finite().then_some(compared_mean_mm),
+            mean_mm: mean_mm.is_finite().then_some(mean_mm),
             worse: worse || worse_than_nominal,
         },
     }

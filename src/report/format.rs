@@ -174,8 +174,8 @@ pub fn worse_line(report: &Report) -> Option<String> {
     Some(format!(
         "WORSE THAN BEFORE: {} mm against {} mm for {} on the same validation poses; \
          held back as a candidate, not served as latest.",
-        mm(gate.mean_mm),
-        mm(gate.compared_mean_mm),
+        mm(gate.mean_mm.unwrap_or(f64::NAN)),
+        mm(gate.compared_mean_mm.unwrap_or(f64::NAN)),
         gate.compared_with
     ))
 }

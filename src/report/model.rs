@@ -249,8 +249,7 @@ pub struct UncertaintyCell {
 }
 
 /// The release gate's comparison in a report (issue 17): what the set was
-/// compared with on the same validation poses.
-/// What the gate compared at the end of the job.
+/// compared with on the same validation poses at the end of the job.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 pub struct GateReport {
     /// The status the gate gave: `approved` or `candidate`.
@@ -262,10 +261,11 @@ pub struct GateReport {
     /// frames re-fitted on this session's calibration poses, as the
     /// nominal "before" is).
     pub compared_with: String,
-    /// Mean 3-D validation error of what it was compared with (mm).
-    pub compared_mean_mm: f64,
-    /// Mean 3-D validation error of this set (mm).
-    pub mean_mm: f64,
+    /// Mean 3-D validation error of what it was compared with (mm); absent
+    /// when there was nothing to compare with (a hand–eye calibration).
+    pub compared_mean_mm: Option<f64>,
+    /// Mean 3-D validation error of this set (mm); absent when not finite.
+    pub mean_mm: Option<f64>,
     /// This set predicts the same validation poses worse than before.
     pub worse: bool,
 }
