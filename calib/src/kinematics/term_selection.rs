@@ -293,6 +293,10 @@ pub fn identify_with_terms(
     })
 }
 
+/// The surviving terms, the solution (geometry then terms), the terms' σ
+/// and the cost.
+type Eliminated = (Vec<usize>, DVector<f64>, Vec<f64>, f64);
+
 /// Joint fit and backward elimination (step 3 of the module doc) of the
 /// terms `active`: the survivors, the solution, their σ and the cost.
 /// Values of the fitted terms land in `x_terms`, the geometry in `geo_x`
@@ -310,7 +314,7 @@ impl Elimination<'_, '_> {
         &mut self,
         mut active: Vec<usize>,
         all: &NonGeometric,
-    ) -> Result<(Vec<usize>, DVector<f64>, Vec<f64>, f64), IdentifyError> {
+    ) -> Result<Eliminated, IdentifyError> {
         let free = self.probe.free;
         let z_threshold = self.z_threshold;
         let lm = LmOptions {
