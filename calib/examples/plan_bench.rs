@@ -19,10 +19,9 @@ use robocal_calib::sim::planned::{calibrate_images, expected_error, plan_request
 const PLANNED: usize = 30;
 const COUNTS: [usize; 4] = [10, 20, 30, 60];
 const PRESETS: [&str; 2] = ["irb2400", "puma560"];
-/// Feasible candidates the timed plan must choose from (the floor).
+/// Feasible candidates the plans choose from (the floor; the
+/// planner generates stations until this many are feasible).
 const MIN_FEASIBLE: usize = 2000;
-/// Generated candidates are raised by this factor until enough are feasible.
-const CANDIDATE_GROWTH: f64 = 1.25;
 
 /// The achieved validation error (mm) of a campaign shot at `joints`, or
 /// why it failed (a board point left the image, an identification failed).
@@ -70,29 +69,25 @@ fn main() {
         let spec = CampaignSpec::standard(preset, 1).expect("preset");
         let campaign = simulate_campaign(&spec).expect("campaign");
         let mut request = plan_request(&spec, &campaign, PLANNED).expect("request");
-        let (feasible, parameters, candidates_s, information_s) = loop {
-            let t0 = cpu_s();
-            let set = generate(&request).expect("candidates");
-            let t1 = cpu_s();
-            let model = limited_model(&request).expect("model");
-            let columns = Columns::of(&request, &model).expect("columns");
-            let factors = set
-                .candidates
-                .iter()
-                .filter_map(|c| pose_factor(&request, &model, &columns, &c.joints_rad))
-                .count();
-            let t2 = cpu_s();
-            if factors >= MIN_FEASIBLE {
-                break (factors, columns.len(), t1 - t0, t2 - t1);
-            }
-            request.candidates = (request.candidates as f64 * CANDIDATE_GROWTH) as usize;
-        };
+        request.candidates = MIN_FEASIBLE;
+        let t0 = cpu_s();
+        let set = generate(&request).expect("candidates");
+        let t1 = cpu_s();
+        let model = limited_model(&request).expect("model");
+        let columns = Columns::of(&request, &model).expect("columns");
+        let feasible = set
+            .candidates
+            .iter()
+            .filter_map(|c| pose_factor(&request, &model, &columns, &c.joints_rad))
+            .count();
+        let t2 = cpu_s();
+        let (generated, parameters) = (set.filters[0].survivors, columns.len());
+        let (candidates_s, information_s) = (t1 - t0, t2 - t1);
         let (cpu, wall) = (cpu_s(), Instant::now());
         let plan = plan_campaign(&request).expect("plan");
         let (cpu, wall) = (cpu_s() - cpu, wall.elapsed().as_secs_f64());
         println!(
-            "{preset}: {} stations generated, {feasible} feasible, {parameters} parameters; plan_campaign of {PLANNED} (criterion {:?}) {cpu:.2} s CPU ({wall:.2} s wall): candidates {candidates_s:.2} s, information {information_s:.2} s, selection + prediction + path {:.2} s; path {:.0} deg",
-            request.candidates,
+            "{preset}: {generated} stations generated, {feasible} feasible, {parameters} parameters; plan_campaign of {PLANNED} (criterion {:?}) {cpu:.2} s CPU ({wall:.2} s wall): candidates {candidates_s:.2} s, information {information_s:.2} s, selection + prediction + path {:.2} s; path {:.0} deg",
             PlanCriterion::for_purpose(request.purpose),
             cpu - candidates_s - information_s,
             plan.path_length_rad.to_degrees()

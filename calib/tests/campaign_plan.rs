@@ -11,20 +11,21 @@ use robocal_calib::camera::Intrinsics;
 use robocal_calib::kinematics::model::{choose_conventions, Joint};
 use robocal_calib::kinematics::RobotModel;
 use robocal_calib::plan::plan_campaign;
+use robocal_calib::plan::request::DEFAULT_CANDIDATES;
 use robocal_calib::sim::campaign::{simulate_campaign, CampaignSpec};
 use robocal_calib::sim::campaign_io::PoseSet;
-use robocal_calib::sim::planned::{
-    calibrate_images, expected_error, plan_request, shoot, shoot_with,
-};
+use robocal_calib::sim::planned::{calibrate_images, expected_error, plan_request, shoot_with};
 
 /// Cells averaged per preset.
 const CELLS: u64 = 3;
-/// Noise draws shot per cell: one draw's validation error scatters by
-/// about half its mean (BENCHMARKS.md, "Session 7 — campaign planner").
-const DRAWS: u64 = 3;
+/// Noise draws shot per cell. One draw's validation error scatters by
+/// about half its mean, with a heavy tail (DH table + 5 MP, 10 draws per
+/// cell: 0.009–0.078 mm around a mean of 0.024; BENCHMARKS.md, "Session 8
+/// — plan"): over 3 x 6 draws the mean's scatter is ~13 %, a third of the
+/// issue's 0.67x–1.5x band (with 3 x 3 draws the DH cell measured 1.51x
+/// by chance; 10 draws per cell give 0.97x).
+const DRAWS: u64 = 6;
 const PLANNED_POSES: usize = 30;
-/// Candidates per plan (the issue asks for thousands).
-const CANDIDATES: usize = 2000;
 const RATIO_RANGE: (f64, f64) = (0.67, 1.5);
 
 /// A six-axis robot as a user would send it: a plain DH table (`a_mm,
@@ -83,15 +84,19 @@ fn preset_spec(preset: &'static str) -> impl Fn(u64) -> CampaignSpec {
 }
 
 fn check(preset: &str, spec_of: impl Fn(u64) -> CampaignSpec) {
-    let (mut achieved, mut predicted, mut random) = (0.0, 0.0, 0.0);
+    let (mut achieved, mut predicted) = (0.0, 0.0);
     let (mut expected_plan, mut expected_random) = (0.0, 0.0);
     for seed in 1..=CELLS {
         let spec = spec_of(seed);
         let campaign = simulate_campaign(&spec).unwrap();
-        let mut request = plan_request(&spec, &campaign, PLANNED_POSES).unwrap();
-        request.candidates = CANDIDATES;
+        // The planner's default: 2,000 feasible candidates (the issue's
+        // "thousands"; with 2,000 *generated* stations the PUMA 560 kept
+        // ~460 and its plan fell behind 60 random poses).
+        let request = plan_request(&spec, &campaign, PLANNED_POSES).unwrap();
         let plan = plan_campaign(&request).unwrap();
         assert_eq!(plan.poses.len(), PLANNED_POSES);
+        let feasible = plan.filters.last().unwrap().survivors;
+        assert!(feasible >= DEFAULT_CANDIDATES, "{feasible} feasible");
         let joints: Vec<Vec<f64>> = plan.poses.iter().map(|p| p.joints_rad.clone()).collect();
         let random_joints: Vec<Vec<f64>> = campaign
             .poses
@@ -108,30 +113,23 @@ fn check(preset: &str, spec_of: impl Fn(u64) -> CampaignSpec) {
                 .norm
                 .mean_mm;
         }
-        let images = shoot(&spec, &campaign, &random_joints).unwrap();
-        let random_error = calibrate_images(&spec, &campaign, &images)
-            .unwrap()
-            .norm
-            .mean_mm;
         let plan_expected = expected_error(&request, &campaign, &joints).unwrap();
         let random_expected = expected_error(&request, &campaign, &random_joints).unwrap();
         println!(
-            "{preset} cell {seed}: planned {:.4} mm over {DRAWS} draws (predicted {:.4}, expected at the val poses {plan_expected:.4}), 60 random {random_error:.4} mm (expected {random_expected:.4}), cond {:.1}",
+            "{preset} cell {seed}: planned {:.4} mm over {DRAWS} draws (predicted {:.4}, expected at the val poses {plan_expected:.4}), 60 random expected {random_expected:.4}, cond {:.1}",
             cell / DRAWS as f64,
             plan.prediction.validation_error_mean_mm,
             plan.prediction.condition_number
         );
         achieved += cell / DRAWS as f64;
         predicted += plan.prediction.validation_error_mean_mm;
-        random += random_error;
         expected_plan += plan_expected;
         expected_random += random_expected;
     }
     println!(
-        "{preset}: planned {:.4} mm, predicted {:.4}, 60 random {:.4} (one draw); expected planned {:.4}, random {:.4}",
+        "{preset}: planned {:.4} mm, predicted {:.4}; expected planned {:.4}, 60 random {:.4}",
         achieved / CELLS as f64,
         predicted / CELLS as f64,
-        random / CELLS as f64,
         expected_plan / CELLS as f64,
         expected_random / CELLS as f64
     );
@@ -154,12 +152,7 @@ fn irb2400_plan_beats_random_and_predicts_its_error() {
     check("irb2400", preset_spec("irb2400"));
 }
 
-/// Fails (session 7): the I-optimal 30-pose plan's expected error is 3 %
-/// above 60 random poses' on the PUMA 560 cells (0.0323 vs 0.0314 mm);
-/// the prediction is honest (0.93x of achieved). See
-/// docs/notes/session7-plan.md, "Left".
 #[test]
-#[ignore = "the 30-pose plan's expected error is 3 % above 60 random poses' on the PUMA 560 (session 7)"]
 fn puma560_plan_beats_random_and_predicts_its_error() {
     check("puma560", preset_spec("puma560"));
 }

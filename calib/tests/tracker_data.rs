@@ -184,6 +184,10 @@ mod with_terms {
     use robocal_calib::kinematics::term_selection::{identify_with_terms, Verdict};
     use robocal_calib::kinematics::term_validate::{refit_base_with_terms, validate_with_terms};
 
+    /// "Never worse" up to the validation's rounding (mm): a set without
+    /// kept terms must give the geometric figure itself.
+    const NEVER_WORSE_SLACK_MM: f64 = 1e-6;
+
     fn print_report(id: &robocal_calib::kinematics::term_selection::TermIdentification) {
         for l in &id.report {
             if l.verdict == Verdict::Kept {
@@ -191,14 +195,20 @@ mod with_terms {
                     "  kept {:26} {:+.3e} ± {:.1e} {}",
                     l.name, l.value, l.std_dev, l.unit
                 );
+            } else if l.verdict == Verdict::DoesNotGeneralise {
+                println!(
+                    "  does not generalise {:26} {:+.3e} ± {:.1e} {}: {}",
+                    l.name, l.value, l.std_dev, l.unit, l.why
+                );
             }
         }
         let count = |v: Verdict| id.report.iter().filter(|l| l.verdict == v).count();
         println!(
-            "  {} kept, {} not identifiable, {} not significant, {} without BIC gain (z threshold {:.2})",
+            "  {} kept, {} not identifiable, {} not significant, {} not generalising, {} without BIC gain (z threshold {:.2})",
             count(Verdict::Kept),
             count(Verdict::NotIdentifiable),
             count(Verdict::NotSignificant),
+            count(Verdict::DoesNotGeneralise),
             count(Verdict::NoInformationGain),
             id.z_threshold
         );
@@ -225,8 +235,10 @@ mod with_terms {
         );
         print_report(&id);
         assert!(
-            with.norm.mean_mm <= geo.norm.mean_mm * 1.05,
-            "terms do not make validation worse"
+            with.norm.mean_mm <= geo.norm.mean_mm + NEVER_WORSE_SLACK_MM,
+            "terms do not make validation worse: {} vs geometric {}",
+            with.norm.mean_mm,
+            geo.norm.mean_mm
         );
     }
 
@@ -272,11 +284,18 @@ mod with_terms {
                 "UR10 B -> {series} ({} poses), base refitted: geometric {:.4} mm mean (max {:.4}); with terms {:.4} mm mean (max {:.4})",
                 val.len(), geo.norm.mean_mm, geo.norm.max_mm, with.norm.mean_mm, with.norm.max_mm
             );
-            // Known open point (issue 19): the periodic terms selected on
-            // Series B (Wald, BIC and 5-fold CV within B all agree) do not
-            // transfer to C and D (2.3 / 3.4 mm against 0.54 mm). Recorded,
-            // not hidden: the geometric figure must stay where it was.
-            assert!(geo.norm.mean_mm < 0.65 && with.norm.mean_mm.is_finite());
+            // Issue 19: the selected set is never worse than geometry on a
+            // held-out series. Before the region cross-validation (session
+            // 8) 17 terms passed every check inside Series B and made C / D
+            // 2.3 / 3.4 mm against 0.54 mm: C and D lie outside B's
+            // joint-1 and joint-5 ranges.
+            assert!(geo.norm.mean_mm < 0.65);
+            assert!(
+                with.norm.mean_mm <= geo.norm.mean_mm + NEVER_WORSE_SLACK_MM,
+                "with terms {} vs geometric {}",
+                with.norm.mean_mm,
+                geo.norm.mean_mm
+            );
         }
     }
 }

@@ -15,24 +15,29 @@
 //!    term is dropped while its `|value| / σ` is below the Bonferroni
 //!    threshold `z = Φ⁻¹(1 − α / 2m)` (family-wise false-positive rate
 //!    [`FAMILY_FALSE_POSITIVE`] over the `m` identifiable candidates).
-//! 4. **Information criterion**: the kept set stays only if it lowers the
+//! 4. **Region cross-validation**: each joint's surviving terms stay only
+//!    if they lower the whitened error on held-out contiguous regions of
+//!    that joint's covered range ([`super::term_cv::region_folds`]); a
+//!    term that fits the covered region and nothing beyond it is reported
+//!    as not generalising. The rest are refitted (step 3 again).
+//! 5. **Information criterion**: the kept set stays only if it lowers the
 //!    Bayesian information criterion `N ln(RSS/N) + k ln N` against the
 //!    geometric fit (same weights), and lowers the error on held-out poses
 //!    in a [`FOLDS`]-fold cross-validation ([`super::term_cv`]); otherwise
 //!    every term is rejected.
 
 use nalgebra::{DMatrix, DVector};
-use serde::{Deserialize, Serialize};
 
 use super::identify::{identify, Identification, IdentifyError, IdentifyOptions};
 use super::measurement::Measurement;
-use super::nongeometric::{CandidateOptions, NonGeometric, TermKind};
+use super::nongeometric::{CandidateOptions, NonGeometric};
 use super::params::{CalibratedModel, Instrument, PARAMS_PER_JOINT};
-use super::term_cv::{held_out_costs, FOLDS};
+use super::term_cv::{held_out_costs, interleaved_folds, region_folds, FOLDS};
+use super::term_elimination::{bonferroni_z, probe_like, stack, Elimination};
 use super::term_fit::TermFit;
+use super::term_report::line;
+pub use super::term_report::{TermReport, Verdict};
 use super::weights::PoseCovariances;
-use crate::covariance::covariance_from_jacobian;
-use crate::solver::{solve, LeastSquaresProblem, LmOptions};
 
 /// Sine of a candidate's angle to the span of the geometry and the earlier
 /// candidates below which it is not identifiable from the campaign.
@@ -45,35 +50,8 @@ pub const MIN_LEVER_MM: f64 = 1.0;
 /// none: issue 19 allows 5% of campaigns; 1% leaves room for the
 /// optimism of backward elimination (the survivors' `z` is the largest).
 pub const FAMILY_FALSE_POSITIVE: f64 = 0.01;
-/// Terms below this `|value| / σ` are all dropped in one round (speed only:
-/// they could never reach the threshold).
-const HOPELESS_Z: f64 = 1.0;
-const MAX_ITERATIONS: usize = 500;
 /// How the selection decides, for reports.
-pub const CRITERION: &str = "Bonferroni-corrected Wald test (family-wise 1%) with backward elimination, then BIC and 5-fold cross-validation against the geometric fit";
-
-/// What happened to one candidate.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Verdict {
-    Kept,
-    NotIdentifiable,
-    NotSignificant,
-    NoInformationGain,
-}
-
-/// One line of the selection report.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct TermReport {
-    pub name: String,
-    pub term: TermKind,
-    pub verdict: Verdict,
-    /// Value when kept, or when last fitted before being rejected.
-    pub value: f64,
-    pub std_dev: f64,
-    pub unit: String,
-    pub why: String,
-}
+pub const CRITERION: &str = "Bonferroni-corrected Wald test (family-wise 1%) with backward elimination, each joint's terms cross-validated on held-out regions of that joint's range, then BIC and 5-fold cross-validation against the geometric fit";
 
 /// Geometry plus the selected non-geometric terms.
 #[derive(Debug, Clone)]
@@ -135,76 +113,99 @@ pub fn identify_with_terms(
         }
     }
     let z_threshold = bonferroni_z(FAMILY_FALSE_POSITIVE, active.len().max(1));
-    let lm = LmOptions {
-        max_iterations: MAX_ITERATIONS,
-        ..LmOptions::default()
-    };
     let n_res = r_geo.len() as f64;
     let cost_geo = r_geo.norm_squared();
     let mut x_terms: Vec<f64> = vec![0.0; all.terms.len()];
     let mut geo_x = x_geo.clone();
-    let (final_x, final_sd, final_cost) = loop {
-        let fit = TermFit {
-            free_terms: &active,
-            ..probe_like(&probe)
-        };
-        let start = stack(
-            &geo_x,
-            &DVector::from_iterator(active.len(), active.iter().map(|&t| x_terms[t])),
-        );
-        let sol = solve(&fit, start, &lm)?;
-        let jac = fit.jacobian(&sol.x).ok_or(IdentifyError::NoPoses)?;
-        let dof = (sol.residuals.len() as f64 - fit.unknowns() as f64).max(1.0);
-        let cov = covariance_from_jacobian(&jac, sol.cost / dof);
-        let sd: Vec<f64> = (0..active.len())
-            .map(|k| cov[(free.len() + k, free.len() + k)].max(0.0).sqrt())
-            .collect();
-        geo_x = sol.x.rows(0, free.len()).into_owned();
-        for (k, &t) in active.iter().enumerate() {
-            x_terms[t] = sol.x[free.len() + k];
-        }
-        let z: Vec<f64> = (0..active.len())
-            .map(|k| x_terms[active[k]].abs() / sd[k].max(f64::MIN_POSITIVE))
-            .collect();
-        let weakest = (0..active.len()).min_by(|&a, &b| z[a].total_cmp(&z[b]));
-        let Some(weakest) = weakest.filter(|&k| z[k] < z_threshold) else {
-            break (sol.x, sd, sol.cost);
-        };
-        let drop: Vec<usize> = if z[weakest] < HOPELESS_Z {
-            (0..active.len()).filter(|&k| z[k] < HOPELESS_Z).collect()
-        } else {
-            vec![weakest]
-        };
-        for &k in &drop {
-            let t = active[k];
-            report[t] = Some(line(
-                &all,
-                t,
-                Verdict::NotSignificant,
-                x_terms[t],
-                sd[k],
-                format!(
-                    "|value|/σ = {:.2} below the threshold {z_threshold:.2}",
-                    z[k]
-                ),
-            ));
-        }
-        active = active
-            .iter()
-            .enumerate()
-            .filter(|(k, _)| !drop.contains(k))
-            .map(|(_, &t)| t)
-            .collect();
+    let mut elimination = Elimination {
+        probe: &probe,
+        x_terms: &mut x_terms,
+        geo_x: &mut geo_x,
+        report: &mut report,
+        z_threshold,
     };
+    let (mut active, mut final_x, mut final_sd, mut final_cost) = elimination.run(active, &all)?;
+    // Region cross-validation, one joint at a time: a joint's terms stay
+    // only if they lower the error on held-out regions of that joint's
+    // covered range (term_cv's module doc).
+    let mut dropped_any = false;
+    let significant = active.clone();
+    for joint in 0..reference.robot.dof() {
+        let group: Vec<usize> = active
+            .iter()
+            .copied()
+            .filter(|&t| all.terms[t].joint() == joint)
+            .collect();
+        if group.is_empty() {
+            continue;
+        }
+        let rest: Vec<usize> = active
+            .iter()
+            .copied()
+            .filter(|t| !group.contains(t))
+            .collect();
+        let folds = region_folds(cal, joint);
+        let (cv_without, cv_with) = held_out_costs(
+            &geo.layout,
+            &geo.before,
+            &free,
+            &all,
+            (&rest, &active),
+            &x_geo,
+            cal,
+            &w,
+            &folds,
+        )?;
+        if cv_with >= cv_without {
+            for &t in &group {
+                report[t] = Some(line(
+                    &all,
+                    t,
+                    Verdict::DoesNotGeneralise,
+                    x_terms[t],
+                    significant
+                        .iter()
+                        .position(|&a| a == t)
+                        .map_or(f64::NAN, |k| final_sd[k]),
+                    format!(
+                        "held-out regions of joint {}'s range: error {:.4} with the joint's terms, {:.4} without (rms, whitened)",
+                        joint + 1,
+                        (cv_with / n_res).sqrt(),
+                        (cv_without / n_res).sqrt()
+                    ),
+                ));
+            }
+            active = rest;
+            dropped_any = true;
+        }
+    }
+    if dropped_any {
+        let mut elimination = Elimination {
+            probe: &probe,
+            x_terms: &mut x_terms,
+            geo_x: &mut geo_x,
+            report: &mut report,
+            z_threshold,
+        };
+        (active, final_x, final_sd, final_cost) = elimination.run(active, &all)?;
+    }
     let k = active.len() as f64;
     let bic_geometric = n_res * (cost_geo / n_res).ln();
     let bic_with_terms = n_res * (final_cost / n_res).ln() + k * n_res.ln();
     let mut gain = bic_with_terms < bic_geometric;
     let mut why_not = format!("BIC {bic_with_terms:.1} not below the geometric {bic_geometric:.1}");
     if gain && !active.is_empty() {
-        let x0 = stack(&x_geo, &DVector::zeros(active.len()));
-        let (cv_geo, cv_terms) =
-            held_out_costs(&geo.layout, &geo.before, &free, &all, &active, &x0, cal, &w)?;
+        let (cv_geo, cv_terms) = held_out_costs(
+            &geo.layout,
+            &geo.before,
+            &free,
+            &all,
+            (&[], &active),
+            &x_geo,
+            cal,
+            &w,
+            &interleaved_folds(cal.len()),
+        )?;
         if cv_terms >= cv_geo {
             gain = false;
             why_not = format!(
@@ -262,42 +263,6 @@ pub fn identify_with_terms(
     })
 }
 
-fn probe_like<'a>(p: &TermFit<'a>) -> TermFit<'a> {
-    TermFit {
-        layout: p.layout,
-        reference: p.reference,
-        free: p.free,
-        terms: p.terms,
-        free_terms: p.free_terms,
-        data: p.data,
-        whitening: p.whitening,
-    }
-}
-
-fn stack(a: &DVector<f64>, b: &DVector<f64>) -> DVector<f64> {
-    DVector::from_iterator(a.len() + b.len(), a.iter().chain(b.iter()).copied())
-}
-
-fn line(
-    all: &NonGeometric,
-    t: usize,
-    verdict: Verdict,
-    value: f64,
-    std_dev: f64,
-    why: String,
-) -> TermReport {
-    let term = all.terms[t];
-    TermReport {
-        name: term.name(),
-        term,
-        verdict,
-        value,
-        std_dev,
-        unit: term.unit().into(),
-        why,
-    }
-}
-
 /// For each column after the first `geometric` ones: the norm of its
 /// unit-scaled copy left after projecting out the geometric columns and the
 /// earlier accepted candidate columns (modified Gram–Schmidt, twice).
@@ -333,42 +298,6 @@ fn remainders(jac: &DMatrix<f64>, geometric: usize) -> Vec<f64> {
             )
         })
         .collect()
-}
-
-/// `z` with two-sided normal tail `α / m` (Bonferroni over `m` tests).
-pub fn bonferroni_z(alpha: f64, m: usize) -> f64 {
-    let target = alpha / m as f64;
-    let (mut lo, mut hi) = (0.0_f64, 40.0_f64);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if erfc(mid / std::f64::consts::SQRT_2) > target {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
-}
-
-/// Complementary error function (Numerical Recipes' Chebyshev fit,
-/// relative error < 1.2e-7 everywhere).
-fn erfc(x: f64) -> f64 {
-    let z = x.abs();
-    let t = 1.0 / (1.0 + 0.5 * z);
-    let poly = -z * z - 1.265_512_23
-        + t * (1.000_023_68
-            + t * (0.374_091_96
-                + t * (0.096_784_18
-                    + t * (-0.186_288_06
-                        + t * (0.278_868_07
-                            + t * (-1.135_203_98
-                                + t * (1.488_515_87 + t * (-0.822_152_23 + t * 0.170_872_77))))))));
-    let r = t * poly.exp();
-    if x >= 0.0 {
-        r
-    } else {
-        2.0 - r
-    }
 }
 
 /// RMS over the poses of the measured point's motion per radian of each
