@@ -4,6 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
+mod events;
 mod flange_pose;
 mod image_detection;
 mod joints;
@@ -14,6 +15,7 @@ mod parameter_set;
 mod pose_set;
 mod serial;
 mod target;
+pub use events::DomainEvent;
 pub use flange_pose::{check_robot_pose, FlangePose, PoseKind, RobotPose};
 pub use image_detection::ImageDetection;
 pub use joints::{JointsDeg, MAX_JOINT_DEG};

@@ -178,3 +178,37 @@ pub struct ParameterSetRecord {
     pub parameters: Value,
     pub created_at: String,
 }
+
+/// Which jobs `list_jobs` answers (`None`: any).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct JobFilter {
+    pub state: Option<JobState>,
+    pub serial: Option<String>,
+    pub kind: Option<String>,
+}
+
+/// A webhook subscription (the secret signs every delivery's body).
+#[derive(Debug, Clone, PartialEq)]
+pub struct WebhookRecord {
+    pub id: String,
+    pub url: String,
+    /// Event names, each one of `DomainEvent::NAMES`.
+    pub events: Vec<String>,
+    pub secret: String,
+    pub created_at: String,
+}
+
+/// One event to send to one webhook, claimed by a delivery loop.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OutboxDelivery {
+    /// The outbox row (`event id/webhook id`).
+    pub id: String,
+    pub event_id: String,
+    pub event: String,
+    /// The JSON document to send, as stored (what the signature covers).
+    pub body: String,
+    /// Attempts made before this one.
+    pub attempts: i64,
+    pub url: String,
+    pub secret: String,
+}

@@ -78,6 +78,11 @@ const MIGRATIONS: &[Embedded] = &[
         "campaign plans",
         include_str!("../../../migrations/postgres/0008_campaign_plans.sql"),
     ),
+    (
+        10,
+        "webhooks",
+        include_str!("../../../migrations/postgres/0010_webhooks.sql"),
+    ),
 ];
 
 /// Connections per replica. Each worker holds at most one while it claims or

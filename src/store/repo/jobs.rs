@@ -4,11 +4,12 @@ use sqlx::Transaction;
 
 use super::page_cursor;
 use super::results::insert_parameter_set_tx;
-use crate::domain::{new_id, now_rfc3339, JobState, LeaseStatus, Page};
+use super::webhooks::record_event_tx;
+use crate::domain::{new_id, now_rfc3339, now_unix_ms, DomainEvent, JobState, LeaseStatus, Page};
 use crate::store::backend::{is_foreign_key_violation, Backend};
 use crate::store::rows::{claimed_job, job, Columns};
 use crate::store::statement::{query, DbRow};
-use crate::store::{ClaimedJob, JobOutcome, JobRecord, NewJob, PoseDetection};
+use crate::store::{ClaimedJob, JobFilter, JobOutcome, JobRecord, NewJob, PoseDetection};
 use crate::store::{JobStore, StoreError, StoreResult};
 
 const COLUMNS: &str = "id, kind, session_id, serial, options, state, stage, progress, attempts,
@@ -56,13 +57,24 @@ impl<B: Backend> JobStore for B {
         row.as_ref().map(job).transpose()
     }
 
-    async fn list_jobs(&self, limit: i64, before: Option<&str>) -> StoreResult<Page<JobRecord>> {
-        // Ids are UUIDv7: descending id order is newest first.
+    async fn list_jobs(
+        &self,
+        filter: &JobFilter,
+        limit: i64,
+        before: Option<&str>,
+    ) -> StoreResult<Page<JobRecord>> {
+        // Ids are UUIDv7: descending id order is newest first. An empty
+        // filter value lets every row through.
         let rows = query(format!(
-            "SELECT {COLUMNS} FROM jobs WHERE ($1 = '' OR id < $1) ORDER BY id DESC LIMIT $2"
+            "SELECT {COLUMNS} FROM jobs WHERE ($1 = '' OR id < $1)
+               AND ($3 = '' OR state = $3) AND ($4 = '' OR serial = $4) AND ($5 = '' OR kind = $5)
+             ORDER BY id DESC LIMIT $2"
         ))
         .bind(before.unwrap_or(""))
         .bind(limit)
+        .bind(filter.state.map(JobState::as_str).unwrap_or(""))
+        .bind(filter.serial.as_deref().unwrap_or(""))
+        .bind(filter.kind.as_deref().unwrap_or(""))
         .fetch_all(self.pool())
         .await?;
         let items = rows.iter().map(job).collect::<StoreResult<Vec<_>>>()?;
@@ -71,14 +83,22 @@ impl<B: Backend> JobStore for B {
     }
 
     async fn cancel_job(&self, id: &str) -> StoreResult<Option<JobRecord>> {
+        let mut tx = self.begin_write().await?;
         let row = query(format!(
             "UPDATE jobs SET state = 'cancelled', finished_at = $1, lease_expires_at = NULL
              WHERE id = $2 AND state IN ('queued', 'running') RETURNING {COLUMNS}"
         ))
         .bind(now_rfc3339())
         .bind(id)
-        .fetch_optional(self.pool())
+        .fetch_optional(&mut tx)
         .await?;
+        if let Some(row) = &row {
+            let record = job(row)?;
+            record_event_tx::<B>(&mut tx, &finished_event(&record), now_unix_ms()).await?;
+            tx.commit().await?;
+            return Ok(Some(record));
+        }
+        drop(tx);
         match row {
             Some(row) => Ok(Some(job(&row)?)),
             None => match self.get_job(id).await? {
@@ -94,21 +114,27 @@ impl<B: Backend> JobStore for B {
     async fn fail_exhausted_jobs(&self, now_ms: i64) -> StoreResult<u64> {
         // SKIP LOCKED: a row another replica is claiming or finishing right
         // now is left to it (and to the next sweep).
-        let failed = query(format!(
+        let mut tx = self.begin_write().await?;
+        let rows = query(format!(
             "UPDATE jobs SET state = 'failed', finished_at = $1, worker_id = NULL,
                lease_expires_at = NULL,
                error = 'worker lost (lease expired) on attempt ' || attempts || ' of '
                        || max_attempts || coalesce('; last error: ' || error, '')
              WHERE id IN (SELECT id FROM jobs
                           WHERE state = 'running' AND lease_expires_at < $2
-                            AND attempts >= max_attempts{})",
+                            AND attempts >= max_attempts{})
+             RETURNING {COLUMNS}",
             B::FOR_UPDATE_SKIP_LOCKED
         ))
         .bind(now_rfc3339())
         .bind(now_ms)
-        .execute(self.pool())
+        .fetch_all(&mut tx)
         .await?;
-        Ok(failed)
+        for row in &rows {
+            record_event_tx::<B>(&mut tx, &finished_event(&job(row)?), now_ms).await?;
+        }
+        tx.commit().await?;
+        Ok(rows.len() as u64)
     }
 
     async fn claim_job(
@@ -181,6 +207,7 @@ impl<B: Backend> JobStore for B {
         let serial = held.string("serial");
         let attempts = held.int("attempts");
         let max_attempts = held.int("max_attempts");
+        let mut version = None;
         let (state, error, result) = match outcome {
             JobOutcome::Succeeded {
                 parameter_set,
@@ -192,10 +219,11 @@ impl<B: Backend> JobStore for B {
                 }
                 let mut result = json!({ "summary": summary });
                 if let Some(set) = parameter_set {
-                    let version =
+                    let stored =
                         insert_parameter_set_tx::<B>(&mut tx, &serial, Some(job_id), set).await?;
                     result["serial"] = json!(serial);
-                    result["version"] = json!(version);
+                    result["version"] = json!(stored);
+                    version = Some(stored);
                 }
                 ("succeeded", None, Some(result.to_string()))
             }
@@ -218,12 +246,24 @@ impl<B: Backend> JobStore for B {
              WHERE id = $5",
         )
         .bind(state)
-        .bind(error)
+        .bind(error.clone())
         .bind(result)
         .bind(finished)
         .bind(job_id)
         .execute(&mut tx)
         .await?;
+        if state != "queued" {
+            let event = DomainEvent::JobFinished {
+                job_id: job_id.to_string(),
+                kind: held.string("kind"),
+                serial,
+                session_id: held.string("session_id"),
+                state: JobState::parse(state).unwrap_or(JobState::Failed),
+                version,
+                error,
+            };
+            record_event_tx::<B>(&mut tx, &event, now_unix_ms()).await?;
+        }
         tx.commit().await?;
         Ok(LeaseStatus::Held)
     }
@@ -276,6 +316,20 @@ impl<B: Backend> JobStore for B {
     }
 }
 
+/// `job.finished` of a job that ended outside a worker (cancelled, or
+/// failed once its last lease expired).
+fn finished_event(j: &JobRecord) -> DomainEvent {
+    DomainEvent::JobFinished {
+        job_id: j.id.clone(),
+        kind: j.kind.clone(),
+        serial: j.serial.clone(),
+        session_id: j.session_id.clone(),
+        state: j.state,
+        version: None,
+        error: j.error.clone(),
+    }
+}
+
 /// The job's row, locked, if `worker_id` still holds its lease. A
 /// concurrent reclaim (lease expired) or cancel waits for this transaction,
 /// or won first, and then this worker no longer matches and writes nothing.
@@ -285,7 +339,7 @@ async fn lock_held_job<B: Backend>(
     worker_id: &str,
 ) -> StoreResult<Option<DbRow<B::Db>>> {
     Ok(query(format!(
-        "SELECT serial, session_id, attempts, max_attempts FROM jobs
+        "SELECT serial, session_id, kind, attempts, max_attempts FROM jobs
          WHERE id = $1 AND worker_id = $2 AND state = 'running'{}",
         B::FOR_UPDATE
     ))

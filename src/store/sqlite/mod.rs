@@ -64,6 +64,11 @@ const MIGRATIONS: &[Embedded] = &[
         "campaign plans",
         include_str!("../../../migrations/sqlite/0008_campaign_plans.sql"),
     ),
+    (
+        10,
+        "webhooks",
+        include_str!("../../../migrations/sqlite/0010_webhooks.sql"),
+    ),
 ];
 
 /// How long a statement waits for a competing writer before giving up.
