@@ -3,7 +3,7 @@
 //! durable outbox (`webhook_outbox`) in the same transaction as the state
 //! change it reports, or before it, and delivered from there at least once
 //! (`src/outbox/`). Record one with `service::events::record`, or inside a
-//! store transaction with `store::record_event_tx`.
+//! store transaction with `record_event_tx` (`store/repo/webhooks.rs`).
 
 use serde::Serialize;
 

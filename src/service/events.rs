@@ -4,7 +4,7 @@
 //! once. Call it *before* committing the change it reports (a crash in
 //! between then sends an event for a change that did not happen, never
 //! loses one), or record inside the change's own store transaction with
-//! `store::record_event_tx` (what `finish_job` does for `job.finished`).
+//! `record_event_tx` in `store/repo/webhooks.rs` (what `finish_job` does for `job.finished`).
 //!
 //! ```ignore
 //! events::record(&store, DomainEvent::SetApproved { serial, version, approved_by }).await?;

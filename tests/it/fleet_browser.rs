@@ -22,7 +22,7 @@ const REQUIRE_BROWSER_VAR: &str = "ROBOCAL_TEST_REQUIRE_BROWSER";
 const PHONE_WIDTH: u32 = 412;
 const PHONE_HEIGHT: u32 = 915;
 /// The W3C WebDriver key of an element reference.
-const ELEMENT_KEY: &str = "element-6066-11e4-a6e6-4a4ba6c7c2a9";
+const ELEMENT_KEY: &str = "element-6066-11e4-a52e-4f735466cecf";
 const DRIVER_START: Duration = Duration::from_secs(30);
 
 fn find_binary(names: &[&str]) -> Option<PathBuf> {
@@ -142,6 +142,23 @@ impl Driver {
             .to_string()
     }
 
+    /// Waits until the browser is at `url` (a click on a link or a form
+    /// returns before the navigation it starts).
+    async fn wait_for_url(&self, url: &str) {
+        let start = Instant::now();
+        loop {
+            let at = self.url().await;
+            if at == url {
+                return;
+            }
+            if start.elapsed() > DRIVER_START {
+                let shown = self.text("body").await;
+                panic!("the browser is at {at}, not {url}: {shown}");
+            }
+            tokio::time::sleep(Duration::from_millis(50)).await;
+        }
+    }
+
     async fn find(&self, css: &str) -> String {
         let v = self
             .call(
@@ -150,7 +167,10 @@ impl Driver {
                 Some(json!({"using": "css selector", "value": css})),
             )
             .await;
-        v[ELEMENT_KEY].as_str().unwrap().to_string()
+        v[ELEMENT_KEY]
+            .as_str()
+            .unwrap_or_else(|| panic!("no element {css}: {v}"))
+            .to_string()
     }
 
     async fn text(&self, css: &str) -> String {
@@ -259,9 +279,12 @@ async fn a_person_signs_in_sees_the_fleet_and_follows_a_robot_in_chromium() {
     browser.type_into("#token", &token).await;
     browser.click("button[type=submit]").await;
 
-    let at = browser.url().await;
-    assert_eq!(at, app.url("/"), "back on the fleet page");
-    assert!(!at.contains(&token), "the token is in no URL");
+    browser.wait_for_url(&app.url("/")).await;
+    let history = browser.script("return window.location.href;").await;
+    assert!(
+        !history.as_str().unwrap().contains(&token),
+        "the token is in no URL"
+    );
     let summary = browser.text("#fleet-summary").await;
     assert_eq!(summary, "2 robots · 1 job in progress");
     let seven = browser.text("#robot-CELL-7").await;
@@ -288,7 +311,7 @@ async fn a_person_signs_in_sees_the_fleet_and_follows_a_robot_in_chromium() {
     browser.screenshot("fleet.png").await;
 
     browser.click("#robot-CELL-7 h2 a").await;
-    assert_eq!(browser.url().await, app.url("/robots/CELL-7"));
+    browser.wait_for_url(&app.url("/robots/CELL-7")).await;
     assert_eq!(browser.text("h1").await, "CELL-7");
     let versions = browser.text("#versions").await;
     assert!(versions.contains("v1 (current)"), "{versions}");
@@ -296,7 +319,9 @@ async fn a_person_signs_in_sees_the_fleet_and_follows_a_robot_in_chromium() {
     browser.screenshot("robot.png").await;
 
     browser.click("#versions a").await;
-    assert_eq!(browser.url().await, app.url("/robots/CELL-7/reports/1"));
+    browser
+        .wait_for_url(&app.url("/robots/CELL-7/reports/1"))
+        .await;
     let report = browser.text("body").await;
     assert!(report.contains("validation poses"), "{report}");
     browser.quit().await;

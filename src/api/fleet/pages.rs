@@ -139,8 +139,8 @@ fn versions_table(
         return "<p class=\"muted\">No parameter sets yet.</p>\n".into();
     }
     let mut t = String::from(
-        "<div class=\"scroll\"><table id=\"versions\">\n<thead><tr><th>Version</th><th>Created</th>\
-         <th class=\"num\">Nominal mm</th><th class=\"num\">Calibrated mm</th><th>Report</th></tr></thead>\n<tbody>\n",
+        "<div class=\"scroll\"><table id=\"versions\">\n<thead><tr><th>Version</th><th>Report</th>\
+         <th class=\"num\">Mean error mm<br>nominal → set</th><th>Created</th></tr></thead>\n<tbody>\n",
     );
     for v in versions {
         let mark = if Some(v.version) == current {
@@ -148,9 +148,9 @@ fn versions_table(
         } else {
             ""
         };
-        let (before, after) = match &v.accuracy {
-            Some(a) => (mm(a.before_mean_mm), mm(a.after_mean_mm)),
-            None => ("—".into(), "—".into()),
+        let accuracy = match &v.accuracy {
+            Some(a) => format!("{} → {}", mm(a.before_mean_mm), mm(a.after_mean_mm)),
+            None => "—".into(),
         };
         let report = if v.accuracy.is_some() {
             format!(
@@ -163,8 +163,7 @@ fn versions_table(
         };
         let _ = writeln!(
             t,
-            "<tr><td>v{}{mark}</td><td>{}</td><td class=\"num\">{before}</td>\
-             <td class=\"num\">{after}</td><td>{report}</td></tr>",
+            "<tr><td>v{}{mark}</td><td>{report}</td><td class=\"num\">{accuracy}</td><td>{}</td></tr>",
             v.version,
             escape_xml(&ago(&v.created_at, now_ms))
         );

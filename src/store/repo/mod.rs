@@ -21,7 +21,6 @@ mod sessions;
 mod webhooks;
 
 pub use robots::UPSERT_ROBOT;
-pub use webhooks::record_event_tx;
 
 #[async_trait]
 impl<B: Backend> Store for B {
