@@ -148,7 +148,7 @@ async fn jobs_filter_by_state_serial_and_kind_with_paging() {
         .json()
         .await
         .unwrap();
-    assert_eq!(ids(&b_done), [b_job.clone()]);
+    assert_eq!(ids(&b_done), [b_job]);
 
     for (q, field) in [
         ("state=done", "state"),
