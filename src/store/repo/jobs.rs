@@ -114,6 +114,18 @@ impl<B: Backend> JobStore for B {
     async fn fail_exhausted_jobs(&self, now_ms: i64) -> StoreResult<u64> {
         // SKIP LOCKED: a row another replica is claiming or finishing right
         // now is left to it (and to the next sweep).
+        // Every idle worker sweeps at every poll: look before taking the
+        // write lock (SQLite has one for the whole database).
+        let due = query(
+            "SELECT id FROM jobs WHERE state = 'running' AND lease_expires_at < $1
+               AND attempts >= max_attempts LIMIT 1",
+        )
+        .bind(now_ms)
+        .fetch_optional(self.pool())
+        .await?;
+        if due.is_none() {
+            return Ok(0);
+        }
         let mut tx = self.begin_write().await?;
         let rows = query(format!(
             "UPDATE jobs SET state = 'failed', finished_at = $1, worker_id = NULL,

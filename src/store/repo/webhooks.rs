@@ -132,6 +132,19 @@ impl<B: Backend> WebhookStore for B {
         lease_until_ms: i64,
         limit: i64,
     ) -> StoreResult<Vec<OutboxDelivery>> {
+        // Polled by every process: look before taking the write lock
+        // (SQLite has one for the whole database).
+        let due = query(
+            "SELECT id FROM webhook_outbox
+             WHERE state = 'pending' AND next_attempt_ms <= $1
+               AND (lease_until_ms IS NULL OR lease_until_ms < $1) LIMIT 1",
+        )
+        .bind(now_ms)
+        .fetch_optional(self.pool())
+        .await?;
+        if due.is_none() {
+            return Ok(Vec::new());
+        }
         let mut tx = self.begin_write().await?;
         let rows = query(format!(
             "UPDATE webhook_outbox SET lease_until_ms = $1
