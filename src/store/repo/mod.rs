@@ -14,6 +14,7 @@ use super::{Store, StoreResult};
 
 mod auth;
 mod campaign_plans;
+mod detections;
 mod jobs;
 mod results;
 mod robots;
