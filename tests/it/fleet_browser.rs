@@ -4,6 +4,7 @@
 //! saying so, when no Chromium is installed, unless
 //! `ROBOCAL_TEST_REQUIRE_BROWSER=1` (CI sets it: there it must run).
 
+use std::os::unix::process::CommandExt;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
@@ -51,7 +52,11 @@ struct Driver {
 }
 
 impl Drop for Driver {
+    /// Kills chromedriver's process group: the browser it started too, also
+    /// when a failed assertion left the session open.
     fn drop(&mut self) {
+        let group = format!("-{}", self.child.id());
+        let _ = Command::new("kill").args(["-KILL", "--", &group]).status();
         let _ = self.child.kill();
         let _ = self.child.wait();
     }
@@ -66,6 +71,8 @@ impl Driver {
             .port();
         let child = Command::new(chromedriver)
             .arg(format!("--port={port}"))
+            // Its own process group, which the browser joins (see `drop`).
+            .process_group(0)
             .stdout(Stdio::null())
             .stderr(Stdio::null())
             .spawn()
@@ -90,6 +97,7 @@ impl Driver {
             "goog:chromeOptions": {
                 "binary": chromium,
                 "args": ["--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
+                         "--disable-breakpad", "--disable-crash-reporter",
                          format!("--window-size={PHONE_WIDTH},{PHONE_HEIGHT}"),
                          format!("--user-data-dir={}", profile.path().display())],
                 // A phone's viewport: device metrics, not only a small window.
