@@ -81,6 +81,16 @@ pub struct ServeConfig {
     #[arg(long, env = "ROBOCAL_SHUTDOWN_GRACE_SECS", default_value_t = 20)]
     pub shutdown_grace_secs: u64,
 
+    /// Wait before a failed webhook delivery is tried again, milliseconds;
+    /// doubled after every failed attempt (up to an hour, 15 attempts).
+    #[arg(long, env = "ROBOCAL_WEBHOOK_RETRY_BASE_MS", default_value_t = 2000)]
+    pub webhook_retry_base_ms: u64,
+
+    /// Seconds a webhook receiver may take to answer before the attempt
+    /// counts as failed (and is retried later).
+    #[arg(long, env = "ROBOCAL_WEBHOOK_TIMEOUT_SECS", default_value_t = 10)]
+    pub webhook_timeout_secs: u64,
+
     /// Log format.
     #[arg(long, env = "ROBOCAL_LOG_FORMAT", value_enum, default_value = "text")]
     pub log_format: LogFormat,
@@ -155,6 +165,8 @@ impl ServeConfig {
             ("header_timeout_secs", self.header_timeout_secs as i64),
             ("body_idle_timeout_secs", self.body_idle_timeout_secs as i64),
             ("max_connections", self.max_connections as i64),
+            ("webhook_retry_base_ms", self.webhook_retry_base_ms as i64),
+            ("webhook_timeout_secs", self.webhook_timeout_secs as i64),
         ];
         for (name, value) in positive {
             if value < 1 {
@@ -180,6 +192,15 @@ impl ServeConfig {
 
     pub fn lease(&self) -> Duration {
         Duration::from_secs(self.lease_secs)
+    }
+
+    /// How webhook deliveries are paced.
+    pub fn delivery_policy(&self) -> crate::outbox::delivery::DeliveryPolicy {
+        crate::outbox::delivery::DeliveryPolicy {
+            poll: Duration::from_millis(self.poll_ms),
+            retry_base: Duration::from_millis(self.webhook_retry_base_ms),
+            timeout: Duration::from_secs(self.webhook_timeout_secs),
+        }
     }
 
     pub fn header_timeout(&self) -> Duration {

@@ -17,6 +17,7 @@ pub mod imaging;
 pub mod jobs;
 pub mod listen;
 pub mod metrics;
+pub mod outbox;
 pub mod pipeline;
 pub mod print;
 pub mod report;

@@ -104,6 +104,12 @@ pub async fn start(mut config: ServeConfig) -> Result<RunningServer, StartError>
     // Spool files of killed uploads and images no pose names: at start, then periodically.
     let housekeeping =
         crate::housekeeping::spawn(store.clone(), config.upload_dir(), shutdown_rx.clone());
+    // Webhook events from the durable outbox, off every request's path.
+    let deliveries = crate::outbox::delivery::spawn(
+        store.clone(),
+        config.delivery_policy(),
+        shutdown_rx.clone(),
+    );
     tracing::info!(%addr, backend = store.backend(), workers = config.worker_count(), job_events = listening, "robocal listening");
     let scheme = if config.tls_enabled() {
         "https"
@@ -128,6 +134,7 @@ pub async fn start(mut config: ServeConfig) -> Result<RunningServer, StartError>
         listen::serve(listener, app, limits, tls, shutdown_rx).await;
         pool.join().await;
         let _ = housekeeping.await;
+        let _ = deliveries.await;
         tracing::info!("robocal stopped");
     });
     Ok(RunningServer {

@@ -2,7 +2,8 @@
 //! `/metrics` (unless `--public-metrics`). Tokens are random 256-bit
 //! strings; only their SHA-256 is stored. Scopes are ordered: `read` <
 //! `write` < `admin`. Reads need `read`, writes need `write`, token
-//! management needs `admin`. A revoked or expired token is refused (401).
+//! management and webhooks need `admin` (a webhook sends the service's
+//! events to any URL it names, and listing them shows where). A revoked or expired token is refused (401).
 //!
 //! Anonymous mode: with no token in the database a loopback-bound server
 //! serves anonymous requests (the CLI refuses to bind elsewhere without
@@ -93,13 +94,15 @@ fn required_scope(public_metrics: bool, method: &Method, path: &str) -> Option<S
         return None;
     }
     let reads = matches!(*method, Method::GET | Method::HEAD | Method::OPTIONS);
-    Some(if path.starts_with("/v1/tokens") {
-        Scope::Admin
-    } else if reads || report_links::is_link_request(method, path) {
-        Scope::Read
-    } else {
-        Scope::Write
-    })
+    Some(
+        if path.starts_with("/v1/tokens") || path.starts_with("/v1/webhooks") {
+            Scope::Admin
+        } else if reads || report_links::is_link_request(method, path) {
+            Scope::Read
+        } else {
+            Scope::Write
+        },
+    )
 }
 
 pub async fn layer(State(state): State<AppState>, mut req: Request, next: Next) -> Response {
@@ -152,7 +155,7 @@ async fn authenticate_headerless(
 /// name or address (`localhost`, `127.0.0.1`, `[::1]` with the bound port):
 /// a page loaded from elsewhere whose DNS name was rebound to 127.0.0.1
 /// still sends its own name as `Host`.
-fn check_loopback_host(
+pub(crate) fn check_loopback_host(
     state: &AppState,
     uri: &Uri,
     host: Option<&header::HeaderValue>,

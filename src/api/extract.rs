@@ -10,7 +10,9 @@ use serde::Deserialize;
 
 use super::error::ApiError;
 use super::AppState;
-use crate::domain::{InvalidSerial, Serial};
+use crate::domain::{InvalidSerial, JobState, Serial};
+use crate::jobs::queue::JOB_KINDS;
+use crate::store::JobFilter;
 
 /// Default page size of listings.
 pub const DEFAULT_LIMIT: i64 = 100;
@@ -243,10 +245,71 @@ impl<S: Send + Sync> FromRequestParts<S> for Paging {
 }
 
 fn serde_urlencoded_like(query: &str) -> Result<RawPaging, ApiError> {
+    query_of::<RawPaging>(query)
+}
+
+/// The query string read into `T` (unknown parameters ignored).
+pub(crate) fn query_of<T: DeserializeOwned>(query: &str) -> Result<T, ApiError> {
     let uri: axum::http::Uri = format!("/?{query}")
         .parse()
         .map_err(|_| ApiError::malformed("query", "unreadable query string"))?;
-    axum::extract::Query::<RawPaging>::try_from_uri(&uri)
+    axum::extract::Query::<T>::try_from_uri(&uri)
         .map(|q| q.0)
         .map_err(|e| ApiError::malformed("query", e.body_text()))
+}
+
+/// `?state=&serial=&kind=` of `GET /v1/jobs`, each checked (422 naming it).
+#[derive(Debug, Clone)]
+pub struct JobQuery(pub JobFilter);
+
+#[derive(Deserialize)]
+struct RawJobQuery {
+    state: Option<String>,
+    serial: Option<String>,
+    kind: Option<String>,
+}
+
+impl<S: Send + Sync> FromRequestParts<S> for JobQuery {
+    type Rejection = ApiError;
+
+    async fn from_request_parts(parts: &mut Parts, _state: &S) -> Result<Self, ApiError> {
+        let raw = match parts.uri.query() {
+            None => RawJobQuery {
+                state: None,
+                serial: None,
+                kind: None,
+            },
+            Some(q) => query_of::<RawJobQuery>(q)?,
+        };
+        let state = match raw.state.as_deref() {
+            None | Some("") => None,
+            Some(s) => Some(JobState::parse(s).ok_or_else(|| {
+                let all: Vec<&str> = JobState::ALL.iter().map(|s| s.as_str()).collect();
+                ApiError::invalid("state", format!("one of {}", all.join(", ")))
+            })?),
+        };
+        let serial = match raw.serial.as_deref() {
+            None | Some("") => None,
+            Some(s) => Some(
+                Serial::parse(s)
+                    .map_err(|e| ApiError::invalid("serial", e.to_string()))?
+                    .to_string(),
+            ),
+        };
+        let kind = match raw.kind.as_deref() {
+            None | Some("") => None,
+            Some(k) if JOB_KINDS.contains(&k) => Some(k.to_string()),
+            Some(_) => {
+                return Err(ApiError::invalid(
+                    "kind",
+                    format!("one of {}", JOB_KINDS.join(", ")),
+                ))
+            }
+        };
+        Ok(JobQuery(JobFilter {
+            state,
+            serial,
+            kind,
+        }))
+    }
 }

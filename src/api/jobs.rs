@@ -1,5 +1,6 @@
 //! Calibration jobs: `POST /v1/sessions/{id}/calibrations`, `GET /v1/jobs`
-//! (newest first) and `/v1/jobs/{id}`.
+//! (newest first, filtered by state, serial and kind) and `/v1/jobs/{id}`.
+//! A job's live events are `job_events.rs`.
 
 use axum::extract::{Path, State};
 use axum::http::{header, StatusCode};
@@ -12,7 +13,7 @@ use utoipa_axum::router::OpenApiRouter;
 use utoipa_axum::routes;
 
 use super::error::{ApiError, ApiResult, Problem};
-use super::extract::{OptionalJson, Paging};
+use super::extract::{JobQuery, OptionalJson, Paging};
 use super::sessions::find_session;
 use super::AppState;
 use crate::domain::JobState;
@@ -121,17 +122,25 @@ async fn start_calibration(
         .into_response())
 }
 
-/// All jobs of every session, newest first, so one can see what runs.
+/// All jobs of every session, newest first, so one can see what runs;
+/// `state`, `serial` and `kind` narrow the list (together: all must hold).
 #[utoipa::path(get, path = "/v1/jobs", tag = "jobs",
     params(("limit" = Option<i64>, Query, description = "Page size, 1 to 1000 (default 100)"),
-           ("cursor" = Option<String>, Query, description = "next_cursor of the previous page")),
+           ("cursor" = Option<String>, Query, description = "next_cursor of the previous page"),
+           ("state" = Option<String>, Query, description = "Only jobs in this state: queued, running, succeeded, failed or cancelled"),
+           ("serial" = Option<String>, Query, description = "Only jobs of this robot"),
+           ("kind" = Option<String>, Query, description = "Only jobs of this kind (`calibration`)")),
     responses((status = 200, body = JobList, description = "A page of jobs, newest first"),
               (status = 401, body = Problem, content_type = "application/problem+json", description = "No or unknown token"),
-              (status = 422, body = Problem, content_type = "application/problem+json", description = "Invalid limit or cursor")))]
-async fn list_jobs(State(state): State<AppState>, paging: Paging) -> ApiResult<Json<JobList>> {
+              (status = 422, body = Problem, content_type = "application/problem+json", description = "Invalid limit, cursor, state, serial or kind (the problem names it)")))]
+async fn list_jobs(
+    State(state): State<AppState>,
+    paging: Paging,
+    JobQuery(filter): JobQuery,
+) -> ApiResult<Json<JobList>> {
     let page = state
         .store
-        .list_jobs(paging.limit, paging.cursor.as_deref())
+        .list_jobs(&filter, paging.limit, paging.cursor.as_deref())
         .await?;
     Ok(Json(JobList {
         items: page.items.into_iter().map(JobOut::from).collect(),

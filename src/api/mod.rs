@@ -33,7 +33,9 @@ pub mod error;
 pub mod export;
 pub mod extract;
 pub mod fingerprint;
+pub mod fleet;
 pub mod idempotency;
+pub mod job_events;
 pub mod jobs;
 pub mod ops;
 pub mod poses;
@@ -46,6 +48,7 @@ pub mod sessions;
 pub mod targets;
 pub mod tokens;
 pub mod upload;
+pub mod webhooks;
 
 /// Seconds a client should wait after a 429 for a full queue.
 pub const QUEUE_FULL_RETRY_AFTER_SECS: u64 = 10;
@@ -97,6 +100,8 @@ fn api_router() -> OpenApiRouter<AppState> {
         .merge(poses::router())
         .merge(upload::router())
         .merge(jobs::router())
+        .merge(job_events::router())
+        .merge(webhooks::router())
         .merge(results::router())
         .merge(release::router())
         .merge(export::router())
@@ -123,6 +128,7 @@ pub fn app(state: AppState) -> Router {
     let (router, doc) = router_and_doc();
     let router = router
         .merge(SwaggerUi::new("/docs").url("/openapi.json", doc))
+        .merge(fleet::router())
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)
         .layer(middleware::from_fn_with_state(

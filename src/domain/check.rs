@@ -18,6 +18,17 @@ pub enum CheckVerdict {
     BaseMoved,
 }
 
+impl CheckVerdict {
+    /// Its serde name (the webhook's and the job result's `verdict`).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            CheckVerdict::Pass => "pass",
+            CheckVerdict::Drift => "drift",
+            CheckVerdict::BaseMoved => "base_moved",
+        }
+    }
+}
+
 /// A parameter that may have changed, most likely first.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 pub struct CheckSuspect {

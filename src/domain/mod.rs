@@ -5,6 +5,8 @@
 use serde::{Deserialize, Serialize};
 
 mod check;
+
+mod events;
 mod flange_pose;
 mod image_detection;
 mod joints;
@@ -19,6 +21,8 @@ mod target;
 mod target_symmetry;
 
 pub use check::{CheckDoc, CheckSuspect, CheckVerdict};
+
+pub use events::DomainEvent;
 pub use flange_pose::{check_robot_pose, FlangePose, PoseKind, RobotPose};
 pub use image_detection::ImageDetection;
 pub use joints::{JointsDeg, MAX_JOINT_DEG};

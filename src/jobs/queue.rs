@@ -11,6 +11,9 @@ use crate::store::{DynStore, StoreResult};
 
 pub const CALIBRATION_KIND: &str = "calibration";
 
+/// Every job kind the queue runs (what `GET /v1/jobs?kind=` accepts).
+pub const JOB_KINDS: [&str; 2] = [CALIBRATION_KIND, crate::store::CHECK_KIND];
+
 /// Queue policy, from the server configuration.
 #[derive(Debug, Clone, Copy)]
 pub struct QueuePolicy {

@@ -11,6 +11,7 @@ mod frame_pose;
 pub mod job;
 pub mod robot;
 pub mod session;
+pub mod webhook;
 
 pub use frame_pose::PoseOut;
 

@@ -15,14 +15,19 @@ pub mod dataset;
 pub mod dataset_intake;
 pub mod error;
 pub mod evaluate;
+pub mod events;
 pub mod export;
 pub mod filter;
+pub mod fleet;
 pub mod images;
 pub mod intake;
 pub mod release;
+
+pub mod job_events;
 pub mod report_camera;
 pub mod results;
 pub mod staged_images;
 pub mod uncertainty;
+pub mod webhooks;
 
 pub use error::{ServiceError, ServiceResult};

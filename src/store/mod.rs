@@ -44,8 +44,9 @@ pub enum StoreError {
 }
 
 pub use records::{
-    ClaimedJob, JobOutcome, JobRecord, NewJob, NewParameterSet, NewPose, ParameterSetRecord,
-    PoseDetection, PoseRecord, RobotRecord, SessionRecord, TrackerMeasurement,
+    ClaimedJob, JobFilter, JobOutcome, JobRecord, NewJob, NewParameterSet, NewPose, OutboxDelivery,
+    ParameterSetRecord, PoseDetection, PoseRecord, RobotRecord, SessionRecord, TrackerMeasurement,
+    WebhookRecord,
 };
 
 pub type StoreResult<T> = Result<T, StoreError>;
@@ -110,9 +111,16 @@ pub trait JobStore: Send + Sync {
     /// (`QueueFull`), atomically.
     async fn enqueue_job(&self, job: &NewJob, max_queued: i64) -> StoreResult<JobRecord>;
     async fn get_job(&self, id: &str) -> StoreResult<Option<JobRecord>>;
-    /// Newest first; `before` is the `next_cursor` (a job id) of the previous page.
-    async fn list_jobs(&self, limit: i64, before: Option<&str>) -> StoreResult<Page<JobRecord>>;
-    /// Queued or running -> cancelled. `Conflict` when already finished.
+    /// The jobs `filter` lets through, newest first; `before` is the
+    /// `next_cursor` (a job id) of the previous page.
+    async fn list_jobs(
+        &self,
+        filter: &JobFilter,
+        limit: i64,
+        before: Option<&str>,
+    ) -> StoreResult<Page<JobRecord>>;
+    /// Queued or running -> cancelled (with its `job.finished` event).
+    /// `Conflict` when already finished.
     async fn cancel_job(&self, id: &str) -> StoreResult<Option<JobRecord>>;
     /// Fails running jobs whose lease expired and that have no attempt left.
     async fn fail_exhausted_jobs(&self, now_ms: i64) -> StoreResult<u64>;
@@ -282,9 +290,49 @@ pub trait CampaignPlanStore: Send + Sync {
     ) -> StoreResult<Option<CampaignPlanRecord>>;
 }
 
+/// Webhooks and their durable outbox (`repo/webhooks.rs`).
+#[async_trait]
+pub trait WebhookStore: Send + Sync {
+    async fn create_webhook(&self, webhook: &WebhookRecord) -> StoreResult<()>;
+    /// Oldest first.
+    async fn list_webhooks(&self) -> StoreResult<Vec<WebhookRecord>>;
+    async fn get_webhook(&self, id: &str) -> StoreResult<Option<WebhookRecord>>;
+    /// Deletes it with its undelivered events; `false` if absent.
+    async fn delete_webhook(&self, id: &str) -> StoreResult<bool>;
+    /// Writes `event` to the outbox of every subscribed webhook, in its own
+    /// transaction: call it before the change it reports is committed (or
+    /// record inside that change's transaction with `record_event_tx`).
+    async fn record_event(&self, event: &DomainEvent, now_ms: i64) -> StoreResult<()>;
+    /// Takes up to `limit` due, unclaimed deliveries until `lease_until_ms`.
+    async fn claim_deliveries(
+        &self,
+        now_ms: i64,
+        lease_until_ms: i64,
+        limit: i64,
+    ) -> StoreResult<Vec<OutboxDelivery>>;
+    /// The receiver answered 2xx: never sent again.
+    async fn mark_delivered(&self, id: &str) -> StoreResult<()>;
+    /// An attempt failed: try again at `retry_at_ms`, or (`None`) give up.
+    async fn mark_attempt_failed(
+        &self,
+        id: &str,
+        error: &str,
+        retry_at_ms: Option<i64>,
+    ) -> StoreResult<()>;
+    /// The webhook's outbox rows per state (`pending`, `delivered`, `failed`).
+    async fn outbox_counts(&self, webhook_id: &str) -> StoreResult<Vec<(String, i64)>>;
+}
+
 #[async_trait]
 pub trait Store:
-    RobotStore + SessionStore + JobStore + ResultStore + ReleaseStore + AuthStore + CampaignPlanStore
+    RobotStore
+    + SessionStore
+    + JobStore
+    + ResultStore
+    + ReleaseStore
+    + AuthStore
+    + CampaignPlanStore
+    + WebhookStore
 {
     /// Readiness probe: the database answers.
     async fn ping(&self) -> StoreResult<()>;

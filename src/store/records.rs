@@ -10,7 +10,8 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
 use crate::domain::{
-    ImageDetection, ImageMeta, JobState, JointsDeg, MeasuredPose, PoseSet, Release, ReleaseStatus,
+    CheckDoc, ImageDetection, ImageMeta, JobState, JointsDeg, MeasuredPose, PoseSet, Release,
+    ReleaseStatus,
 };
 use crate::schema::flange_pose::FlangePoseDoc;
 use crate::schema::session::{ImagePointDoc, SessionBody};
@@ -163,7 +164,7 @@ pub enum JobOutcome {
         detections: Vec<PoseDetection>,
         /// A quick re-check's verdict document (issue 17), merged into the
         /// job's `result` at its top level.
-        check: Option<Value>,
+        check: Option<CheckDoc>,
     },
     /// Failed for good (bad input): no retry.
     Failed { error: String },
@@ -204,4 +205,38 @@ pub struct ParameterSetRecord {
     /// for sets approved by the migration that introduced the gate.
     pub status_by: Option<String>,
     pub status_at: Option<String>,
+}
+
+/// Which jobs `list_jobs` answers (`None`: any).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct JobFilter {
+    pub state: Option<JobState>,
+    pub serial: Option<String>,
+    pub kind: Option<String>,
+}
+
+/// A webhook subscription (the secret signs every delivery's body).
+#[derive(Debug, Clone, PartialEq)]
+pub struct WebhookRecord {
+    pub id: String,
+    pub url: String,
+    /// Event names, each one of `DomainEvent::NAMES`.
+    pub events: Vec<String>,
+    pub secret: String,
+    pub created_at: String,
+}
+
+/// One event to send to one webhook, claimed by a delivery loop.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OutboxDelivery {
+    /// The outbox row (`event id/webhook id`).
+    pub id: String,
+    pub event_id: String,
+    pub event: String,
+    /// The JSON document to send, as stored (what the signature covers).
+    pub body: String,
+    /// Attempts made before this one.
+    pub attempts: i64,
+    pub url: String,
+    pub secret: String,
 }

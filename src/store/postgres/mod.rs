@@ -83,6 +83,11 @@ const MIGRATIONS: &[Embedded] = &[
         "release gate",
         include_str!("../../../migrations/postgres/0009_release_gate.sql"),
     ),
+    (
+        10,
+        "webhooks",
+        include_str!("../../../migrations/postgres/0010_webhooks.sql"),
+    ),
 ];
 
 /// Connections per replica. Each worker holds at most one while it claims or

@@ -2,13 +2,18 @@ use async_trait::async_trait;
 use serde_json::json;
 use sqlx::Transaction;
 
+use super::detections::write_detections_tx;
 use super::page_cursor;
 use super::results::insert_parameter_set_tx;
-use crate::domain::{new_id, now_rfc3339, JobState, LeaseStatus, Page};
+use super::webhooks::record_event_tx;
+use crate::domain::{
+    new_id, now_rfc3339, now_unix_ms, DomainEvent, JobState, LeaseStatus, Page, ReleaseStatus,
+    GATE_ACTOR,
+};
 use crate::store::backend::{is_foreign_key_violation, Backend};
 use crate::store::rows::{claimed_job, job, Columns};
 use crate::store::statement::{query, DbRow};
-use crate::store::{ClaimedJob, JobOutcome, JobRecord, NewJob, PoseDetection};
+use crate::store::{ClaimedJob, JobFilter, JobOutcome, JobRecord, NewJob, PoseDetection};
 use crate::store::{JobStore, StoreError, StoreResult};
 
 use crate::store::rows::JOB_COLUMNS as COLUMNS;
@@ -55,13 +60,24 @@ impl<B: Backend> JobStore for B {
         row.as_ref().map(job).transpose()
     }
 
-    async fn list_jobs(&self, limit: i64, before: Option<&str>) -> StoreResult<Page<JobRecord>> {
-        // Ids are UUIDv7: descending id order is newest first.
+    async fn list_jobs(
+        &self,
+        filter: &JobFilter,
+        limit: i64,
+        before: Option<&str>,
+    ) -> StoreResult<Page<JobRecord>> {
+        // Ids are UUIDv7: descending id order is newest first. An empty
+        // filter value lets every row through.
         let rows = query(format!(
-            "SELECT {COLUMNS} FROM jobs WHERE ($1 = '' OR id < $1) ORDER BY id DESC LIMIT $2"
+            "SELECT {COLUMNS} FROM jobs WHERE ($1 = '' OR id < $1)
+               AND ($3 = '' OR state = $3) AND ($4 = '' OR serial = $4) AND ($5 = '' OR kind = $5)
+             ORDER BY id DESC LIMIT $2"
         ))
         .bind(before.unwrap_or(""))
         .bind(limit)
+        .bind(filter.state.map(JobState::as_str).unwrap_or(""))
+        .bind(filter.serial.as_deref().unwrap_or(""))
+        .bind(filter.kind.as_deref().unwrap_or(""))
         .fetch_all(self.pool())
         .await?;
         let items = rows.iter().map(job).collect::<StoreResult<Vec<_>>>()?;
@@ -70,14 +86,22 @@ impl<B: Backend> JobStore for B {
     }
 
     async fn cancel_job(&self, id: &str) -> StoreResult<Option<JobRecord>> {
+        let mut tx = self.begin_write().await?;
         let row = query(format!(
             "UPDATE jobs SET state = 'cancelled', finished_at = $1, lease_expires_at = NULL
              WHERE id = $2 AND state IN ('queued', 'running') RETURNING {COLUMNS}"
         ))
         .bind(now_rfc3339())
         .bind(id)
-        .fetch_optional(self.pool())
+        .fetch_optional(&mut tx)
         .await?;
+        if let Some(row) = &row {
+            let record = job(row)?;
+            record_event_tx::<B>(&mut tx, &finished_event(&record), now_unix_ms()).await?;
+            tx.commit().await?;
+            return Ok(Some(record));
+        }
+        drop(tx);
         match row {
             Some(row) => Ok(Some(job(&row)?)),
             None => match self.get_job(id).await? {
@@ -93,21 +117,39 @@ impl<B: Backend> JobStore for B {
     async fn fail_exhausted_jobs(&self, now_ms: i64) -> StoreResult<u64> {
         // SKIP LOCKED: a row another replica is claiming or finishing right
         // now is left to it (and to the next sweep).
-        let failed = query(format!(
+        // Every idle worker sweeps at every poll: look before taking the
+        // write lock (SQLite has one for the whole database).
+        let due = query(
+            "SELECT id FROM jobs WHERE state = 'running' AND lease_expires_at < $1
+               AND attempts >= max_attempts LIMIT 1",
+        )
+        .bind(now_ms)
+        .fetch_optional(self.pool())
+        .await?;
+        if due.is_none() {
+            return Ok(0);
+        }
+        let mut tx = self.begin_write().await?;
+        let rows = query(format!(
             "UPDATE jobs SET state = 'failed', finished_at = $1, worker_id = NULL,
                lease_expires_at = NULL,
                error = 'worker lost (lease expired) on attempt ' || attempts || ' of '
                        || max_attempts || coalesce('; last error: ' || error, '')
              WHERE id IN (SELECT id FROM jobs
                           WHERE state = 'running' AND lease_expires_at < $2
-                            AND attempts >= max_attempts{})",
+                            AND attempts >= max_attempts{})
+             RETURNING {COLUMNS}",
             B::FOR_UPDATE_SKIP_LOCKED
         ))
         .bind(now_rfc3339())
         .bind(now_ms)
-        .execute(self.pool())
+        .fetch_all(&mut tx)
         .await?;
-        Ok(failed)
+        for row in &rows {
+            record_event_tx::<B>(&mut tx, &finished_event(&job(row)?), now_ms).await?;
+        }
+        tx.commit().await?;
+        Ok(rows.len() as u64)
     }
 
     async fn claim_job(
@@ -180,6 +222,7 @@ impl<B: Backend> JobStore for B {
         let serial = held.string("serial");
         let attempts = held.int("attempts");
         let max_attempts = held.int("max_attempts");
+        let mut version = None;
         let (state, error, result) = match outcome {
             JobOutcome::Succeeded {
                 parameter_set,
@@ -192,19 +235,37 @@ impl<B: Backend> JobStore for B {
                 }
                 let mut result = json!({ "summary": summary });
                 if let Some(set) = parameter_set {
-                    let version =
+                    let stored =
                         insert_parameter_set_tx::<B>(&mut tx, &serial, Some(job_id), set).await?;
                     result["serial"] = json!(serial);
-                    result["version"] = json!(version);
+                    result["version"] = json!(stored);
+                    version = Some(stored);
                     result["status"] = json!(set.release.status.as_str());
                     if let Some(reason) = &set.release.reason {
                         result["status_reason"] = json!(reason);
                     }
+                    if set.release.status == ReleaseStatus::Approved {
+                        let event = DomainEvent::SetApproved {
+                            serial: serial.clone(),
+                            version: stored,
+                            approved_by: GATE_ACTOR.to_string(),
+                        };
+                        record_event_tx::<B>(&mut tx, &event, now_unix_ms()).await?;
+                    }
                 }
-                if let (Some(serde_json::Value::Object(fields)), Some(out)) =
-                    (check, result.as_object_mut())
-                {
-                    out.extend(fields.clone());
+                if let Some(check) = check {
+                    if let (Ok(serde_json::Value::Object(fields)), Some(out)) =
+                        (serde_json::to_value(check), result.as_object_mut())
+                    {
+                        out.extend(fields);
+                    }
+                    let event = DomainEvent::CheckFinished {
+                        job_id: job_id.to_string(),
+                        serial: serial.clone(),
+                        verdict: check.verdict.as_str().to_string(),
+                        version: version_of(&check.checked_against),
+                    };
+                    record_event_tx::<B>(&mut tx, &event, now_unix_ms()).await?;
                 }
                 ("succeeded", None, Some(result.to_string()))
             }
@@ -227,12 +288,24 @@ impl<B: Backend> JobStore for B {
              WHERE id = $5",
         )
         .bind(state)
-        .bind(error)
+        .bind(error.clone())
         .bind(result)
         .bind(finished)
         .bind(job_id)
         .execute(&mut tx)
         .await?;
+        if state != "queued" {
+            let event = DomainEvent::JobFinished {
+                job_id: job_id.to_string(),
+                kind: held.string("kind"),
+                serial,
+                session_id: held.string("session_id"),
+                state: JobState::parse(state).unwrap_or(JobState::Failed),
+                version,
+                error,
+            };
+            record_event_tx::<B>(&mut tx, &event, now_unix_ms()).await?;
+        }
         tx.commit().await?;
         Ok(LeaseStatus::Held)
     }
@@ -285,6 +358,20 @@ impl<B: Backend> JobStore for B {
     }
 }
 
+/// `job.finished` of a job that ended outside a worker (cancelled, or
+/// failed once its last lease expired).
+fn finished_event(j: &JobRecord) -> DomainEvent {
+    DomainEvent::JobFinished {
+        job_id: j.id.clone(),
+        kind: j.kind.clone(),
+        serial: j.serial.clone(),
+        session_id: j.session_id.clone(),
+        state: j.state,
+        version: None,
+        error: j.error.clone(),
+    }
+}
+
 /// The job's row, locked, if `worker_id` still holds its lease. A
 /// concurrent reclaim (lease expired) or cancel waits for this transaction,
 /// or won first, and then this worker no longer matches and writes nothing.
@@ -294,7 +381,7 @@ async fn lock_held_job<B: Backend>(
     worker_id: &str,
 ) -> StoreResult<Option<DbRow<B::Db>>> {
     Ok(query(format!(
-        "SELECT serial, session_id, attempts, max_attempts FROM jobs
+        "SELECT serial, session_id, kind, attempts, max_attempts FROM jobs
          WHERE id = $1 AND worker_id = $2 AND state = 'running'{}",
         B::FOR_UPDATE
     ))
@@ -302,41 +389,6 @@ async fn lock_held_job<B: Backend>(
     .bind(worker_id)
     .fetch_optional(tx)
     .await?)
-}
-
-/// Replaces every pose's detection document of a session: the listed poses
-/// get theirs, the others none (a pose uploaded after the job loaded its
-/// inputs shows no stale points from an earlier job). Two jobs of one
-/// session writing at once serialise on the rows: each write is whole.
-async fn write_detections_tx<B: Backend>(
-    tx: &mut Transaction<'static, B::Db>,
-    session_id: &str,
-    detections: &[PoseDetection],
-) -> StoreResult<()> {
-    query("UPDATE poses SET detection = NULL WHERE session_id = $1")
-        .bind(session_id)
-        .execute(&mut *tx)
-        .await?;
-    for d in detections {
-        // A pose detected for the first time by this job keeps what the
-        // detector found, so later jobs need not decode its image again.
-        query(
-            "UPDATE poses SET detection = $1, image_detection = COALESCE(image_detection, $2)
-             WHERE session_id = $3 AND id = $4",
-        )
-        .bind(serde_json::to_string(&d.detection)?)
-        .bind(
-            d.image_detection
-                .as_ref()
-                .map(serde_json::to_string)
-                .transpose()?,
-        )
-        .bind(session_id)
-        .bind(&d.pose_id)
-        .execute(&mut *tx)
-        .await?;
-    }
-    Ok(())
 }
 
 /// Why a worker's write matched no row: the job was cancelled, or its lease
@@ -350,4 +402,13 @@ async fn lost_or_cancelled<B: Backend>(store: &B, job_id: &str) -> StoreResult<L
         Some("cancelled") => LeaseStatus::Cancelled,
         _ => LeaseStatus::Lost,
     })
+}
+
+/// The version of a `"{serial}/{version}"` reference (0 when malformed:
+/// the check stored it from the set it loaded, so it never is).
+fn version_of(set_ref: &str) -> i64 {
+    set_ref
+        .rsplit_once('/')
+        .and_then(|(_, v)| v.parse().ok())
+        .unwrap_or(0)
 }

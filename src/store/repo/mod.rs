@@ -14,11 +14,13 @@ use super::{Store, StoreResult};
 
 mod auth;
 mod campaign_plans;
+mod detections;
 mod jobs;
 mod release;
 mod results;
 mod robots;
 mod sessions;
+mod webhooks;
 
 pub use release::CHECK_KIND;
 pub use robots::UPSERT_ROBOT;

@@ -4,7 +4,8 @@
 use async_trait::async_trait;
 use sqlx::Transaction;
 
-use crate::domain::{now_rfc3339, Decision, Release};
+use super::webhooks::record_event_tx;
+use crate::domain::{now_rfc3339, now_unix_ms, Decision, DomainEvent, Release, ReleaseStatus};
 use crate::store::backend::Backend;
 use crate::store::rows::{job, parameter_set, release_status, Columns, JOB_COLUMNS};
 use crate::store::statement::query;
@@ -83,6 +84,14 @@ impl<B: Backend> ReleaseStore for B {
         .execute(&mut tx)
         .await?;
         record_decision_tx::<B>(&mut tx, serial, version, release, actor, &now).await?;
+        if release.status == ReleaseStatus::Approved {
+            let event = DomainEvent::SetApproved {
+                serial: serial.to_string(),
+                version,
+                approved_by: actor.to_string(),
+            };
+            record_event_tx::<B>(&mut tx, &event, now_unix_ms()).await?;
+        }
         let row = query(
             "SELECT serial, version, job_id, parameters, created_at,
                     status, status_reason, status_by, status_at FROM parameter_sets

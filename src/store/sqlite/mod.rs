@@ -69,6 +69,11 @@ const MIGRATIONS: &[Embedded] = &[
         "release gate",
         include_str!("../../../migrations/sqlite/0009_release_gate.sql"),
     ),
+    (
+        10,
+        "webhooks",
+        include_str!("../../../migrations/sqlite/0010_webhooks.sql"),
+    ),
 ];
 
 /// How long a statement waits for a competing writer before giving up.

@@ -1,0 +1,212 @@
+//! The fleet pages over plain HTTP: what they show, who may see them
+//! (anonymous on loopback; with tokens, a login that sets a session
+//! cookie), and that they load nothing from outside.
+
+use reqwest::redirect::Policy;
+use reqwest::StatusCode;
+use serde_json::json;
+
+use robocal::api::auth::{generate_token, hash_token};
+use robocal::domain::Scope;
+use robocal::report::sample::sample_report;
+use robocal::store::{self, NewParameterSet};
+
+use crate::support::*;
+
+/// A robot `serial` with one parameter set whose report is the sample's.
+pub async fn robot_with_reported_set(app: &TestApp, serial: &str) -> f64 {
+    let r = app
+        .put_json(&format!("/v1/robots/{serial}"), &robot_body())
+        .await;
+    assert_eq!(r.status(), 201);
+    let s = store::connect(&app.database_url).await.unwrap();
+    let report = sample_report();
+    let mean = report.after.norm.mean_mm;
+    s.insert_parameter_set(
+        serial,
+        None,
+        &NewParameterSet::approved(
+            json!({ "instrument": "camera" }),
+            serde_json::to_value(&report).unwrap(),
+        ),
+    )
+    .await
+    .unwrap();
+    mean
+}
+
+pub async fn read_token(app: &TestApp, scope: Scope) -> (String, String) {
+    let s = store::connect(&app.database_url).await.unwrap();
+    let t = generate_token();
+    let record = s
+        .create_token("fleet-page", &hash_token(&t), scope)
+        .await
+        .unwrap();
+    (t, record.id)
+}
+
+fn no_redirects() -> reqwest::Client {
+    reqwest::Client::builder()
+        .redirect(Policy::none())
+        .build()
+        .unwrap()
+}
+
+#[tokio::test]
+async fn anonymous_fleet_page_shows_robots_sets_accuracy_and_links() {
+    let app = spawn_app().await;
+    let empty = app.get("/").await;
+    assert_eq!(empty.status(), 200);
+    assert!(empty.text().await.unwrap().contains("No robots yet"));
+
+    let mean = robot_with_reported_set(&app, "FP-1").await;
+    app.robot_and_session("FP-2").await;
+    let r = app.get("/").await;
+    assert_eq!(r.status(), 200);
+    assert!(r.headers()["content-type"]
+        .to_str()
+        .unwrap()
+        .starts_with("text/html"));
+    let csp = r.headers()["content-security-policy"]
+        .to_str()
+        .unwrap()
+        .to_string();
+    assert!(csp.contains("default-src 'none'"), "{csp}");
+    let page = r.text().await.unwrap();
+    assert!(page.contains("name=\"viewport\""));
+    assert!(page.contains("href=\"/robots/FP-1\""), "{page}");
+    assert!(page.contains("href=\"/robots/FP-2\""));
+    assert!(page.contains("v1 · just now"), "{page}");
+    let accuracy = robocal::report::format::mm(mean);
+    assert!(page.contains(&format!("{accuracy} mm mean")), "{page}");
+    assert!(page.contains("not calibrated"), "FP-2 has no set: {page}");
+    assert!(page.contains(robocal::api::fleet::NO_CHECKS));
+    for outside in ["http://", "https://", "<script", "src=\""] {
+        assert!(!page.contains(outside), "{outside} in {page}");
+    }
+
+    let robot = app.get("/robots/FP-1").await.text().await.unwrap();
+    assert!(robot.contains("href=\"/robots/FP-1/reports/1\""), "{robot}");
+    assert!(robot.contains("(current)"));
+    let report = app.get("/robots/FP-1/reports/1").await;
+    assert_eq!(report.status(), 200);
+    assert!(report.text().await.unwrap().contains("validation poses"));
+
+    let missing = app.get("/robots/NOPE").await;
+    assert_eq!(missing.status(), 404);
+    assert!(missing
+        .text()
+        .await
+        .unwrap()
+        .contains("There is no robot NOPE"));
+    assert_eq!(app.get("/robots/FP-1/reports/9").await.status(), 404);
+    assert_eq!(app.get("/robots/FP-1/reports/x").await.status(), 404);
+}
+
+#[tokio::test]
+async fn with_tokens_the_pages_need_a_login_cookie_never_the_token_in_a_url() {
+    let app = spawn_app().await;
+    robot_with_reported_set(&app, "FP-3").await;
+    let (token, token_id) = read_token(&app, Scope::Read).await;
+    let c = no_redirects();
+
+    let r = c.get(app.url("/")).send().await.unwrap();
+    assert_eq!(r.status(), StatusCode::SEE_OTHER);
+    assert_eq!(r.headers()["location"], "/login");
+    let form = c.get(app.url("/login")).send().await.unwrap();
+    assert_eq!(form.status(), 200);
+    assert!(form.text().await.unwrap().contains("action=\"/login\""));
+
+    let bad = c
+        .post(app.url("/login"))
+        .header("content-type", "application/x-www-form-urlencoded")
+        .body("token=rbc_wrong")
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(bad.status(), 401);
+    assert!(bad.headers().get("set-cookie").is_none());
+    assert!(bad.text().await.unwrap().contains("unknown token"));
+
+    let ok = c
+        .post(app.url("/login"))
+        .header("content-type", "application/x-www-form-urlencoded")
+        .body(format!("token={token}"))
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(ok.status(), StatusCode::SEE_OTHER);
+    assert_eq!(ok.headers()["location"], "/");
+    let cookie = ok.headers()["set-cookie"].to_str().unwrap().to_string();
+    assert!(cookie.starts_with("robocal_session="), "{cookie}");
+    assert!(
+        cookie.contains("HttpOnly") && cookie.contains("SameSite=Strict"),
+        "{cookie}"
+    );
+    assert!(
+        !cookie.contains(&token),
+        "the cookie holds a session, not the token"
+    );
+    let session = cookie.split(';').next().unwrap().to_string();
+
+    let page = c
+        .get(app.url("/"))
+        .header("cookie", &session)
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(page.status(), 200);
+    let text = page.text().await.unwrap();
+    assert!(text.contains("href=\"/robots/FP-3\""));
+    assert!(text.contains("action=\"/logout\""));
+
+    // An altered cookie is no session.
+    let forged = session.replacen(&token_id, "someone-else", 1);
+    let r = c
+        .get(app.url("/"))
+        .header("cookie", forged)
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(r.status(), StatusCode::SEE_OTHER);
+
+    // The API itself still wants the bearer token, not the cookie.
+    let api = c
+        .get(app.url("/v1/robots"))
+        .header("cookie", &session)
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(api.status(), 401);
+
+    let out = c.post(app.url("/logout")).send().await.unwrap();
+    assert_eq!(out.status(), StatusCode::SEE_OTHER);
+    assert!(out.headers()["set-cookie"]
+        .to_str()
+        .unwrap()
+        .contains("Max-Age=0"));
+
+    // Revoking the token ends its sessions.
+    let s = store::connect(&app.database_url).await.unwrap();
+    s.revoke_token(&token_id).await.unwrap();
+    let r = c
+        .get(app.url("/"))
+        .header("cookie", &session)
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(r.status(), StatusCode::SEE_OTHER);
+}
+
+#[tokio::test]
+async fn anonymous_pages_refuse_a_rebound_host() {
+    let app = spawn_app().await;
+    let r = app
+        .client
+        .get(app.url("/"))
+        .header("host", "evil.example")
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(r.status(), 421);
+}
