@@ -14,7 +14,7 @@ use serde_json::{json, Value};
 
 use crate::support::*;
 
-fn set(k: f64, status: ReleaseStatus) -> NewParameterSet {
+pub fn set(k: f64, status: ReleaseStatus) -> NewParameterSet {
     NewParameterSet {
         parameters: json!({"kinematics": {"joints": []}, "k": k, "parameters": [
             {"name": "dtheta_2", "unit": "deg", "nominal": 0.0, "identified": k, "std": 0.01, "fixed": false},

@@ -12,7 +12,7 @@ use hmac::{Hmac, Mac};
 use serde_json::{json, Value};
 use sha2::Sha256;
 
-use robocal::domain::Scope;
+use robocal::domain::{ReleaseStatus, Scope};
 
 use super::fleet_page::read_token;
 use crate::support::*;
@@ -110,9 +110,18 @@ fn verify(secret: &str, s: &Seen) {
 }
 
 async fn create_hook(c: &reqwest::Client, base: &str, url: &str) -> (String, String) {
+    create_hook_for(c, base, url, "job.finished").await
+}
+
+async fn create_hook_for(
+    c: &reqwest::Client,
+    base: &str,
+    url: &str,
+    event: &str,
+) -> (String, String) {
     let r = c
         .post(format!("{base}/v1/webhooks"))
-        .json(&json!({ "url": url, "events": ["job.finished"] }))
+        .json(&json!({ "url": url, "events": [event] }))
         .send()
         .await
         .unwrap();
@@ -254,6 +263,36 @@ async fn job_finished_is_delivered_signed_and_retried_after_500() {
         assert!(start.elapsed() < WAIT, "{v}");
         tokio::time::sleep(Duration::from_millis(50)).await;
     }
+}
+
+#[tokio::test]
+async fn set_approved_is_delivered_when_a_person_approves() {
+    let app = spawn_app().await;
+    let rx = Receiver::default();
+    let url = rx.start().await;
+    let (_, secret) = create_hook_for(&app.client, &app.base, &url, "set.approved").await;
+    app.robot_and_session("WH-3").await;
+    let store = robocal::store::connect(&app.database_url).await.unwrap();
+    store
+        .insert_parameter_set(
+            "WH-3",
+            None,
+            &super::release_gate::set(1.0, ReleaseStatus::Candidate),
+        )
+        .await
+        .unwrap();
+    let r = app
+        .post_json("/v1/robots/WH-3/parameter-sets/1/approve", &json!({}))
+        .await;
+    assert_eq!(r.status(), 200);
+    let seen = rx.wait_delivered().await;
+    assert_eq!(seen.len(), 1, "{seen:?}");
+    verify(&secret, &seen[0]);
+    let body: Value = serde_json::from_slice(&seen[0].body).unwrap();
+    assert_eq!(body["type"], "set.approved", "{body}");
+    assert_eq!(body["data"]["serial"], "WH-3");
+    assert_eq!(body["data"]["version"], 1);
+    assert_eq!(body["data"]["approved_by"], "anonymous");
 }
 
 #[tokio::test]
