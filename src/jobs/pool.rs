@@ -211,7 +211,7 @@ impl Worker {
                 parameter_set: out.parameter_set,
                 summary: serde_json::to_value(&out.summary).unwrap_or_default(),
                 detections: stamp(&job_id, out.detections),
-                check: out.check,
+                check: out.check.map(Box::new),
             },
             Ok(Err(PipelineError::Cancelled)) if releasing => {
                 tracing::info!("shutdown: job released to the queue");

@@ -164,7 +164,7 @@ pub enum JobOutcome {
         detections: Vec<PoseDetection>,
         /// A quick re-check's verdict document (issue 17), merged into the
         /// job's `result` at its top level.
-        check: Option<CheckDoc>,
+        check: Option<Box<CheckDoc>>,
     },
     /// Failed for good (bad input): no retry.
     Failed { error: String },

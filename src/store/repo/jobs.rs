@@ -1,15 +1,11 @@
 use async_trait::async_trait;
-use serde_json::json;
 use sqlx::Transaction;
 
 use super::detections::write_detections_tx;
+use super::job_success::{record_success_tx, Success};
 use super::page_cursor;
-use super::results::insert_parameter_set_tx;
 use super::webhooks::record_event_tx;
-use crate::domain::{
-    new_id, now_rfc3339, now_unix_ms, DomainEvent, JobState, LeaseStatus, Page, ReleaseStatus,
-    GATE_ACTOR,
-};
+use crate::domain::{new_id, now_rfc3339, now_unix_ms, DomainEvent, JobState, LeaseStatus, Page};
 use crate::store::backend::{is_foreign_key_violation, Backend};
 use crate::store::rows::{claimed_job, job, Columns};
 use crate::store::statement::{query, DbRow};
@@ -230,43 +226,17 @@ impl<B: Backend> JobStore for B {
                 detections,
                 check,
             } => {
-                if !detections.is_empty() {
-                    write_detections_tx::<B>(&mut tx, held.str("session_id"), detections).await?;
-                }
-                let mut result = json!({ "summary": summary });
-                if let Some(set) = parameter_set {
-                    let stored =
-                        insert_parameter_set_tx::<B>(&mut tx, &serial, Some(job_id), set).await?;
-                    result["serial"] = json!(serial);
-                    result["version"] = json!(stored);
-                    version = Some(stored);
-                    result["status"] = json!(set.release.status.as_str());
-                    if let Some(reason) = &set.release.reason {
-                        result["status_reason"] = json!(reason);
-                    }
-                    if set.release.status == ReleaseStatus::Approved {
-                        let event = DomainEvent::SetApproved {
-                            serial: serial.clone(),
-                            version: stored,
-                            approved_by: GATE_ACTOR.to_string(),
-                        };
-                        record_event_tx::<B>(&mut tx, &event, now_unix_ms()).await?;
-                    }
-                }
-                if let Some(check) = check {
-                    if let (Ok(serde_json::Value::Object(fields)), Some(out)) =
-                        (serde_json::to_value(check), result.as_object_mut())
-                    {
-                        out.extend(fields);
-                    }
-                    let event = DomainEvent::CheckFinished {
-                        job_id: job_id.to_string(),
-                        serial: serial.clone(),
-                        verdict: check.verdict.as_str().to_string(),
-                        version: version_of(&check.checked_against),
-                    };
-                    record_event_tx::<B>(&mut tx, &event, now_unix_ms()).await?;
-                }
+                let success = Success {
+                    job_id,
+                    session_id: held.str("session_id"),
+                    serial: &serial,
+                    parameter_set: parameter_set.as_ref(),
+                    summary,
+                    detections,
+                    check: check.as_deref(),
+                };
+                let (result, stored) = record_success_tx::<B>(&mut tx, success).await?;
+                version = stored;
                 ("succeeded", None, Some(result.to_string()))
             }
             JobOutcome::Failed { error } => ("failed", Some(error.clone()), None),
@@ -402,13 +372,4 @@ async fn lost_or_cancelled<B: Backend>(store: &B, job_id: &str) -> StoreResult<L
         Some("cancelled") => LeaseStatus::Cancelled,
         _ => LeaseStatus::Lost,
     })
-}
-
-/// The version of a `"{serial}/{version}"` reference (0 when malformed:
-/// the check stored it from the set it loaded, so it never is).
-fn version_of(set_ref: &str) -> i64 {
-    set_ref
-        .rsplit_once('/')
-        .and_then(|(_, v)| v.parse().ok())
-        .unwrap_or(0)
 }

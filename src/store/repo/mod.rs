@@ -15,6 +15,7 @@ use super::{Store, StoreResult};
 mod auth;
 mod campaign_plans;
 mod detections;
+mod job_success;
 mod jobs;
 mod release;
 mod results;
