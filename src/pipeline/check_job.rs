@@ -20,14 +20,7 @@ use crate::schema::FieldError;
 const CHECK_JOINT_SIGMA_DEG: f64 = 1e-3;
 
 fn numerical(message: impl std::fmt::Display) -> PipelineError {
-    PipelineError::Numerical {
-        stage: Stage::Identify.as_str(),
-        message: message.to_string(),
-    }
-}
-
-fn invalid(field: &str, message: String) -> PipelineError {
-    PipelineError::Invalid(vec![FieldError::new(field, message)])
+    PipelineError::numerical(Stage::Identify, message)
 }
 
 /// Runs the re-check after the camera stage (camera sessions) or directly
@@ -38,7 +31,7 @@ pub fn run(
     within: &dyn Fn(Stage, &str, f64),
 ) -> Result<Output, PipelineError> {
     let approved = input.approved.as_ref().ok_or_else(|| {
-        invalid(
+        PipelineError::invalid(
             "serial",
             format!(
                 "robot {} has no approved parameter set to check against",
@@ -46,22 +39,13 @@ pub fn run(
             ),
         )
     })?;
-    let instrument = approved.set.layout_instrument();
-    if (instrument == Instrument::Camera) != camera.is_some() {
-        return Err(invalid(
-            "session",
-            format!(
-                "the approved set {} was calibrated with another instrument than this session's",
-                approved.id
-            ),
-        ));
-    }
+    let (instrument, kind) = approved.measurement_for(camera.is_some(), "session")?;
     let model = approved.set.model().map_err(numerical)?;
     let covariance = approved
         .set
         .covariance_matrix()
         .ok_or_else(|| {
-            invalid(
+            PipelineError::invalid(
                 "serial",
                 format!(
                     "the approved set {} was stored without its covariance: calibrate again to check against it",
@@ -71,10 +55,6 @@ pub fn run(
         })?
         .map_err(numerical)?;
     within(Stage::Identify, "re-check against the approved set", 0.0);
-    let kind = match instrument {
-        Instrument::Camera => MeasurementKind::Pose,
-        Instrument::Tracker => MeasurementKind::Position,
-    };
     let data: Vec<_> = (0..input.poses.len())
         .filter_map(|i| measurement_of(&input.poses[i], i, camera, None, kind))
         .collect();

@@ -64,6 +64,21 @@ pub enum PipelineError {
     Cancelled,
 }
 
+impl PipelineError {
+    /// The session's data is wrong in `field`.
+    pub fn invalid(field: &str, message: impl Into<String>) -> PipelineError {
+        PipelineError::Invalid(vec![FieldError::new(field, message.into())])
+    }
+
+    /// `stage` failed on degenerate data.
+    pub fn numerical(stage: super::Stage, message: impl std::fmt::Display) -> PipelineError {
+        PipelineError::Numerical {
+            stage: stage.as_str(),
+            message: message.to_string(),
+        }
+    }
+}
+
 fn describe(errors: &[FieldError]) -> String {
     errors
         .iter()

@@ -24,14 +24,7 @@ use crate::schema::{FieldError, PoseOut};
 use crate::store::NewParameterSet;
 
 fn numerical(message: impl std::fmt::Display) -> PipelineError {
-    PipelineError::Numerical {
-        stage: Stage::Identify.as_str(),
-        message: message.to_string(),
-    }
-}
-
-fn invalid(field: &str, message: String) -> PipelineError {
-    PipelineError::Invalid(vec![FieldError::new(field, message)])
+    PipelineError::numerical(Stage::Identify, message)
 }
 
 /// The layout indices a scope re-fits.
@@ -57,7 +50,7 @@ pub fn run(
 ) -> Result<Output, PipelineError> {
     let scope = input.options.scope;
     let approved = input.approved.as_ref().ok_or_else(|| {
-        invalid(
+        PipelineError::invalid(
             "scope",
             format!(
                 "scope {:?} holds the latest approved set, and robot {} has none",
@@ -66,21 +59,8 @@ pub fn run(
             ),
         )
     })?;
-    let instrument = approved.set.layout_instrument();
-    if (instrument == Instrument::Camera) != camera.is_some() {
-        return Err(invalid(
-            "scope",
-            format!(
-                "the approved set {} was calibrated with another instrument than this session's",
-                approved.id
-            ),
-        ));
-    }
+    let (instrument, kind) = approved.measurement_for(camera.is_some(), "scope")?;
     let held = approved.set.model().map_err(numerical)?;
-    let kind = match instrument {
-        Instrument::Camera => MeasurementKind::Pose,
-        Instrument::Tracker => MeasurementKind::Position,
-    };
     within(Stage::Identify, "re-fitting the scope's frame", 0.0);
     let usable: Vec<usize> = (0..input.poses.len())
         .filter(|&i| camera.is_none_or(|c| c.view_pose.contains(&i)))
