@@ -5,14 +5,12 @@
 //! No parameter set is stored; the verdict is the job's `result`.
 
 use robocal_calib::kinematics::recheck::{recheck, RecheckInput, Verdict, SIGNIFICANCE};
-use robocal_calib::kinematics::{Instrument, ParamLayout};
+use robocal_calib::kinematics::ParamLayout;
 
 use super::camera_stage::CameraStep;
 use super::identify_stage::measurement_of;
 use super::{Input, Output, PipelineError, Stage, Summary};
 use crate::domain::{CheckDoc, CheckSuspect, CheckVerdict};
-use crate::schema::job::Measurement as MeasurementKind;
-use crate::schema::FieldError;
 
 /// Joint noise (encoders, repeatability) assumed in the check's
 /// covariance: the sets do not store the refinement's estimate, and an

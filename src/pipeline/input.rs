@@ -7,9 +7,9 @@ use std::time::Duration;
 use robocal_calib::camera::Intrinsics;
 use robocal_calib::kinematics::{Instrument, RobotModel};
 
+use super::PipelineError;
 use crate::domain::{FlangePose, ImageDetection, JointsDeg, ParameterSet};
 use crate::imaging::DecodeGate;
-use super::PipelineError;
 use crate::schema::job::{CalibrationOptions, Measurement as MeasurementKind};
 use crate::schema::robot::KinematicsDoc;
 use crate::schema::session::{ImagePointDoc, PoseSet, SessionBody};

@@ -10,7 +10,7 @@ use robocal_calib::kinematics::identify::{
     fit_parameters, validate, IdentifyMode, IdentifyOptions, JointNoise,
 };
 use robocal_calib::kinematics::initial::initial_world_to_base;
-use robocal_calib::kinematics::{Instrument, ParamKind, ParamLayout};
+use robocal_calib::kinematics::{ParamKind, ParamLayout};
 
 use super::camera_stage::{camera_report, CameraStep};
 use super::identify_stage::{measurement_of, split};
@@ -20,7 +20,7 @@ use super::{Input, Output, PipelineError, Stage, Summary};
 use crate::domain::ParameterSet;
 use crate::report::{DetectionReport, IdentifiabilityReport, PoseReport, Report};
 use crate::schema::job::{CalibrationScope, Measurement as MeasurementKind};
-use crate::schema::{FieldError, PoseOut};
+use crate::schema::PoseOut;
 use crate::store::NewParameterSet;
 
 fn numerical(message: impl std::fmt::Display) -> PipelineError {
