@@ -27,7 +27,7 @@ pub fn router() -> OpenApiRouter<AppState> {
 /// job answers its `end` at once).
 #[utoipa::path(get, path = "/v1/jobs/{id}/events", tag = "jobs",
     params(("id" = String, Path, description = "Job id")),
-    responses((status = 200, description = "Server-Sent Events: `stage`, `progress`, then `end` with the job", content_type = "text/event-stream", body = String),
+    responses((status = 200, description = "Server-Sent Events: `stage`, `progress`, then `end` with the job", content_type = "text/event-stream", body = crate::schema::job::JobEventFrame),
               (status = 404, body = Problem, content_type = "application/problem+json")))]
 async fn job_events(
     State(state): State<AppState>,

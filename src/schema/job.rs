@@ -124,3 +124,17 @@ impl CalibrationOptions {
         c.finish()
     }
 }
+
+/// One Server-Sent Event of `GET /v1/jobs/{id}/events`, as a client's SSE
+/// parser sees it: its name and its `data` line (a JSON document).
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct JobEventFrame {
+    /// `stage` (`data`: `{"stage", "progress"}`) when the job enters a
+    /// stage, `progress` (same `data`) as it advances, `end` (`data`: the
+    /// job, as `GET /v1/jobs/{id}` answers) when it ended; the stream then
+    /// closes.
+    #[schema(pattern = "^(stage|progress|end)$")]
+    pub event: String,
+    /// The event's JSON document, as text.
+    pub data: String,
+}
