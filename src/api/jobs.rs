@@ -90,6 +90,22 @@ pub struct JobAccepted {
     pub job: JobOut,
 }
 
+impl JobAccepted {
+    /// `202 Accepted` with `Location: /v1/jobs/{id}` and the queued job.
+    pub fn response(job: JobRecord) -> Response {
+        let location = format!("/v1/jobs/{}", job.id);
+        (
+            StatusCode::ACCEPTED,
+            [(header::LOCATION, location)],
+            Json(JobAccepted {
+                job_id: job.id.clone(),
+                job: job.into(),
+            }),
+        )
+            .into_response()
+    }
+}
+
 /// Queue a calibration of the session. Answers 429 with `Retry-After` when
 /// the queue is full (nothing is written then).
 #[utoipa::path(post, path = "/v1/sessions/{id}/calibrations", tag = "jobs",
@@ -110,16 +126,7 @@ async fn start_calibration(
         crate::service::checks::start_calibration(&state.store, &state.policy, &session, &options)
             .await?;
     state.wake.notify_one();
-    let location = format!("/v1/jobs/{}", job.id);
-    Ok((
-        StatusCode::ACCEPTED,
-        [(header::LOCATION, location)],
-        Json(JobAccepted {
-            job_id: job.id.clone(),
-            job: job.into(),
-        }),
-    )
-        .into_response())
+    Ok(JobAccepted::response(job))
 }
 
 /// All jobs of every session, newest first, so one can see what runs;

@@ -3,8 +3,7 @@
 //! against the robot's latest approved set.
 
 use axum::extract::{Path, State};
-use axum::http::{header, StatusCode};
-use axum::response::{IntoResponse, Response};
+use axum::response::Response;
 use axum::{Extension, Json};
 use serde::Deserialize;
 use utoipa::ToSchema;
@@ -159,14 +158,5 @@ async fn start_check(
     let session = find_session(&state, &id).await?;
     let job = checks::start_check(&state.store, &state.policy, &session).await?;
     state.wake.notify_one();
-    let location = format!("/v1/jobs/{}", job.id);
-    Ok((
-        StatusCode::ACCEPTED,
-        [(header::LOCATION, location)],
-        Json(JobAccepted {
-            job_id: job.id.clone(),
-            job: job.into(),
-        }),
-    )
-        .into_response())
+    Ok(JobAccepted::response(job))
 }
