@@ -38,27 +38,13 @@ async fn read_events(r: reqwest::Response) -> Vec<(String, Value)> {
         .collect()
 }
 
-async fn start_job(app: &TestApp, session: &str) -> String {
-    let r = app
-        .client
-        .post(app.url(&format!("/v1/sessions/{session}/calibrations")))
-        .send()
-        .await
-        .unwrap();
-    assert_eq!(r.status(), 202);
-    r.json::<Value>().await.unwrap()["job_id"]
-        .as_str()
-        .unwrap()
-        .to_string()
-}
-
 #[tokio::test]
 async fn job_events_stream_stages_progress_and_end_then_close() {
     // 4 poses × 500 ms: a few heartbeats of visible progress.
     let app = spawn_app_with(|c| c.test_stage_delay_ms = 500).await;
     let session = app.robot_and_session("EV-1").await;
     app.add_point_poses(&session, 3, 1).await;
-    let job = start_job(&app, &session).await;
+    let job = start_calibration(&app.client, &app.base, &session).await;
 
     let r = app.get(&format!("/v1/jobs/{job}/events")).await;
     assert_eq!(r.status(), 200);
@@ -106,8 +92,11 @@ async fn jobs_filter_by_state_serial_and_kind_with_paging() {
     let b = app.robot_and_session("FLT-B").await;
     app.add_point_poses(&a, 3, 1).await;
     app.add_point_poses(&b, 3, 1).await;
-    let a_jobs = [start_job(&app, &a).await, start_job(&app, &a).await];
-    let b_job = start_job(&app, &b).await;
+    let a_jobs = [
+        start_calibration(&app.client, &app.base, &a).await,
+        start_calibration(&app.client, &app.base, &a).await,
+    ];
+    let b_job = start_calibration(&app.client, &app.base, &b).await;
     for j in a_jobs.iter().chain([&b_job]) {
         app.wait_job(j, WAIT, is_finished).await;
     }

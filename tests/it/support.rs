@@ -187,6 +187,20 @@ impl TestApp {
     }
 }
 
+/// Starts a calibration of `session` (default options); returns the job id.
+pub async fn start_calibration(c: &reqwest::Client, base: &str, session: &str) -> String {
+    let r = c
+        .post(format!("{base}/v1/sessions/{session}/calibrations"))
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(r.status(), 202);
+    r.json::<Value>().await.unwrap()["job_id"]
+        .as_str()
+        .unwrap()
+        .to_string()
+}
+
 pub async fn wait_job_at(
     client: &reqwest::Client,
     base: &str,

@@ -132,19 +132,6 @@ async fn create_hook_for(
     (v["id"].as_str().unwrap().to_string(), secret)
 }
 
-async fn start_job(c: &reqwest::Client, base: &str, session: &str) -> String {
-    let r = c
-        .post(format!("{base}/v1/sessions/{session}/calibrations"))
-        .send()
-        .await
-        .unwrap();
-    assert_eq!(r.status(), 202);
-    r.json::<Value>().await.unwrap()["job_id"]
-        .as_str()
-        .unwrap()
-        .to_string()
-}
-
 #[tokio::test]
 async fn webhooks_refuse_bad_urls_and_events_and_need_admin() {
     let app = spawn_app().await;
@@ -225,7 +212,7 @@ async fn job_finished_is_delivered_signed_and_retried_after_500() {
 
     let session = app.robot_and_session("WH-1").await;
     app.add_point_poses(&session, 3, 1).await;
-    let job = start_job(&app.client, &app.base, &session).await;
+    let job = start_calibration(&app.client, &app.base, &session).await;
     let done = app.wait_job(&job, WAIT, is_finished).await;
     assert_eq!(done["state"], "succeeded", "{done}");
 
@@ -323,7 +310,7 @@ async fn webhook_events_survive_kill_9_of_the_sender() {
     let mut first = spawn_binary(&args, &[]);
     let (_, secret) = create_hook(&c, &first.base, &url).await;
     let (session, _, _) = robot_with_session(&c, &first.base, "WH-K9", 7, "cal").await;
-    let job = start_job(&c, &first.base, &session).await;
+    let job = start_calibration(&c, &first.base, &session).await;
     let done = wait_job_at(&c, &first.base, &job, WAIT, is_finished).await;
     assert_eq!(done["state"], "succeeded", "{done}");
     // The receiver is down (500) while the sender dies without any cleanup.
