@@ -18,5 +18,6 @@ pub mod plan;
 pub mod schur;
 pub mod sim;
 pub mod solver;
+pub mod stage;
 pub mod stats;
 pub mod vision;

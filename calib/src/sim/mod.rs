@@ -18,6 +18,8 @@ pub mod render_chessboard;
 /// Circle boards: symmetric dot grids and OpenCV's asymmetric grid.
 pub mod render_circles;
 pub mod rendered_camera;
+/// The paper's stage accuracy test (section 4; issue 18).
+pub mod stage_campaign;
 pub mod start_model;
 /// Laser-tracker campaigns with optional non-geometric errors (issue 19).
 pub mod tracker_campaign;
