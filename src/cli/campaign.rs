@@ -219,6 +219,7 @@ pub fn run_local_with(
             image_points: Vec::new(),
             measured_position_mm: None,
             measured_pose: None,
+            stage_reading: None,
         });
     }
     let input = Input {

@@ -17,6 +17,7 @@ mod parameter_set;
 mod pose_set;
 mod release;
 mod serial;
+mod stage_reading;
 mod target;
 mod target_symmetry;
 
@@ -36,6 +37,7 @@ pub use parameter_set::{FrameNames, ParameterSet};
 pub use pose_set::PoseSet;
 pub use release::{Decision, Release, ReleaseStatus, ANONYMOUS_ACTOR, GATE_ACTOR};
 pub use serial::{InvalidSerial, Serial, MAX_SERIAL_LEN, SERIAL_RULE};
+pub use stage_reading::{StageReading, MAX_SEQUENCE};
 pub use target::{FoundPoint, Target};
 pub use target_symmetry::BoardSymmetry;
 

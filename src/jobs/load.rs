@@ -96,6 +96,7 @@ pub async fn load_input(
                 image_points: p.points,
                 measured_position_mm: measured.measured_position_mm,
                 measured_pose: measured.measured_pose,
+                stage_reading: p.stage_reading,
             });
         }
         match page.next_cursor {

@@ -272,6 +272,7 @@ fn report(
                 reprojection_rms_px: rms_of(i),
                 outlier: reason_of(i).is_some(),
                 reason: reason_of(i),
+                camera_in_target: None,
             }
         })
         .collect();
@@ -344,5 +345,6 @@ fn report(
         notes,
         uncertainty_map: None,
         gate: None,
+        measurement_accuracy: None,
     }
 }

@@ -8,7 +8,7 @@ use robocal_calib::camera::Intrinsics;
 use robocal_calib::kinematics::{Instrument, RobotModel};
 
 use super::PipelineError;
-use crate::domain::{FlangePose, ImageDetection, JointsDeg, ParameterSet};
+use crate::domain::{FlangePose, ImageDetection, JointsDeg, ParameterSet, StageReading};
 use crate::imaging::DecodeGate;
 use crate::schema::job::{CalibrationOptions, Measurement as MeasurementKind};
 use crate::schema::robot::KinematicsDoc;
@@ -106,6 +106,8 @@ pub struct PoseInput {
     pub image_points: Vec<ImagePointDoc>,
     pub measured_position_mm: Option<[f64; 3]>,
     pub measured_pose: Option<PoseDoc>,
+    /// A stage session's image: the stage's reading (issue 18).
+    pub stage_reading: Option<StageReading>,
 }
 
 /// A pose's image as a job sees it.

@@ -198,6 +198,7 @@ mod tests {
             }),
             image_points: vec![],
             measured_position_mm: None,
+            stage_reading: None,
             measured_pose: None,
         }
     }

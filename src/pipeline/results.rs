@@ -180,6 +180,7 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSet) -> Report {
             reprojection_rms_px: per_view_rms(*i),
             outlier: reason_of(*i).is_some(),
             reason: reason_of(*i),
+            camera_in_target: None,
         })
         .collect();
     let ident = &id.identification.identifiability;
@@ -240,6 +241,7 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSet) -> Report {
         notes,
         uncertainty_map: super::uncertainty_map::workspace_map(id, ctx.poses),
         gate: None,
+        measurement_accuracy: None,
     }
 }
 

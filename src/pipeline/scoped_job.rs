@@ -144,6 +144,7 @@ pub fn run(
             reprojection_rms_px: None,
             outlier: false,
             reason: None,
+            camera_in_target: None,
         })
         .collect();
     let report = Report {
@@ -184,6 +185,7 @@ pub fn run(
         notes,
         uncertainty_map: None,
         gate: Some(gate.report),
+        measurement_accuracy: None,
     };
     let summary = Summary {
         calibration_poses: cal_data.len(),

@@ -12,6 +12,7 @@ pub mod format;
 pub mod hand_eye;
 mod html;
 mod html_sections;
+pub mod measurement_accuracy;
 pub mod model;
 mod plot;
 mod pose_chart;
@@ -26,6 +27,9 @@ mod xml_check;
 
 pub use hand_eye::{BoardScaleReport, FrameReport, HandEyeReport};
 pub use html::render_html;
+pub use measurement_accuracy::{
+    MeasurementAccuracyReport, SequenceAccuracyReport, TravelErrorReport,
+};
 pub use model::*;
 pub use svg::render_svg;
 pub use table::render_table;

@@ -109,6 +109,10 @@ pub struct PoseReport {
     /// Why the pose was left out.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reason: Option<String>,
+    /// A stage session's image: the camera pose its image alone measures
+    /// with the calibrated camera (the target frame; paper eqs. 37–39).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub camera_in_target: Option<crate::schema::PoseOut>,
 }
 
 /// The name a rendering shows for a pose: its label, or its id in reports
@@ -218,6 +222,10 @@ pub struct Report {
     /// and in sets stored without a job).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gate: Option<GateReport>,
+    /// A stage session's set (issue 18): the measurement system's own
+    /// accuracy per sequence (paper Table 1, Fig. 5).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub measurement_accuracy: Option<super::MeasurementAccuracyReport>,
 }
 
 /// Predicted 1σ of the tool (camera or tracker tool point) position over a

@@ -123,6 +123,7 @@ pub fn sample_report_sized(calibration: usize, validation: usize) -> Report {
         ],
         uncertainty_map: Some(super::uncertainty_chart::sample_map()),
         gate: None,
+        measurement_accuracy: None,
     }
 }
 
@@ -191,6 +192,7 @@ fn sample_poses(rng: &mut SampleRng, calibration: usize, validation: usize) -> V
             reprojection_rms_px: Some(rng.uniform(0.05, 0.10)),
             outlier: false,
             reason: None,
+            camera_in_target: None,
         });
     }
     poses

@@ -24,6 +24,10 @@ pub enum Instrument {
     #[default]
     Camera,
     Tracker,
+    /// A camera on a linear stage (issue 18, paper section 4): poses are
+    /// images with the stage's reading, and the job calibrates and assesses
+    /// the camera itself (no robot is identified).
+    Stage,
 }
 
 impl Instrument {
@@ -31,7 +35,13 @@ impl Instrument {
         match self {
             Instrument::Camera => "camera",
             Instrument::Tracker => "tracker",
+            Instrument::Stage => "stage",
         }
+    }
+
+    /// Whether the session's poses carry images of a board.
+    pub fn has_camera(self) -> bool {
+        matches!(self, Instrument::Camera | Instrument::Stage)
     }
 }
 
@@ -132,9 +142,9 @@ pub struct SessionBody {
 impl SessionBody {
     pub fn check(&self) -> Result<(), Vec<FieldError>> {
         let mut c = Checker::default();
-        if self.instrument == Instrument::Camera {
+        if self.instrument.has_camera() {
             match &self.target {
-                None => c.fail("target", "required for a camera session"),
+                None => c.fail("target", "required for a camera or stage session"),
                 Some(t) => {
                     if let Err(errors) = crate::domain::Target::from_doc(t) {
                         c.errors.extend(errors);
@@ -142,7 +152,7 @@ impl SessionBody {
                 }
             }
             match &self.camera {
-                None => c.fail("camera", "required for a camera session"),
+                None => c.fail("camera", "required for a camera or stage session"),
                 Some(k) => {
                     for (name, v) in [("camera.width", k.width), ("camera.height", k.height)] {
                         if !(1..=MAX_IMAGE_SIDE).contains(&v) {
@@ -161,6 +171,22 @@ impl SessionBody {
         }
         if let Some(p) = &self.flange_to_camera_guess {
             p.check(&mut c, "flange_to_camera_guess");
+        }
+        if self.instrument == Instrument::Stage {
+            // A stage session calibrates the camera itself: there is no
+            // flange, and its intrinsics are what it measures.
+            if self.flange_to_camera_guess.is_some() {
+                c.fail(
+                    "flange_to_camera_guess",
+                    "a stage session has no robot flange",
+                );
+            }
+            if self.camera_calibration_id.is_some() {
+                c.fail(
+                    "camera_calibration_id",
+                    "a stage session calibrates the camera itself",
+                );
+            }
         }
         if let Some(id) = &self.camera_calibration_id {
             if id.is_empty() || id.len() > 100 {

@@ -142,6 +142,7 @@ impl PoseIntake {
                     label: label_from_archive_path(&reader.manifest[k].image),
                     image_detection: ingested.detection,
                     flange_pose,
+                    stage_reading: None,
                 });
             }
             if failure.is_some() && in_flight.is_empty() {

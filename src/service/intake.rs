@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use super::error::{ServiceError, ServiceResult};
 use super::images::{ingest_image, ImageCheck};
-use crate::domain::{check_robot_pose, PoseKind};
+use crate::domain::{check_robot_pose, JointsDeg, PoseKind, StageReading};
 use crate::imaging::DecodeGate;
 use crate::schema::flange_pose::FlangePoseDoc;
 use crate::schema::session::{Instrument, PoseJsonBody, PoseSet, SessionBody};
@@ -35,6 +35,10 @@ pub struct ImagePose {
     pub image: Vec<u8>,
     /// The image's file name, as a label.
     pub label: Option<String>,
+    /// A stage session's parts (issue 18): the stage's reading and the
+    /// sequence, as sent (checked by [`StageReading::check`]).
+    pub stage_position_mm: Option<[f64; 3]>,
+    pub sequence: Option<u32>,
 }
 
 /// The stored session `id`, or 404.
@@ -80,7 +84,7 @@ impl PoseIntake {
 
     /// Refuses images for a tracker session (checked before the body is read).
     pub fn check_takes_images(&self) -> ServiceResult<()> {
-        if self.spec.instrument != Instrument::Camera {
+        if !self.spec.instrument.has_camera() {
             return Err(ServiceError::invalid(
                 "image",
                 "a tracker session takes JSON measurements",
@@ -96,6 +100,12 @@ impl PoseIntake {
 
     /// Stores one JSON pose (image points or a tracker measurement).
     pub async fn add_json(self, body: PoseJsonBody) -> ServiceResult<PoseRecord> {
+        if self.spec.instrument == Instrument::Stage {
+            return Err(ServiceError::invalid(
+                "image",
+                "a stage session takes multipart poses: image, stage_position_mm, sequence",
+            ));
+        }
         let checked = body.check(
             self.spec.instrument,
             self.spec.camera.as_ref(),
@@ -126,6 +136,7 @@ impl PoseIntake {
             label: body.label,
             image_detection: None,
             flange_pose,
+            stage_reading: None,
         };
         self.store_one(pose).await
     }
@@ -133,6 +144,20 @@ impl PoseIntake {
     /// Checks the joints, then checks, detects and stores the image, then
     /// the pose.
     pub async fn add_image(self, upload: ImagePose) -> ServiceResult<PoseRecord> {
+        if self.spec.instrument == Instrument::Stage {
+            return self.add_stage_image(upload).await;
+        }
+        if upload.stage_position_mm.is_some() || upload.sequence.is_some() {
+            let field = if upload.stage_position_mm.is_some() {
+                "stage_position_mm"
+            } else {
+                "sequence"
+            };
+            return Err(ServiceError::invalid(
+                field,
+                "only a stage session takes it",
+            ));
+        }
         let mut c = Checker::default();
         let (kind, robot_pose) = check_robot_pose(
             &mut c,
@@ -162,6 +187,42 @@ impl PoseIntake {
             label: upload.label,
             image_detection: ingested.detection,
             flange_pose,
+            stage_reading: None,
+        };
+        self.store_one(pose).await
+    }
+
+    /// A stage session's image: the stage's reading instead of joints.
+    async fn add_stage_image(self, upload: ImagePose) -> ServiceResult<PoseRecord> {
+        if upload.joints_deg.is_some() || upload.flange_pose.is_some() {
+            let field = if upload.joints_deg.is_some() {
+                "joints_deg"
+            } else {
+                "flange_pose"
+            };
+            return Err(ServiceError::invalid(
+                field,
+                "a stage session takes stage_position_mm and sequence",
+            ));
+        }
+        let reading = StageReading::check(upload.sequence, upload.stage_position_mm)?;
+        let ingested = ingest_image(
+            self.store.clone(),
+            upload.image,
+            self.image_check(),
+            "image".into(),
+        )
+        .await?;
+        let pose = NewPose {
+            joints_deg: JointsDeg::stored(Vec::new()),
+            set: upload.set,
+            image: Some(ingested.meta),
+            points: Vec::new(),
+            measured: None,
+            label: upload.label,
+            image_detection: ingested.detection,
+            flange_pose: None,
+            stage_reading: Some(reading),
         };
         self.store_one(pose).await
     }

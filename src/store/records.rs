@@ -9,6 +9,7 @@
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
+use crate::domain::StageReading;
 use crate::domain::{
     CheckDoc, ImageDetection, ImageMeta, JobState, JointsDeg, MeasuredPose, PoseSet, Release,
     ReleaseStatus,
@@ -75,6 +76,8 @@ pub struct PoseRecord {
     /// The controller's flange pose as uploaded (checked then) of a pose
     /// sent without joints (`joints_deg` is then empty).
     pub flange_pose: Option<FlangePoseDoc>,
+    /// The stage's reading of a stage session's image (`joints_deg` empty).
+    pub stage_reading: Option<StageReading>,
     pub created_at: String,
 }
 
@@ -109,6 +112,8 @@ pub struct NewPose {
     /// The checked flange pose of a pose sent with the controller's flange
     /// pose instead of joints (`joints_deg` empty).
     pub flange_pose: Option<FlangePoseDoc>,
+    /// The checked stage reading of a stage session's image.
+    pub stage_reading: Option<StageReading>,
 }
 
 #[derive(Debug, Clone)]

@@ -111,6 +111,7 @@ pub fn pose(row: &impl Columns) -> StoreResult<PoseRecord> {
         detection: opt_json(row.opt_str("detection"))?,
         image_detection: opt_typed(row.opt_str("image_detection"))?,
         flange_pose: opt_typed(row.opt_str("flange_pose"))?,
+        stage_reading: opt_typed(row.opt_str("stage_reading"))?,
         created_at: row.string("created_at"),
     })
 }

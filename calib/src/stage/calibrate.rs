@@ -10,7 +10,7 @@ use std::collections::HashSet;
 
 use nalgebra::{Isometry3, Point2, Point3, Rotation3, UnitQuaternion, Vector3};
 
-use super::assessment::{assess_sequence, SequenceAccuracy};
+use super::assessment::{assess_sequence, average_rotation_errors, SequenceAccuracy};
 use super::bundle::{BundleView, SequenceFit, SequenceStart, StageBundle};
 use super::layout::{average_rotation, fit_stage_axes, group_sequences};
 use super::{StageError, StageView};
@@ -31,6 +31,9 @@ pub struct StageViewResult {
     pub pose: PoseEstimate,
     /// The bundle's pose of this image (sequence origin + stage translation).
     pub constrained_target_to_camera: Isometry3<f64>,
+    /// The image's position error by the paper's average-rotation method
+    /// (target frame, mm; [`super::assessment::average_rotation_errors`]).
+    pub average_rotation_error_mm: Vector3<f64>,
 }
 
 /// A fitted sequence.
@@ -124,6 +127,7 @@ pub fn calibrate_stage(
         .collect();
     let results = measure_views(views, &bundle_views, &sequences, &intrinsics)?;
     let centre = board_centre(&observations);
+    let mut results = results;
     let accuracy = layout
         .iter()
         .map(|seq| {
@@ -132,6 +136,9 @@ pub fn calibrate_stage(
                 .iter()
                 .map(|&v| results[v].pose.target_to_camera.inverse())
                 .collect();
+            for (&v, e) in seq.views.iter().zip(average_rotation_errors(&measured)) {
+                results[v].average_rotation_error_mm = e;
+            }
             let stage: Vec<Vector3<f64>> = seq
                 .views
                 .iter()
@@ -225,6 +232,7 @@ fn measure_views(
                 sequence: view.sequence,
                 pose,
                 constrained_target_to_camera: constrained,
+                average_rotation_error_mm: Vector3::zeros(),
             })
         })
         .collect()

@@ -28,12 +28,24 @@ pub struct SequenceLayout {
 /// Groups the views by sequence (ascending) and refuses sequences whose
 /// stage positions cannot fix the stage's axes.
 pub fn group_sequences(views: &[StageView]) -> Result<Vec<SequenceLayout>, StageError> {
+    let readings: Vec<(u32, Vector3<f64>)> = views
+        .iter()
+        .map(|v| (v.sequence, v.stage_position_mm))
+        .collect();
+    check_stage_positions(&readings)
+}
+
+/// [`group_sequences`] on the stage readings alone (`(sequence, position)`
+/// per image): what a service checks before it queues a job.
+pub fn check_stage_positions(
+    readings: &[(u32, Vector3<f64>)],
+) -> Result<Vec<SequenceLayout>, StageError> {
     let mut groups: BTreeMap<u32, Vec<usize>> = BTreeMap::new();
-    for (v, view) in views.iter().enumerate() {
-        if !view.stage_position_mm.iter().all(|c| c.is_finite()) {
+    for (v, (sequence, position)) in readings.iter().enumerate() {
+        if !position.iter().all(|c| c.is_finite()) {
             return Err(StageError::NonFinitePosition { view: v });
         }
-        groups.entry(view.sequence).or_default().push(v);
+        groups.entry(*sequence).or_default().push(v);
     }
     groups
         .into_iter()
@@ -45,10 +57,7 @@ pub fn group_sequences(views: &[StageView]) -> Result<Vec<SequenceLayout>, Stage
                     required: MIN_POSITIONS_PER_SEQUENCE,
                 });
             }
-            let positions: Vec<Vector3<f64>> = members
-                .iter()
-                .map(|&v| views[v].stage_position_mm)
-                .collect();
+            let positions: Vec<Vector3<f64>> = members.iter().map(|&v| readings[v].1).collect();
             if is_collinear(&positions) {
                 return Err(StageError::CollinearPositions { sequence });
             }

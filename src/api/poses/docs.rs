@@ -22,6 +22,12 @@ pub struct PoseOut {
     /// pose sent with it instead of joints.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub flange_pose: Option<FlangePoseDoc>,
+    /// A stage session's image: the stage's reading (mm, stage axes).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stage_position_mm: Option<[f64; 3]>,
+    /// A stage session's image: its sequence (board placement).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sequence: Option<u32>,
     pub set: PoseSet,
     /// `image`, `image_points` or `measured`.
     pub source: String,
@@ -99,6 +105,11 @@ pub struct PoseImageUpload {
     /// `{"translation_mm": [x, y, z], "rotation_deg": [rx, ry, rz]}` (fixed
     /// X-Y-Z angles, `R = Rz Ry Rx`) or `{"translation_mm", "matrix": 3x3}`.
     pub flange_pose: Option<String>,
+    /// Stage sessions (instead of joints): the stage's reading, JSON
+    /// `[x, y, z]` in mm (the stage's axes).
+    pub stage_position_mm: Option<String>,
+    /// Stage sessions: the sequence (board placement) of the image, 1 to 1000.
+    pub sequence: Option<u32>,
     /// `cal` (default) or `val`.
     pub set: Option<PoseSet>,
     /// The photo of the board, PNG or JPEG.
@@ -156,6 +167,8 @@ impl From<PoseRecord> for PoseOut {
             session_id: p.session_id,
             joints_deg: p.joints_deg.into_vec(),
             flange_pose: p.flange_pose,
+            stage_position_mm: p.stage_reading.map(|r| r.stage_position_mm),
+            sequence: p.stage_reading.map(|r| r.sequence),
             set: p.set,
             source: source.into(),
             detected_points: points.len(),

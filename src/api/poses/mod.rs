@@ -36,7 +36,8 @@ pub fn router() -> OpenApiRouter<AppState> {
 }
 
 /// Add one pose: `multipart/form-data` (parts `joints_deg` or
-/// `flange_pose`, `set`, `image`) or JSON with `image_points` (camera) or `measured_position_mm` (tracker).
+/// `flange_pose`, or for a stage session `stage_position_mm` and
+/// `sequence`; `set`, `image`) or JSON with `image_points` (camera) or `measured_position_mm` (tracker).
 #[utoipa::path(post, path = "/v1/sessions/{id}/poses", tag = "poses",
     params(("id" = String, Path, description = "Session id")),
     request_body(content(
@@ -86,7 +87,7 @@ async fn read_image_pose(mut multipart: Multipart, max_image_bytes: u64) -> ApiR
         ApiError::malformed("multipart", e.body_text())
     };
     let (mut joints, mut set, mut image, mut label) = (None, PoseSet::Cal, None, None);
-    let mut flange_pose = None;
+    let (mut flange_pose, mut stage_position_mm, mut sequence) = (None, None, None);
     while let Some(mut field) = multipart.next_field().await.map_err(malformed)? {
         let name = field.name().unwrap_or("").to_string();
         match name.as_str() {
@@ -109,6 +110,21 @@ async fn read_image_pose(mut multipart: Multipart, max_image_bytes: u64) -> ApiR
                 })?;
                 flange_pose = Some(parsed);
             }
+            "stage_position_mm" => {
+                let bytes = read_text_part(&mut field, "stage_position_mm").await?;
+                let parsed: [f64; 3] = serde_json::from_slice(&bytes).map_err(|e| {
+                    ApiError::invalid("stage_position_mm", format!("a JSON array [x, y, z] of mm: {e}"))
+                })?;
+                stage_position_mm = Some(parsed);
+            }
+            "sequence" => {
+                let bytes = read_text_part(&mut field, "sequence").await?;
+                let text = String::from_utf8_lossy(&bytes);
+                let parsed: u32 = text.trim().parse().map_err(|_| {
+                    ApiError::invalid("sequence", "an integer 1 to 1000")
+                })?;
+                sequence = Some(parsed);
+            }
             "set" => {
                 let bytes = read_text_part(&mut field, "set").await?;
                 let text = String::from_utf8_lossy(&bytes);
@@ -123,7 +139,7 @@ async fn read_image_pose(mut multipart: Multipart, max_image_bytes: u64) -> ApiR
             other => {
                 return Err(ApiError::invalid(
                     shortened(other),
-                    "unknown part (expected joints_deg or flange_pose, set, image)",
+                    "unknown part (expected joints_deg or flange_pose, or stage_position_mm and sequence; set, image)",
                 ))
             }
         }
@@ -135,6 +151,8 @@ async fn read_image_pose(mut multipart: Multipart, max_image_bytes: u64) -> ApiR
         set,
         image,
         label,
+        stage_position_mm,
+        sequence,
     })
 }
 

@@ -88,6 +88,11 @@ const MIGRATIONS: &[Embedded] = &[
         "webhooks",
         include_str!("../../../migrations/postgres/0010_webhooks.sql"),
     ),
+    (
+        12,
+        "stage reading",
+        include_str!("../../../migrations/postgres/0012_stage_reading.sql"),
+    ),
 ];
 
 /// Connections per replica. Each worker holds at most one while it claims or

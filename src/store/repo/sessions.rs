@@ -11,7 +11,7 @@ use crate::store::{NewPose, PoseRecord, SessionRecord, SessionStore, StoreError,
 const SESSION_COLUMNS: &str = "s.id, s.serial, s.instrument, s.spec, s.created_at,
     (SELECT count(*) FROM poses p WHERE p.session_id = s.id) AS pose_count";
 const POSE_COLUMNS: &str =
-    "id, session_id, joints_deg, pose_set, image_meta, points, measured, label, detection, image_detection, flange_pose, created_at";
+    "id, session_id, joints_deg, pose_set, image_meta, points, measured, label, detection, image_detection, flange_pose, stage_reading, created_at";
 
 #[async_trait]
 impl<B: Backend> SessionStore for B {
@@ -159,12 +159,14 @@ impl<B: Backend> SessionStore for B {
                 detection: None,
                 image_detection: p.image_detection.clone(),
                 flange_pose: p.flange_pose.clone(),
+                stage_reading: p.stage_reading,
                 created_at: now_rfc3339(),
             };
             query(
                 "INSERT INTO poses (id, session_id, joints_deg, pose_set, image_sha256,
-                   image_meta, points, measured, label, image_detection, flange_pose, created_at)
-                 VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12)",
+                   image_meta, points, measured, label, image_detection, flange_pose, stage_reading,
+                   created_at)
+                 VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, $13)",
             )
             .bind(&record.id)
             .bind(session_id)
@@ -197,6 +199,13 @@ impl<B: Backend> SessionStore for B {
             .bind(
                 record
                     .flange_pose
+                    .as_ref()
+                    .map(serde_json::to_string)
+                    .transpose()?,
+            )
+            .bind(
+                record
+                    .stage_reading
                     .as_ref()
                     .map(serde_json::to_string)
                     .transpose()?,

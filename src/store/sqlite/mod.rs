@@ -74,6 +74,11 @@ const MIGRATIONS: &[Embedded] = &[
         "webhooks",
         include_str!("../../../migrations/sqlite/0010_webhooks.sql"),
     ),
+    (
+        12,
+        "stage reading",
+        include_str!("../../../migrations/sqlite/0012_stage_reading.sql"),
+    ),
 ];
 
 /// How long a statement waits for a competing writer before giving up.
