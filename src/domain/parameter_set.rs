@@ -90,7 +90,7 @@ impl ParameterSet {
     pub fn layout_instrument(&self) -> robocal_calib::kinematics::Instrument {
         match self.instrument {
             Instrument::Tracker => robocal_calib::kinematics::Instrument::Tracker,
-            Instrument::Camera => robocal_calib::kinematics::Instrument::Camera,
+            Instrument::Camera | Instrument::Stage => robocal_calib::kinematics::Instrument::Camera,
         }
     }
 

@@ -49,7 +49,7 @@ impl CameraStep {
     }
 }
 
-fn view_of(points: &[GridPoint], target: &Target, size: ImageSize) -> ViewObservations {
+pub(super) fn view_of(points: &[GridPoint], target: &Target, size: ImageSize) -> ViewObservations {
     ViewObservations {
         image_size: size,
         dots: points

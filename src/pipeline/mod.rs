@@ -30,6 +30,8 @@ mod scoped_job;
 mod screen_stage;
 mod session_cause;
 mod stage;
+mod stage_job;
+pub mod stage_results;
 mod uncertainty_map;
 mod validate;
 
@@ -106,19 +108,23 @@ fn run_stages(
     let intrinsics_held = input.fixed_camera.is_some() || !input.options.refine_intrinsics;
     let mut notes = Vec::new();
     let (measured, camera) = match input.session.instrument {
+        Instrument::Stage => {
+            let (target, camera_doc) = board_and_camera(input)?;
+            let measured = measure::measure(
+                &input.poses,
+                &target,
+                &input.images,
+                &|message, fraction| within(Stage::Detect, message, fraction),
+                cancel,
+            )?;
+            check_cancel()?;
+            detected(detections::detected(&input.poses, &measured));
+            *cause = session_cause::of(&measured, &target);
+            notes.extend(cause.as_ref().map(|c| format!("{c}.")));
+            return stage_job::run(input, &measured, &target, camera_doc, notes, &within);
+        }
         Instrument::Camera => {
-            let (target, camera_doc) = match (&input.session.target, &input.session.camera) {
-                (Some(t), Some(c)) => (
-                    crate::domain::Target::from_doc(t).map_err(PipelineError::Invalid)?,
-                    c,
-                ),
-                _ => {
-                    return Err(PipelineError::Invalid(vec![FieldError::new(
-                        "session",
-                        "a camera session needs target and camera",
-                    )]))
-                }
-            };
+            let (target, camera_doc) = board_and_camera(input)?;
             let mut measured = measure::measure(
                 &input.poses,
                 &target,
@@ -206,7 +212,7 @@ fn run_stages(
         .options
         .measurement
         .unwrap_or(match input.session.instrument {
-            Instrument::Camera => crate::schema::job::Measurement::Pose,
+            Instrument::Camera | Instrument::Stage => crate::schema::job::Measurement::Pose,
             Instrument::Tracker => crate::schema::job::Measurement::Position,
         });
     let guess = match &input.session.flange_to_camera_guess {
@@ -316,6 +322,22 @@ fn run_stages(
         detections,
         check: None,
     })
+}
+
+/// The session's board, typed, and its camera (camera and stage sessions).
+fn board_and_camera(
+    input: &Input,
+) -> Result<(crate::domain::Target, &crate::schema::session::CameraDoc), PipelineError> {
+    match (&input.session.target, &input.session.camera) {
+        (Some(t), Some(c)) => Ok((
+            crate::domain::Target::from_doc(t).map_err(PipelineError::Invalid)?,
+            c,
+        )),
+        _ => Err(PipelineError::Invalid(vec![FieldError::new(
+            "session",
+            "a camera or stage session needs target and camera",
+        )])),
+    }
 }
 
 /// A contract pose (the exact matrix when given).

@@ -29,6 +29,7 @@ pub fn validate(
     // on the calibration poses in the fit: no holdout is needed.
     if input.options.validation == Validation::Named(crate::schema::job::ValidationNamed::ValSet)
         && !input.is_flange_session()
+        && input.session.instrument != Instrument::Stage
         && val == 0
         && !input.poses.is_empty()
     {
@@ -50,7 +51,15 @@ pub fn validate(
             i as f64 / total,
         );
         let field = |name: &str| format!("poses[{}].{name}", pose.id);
-        if flange_session != pose.flange_pose.is_some() {
+        if input.session.instrument == Instrument::Stage {
+            // A stage pose carries the stage's reading instead of joints.
+            if pose.stage_reading.is_none() {
+                errors.push(FieldError::new(
+                    field("stage_position_mm"),
+                    "missing: a stage session's images carry the stage's reading",
+                ));
+            }
+        } else if flange_session != pose.flange_pose.is_some() {
             let (has, session) = if flange_session {
                 ("joints_deg", "flange_pose")
             } else {
@@ -77,7 +86,7 @@ pub fn validate(
             ));
         }
         match input.session.instrument {
-            Instrument::Camera => match &pose.image {
+            Instrument::Camera | Instrument::Stage => match &pose.image {
                 // Decodability was proven at upload (or is the detect
                 // stage's to find out): only the stored size is checked, no
                 // image is read here.

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 /// A pose in the contract's form plus its exact matrix: translation in mm,
 /// fixed-axis X-Y-Z angles in degrees, the 4x4 row-major matrix.
-#[derive(Debug, Clone, Serialize, Deserialize, utoipa::ToSchema)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, utoipa::ToSchema)]
 #[schema(as = FramePose)]
 pub struct PoseOut {
     pub translation_mm: [f64; 3],

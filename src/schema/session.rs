@@ -263,6 +263,10 @@ impl PoseJsonBody {
             c.fail("label", rule);
         }
         match instrument {
+            Instrument::Stage => c.fail(
+                "image",
+                "a stage session takes multipart poses: image, stage_position_mm, sequence",
+            ),
             Instrument::Camera => {
                 if self.measured_position_mm.is_some() || self.measured_pose.is_some() {
                     c.fail(

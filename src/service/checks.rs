@@ -35,6 +35,9 @@ pub async fn start_calibration(
     options: &CalibrationOptions,
 ) -> ServiceResult<JobRecord> {
     options.check()?;
+    if session.spec.instrument == crate::schema::session::Instrument::Stage {
+        super::stage_layout::check(store, session).await?;
+    }
     if !options.scope.is_full() {
         require_approved(store, &session.serial, "scope").await?;
     }

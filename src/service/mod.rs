@@ -26,6 +26,7 @@ pub mod release;
 pub mod job_events;
 pub mod report_camera;
 pub mod results;
+pub mod stage_layout;
 pub mod staged_images;
 pub mod uncertainty;
 pub mod webhooks;
