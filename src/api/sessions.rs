@@ -94,7 +94,7 @@ async fn create_session(
     }
     let session = state
         .store
-        .create_session(&serial, body.instrument.as_str(), &body)
+        .create_session(&serial, body.instrument.column(), &body)
         .await
         .map_err(|e| match e {
             crate::store::StoreError::NotFound(_) => ApiError::not_found("robot", &serial),

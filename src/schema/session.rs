@@ -39,6 +39,18 @@ impl Instrument {
         }
     }
 
+    /// The value of the sessions table's `instrument` column: the sensor.
+    /// Its 0001 CHECK allows `camera` and `tracker`, and SQLite relaxes a
+    /// CHECK only by rebuilding the table, whose DROP would cascade into
+    /// every pose; a stage session's sensor is its camera, and its served
+    /// and typed `instrument` (the stored spec) stays `stage`.
+    pub fn column(self) -> &'static str {
+        match self {
+            Instrument::Camera | Instrument::Stage => "camera",
+            Instrument::Tracker => "tracker",
+        }
+    }
+
     /// Whether the session's poses carry images of a board.
     pub fn has_camera(self) -> bool {
         matches!(self, Instrument::Camera | Instrument::Stage)

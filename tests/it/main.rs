@@ -37,6 +37,7 @@ pub(crate) mod release_gate;
 pub(crate) mod report_links;
 pub(crate) mod restart;
 pub(crate) mod robots;
+pub(crate) mod stage_session;
 pub(crate) mod storage;
 pub(crate) mod store_ops;
 pub(crate) mod support;

@@ -58,6 +58,7 @@ fn pose(sha: Option<&ImageMeta>) -> NewPose {
         label: None,
         image_detection: None,
         flange_pose: None,
+        stage_reading: None,
     }
 }
 
