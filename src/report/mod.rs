@@ -18,6 +18,8 @@ mod plot;
 mod pose_chart;
 pub mod sample;
 pub mod schema;
+mod stage_chart;
+mod stage_section;
 pub mod svg;
 mod svg_writer;
 mod table;

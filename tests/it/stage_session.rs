@@ -202,6 +202,17 @@ async fn rendered_stage_campaign_measures_the_camera_and_its_set_is_reused() {
             "sequence {sequence}: {mean}"
         );
     }
+    // The printable report draws Table 1 and Fig. 5.
+    let html = app
+        .get(&format!(
+            "/v1/robots/{serial}/parameter-sets/latest/report.html"
+        ))
+        .await
+        .text()
+        .await
+        .unwrap();
+    assert!(html.contains("paper Table 1, Fig. 5"), "{html}");
+    assert!(html.contains("3-D position accuracy against distance"));
     // The stage set holds no robot model.
     let r = app
         .post_json(

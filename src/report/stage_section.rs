@@ -1,0 +1,63 @@
+//! The HTML section of a stage session's report (issue 18): the paper's
+//! Table 1 per sequence with the travel check, and Fig. 5
+//! ([`super::stage_chart`]).
+
+use std::fmt::Write;
+
+use super::format::mm;
+use super::model::Report;
+use super::stage_chart::stage_chart;
+use super::svg::{HALF_WIDTH, SMALL_CHART_HEIGHT};
+use super::svg_writer::standalone;
+
+fn cells(v: [f64; 3]) -> String {
+    v.iter()
+        .map(|c| format!("<td class=\"num\">{}</td>", mm(*c)))
+        .collect()
+}
+
+/// Nothing for a report without stage sequences.
+pub fn measurement_accuracy(page: &mut String, report: &Report) {
+    let Some(m) = &report.measurement_accuracy else {
+        return;
+    };
+    page.push_str(
+        "<section>\n<h2>Measurement accuracy on the stage (paper Table 1, Fig. 5)</h2>\n\
+         <p>Per sequence, the position error of each image's camera position by the paper's \
+         average-rotation method (absolute, per target axis), and the measured travel between \
+         every two images against the stage's.</p>\n\
+         <table class=\"data\"><tr><th>sequence</th><th class=\"num\">distance</th><th class=\"num\">images</th>\
+         <th class=\"num\">mean x</th><th class=\"num\">y</th><th class=\"num\">z</th>\
+         <th class=\"num\">median x</th><th class=\"num\">y</th><th class=\"num\">z</th>\
+         <th class=\"num\">std x</th><th class=\"num\">y</th><th class=\"num\">z</th>\
+         <th class=\"num\">max 3-D</th><th class=\"num\">travel mean</th><th class=\"num\">travel max</th></tr>\n",
+    );
+    for s in &m.sequences {
+        let _ = writeln!(
+            page,
+            "<tr><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>{}{}{}\
+             <td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td></tr>",
+            s.sequence,
+            mm(s.distance_mm),
+            s.images,
+            cells(s.mean_mm),
+            cells(s.median_mm),
+            cells(s.std_mm),
+            mm(s.max_3d_mm),
+            mm(s.travelled_distance_error_mm.mean),
+            mm(s.travelled_distance_error_mm.max),
+        );
+    }
+    page.push_str("</table>\n");
+    let chart = stage_chart(report, HALF_WIDTH, SMALL_CHART_HEIGHT);
+    let _ = writeln!(
+        page,
+        "<figure>{}</figure>\n</section>",
+        standalone(
+            HALF_WIDTH,
+            SMALL_CHART_HEIGHT,
+            "Accuracy against distance",
+            &chart.body
+        )
+    );
+}
