@@ -16,6 +16,9 @@ const LINE_WIDTH: f64 = 1.5;
 /// The distance axis reaches this far beyond the sequences (mm).
 const DISTANCE_PAD_MM: f64 = 50.0;
 
+/// One plotted statistic of a sequence (mm).
+type Statistic = fn(&SequenceAccuracyReport) -> f64;
+
 /// `|[x, y, z]|`: a Table-1 statistic as one 3-D figure.
 fn rss(v: [f64; 3]) -> f64 {
     v.iter().map(|c| c * c).sum::<f64>().sqrt()
@@ -29,7 +32,7 @@ pub fn stage_chart(report: &Report, width: f64, height: f64) -> Svg {
         TITLE_Y,
         "3-D position accuracy against distance (paper Fig. 5)",
     );
-    let series: [(&str, &str, fn(&SequenceAccuracyReport) -> f64); 3] = [
+    let series: [(&str, &str, Statistic); 3] = [
         ("mean", MEAN_COLOR, |s| rss(s.mean_mm)),
         ("median", MEDIAN_COLOR, |s| rss(s.median_mm)),
         ("std. dev.", STD_COLOR, |s| rss(s.std_mm)),
