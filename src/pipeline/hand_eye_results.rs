@@ -22,8 +22,8 @@ use super::output::Summary;
 use super::results::residual_field;
 use super::{Input, PoseInput};
 use crate::report::{
-    BoardScaleReport, DetectionReport, FrameReport, HandEyeReport, IdentifiabilityReport,
-    ParameterReport, PoseReport, Report,
+    BoardScaleReport, FrameReport, HandEyeReport, IdentifiabilityReport, ParameterReport,
+    PoseReport, Report,
 };
 use crate::schema::session::PoseSet;
 use crate::schema::PoseOut;
@@ -297,18 +297,7 @@ fn report(
         instrument: "camera".into(),
         measurement: "pose".into(),
         camera: Some(camera_report(camera, &intrinsics, None, poses)),
-        detection: Some(DetectionReport {
-            images: measured.points.len(),
-            images_detected: measured.points.iter().filter(|p| p.is_some()).count(),
-            dots_per_image: measured
-                .points
-                .iter()
-                .flatten()
-                .map(Vec::len)
-                .max()
-                .unwrap_or(0),
-            failures: measured.failures.clone(),
-        }),
+        detection: Some(measured.report()),
         before: stats,
         after: stats,
         per_pose,

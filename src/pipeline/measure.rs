@@ -16,7 +16,7 @@ use std::sync::Mutex;
 use super::{ImageSource, PipelineError, PoseImage, PoseInput};
 use crate::domain::{ImageDetection, Target};
 use crate::imaging;
-use crate::report::DetectionFailure;
+use crate::report::{DetectionFailure, DetectionReport};
 use crate::schema::session::ImagePointDoc;
 
 /// A pose's outcome: `None` for uploaded image points, else the detector's
@@ -49,6 +49,25 @@ pub struct Measured {
     /// Per pose, whether this job ran the detector (no stored outcome):
     /// the outcome is then stored on the pose for later jobs.
     pub detected_now: Vec<bool>,
+}
+
+impl Measured {
+    /// The report's detection section: images, how many were detected,
+    /// the most dots on one, and the failures.
+    pub fn report(&self) -> DetectionReport {
+        DetectionReport {
+            images: self.points.len(),
+            images_detected: self.points.iter().filter(|p| p.is_some()).count(),
+            dots_per_image: self
+                .points
+                .iter()
+                .flatten()
+                .map(Vec::len)
+                .max()
+                .unwrap_or(0),
+            failures: self.failures.clone(),
+        }
+    }
 }
 
 /// The detector's outcome on one pose's image: the stored one, or (for

@@ -110,34 +110,14 @@ fn run_stages(
     let (measured, camera) = match input.session.instrument {
         Instrument::Stage => {
             let (target, camera_doc) = board_and_camera(input)?;
-            let measured = measure::measure(
-                &input.poses,
-                &target,
-                &input.images,
-                &|message, fraction| within(Stage::Detect, message, fraction),
-                cancel,
-            )?;
-            check_cancel()?;
-            detected(detections::detected(&input.poses, &measured));
-            *cause = session_cause::of(&measured, &target);
+            let measured = detect(input, &target, &within, detected, cancel, cause)?;
             notes.extend(cause.as_ref().map(|c| format!("{c}.")));
             return stage_job::run(input, &measured, &target, camera_doc, notes, &within);
         }
         Instrument::Camera => {
             let (target, camera_doc) = board_and_camera(input)?;
-            let mut measured = measure::measure(
-                &input.poses,
-                &target,
-                &input.images,
-                &|message, fraction| within(Stage::Detect, message, fraction),
-                cancel,
-            )?;
-            check_cancel()?;
-            detected(detections::detected(&input.poses, &measured));
-            *cause = session_cause::of(&measured, &target);
-            if let Some(c) = cause.as_ref() {
-                notes.push(format!("{c}."));
-            }
+            let mut measured = detect(input, &target, &within, detected, cancel, cause)?;
+            notes.extend(cause.as_ref().map(|c| format!("{c}.")));
             within(
                 Stage::CalibrateCamera,
                 "Tsai start and joint refinement",
@@ -322,6 +302,32 @@ fn run_stages(
         detections,
         check: None,
     })
+}
+
+/// The detect stage of a camera or stage session: every image's dots,
+/// handed to `detected` at once; `cause` gets the session-level cause of
+/// the failures.
+fn detect(
+    input: &Input,
+    target: &crate::domain::Target,
+    within: &dyn Fn(Stage, &str, f64),
+    detected: &dyn Fn(Vec<PoseDetection>),
+    cancel: &AtomicBool,
+    cause: &mut Option<String>,
+) -> Result<measure::Measured, PipelineError> {
+    let measured = measure::measure(
+        &input.poses,
+        target,
+        &input.images,
+        &|message, fraction| within(Stage::Detect, message, fraction),
+        cancel,
+    )?;
+    if cancel.load(Ordering::Relaxed) {
+        return Err(PipelineError::Cancelled);
+    }
+    detected(detections::detected(&input.poses, &measured));
+    *cause = session_cause::of(&measured, target);
+    Ok(measured)
 }
 
 /// The session's board, typed, and its camera (camera and stage sessions).

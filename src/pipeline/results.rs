@@ -11,8 +11,7 @@ use super::screen_stage::Outlier;
 use super::{PoseInput, Summary};
 use crate::domain::{CovarianceDoc, ParameterSet};
 use crate::report::{
-    CameraStd, DetectionReport, IdentifiabilityReport, ParameterReport, PoseReport, Report,
-    ResidualSample,
+    CameraStd, IdentifiabilityReport, ParameterReport, PoseReport, Report, ResidualSample,
 };
 use crate::schema::robot::model_to_doc;
 use crate::schema::session::Instrument as SessionInstrument;
@@ -142,12 +141,7 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSet) -> Report {
         let intr = set.camera.unwrap_or(step.intrinsics());
         camera_report(step, &intr, std, ctx.poses)
     });
-    let detection = ctx.measured.map(|m| DetectionReport {
-        images: m.points.len(),
-        images_detected: m.points.iter().filter(|p| p.is_some()).count(),
-        dots_per_image: m.points.iter().flatten().map(Vec::len).max().unwrap_or(0),
-        failures: m.failures.clone(),
-    });
+    let detection = ctx.measured.map(Measured::report);
     let per_view_rms = |i: usize| {
         let step = ctx.camera?;
         let view = step.view_pose.iter().position(|&p| p == i)?;

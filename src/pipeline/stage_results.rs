@@ -18,8 +18,8 @@ use super::measure::Measured;
 use super::output::Summary;
 use super::Input;
 use crate::report::{
-    CameraReport, DetectionReport, IdentifiabilityReport, MeasurementAccuracyReport, PoseReport,
-    Report, SequenceAccuracyReport, ViewReport,
+    CameraReport, IdentifiabilityReport, MeasurementAccuracyReport, PoseReport, Report,
+    SequenceAccuracyReport, ViewReport,
 };
 use crate::schema::PoseOut;
 
@@ -117,18 +117,7 @@ pub fn stage_output(
         instrument: "stage".into(),
         measurement: "pose".into(),
         camera: Some(camera_report(input, fit, view_pose)),
-        detection: Some(DetectionReport {
-            images: measured.points.len(),
-            images_detected: measured.points.iter().filter(|p| p.is_some()).count(),
-            dots_per_image: measured
-                .points
-                .iter()
-                .flatten()
-                .map(Vec::len)
-                .max()
-                .unwrap_or(0),
-            failures: measured.failures.clone(),
-        }),
+        detection: Some(measured.report()),
         before: stats,
         after: stats,
         per_pose: per_pose(input, fit, view_pose),

@@ -171,25 +171,8 @@ impl PoseIntake {
         }
         c.finish()?;
         let (joints_deg, flange_pose) = robot_pose.expect("checked above").into_row();
-        let ingested = ingest_image(
-            self.store.clone(),
-            upload.image,
-            self.image_check(),
-            "image".into(),
-        )
-        .await?;
-        let pose = NewPose {
-            joints_deg,
-            set: upload.set,
-            image: Some(ingested.meta),
-            points: Vec::new(),
-            measured: None,
-            label: upload.label,
-            image_detection: ingested.detection,
-            flange_pose,
-            stage_reading: None,
-        };
-        self.store_one(pose).await
+        self.store_image_pose(upload, joints_deg, flange_pose, None)
+            .await
     }
 
     /// A stage session's image: the stage's reading instead of joints.
@@ -206,6 +189,19 @@ impl PoseIntake {
             ));
         }
         let reading = StageReading::check(upload.sequence, upload.stage_position_mm)?;
+        self.store_image_pose(upload, JointsDeg::stored(Vec::new()), None, Some(reading))
+            .await
+    }
+
+    /// Checks, detects and stores the image, then the pose carrying it with
+    /// where it was taken (joints, a flange pose or a stage reading).
+    async fn store_image_pose(
+        self,
+        upload: ImagePose,
+        joints_deg: JointsDeg,
+        flange_pose: Option<FlangePoseDoc>,
+        stage_reading: Option<StageReading>,
+    ) -> ServiceResult<PoseRecord> {
         let ingested = ingest_image(
             self.store.clone(),
             upload.image,
@@ -214,15 +210,15 @@ impl PoseIntake {
         )
         .await?;
         let pose = NewPose {
-            joints_deg: JointsDeg::stored(Vec::new()),
+            joints_deg,
             set: upload.set,
             image: Some(ingested.meta),
             points: Vec::new(),
             measured: None,
             label: upload.label,
             image_detection: ingested.detection,
-            flange_pose: None,
-            stage_reading: Some(reading),
+            flange_pose,
+            stage_reading,
         };
         self.store_one(pose).await
     }

@@ -55,6 +55,19 @@ fn png_of(c: &StageCampaign, k: usize) -> Vec<u8> {
     out.into_inner()
 }
 
+/// A server that runs jobs, with robot `serial`.
+async fn app_with_robot(serial: &str) -> TestApp {
+    let app = spawn_app_with(|cfg| cfg.test_validate_only = false).await;
+    let r = app
+        .put_json(
+            &format!("/v1/robots/{serial}"),
+            &crate::support::robot_body(),
+        )
+        .await;
+    assert_eq!(r.status(), 201);
+    app
+}
+
 async fn create(app: &TestApp, serial: &str, body: &Value) -> reqwest::Response {
     app.post_json(&format!("/v1/robots/{serial}/sessions"), body)
         .await
@@ -109,15 +122,8 @@ fn vec3(v: &Value) -> Vector3<f64> {
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn rendered_stage_campaign_measures_the_camera_and_its_set_is_reused() {
     let c = campaign();
-    let app = spawn_app_with(|cfg| cfg.test_validate_only = false).await;
     let serial = "STAGE-1";
-    let r = app
-        .put_json(
-            &format!("/v1/robots/{serial}"),
-            &crate::support::robot_body(),
-        )
-        .await;
-    assert_eq!(r.status(), 201);
+    let app = app_with_robot(serial).await;
     let r = create(&app, serial, &session_body(&c)).await;
     assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
     let session = r.json::<Value>().await.unwrap()["id"]
@@ -237,15 +243,8 @@ async fn rendered_stage_campaign_measures_the_camera_and_its_set_is_reused() {
 #[tokio::test]
 async fn bad_stage_input_is_422_naming_the_field() {
     let c = campaign();
-    let app = spawn_app_with(|cfg| cfg.test_validate_only = false).await;
     let serial = "STAGE-2";
-    let r = app
-        .put_json(
-            &format!("/v1/robots/{serial}"),
-            &crate::support::robot_body(),
-        )
-        .await;
-    assert_eq!(r.status(), 201);
+    let app = app_with_robot(serial).await;
     // Session fields a stage session cannot have.
     let mut body = session_body(&c);
     body["camera_calibration_id"] = json!("STAGE-2/1");

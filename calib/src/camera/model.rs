@@ -133,6 +133,42 @@ pub struct IntrinsicsStdDev {
     pub k3: f64,
 }
 
+impl IntrinsicsStdDev {
+    /// From the covariance of an intrinsics block `[fx, m, cx, cy, k1, k2,
+    /// p1, p2, (k3)]` (px, the refinement's layout; absent entries give 0).
+    /// `fy = m fx`: first-order propagation with the fx–m covariance.
+    pub fn from_covariance(covariance: &nalgebra::DMatrix<f64>, intrinsics: &Intrinsics) -> Self {
+        let n = covariance.nrows().min(covariance.ncols());
+        let sd = |i: usize| {
+            if i < n {
+                covariance[(i, i)].max(0.0).sqrt()
+            } else {
+                0.0
+            }
+        };
+        let (fx, m) = (intrinsics.fx, intrinsics.scale_ratio());
+        let var_fy = if n > 1 {
+            m * m * covariance[(0, 0)]
+                + fx * fx * covariance[(1, 1)]
+                + 2.0 * m * fx * covariance[(0, 1)]
+        } else {
+            0.0
+        };
+        Self {
+            fx: sd(0),
+            fy: var_fy.max(0.0).sqrt(),
+            scale_ratio: sd(1),
+            cx: sd(2),
+            cy: sd(3),
+            k1: sd(4),
+            k2: sd(5),
+            p1: sd(6),
+            p2: sd(7),
+            k3: sd(8),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -270,28 +270,7 @@ fn intrinsics_std_dev(
     intr: &Intrinsics,
 ) -> Option<IntrinsicsStdDev> {
     let inv = problem.intrinsics_inverse_normal(&report.normal_matrix)?;
-    let var = report.residual_variance();
-    let sd = |i: usize| {
-        if i < n_intr {
-            (var * inv[(i, i)]).max(0.0).sqrt()
-        } else {
-            0.0
-        }
-    };
-    let m = intr.fy / intr.fx;
-    // fy = m fx: first-order propagation with the fx–m covariance.
-    let var_fy = var
-        * (m * m * inv[(0, 0)] + intr.fx * intr.fx * inv[(1, 1)] + 2.0 * m * intr.fx * inv[(0, 1)]);
-    Some(IntrinsicsStdDev {
-        fx: sd(0),
-        fy: var_fy.max(0.0).sqrt(),
-        scale_ratio: sd(1),
-        cx: sd(2),
-        cy: sd(3),
-        k1: sd(4),
-        k2: sd(5),
-        p1: sd(6),
-        p2: sd(7),
-        k3: sd(8),
-    })
+    let n = n_intr.min(inv.nrows());
+    let covariance = inv.view((0, 0), (n, n)) * report.residual_variance();
+    Some(IntrinsicsStdDev::from_covariance(&covariance, intr))
 }

@@ -116,7 +116,11 @@ pub fn calibrate_stage(
     )?;
     let intrinsics = bundle.intrinsics(&report.x);
     let dots: usize = bundle_views.iter().map(|v| v.observations.len()).sum();
-    let std_dev = (!block.is_empty()).then(|| intrinsics_std(&report.covariance(), &intrinsics));
+    let std_dev = (!block.is_empty()).then(|| {
+        let n = block.len();
+        let covariance = report.covariance().view((0, 0), (n, n)).into_owned();
+        IntrinsicsStdDev::from_covariance(&covariance, &intrinsics)
+    });
     let sequences: Vec<StageSequence> = layout
         .iter()
         .enumerate()
@@ -253,29 +257,4 @@ fn board_centre(observations: &[ViewObservations]) -> Point3<f64> {
         hi = hi.sup(&p.coords);
     }
     Point3::from(0.5 * (lo + hi))
-}
-
-/// Standard deviations of the intrinsics from the bundle's covariance
-/// (the block's layout `[fx, m, cx, cy, k1, k2, p1, p2, (k3)]`).
-fn intrinsics_std(
-    covariance: &nalgebra::DMatrix<f64>,
-    intrinsics: &Intrinsics,
-) -> IntrinsicsStdDev {
-    let sd = |k: usize| covariance[(k, k)].max(0.0).sqrt();
-    let m = intrinsics.scale_ratio();
-    let fy_var = m * m * covariance[(0, 0)]
-        + intrinsics.fx.powi(2) * covariance[(1, 1)]
-        + 2.0 * intrinsics.fx * m * covariance[(0, 1)];
-    IntrinsicsStdDev {
-        fx: sd(0),
-        fy: fy_var.max(0.0).sqrt(),
-        scale_ratio: sd(1),
-        cx: sd(2),
-        cy: sd(3),
-        k1: sd(4),
-        k2: sd(5),
-        p1: sd(6),
-        p2: sd(7),
-        k3: if covariance.nrows() > 8 { sd(8) } else { 0.0 },
-    }
 }
