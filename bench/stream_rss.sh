@@ -7,6 +7,8 @@
 # for each of forward (10,000 joint rows), compensate and filter (10,000
 # targets) resets the server's peak-RSS counter (/proc/PID/clear_refs) and
 # reads VmHWM after the request; prints the body sizes, wall time and peak.
+# compensate and filter are measured twice: the one JSON document, then
+# streamed (`Accept: application/x-ndjson`, one line per target).
 #
 #   bash bench/stream_rss.sh [targets]
 set -euo pipefail
@@ -49,12 +51,13 @@ json.dump({"joints_deg": rows}, open("forward.json", "w"))
 json.dump(seed, open("seed.json", "w"))
 EOF
 rss_kb() { awk '/VmHWM/ {print $2}' "/proc/$server/status"; }
-measure() { # name path body
+measure() { # name path body [accept]
+  local accept=${4:-application/json}
   echo 5 > "/proc/$server/clear_refs"
   local before after start end bytes
   before=$(awk '/VmRSS/ {print $2}' "/proc/$server/status")
   start=$(date +%s.%N)
-  bytes=$(curl -sf -X POST "$set_url/$2" -H 'content-type: application/json' \
+  bytes=$(curl -sf -X POST "$set_url/$2" -H 'content-type: application/json' -H "accept: $accept" \
     --data-binary "@$3" -o "$1.out" -w '%{size_download}')
   end=$(date +%s.%N)
   after=$(rss_kb)
@@ -82,9 +85,17 @@ json.dump(body, open("filter.json", "w"))
 EOF
 measure compensate compensate "compensate.json"
 measure filter filter "filter.json"
+measure compensate.ndjson compensate "compensate.json" application/x-ndjson
+measure filter.ndjson filter "filter.json" application/x-ndjson
 python3 - <<'EOF'
 import json
 c = json.load(open("compensate.out"))
 f = json.load(open("filter.out"))
-print("compensate answered", len(c["joints_deg"]), "targets; filter", sum(1 for t in f["nominal_targets"] if t), "of", len(f["nominal_targets"]), "with", len(f["errors"]), "errors")
+print("compensate answered", sum(1 for j in c["joints_deg"] if j), "of", len(c["joints_deg"]), "targets with", len(c["errors"]), "errors; filter", sum(1 for t in f["nominal_targets"] if t), "of", len(f["nominal_targets"]), "with", len(f["errors"]), "errors")
+for name, whole in [("compensate", c), ("filter", f)]:
+    lines = [json.loads(l) for l in open(name + ".ndjson.out")]
+    assert [l["index"] for l in lines] == list(range(len(lines))), name
+    answered = sum(1 for l in lines if "error" not in l)
+    same = all(l.get("joints_deg") == whole["joints_deg"][l["index"]] for l in lines)
+    print(name, "streamed", len(lines), "lines,", answered, "answered; joints equal to the whole answer:", same)
 EOF

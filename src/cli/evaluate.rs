@@ -207,11 +207,12 @@ pub fn compensate_table(answer: &CompensateAnswer) -> String {
             .copied()
             .flatten()
             .map_or("?".into(), |r| format!("{r:.4}"));
-        out.push_str(&format!(
-            "{:<7} {:<45} {residual}\n",
-            i + 1,
-            numbers(joints, 4)
-        ));
+        let line = match (joints, answer.errors.iter().find(|e| e.index == i)) {
+            (Some(joints), _) => format!("{:<45} {residual}", numbers(joints, 4)),
+            (None, Some(e)) => format!("no joints: {}", e.message),
+            (None, None) => "no joints".into(),
+        };
+        out.push_str(&format!("{:<7} {line}\n", i + 1));
     }
     out
 }
@@ -349,10 +350,12 @@ mod tests {
         );
         assert!(t.contains("tool") && t.contains("warning: joint 2"), "{t}");
         let comp: CompensateAnswer = serde_json::from_str(
-            r#"{"joints_deg": [[1.0, 2.0, 3.0, 4.0, 5.0, 6.0]], "residual_mm": [0.00012]}"#,
+            r#"{"joints_deg": [[1.0, 2.0, 3.0, 4.0, 5.0, 6.0], null], "residual_mm": [0.00012, null],
+                "errors": [{"index": 1, "message": "target out of reach"}]}"#,
         )
         .unwrap();
         let t = compensate_table(&comp);
         assert!(t.contains("1.0000 2.0000") && t.contains("0.0001"), "{t}");
+        assert!(t.contains("2       no joints: target out of reach"), "{t}");
     }
 }

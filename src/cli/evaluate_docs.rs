@@ -91,13 +91,15 @@ pub struct ForwardAnswer {
     pub poses: Vec<ForwardRow>,
 }
 
-/// The `compensate` answer.
+/// The `compensate` answer: per target, `null` where `errors` names it.
 #[derive(Debug, Clone, Default, PartialEq, Deserialize)]
 pub struct CompensateAnswer {
     #[serde(default)]
-    pub joints_deg: Vec<Vec<Option<f64>>>,
+    pub joints_deg: Vec<Option<Vec<Option<f64>>>>,
     #[serde(default)]
     pub residual_mm: Vec<Option<f64>>,
+    #[serde(default)]
+    pub errors: Vec<TargetError>,
 }
 
 /// A target the server could not filter.
