@@ -11,7 +11,8 @@ use serde::de::DeserializeOwned;
 
 use super::client::{answer_of, Client, ClientError};
 use super::evaluate_docs::{
-    pose_doc, CompensateAnswer, CompensateBody, ForwardAnswer, ForwardBody, PoseNumbers, Seeds,
+    pose_doc, CompensateAnswer, CompensateBody, CompensateLine, ForwardAnswer, ForwardBody,
+    PoseNumbers, Seeds,
 };
 
 /// Which parameter set, and how to print the answer.
@@ -196,23 +197,35 @@ pub fn forward_table(answer: &ForwardAnswer) -> String {
     out
 }
 
+/// The header of the `compensate` table.
+const COMPENSATE_HEADER: &str =
+    "target  joints (deg)                                  residual (mm)\n";
+
+/// One target's row of the `compensate` table (numbered from 1).
+pub fn compensate_row(line: &CompensateLine) -> String {
+    let residual = line.residual_mm.map_or("?".into(), |r| format!("{r:.4}"));
+    let cells = match (&line.joints_deg, &line.error) {
+        (Some(joints), _) => format!("{:<45} {residual}", numbers(joints, 4)),
+        (None, Some(e)) => format!("no joints: {e}"),
+        (None, None) => "no joints".into(),
+    };
+    format!("{:<7} {cells}\n", line.index + 1)
+}
+
 /// `compensate` as a table: per target the joints and the model's residual.
 pub fn compensate_table(answer: &CompensateAnswer) -> String {
-    let mut out =
-        String::from("target  joints (deg)                                  residual (mm)\n");
-    for (i, joints) in answer.joints_deg.iter().enumerate() {
-        let residual = answer
-            .residual_mm
-            .get(i)
-            .copied()
-            .flatten()
-            .map_or("?".into(), |r| format!("{r:.4}"));
-        let line = match (joints, answer.errors.iter().find(|e| e.index == i)) {
-            (Some(joints), _) => format!("{:<45} {residual}", numbers(joints, 4)),
-            (None, Some(e)) => format!("no joints: {}", e.message),
-            (None, None) => "no joints".into(),
-        };
-        out.push_str(&format!("{:<7} {line}\n", i + 1));
+    let mut out = String::from(COMPENSATE_HEADER);
+    for (index, joints) in answer.joints_deg.iter().enumerate() {
+        out.push_str(&compensate_row(&CompensateLine {
+            index,
+            joints_deg: joints.clone(),
+            residual_mm: answer.residual_mm.get(index).copied().flatten(),
+            error: answer
+                .errors
+                .iter()
+                .find(|e| e.index == index)
+                .map(|e| e.message.clone()),
+        }));
     }
     out
 }
@@ -239,12 +252,24 @@ pub async fn forward(client: &Client, args: &ForwardArgs) -> Result<(), ClientEr
     print_answer(&args.set, &answer, forward_table)
 }
 
+/// `--json` prints the server's whole answer; the table streams: each row is
+/// printed as the server sends its target (`Accept: application/x-ndjson`).
 pub async fn compensate(client: &Client, args: &CompensateArgs) -> Result<(), ClientError> {
     let body = compensate_body(args).map_err(ClientError::Local)?;
-    let answer = client
-        .evaluate(&args.set.serial, args.set.version, "compensate", &body)
-        .await?;
-    print_answer(&args.set, &answer, compensate_table)
+    let (serial, version) = (&args.set.serial, args.set.version);
+    if args.set.json {
+        let answer = client
+            .evaluate(serial, version, "compensate", &body)
+            .await?;
+        return print_answer(&args.set, &answer, compensate_table);
+    }
+    print!("{COMPENSATE_HEADER}");
+    client
+        .evaluate_lines(serial, version, "compensate", &body, |line| {
+            print!("{}", compensate_row(&answer_of(line)?));
+            Ok(())
+        })
+        .await
 }
 
 #[cfg(test)]

@@ -109,6 +109,25 @@ pub struct TargetError {
     pub message: String,
 }
 
+/// One line of a streamed `filter` answer: the target's answer, or `error`.
+#[derive(Debug, Clone, Default, PartialEq, Deserialize)]
+pub struct FilterLine {
+    pub index: usize,
+    pub nominal_target: Option<PoseNumbers>,
+    pub joints_deg: Option<Vec<Option<f64>>>,
+    pub residual_mm: Option<f64>,
+    pub error: Option<String>,
+}
+
+/// One line of a streamed `compensate` answer.
+#[derive(Debug, Clone, Default, PartialEq, Deserialize)]
+pub struct CompensateLine {
+    pub index: usize,
+    pub joints_deg: Option<Vec<Option<f64>>>,
+    pub residual_mm: Option<f64>,
+    pub error: Option<String>,
+}
+
 /// The `filter` answer: per target, `null` where `errors` names it.
 #[derive(Debug, Clone, Default, PartialEq, Deserialize)]
 pub struct FilterAnswer {

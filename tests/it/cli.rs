@@ -1,8 +1,9 @@
 //! The `robocal` client commands, run as the real binary against a server:
 //! `upload` keeps an existing robot unless `--replace-robot`, `calibrate`
 //! checks `--serial` and logs plain progress lines off a terminal,
-//! `forward` and `compensate` print tables or JSON; a hand–eye campaign
-//! (flange poses instead of joints) uploads as a directory or a zip.
+//! `forward` and `compensate` print tables or JSON, `filter FILE.csv`
+//! streams CSV lines; a hand–eye campaign (flange poses instead of joints)
+//! uploads as a directory or a zip.
 
 use std::process::Output;
 
@@ -187,6 +188,66 @@ async fn upload_calibrate_forward_and_compensate_through_the_binary() {
         table.lines().nth(1).is_some_and(|l| l.starts_with("1 ")),
         "{table}"
     );
+
+    // filter FILE.csv: streamed, one CSV line per target as it is solved;
+    // a target out of reach is its own line with the error.
+    let set: Value = app
+        .get(&format!("/v1/robots/{SERIAL}/parameter-sets/latest"))
+        .await
+        .json()
+        .await
+        .unwrap();
+    let camera = &set["flange_to_camera"];
+    let tool: Vec<String> = camera["translation_mm"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .chain(camera["rotation_deg"].as_array().unwrap())
+        .map(number)
+        .collect();
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("targets.csv");
+    let far = "9000,0,0,0,0,0";
+    std::fs::write(
+        &csv,
+        format!(
+            "x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg\n{}\n{far}\n",
+            target.join(",")
+        ),
+    )
+    .unwrap();
+    let csv = csv.to_str().unwrap();
+    let filter_args = [
+        "filter",
+        csv,
+        "--serial",
+        SERIAL,
+        "--tool",
+        &tool.join(","),
+        "--seed",
+        joints,
+    ];
+    let out = robocal(&app, &filter_args).await;
+    let streamed = ok(&out);
+    let lines: Vec<&str> = streamed.lines().collect();
+    assert_eq!(lines.len(), 3, "{streamed}");
+    assert_eq!(lines[0], robocal::cli::filter::OUTPUT_COLUMNS);
+    let cells: Vec<&str> = lines[1].split(',').collect();
+    assert_eq!(cells[0], "0", "{streamed}");
+    assert!(
+        cells[8].parse::<f64>().unwrap() < MAX_RESIDUAL_MM,
+        "{streamed}"
+    );
+    assert!(lines[2].starts_with("1,,,,,,,,,\""), "{streamed}");
+    // The same numbers as the whole JSON answer.
+    let mut json_args = filter_args.to_vec();
+    json_args.push("--json");
+    let whole: Value = serde_json::from_str(&ok(&robocal(&app, &json_args).await)).unwrap();
+    assert_eq!(
+        cells[1],
+        number(&whole["nominal_targets"][0]["translation_mm"][0])
+    );
+    assert_eq!(whole["errors"][0]["index"], 1, "{whole}");
 }
 
 /// A hand–eye campaign as a user lays it out: RCT's wrist-camera photos
