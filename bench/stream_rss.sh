@@ -65,14 +65,14 @@ json.dump({"joints_deg": rows}, open("forward.json", "w"))
 json.dump(seed, open("seed.json", "w"))
 EOF
 rss_kb() { awk '/VmHWM/ {print $2}' "/proc/$server/status"; }
-measure() { # name path body [accept]
-  local accept=${4:-application/json}
+measure() { # name path body [accept] [curl's --limit-rate]
+  local accept=${4:-application/json} rate=${5:-0}
   start_server
   echo 5 > "/proc/$server/clear_refs"
   local before after start end bytes
   before=$(awk '/VmRSS/ {print $2}' "/proc/$server/status")
   start=$(date +%s.%N)
-  bytes=$(curl -sf -X POST "$set_url/$2" -H 'content-type: application/json' -H "accept: $accept" \
+  bytes=$(curl -sf -X POST "$set_url/$2" -H 'content-type: application/json' -H "accept: $accept" --limit-rate "$rate" \
     --data-binary "@$3" -o "$1.out" -w '%{size_download}')
   end=$(date +%s.%N)
   after=$(rss_kb)
@@ -102,6 +102,8 @@ measure compensate compensate "compensate.json"
 measure filter filter "filter.json"
 measure compensate.ndjson compensate "compensate.json" application/x-ndjson
 measure filter.ndjson filter "filter.json" application/x-ndjson
+# A slow client (1 MB/s): the solver waits for it; memory does not grow.
+measure filter.ndjson.slow filter "filter.json" application/x-ndjson 1M
 python3 - <<'EOF'
 import json
 c = json.load(open("compensate.out"))
