@@ -326,4 +326,40 @@ mod tests {
             ["seed_joints_deg"]
         );
     }
+
+    /// A target the arm reaches only with joint 1 beyond its limits is an
+    /// error of its own index (the limits named); the target within the
+    /// limits is still answered.
+    #[test]
+    fn a_target_beyond_the_joint_limits_is_named_and_the_others_answered() {
+        let mut m = model();
+        let (lo, hi) = (-20f64.to_radians(), 20f64.to_radians());
+        m.robot.joints[0].min_rad = lo;
+        m.robot.joints[0].max_rad = hi;
+        let inside = m.world_to_tool(&[0.1, 0.3, -0.2, 0.4, 0.5, -0.3]).unwrap();
+        // Joint 1 at 90 deg: the same arm pose turned out of the limits.
+        let outside = m.world_to_tool(&[1.6, 0.3, -0.2, 0.4, 0.5, -0.3]).unwrap();
+        let doc = |p: &Pose| {
+            json!({"translation_mm": [0, 0, 0], "rotation_deg": [0, 0, 0],
+                                    "matrix": robocal_calib::geometry::pose_to_matrix_rows(p)})
+        };
+        let req: CompensateRequest = serde_json::from_value(json!({
+            "targets": [doc(&inside), doc(&outside), doc(&inside)],
+            "seed_joints_deg": [5, 15, -10, 20, 25, -15]}))
+        .unwrap();
+        let answer = compensate(&m, &req).unwrap();
+        assert_eq!(answer.errors.len(), 1, "{:?}", answer.errors);
+        assert_eq!(answer.errors[0].index, 1);
+        assert!(answer.joints_deg[1].is_none());
+        for i in [0, 2] {
+            let q: Vec<f64> = answer.joints_deg[i]
+                .as_ref()
+                .unwrap()
+                .iter()
+                .map(|d| d.to_radians())
+                .collect();
+            assert!(m.robot.check_limits(&q).is_ok(), "{q:?}");
+            assert!(answer.residual_mm[i].unwrap() < 1e-6);
+        }
+    }
 }

@@ -166,3 +166,68 @@ pub fn filter(plan: &Filtering) -> FilterResponse {
     }
     answer
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use robocal_calib::kinematics::presets;
+    use serde_json::json;
+
+    /// Bad input of issue 15: a target beyond reach and one only reached
+    /// with joint 1 beyond its limits are errors of their own indices; the
+    /// others are filtered. A tool whose matrix is not a rigid transform is
+    /// refused whole, naming `tool` (it concerns every target).
+    #[test]
+    fn targets_out_of_reach_or_limits_are_named_and_the_others_filtered() {
+        let mut robot = presets::irb2400();
+        robot.joints[0].min_rad = -20f64.to_radians();
+        robot.joints[0].max_rad = 20f64.to_radians();
+        let calibrated = CalibratedModel {
+            robot: robot.clone(),
+            world_to_base: Pose::identity(),
+            flange_to_tool: Pose::identity(),
+        };
+        let inside = calibrated
+            .world_to_tool(&[0.1, 0.3, -0.2, 0.4, 0.5, -0.3])
+            .unwrap();
+        let outside = calibrated
+            .world_to_tool(&[1.6, 0.3, -0.2, 0.4, 0.5, -0.3])
+            .unwrap();
+        let doc = |p: &Pose| {
+            json!({"translation_mm": [0, 0, 0], "rotation_deg": [0, 0, 0],
+                                    "matrix": robocal_calib::geometry::pose_to_matrix_rows(p)})
+        };
+        let far = json!({"translation_mm": [9000, 0, 0], "rotation_deg": [0, 0, 0]});
+        let tool = json!({"translation_mm": [0, 0, 0], "rotation_deg": [0, 0, 0]});
+        let req: FilterRequest = serde_json::from_value(json!({
+            "targets": [doc(&inside), far, doc(&outside), doc(&inside)],
+            "tool": tool, "seed_joints_deg": [5, 15, -10, 20, 25, -15]}))
+        .unwrap();
+        let plan = Filtering::check(&calibrated, robot.clone(), &req).unwrap();
+        let answer = filter(&plan);
+        let failed: Vec<usize> = answer.errors.iter().map(|e| e.index).collect();
+        assert_eq!(failed, [1, 2], "{:?}", answer.errors);
+        for i in [0, 3] {
+            assert!(
+                answer.residual_mm[i].unwrap() < 1e-6,
+                "{:?}",
+                answer.residual_mm
+            );
+        }
+        let mut skewed = req.clone();
+        skewed.tool.matrix = Some([
+            [1.0, 0.5, 0.0, 0.0],
+            [0.0, 1.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0, 0.0],
+            [0.0, 0.0, 0.0, 1.0],
+        ]);
+        let fields: Vec<String> = Filtering::check(&calibrated, robot, &skewed)
+            .err()
+            .unwrap()
+            .into_iter()
+            .map(|e| e.field)
+            .collect();
+        assert!(fields.iter().all(|f| f.starts_with("tool")), "{fields:?}");
+        assert!(!fields.is_empty());
+    }
+}

@@ -248,6 +248,19 @@ async fn upload_calibrate_forward_and_compensate_through_the_binary() {
         number(&whole["nominal_targets"][0]["translation_mm"][0])
     );
     assert_eq!(whole["errors"][0]["index"], 1, "{whole}");
+
+    // export: the URDF for the controller, written to a file.
+    let urdf = dir.path().join("robot.urdf");
+    let urdf_arg = urdf.to_str().unwrap();
+    let export_args = [
+        "export", "--serial", SERIAL, "--format", "urdf", "--out", urdf_arg,
+    ];
+    ok(&robocal(&app, &export_args).await);
+    let text = std::fs::read_to_string(&urdf).unwrap();
+    assert!(
+        text.contains("<robot") && text.contains("name=\"flange\""),
+        "{text}"
+    );
 }
 
 /// A hand–eye campaign as a user lays it out: RCT's wrist-camera photos
