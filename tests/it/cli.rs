@@ -45,6 +45,16 @@ fn ok(out: &Output) -> String {
     text(&out.stdout)
 }
 
+/// A served pose as the CLI's six cells: x, y, z (mm), rx, ry, rz (deg).
+fn pose_cells(pose: &Value) -> Vec<String> {
+    let numbers = |key: &str| pose[key].as_array().unwrap().clone();
+    [numbers("translation_mm"), numbers("rotation_deg")]
+        .concat()
+        .iter()
+        .map(|v| v.as_f64().unwrap().to_string())
+        .collect()
+}
+
 async fn robot_preset(app: &TestApp) -> Value {
     let r: Value = app
         .get(&format!("/v1/robots/{SERIAL}"))
@@ -142,15 +152,7 @@ async fn upload_calibrate_forward_and_compensate_through_the_binary() {
     )
     .await;
     let forward: Value = serde_json::from_str(&ok(&out)).unwrap();
-    let camera = &forward["poses"][0]["camera_in_target"];
-    let number = |v: &Value| v.as_f64().unwrap().to_string();
-    let target: Vec<String> = camera["translation_mm"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .chain(camera["rotation_deg"].as_array().unwrap())
-        .map(number)
-        .collect();
+    let target = pose_cells(&forward["poses"][0]["camera_in_target"]);
 
     // compensate: the forward pose back to (near) the same joints.
     let out = robocal(
@@ -197,14 +199,7 @@ async fn upload_calibrate_forward_and_compensate_through_the_binary() {
         .json()
         .await
         .unwrap();
-    let camera = &set["flange_to_camera"];
-    let tool: Vec<String> = camera["translation_mm"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .chain(camera["rotation_deg"].as_array().unwrap())
-        .map(number)
-        .collect();
+    let tool = pose_cells(&set["flange_to_camera"]);
     let dir = tempfile::tempdir().unwrap();
     let csv = dir.path().join("targets.csv");
     let far = "9000,0,0,0,0,0";
@@ -243,10 +238,7 @@ async fn upload_calibrate_forward_and_compensate_through_the_binary() {
     let mut json_args = filter_args.to_vec();
     json_args.push("--json");
     let whole: Value = serde_json::from_str(&ok(&robocal(&app, &json_args).await)).unwrap();
-    assert_eq!(
-        cells[1],
-        number(&whole["nominal_targets"][0]["translation_mm"][0])
-    );
+    assert_eq!(cells[1..7], pose_cells(&whole["nominal_targets"][0]));
     assert_eq!(whole["errors"][0]["index"], 1, "{whole}");
 
     // export: the URDF for the controller, written to a file.
