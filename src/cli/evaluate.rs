@@ -11,8 +11,8 @@ use serde::de::DeserializeOwned;
 
 use super::client::{answer_of, Client, ClientError};
 use super::evaluate_docs::{
-    pose_doc, CompensateAnswer, CompensateBody, CompensateLine, ForwardAnswer, ForwardBody,
-    PoseNumbers, Seeds,
+    error_of, pose_doc, CompensateAnswer, CompensateBody, CompensateLine, ForwardAnswer,
+    ForwardBody, PoseNumbers, Seeds,
 };
 
 /// Which parameter set, and how to print the answer.
@@ -220,11 +220,7 @@ pub fn compensate_table(answer: &CompensateAnswer) -> String {
             index,
             joints_deg: joints.clone(),
             residual_mm: answer.residual_mm.get(index).copied().flatten(),
-            error: answer
-                .errors
-                .iter()
-                .find(|e| e.index == index)
-                .map(|e| e.message.clone()),
+            error: error_of(&answer.errors, index),
         }));
     }
     out

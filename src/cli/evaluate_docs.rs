@@ -109,6 +109,14 @@ pub struct TargetError {
     pub message: String,
 }
 
+/// The message of the error `errors` names `index` with, if any.
+pub fn error_of(errors: &[TargetError], index: usize) -> Option<String> {
+    errors
+        .iter()
+        .find(|e| e.index == index)
+        .map(|e| e.message.clone())
+}
+
 /// One line of a streamed `filter` answer: the target's answer, or `error`.
 #[derive(Debug, Clone, Default, PartialEq, Deserialize)]
 pub struct FilterLine {

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use super::client::{answer_of, Client, ClientError};
 use super::evaluate::{parse_row, read_input, SetArgs};
-use super::evaluate_docs::{pose_doc, FilterAnswer, FilterBody, FilterLine, POSE_WIDTH};
+use super::evaluate_docs::{error_of, pose_doc, FilterAnswer, FilterBody, FilterLine, POSE_WIDTH};
 /// Column names of the input (a header line with letters is skipped).
 pub const INPUT_COLUMNS: &str = "x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg";
 /// Column names of the output: the filtered flange pose in the base frame
@@ -101,11 +101,7 @@ pub fn filter_csv(answer: &FilterAnswer) -> String {
             nominal_target: pose.clone(),
             joints_deg: answer.joints_deg.get(index).cloned().flatten(),
             residual_mm: answer.residual_mm.get(index).copied().flatten(),
-            error: answer
-                .errors
-                .iter()
-                .find(|e| e.index == index)
-                .map(|e| e.message.clone()),
+            error: error_of(&answer.errors, index),
         }));
     }
     out

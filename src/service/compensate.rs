@@ -280,20 +280,8 @@ pub fn compensate(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use robocal_calib::kinematics::presets;
+    use crate::service::evaluate::tests::{fields, model};
     use serde_json::json;
-
-    fn model() -> CalibratedModel {
-        CalibratedModel {
-            robot: presets::irb2400(),
-            world_to_base: Pose::identity(),
-            flange_to_tool: Pose::identity(),
-        }
-    }
-
-    fn fields(errors: Vec<FieldError>) -> Vec<String> {
-        errors.into_iter().map(|e| e.field).collect()
-    }
 
     #[test]
     fn compensate_reaches_a_reachable_target_and_names_an_unreachable_one() {

@@ -133,12 +133,13 @@ pub fn forward(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use robocal_calib::kinematics::presets;
     use serde_json::json;
 
-    fn model() -> CalibratedModel {
+    /// The IRB 2400 preset with the base and tool at identity.
+    pub(crate) fn model() -> CalibratedModel {
         CalibratedModel {
             robot: presets::irb2400(),
             world_to_base: Pose::identity(),
@@ -146,7 +147,8 @@ mod tests {
         }
     }
 
-    fn fields(errors: Vec<FieldError>) -> Vec<String> {
+    /// The fields a refusal names.
+    pub(crate) fn fields(errors: Vec<FieldError>) -> Vec<String> {
         errors.into_iter().map(|e| e.field).collect()
     }
 
