@@ -37,6 +37,7 @@ pub mod fleet;
 pub mod idempotency;
 pub mod job_events;
 pub mod jobs;
+pub mod ndjson;
 pub mod ops;
 pub mod poses;
 pub mod problem_fallback;

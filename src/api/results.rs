@@ -8,17 +8,17 @@ use utoipa::ToSchema;
 use utoipa_axum::router::OpenApiRouter;
 use utoipa_axum::routes;
 
-use axum::http::header;
-use axum::response::Html;
+use axum::http::{header, HeaderMap};
+use axum::response::{Html, IntoResponse, Response};
 
 use super::error::{ApiError, ApiResult, Problem};
 use super::extract::{ApiJson, Paging, SerialPath};
-use super::AppState;
+use super::{ndjson, AppState};
 use crate::domain::ReleaseStatus;
 use crate::report::schema::IntrinsicsSchema;
 use crate::report::{render_html, render_svg, Report};
 use crate::schema::PoseOut;
-use crate::service::{evaluate, filter, release, results, uncertainty};
+use crate::service::{compensate, evaluate, filter, release, results, uncertainty};
 use crate::store::ParameterSetRecord;
 
 pub fn router() -> OpenApiRouter<AppState> {
@@ -297,40 +297,58 @@ async fn forward(
 }
 
 /// Cartesian targets for a controller that runs the nominal model: sent to
-/// it, they make the real robot put the tool on the desired targets.
+/// it, they make the real robot put the tool on the desired targets. With
+/// `Accept: application/x-ndjson` the answer streams, one line per target
+/// in order as it is solved (`index`, then the target's answer or `error`);
+/// the request is checked whole before the first line, so a bad field is
+/// still a 422.
 #[utoipa::path(post, path = "/v1/robots/{serial}/parameter-sets/{version}/filter", tag = "results",
     params(("serial" = String, Path, description = "Robot serial number"),
            ("version" = String, Path, pattern = r"^(latest|[1-9][0-9]{0,17})$", description = "Version number (1, 2, ...) or `latest`")),
     request_body = filter::FilterRequest,
-    responses((status = 200, description = "Per target, the flange pose for the nominal controller, the joints the robot takes and the replayed residual; unreachable targets in `errors` with their index", body = filter::FilterResponse), (status = 422, body = Problem, content_type = "application/problem+json"),
+    responses((status = 200, description = "Per target, the flange pose for the nominal controller, the joints the robot takes and the replayed residual; unreachable targets in `errors` with their index (streamed: one `FilterLine` per line, an `error` inline)",
+               content((filter::FilterResponse = "application/json"), (filter::FilterLine = "application/x-ndjson"))),
+              (status = 422, body = Problem, content_type = "application/problem+json"),
               (status = 409, description = "The parameter set holds no calibrated model", body = Problem, content_type = "application/problem+json")))]
 async fn filter_targets(
     State(state): State<AppState>,
     SerialPath(serial): SerialPath,
     Path((_serial, version)): Path<(String, String)>,
+    headers: HeaderMap,
     ApiJson(body): ApiJson<filter::FilterRequest>,
-) -> ApiResult<Json<filter::FilterResponse>> {
-    Ok(Json(
-        results::filter(&state.store, &serial, &version, body).await?,
-    ))
+) -> ApiResult<Response> {
+    if ndjson::wanted(&headers) {
+        let lines = results::filter_stream(&state.store, &serial, &version, body).await?;
+        return Ok(ndjson::response(lines));
+    }
+    let answer = results::filter(&state.store, &serial, &version, body).await?;
+    Ok(Json(answer).into_response())
 }
 
-/// Joints that put the tool on each target according to the calibrated model.
+/// Joints that put the tool on each target according to the calibrated
+/// model. With `Accept: application/x-ndjson` the answer streams, one line
+/// per target (as `filter`).
 #[utoipa::path(post, path = "/v1/robots/{serial}/parameter-sets/{version}/compensate", tag = "results",
     params(("serial" = String, Path, description = "Robot serial number"),
            ("version" = String, Path, pattern = r"^(latest|[1-9][0-9]{0,17})$", description = "Version number (1, 2, ...) or `latest`")),
-    request_body = evaluate::CompensateRequest,
-    responses((status = 200, description = "Per target, the joints and the model's remaining distance to the target", body = evaluate::CompensateResponse), (status = 422, body = Problem, content_type = "application/problem+json"),
+    request_body = compensate::CompensateRequest,
+    responses((status = 200, description = "Per target, the joints and the model's remaining distance to the target; targets out of reach or beyond the joint limits in `errors` with their index (streamed: one `CompensateLine` per line, an `error` inline)",
+               content((compensate::CompensateResponse = "application/json"), (compensate::CompensateLine = "application/x-ndjson"))),
+              (status = 422, body = Problem, content_type = "application/problem+json"),
               (status = 409, description = "The parameter set holds no calibrated model", body = Problem, content_type = "application/problem+json")))]
 async fn compensate(
     State(state): State<AppState>,
     SerialPath(serial): SerialPath,
     Path((_serial, version)): Path<(String, String)>,
-    ApiJson(body): ApiJson<evaluate::CompensateRequest>,
-) -> ApiResult<Json<evaluate::CompensateResponse>> {
-    Ok(Json(
-        results::compensate(&state.store, &serial, &version, body).await?,
-    ))
+    headers: HeaderMap,
+    ApiJson(body): ApiJson<compensate::CompensateRequest>,
+) -> ApiResult<Response> {
+    if ndjson::wanted(&headers) {
+        let lines = results::compensate_stream(&state.store, &serial, &version, body).await?;
+        return Ok(ndjson::response(lines));
+    }
+    let answer = results::compensate(&state.store, &serial, &version, body).await?;
+    Ok(Json(answer).into_response())
 }
 
 /// Predicted 1σ of the calibrated model over the workspace: at rows of

@@ -32,6 +32,9 @@ pub struct DatasetStored {
     pub poses_created: u64,
 }
 
+/// The media type of a streamed answer: one JSON document per line.
+const NDJSON: &str = "application/x-ndjson";
+
 /// How long one request may take; uploads of whole campaigns get longer.
 const REQUEST_TIMEOUT: Duration = Duration::from_secs(60);
 const UPLOAD_TIMEOUT: Duration = Duration::from_secs(3600);
@@ -159,6 +162,51 @@ impl Client {
             .json(body),
         )
         .await
+    }
+
+    /// `compensate` or `filter` streamed (`Accept: application/x-ndjson`):
+    /// `on_line` gets each answer line (one target) as it arrives, so a long
+    /// target list is printed as it is solved and never held whole.
+    pub async fn evaluate_lines(
+        &self,
+        serial: &str,
+        version: Option<i64>,
+        operation: &str,
+        body: &impl Serialize,
+        mut on_line: impl FnMut(&str) -> Result<(), ClientError>,
+    ) -> Result<(), ClientError> {
+        let version = version.map_or("latest".to_string(), |v| v.to_string());
+        let mut response = self
+            .request(
+                reqwest::Method::POST,
+                &format!("/v1/robots/{serial}/parameter-sets/{version}/{operation}"),
+            )
+            .header(reqwest::header::ACCEPT, NDJSON)
+            .json(body)
+            .send()
+            .await?;
+        let status = response.status();
+        if !status.is_success() {
+            let body = response.text().await.unwrap_or_default();
+            return Err(ClientError::of_problem(status.as_u16(), &body));
+        }
+        let mut pending = Vec::new();
+        while let Some(chunk) = response.chunk().await? {
+            pending.extend_from_slice(&chunk);
+            while let Some(end) = memchr::memchr(b'\n', &pending) {
+                let line: Vec<u8> = pending.drain(..=end).collect();
+                let line = std::str::from_utf8(&line).map_err(|e| {
+                    ClientError::Local(format!("unexpected answer from the server: {e}"))
+                })?;
+                on_line(line.trim_end())?;
+            }
+        }
+        if pending.iter().any(|b| !b.is_ascii_whitespace()) {
+            return Err(ClientError::Local(
+                "the server's answer ended in the middle of a line".into(),
+            ));
+        }
+        Ok(())
     }
 
     pub async fn create_session(

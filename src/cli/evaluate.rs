@@ -11,7 +11,8 @@ use serde::de::DeserializeOwned;
 
 use super::client::{answer_of, Client, ClientError};
 use super::evaluate_docs::{
-    pose_doc, CompensateAnswer, CompensateBody, ForwardAnswer, ForwardBody, PoseNumbers, Seeds,
+    error_of, pose_doc, CompensateAnswer, CompensateBody, CompensateLine, ForwardAnswer,
+    ForwardBody, PoseNumbers, Seeds,
 };
 
 /// Which parameter set, and how to print the answer.
@@ -196,22 +197,31 @@ pub fn forward_table(answer: &ForwardAnswer) -> String {
     out
 }
 
+/// The header of the `compensate` table.
+const COMPENSATE_HEADER: &str =
+    "target  joints (deg)                                  residual (mm)\n";
+
+/// One target's row of the `compensate` table (numbered from 1).
+pub fn compensate_row(line: &CompensateLine) -> String {
+    let residual = line.residual_mm.map_or("?".into(), |r| format!("{r:.4}"));
+    let cells = match (&line.joints_deg, &line.error) {
+        (Some(joints), _) => format!("{:<45} {residual}", numbers(joints, 4)),
+        (None, Some(e)) => format!("no joints: {e}"),
+        (None, None) => "no joints".into(),
+    };
+    format!("{:<7} {cells}\n", line.index + 1)
+}
+
 /// `compensate` as a table: per target the joints and the model's residual.
 pub fn compensate_table(answer: &CompensateAnswer) -> String {
-    let mut out =
-        String::from("target  joints (deg)                                  residual (mm)\n");
-    for (i, joints) in answer.joints_deg.iter().enumerate() {
-        let residual = answer
-            .residual_mm
-            .get(i)
-            .copied()
-            .flatten()
-            .map_or("?".into(), |r| format!("{r:.4}"));
-        out.push_str(&format!(
-            "{:<7} {:<45} {residual}\n",
-            i + 1,
-            numbers(joints, 4)
-        ));
+    let mut out = String::from(COMPENSATE_HEADER);
+    for (index, joints) in answer.joints_deg.iter().enumerate() {
+        out.push_str(&compensate_row(&CompensateLine {
+            index,
+            joints_deg: joints.clone(),
+            residual_mm: answer.residual_mm.get(index).copied().flatten(),
+            error: error_of(&answer.errors, index),
+        }));
     }
     out
 }
@@ -238,12 +248,24 @@ pub async fn forward(client: &Client, args: &ForwardArgs) -> Result<(), ClientEr
     print_answer(&args.set, &answer, forward_table)
 }
 
+/// `--json` prints the server's whole answer; the table streams: each row is
+/// printed as the server sends its target (`Accept: application/x-ndjson`).
 pub async fn compensate(client: &Client, args: &CompensateArgs) -> Result<(), ClientError> {
     let body = compensate_body(args).map_err(ClientError::Local)?;
-    let answer = client
-        .evaluate(&args.set.serial, args.set.version, "compensate", &body)
-        .await?;
-    print_answer(&args.set, &answer, compensate_table)
+    let (serial, version) = (&args.set.serial, args.set.version);
+    if args.set.json {
+        let answer = client
+            .evaluate(serial, version, "compensate", &body)
+            .await?;
+        return print_answer(&args.set, &answer, compensate_table);
+    }
+    print!("{COMPENSATE_HEADER}");
+    client
+        .evaluate_lines(serial, version, "compensate", &body, |line| {
+            print!("{}", compensate_row(&answer_of(line)?));
+            Ok(())
+        })
+        .await
 }
 
 #[cfg(test)]
@@ -349,10 +371,12 @@ mod tests {
         );
         assert!(t.contains("tool") && t.contains("warning: joint 2"), "{t}");
         let comp: CompensateAnswer = serde_json::from_str(
-            r#"{"joints_deg": [[1.0, 2.0, 3.0, 4.0, 5.0, 6.0]], "residual_mm": [0.00012]}"#,
+            r#"{"joints_deg": [[1.0, 2.0, 3.0, 4.0, 5.0, 6.0], null], "residual_mm": [0.00012, null],
+                "errors": [{"index": 1, "message": "target out of reach"}]}"#,
         )
         .unwrap();
         let t = compensate_table(&comp);
         assert!(t.contains("1.0000 2.0000") && t.contains("0.0001"), "{t}");
+        assert!(t.contains("2       no joints: target out of reach"), "{t}");
     }
 }

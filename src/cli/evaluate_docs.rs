@@ -91,13 +91,15 @@ pub struct ForwardAnswer {
     pub poses: Vec<ForwardRow>,
 }
 
-/// The `compensate` answer.
+/// The `compensate` answer: per target, `null` where `errors` names it.
 #[derive(Debug, Clone, Default, PartialEq, Deserialize)]
 pub struct CompensateAnswer {
     #[serde(default)]
-    pub joints_deg: Vec<Vec<Option<f64>>>,
+    pub joints_deg: Vec<Option<Vec<Option<f64>>>>,
     #[serde(default)]
     pub residual_mm: Vec<Option<f64>>,
+    #[serde(default)]
+    pub errors: Vec<TargetError>,
 }
 
 /// A target the server could not filter.
@@ -105,6 +107,33 @@ pub struct CompensateAnswer {
 pub struct TargetError {
     pub index: usize,
     pub message: String,
+}
+
+/// The message of the error `errors` names `index` with, if any.
+pub fn error_of(errors: &[TargetError], index: usize) -> Option<String> {
+    errors
+        .iter()
+        .find(|e| e.index == index)
+        .map(|e| e.message.clone())
+}
+
+/// One line of a streamed `filter` answer: the target's answer, or `error`.
+#[derive(Debug, Clone, Default, PartialEq, Deserialize)]
+pub struct FilterLine {
+    pub index: usize,
+    pub nominal_target: Option<PoseNumbers>,
+    pub joints_deg: Option<Vec<Option<f64>>>,
+    pub residual_mm: Option<f64>,
+    pub error: Option<String>,
+}
+
+/// One line of a streamed `compensate` answer.
+#[derive(Debug, Clone, Default, PartialEq, Deserialize)]
+pub struct CompensateLine {
+    pub index: usize,
+    pub joints_deg: Option<Vec<Option<f64>>>,
+    pub residual_mm: Option<f64>,
+    pub error: Option<String>,
 }
 
 /// The `filter` answer: per target, `null` where `errors` names it.

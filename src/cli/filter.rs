@@ -2,12 +2,11 @@
 //! controller that runs the robot's nominal model (`POST …/filter`), CSV in
 //! and CSV out, so that a cell's point list goes through in one command.
 
-use std::fmt::Write;
 use std::path::PathBuf;
 
 use super::client::{answer_of, Client, ClientError};
 use super::evaluate::{parse_row, read_input, SetArgs};
-use super::evaluate_docs::{pose_doc, FilterAnswer, FilterBody, POSE_WIDTH};
+use super::evaluate_docs::{error_of, pose_doc, FilterAnswer, FilterBody, FilterLine, POSE_WIDTH};
 /// Column names of the input (a header line with letters is skipped).
 pub const INPUT_COLUMNS: &str = "x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg";
 /// Column names of the output: the filtered flange pose in the base frame
@@ -65,53 +64,74 @@ pub fn filter_body(csv: &str, args: &FilterArgs) -> Result<FilterBody, String> {
     })
 }
 
-/// The answer as CSV ([`OUTPUT_COLUMNS`]), one line per target in order.
-pub fn filter_csv(answer: &FilterAnswer) -> String {
-    let mut out = format!("{OUTPUT_COLUMNS}\n");
+/// One target's CSV line ([`OUTPUT_COLUMNS`], with its newline): the
+/// filtered pose, joints and residual, or empty cells and the error.
+pub fn csv_line(line: &FilterLine) -> String {
     // The numbers given (a missing one leaves its cell empty).
     let numbers =
         |v: &[Option<f64>]| -> Vec<String> { v.iter().flatten().map(|x| format!("{x}")).collect() };
-    for (i, pose) in answer.nominal_targets.iter().enumerate() {
-        let mut cells = Vec::new();
-        if let Some(pose) = pose {
-            cells.extend(numbers(&pose.translation_mm));
-            cells.extend(numbers(&pose.rotation_deg));
-        }
-        cells.resize(POSE_WIDTH, String::new());
-        let joints = match answer.joints_deg.get(i) {
-            Some(Some(joints)) => numbers(joints).join(" "),
-            _ => String::new(),
-        };
-        let residual = answer
-            .residual_mm
-            .get(i)
-            .copied()
-            .flatten()
-            .map_or(String::new(), |r| format!("{r}"));
-        let error = answer
-            .errors
-            .iter()
-            .find(|e| e.index == i)
-            .map_or(String::new(), |e| {
-                format!("\"{}\"", e.message.replace('"', "\"\""))
-            });
-        let _ = writeln!(out, "{i},{},{joints},{residual},{error}", cells.join(","));
+    let mut cells = Vec::new();
+    if let Some(pose) = &line.nominal_target {
+        cells.extend(numbers(&pose.translation_mm));
+        cells.extend(numbers(&pose.rotation_deg));
+    }
+    cells.resize(POSE_WIDTH, String::new());
+    let joints = line
+        .joints_deg
+        .as_deref()
+        .map_or(String::new(), |j| numbers(j).join(" "));
+    let residual = line.residual_mm.map_or(String::new(), |r| format!("{r}"));
+    let error = line
+        .error
+        .as_ref()
+        .map_or(String::new(), |e| format!("\"{}\"", e.replace('"', "\"\"")));
+    format!(
+        "{},{},{joints},{residual},{error}\n",
+        line.index,
+        cells.join(",")
+    )
+}
+
+/// The whole answer as CSV ([`OUTPUT_COLUMNS`]), one line per target in order.
+pub fn filter_csv(answer: &FilterAnswer) -> String {
+    let mut out = format!("{OUTPUT_COLUMNS}\n");
+    for (index, pose) in answer.nominal_targets.iter().enumerate() {
+        out.push_str(&csv_line(&FilterLine {
+            index,
+            nominal_target: pose.clone(),
+            joints_deg: answer.joints_deg.get(index).cloned().flatten(),
+            residual_mm: answer.residual_mm.get(index).copied().flatten(),
+            error: error_of(&answer.errors, index),
+        }));
     }
     out
 }
 
+/// `--json` prints the server's whole answer; the CSV streams: each line is
+/// printed as the server sends its target (`Accept: application/x-ndjson`).
 pub async fn filter(client: &Client, args: &FilterArgs) -> Result<(), ClientError> {
     let csv = read_input(&args.file).map_err(ClientError::Local)?;
     let body = filter_body(&csv, args).map_err(ClientError::Local)?;
-    let answer = client
-        .evaluate(&args.set.serial, args.set.version, "filter", &body)
-        .await?;
     if args.set.json {
+        let answer = client
+            .evaluate(&args.set.serial, args.set.version, "filter", &body)
+            .await?;
         println!("{}", answer.trim_end());
-    } else {
-        print!("{}", filter_csv(&answer_of(&answer)?));
+        return Ok(());
     }
-    Ok(())
+    println!("{OUTPUT_COLUMNS}");
+    client
+        .evaluate_lines(
+            &args.set.serial,
+            args.set.version,
+            "filter",
+            &body,
+            |line| {
+                print!("{}", csv_line(&answer_of(line)?));
+                Ok(())
+            },
+        )
+        .await
 }
 
 #[cfg(test)]

@@ -1,10 +1,8 @@
 //! What off-line programming asks of a parameter set (api.md "Results"):
-//! forward kinematics and compensated joints (method.md §8), evaluated on
-//! the stored calibrated model.
+//! forward kinematics (method.md §8) evaluated on the stored calibrated
+//! model, and the target checks `compensate` and `filter` share.
 
 use robocal_calib::geometry::Pose;
-use robocal_calib::kinematics::ik::{default_seeds, nearest_within_limits, IkStart};
-use robocal_calib::kinematics::ik_branches::{self, SphericalWristArm};
 use robocal_calib::kinematics::CalibratedModel;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
@@ -14,8 +12,6 @@ use crate::schema::{Checker, FieldError, PoseDoc, PoseOut};
 
 /// Most rows of one `forward` or `compensate` request.
 pub const MAX_ROWS: usize = 10_000;
-/// Unreachable targets named one by one in a 422; the rest are counted.
-const MAX_TARGET_ERRORS: usize = 50;
 
 #[derive(Debug, Clone, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
@@ -59,103 +55,6 @@ pub struct ForwardPose {
 #[derive(Debug, Clone, Serialize, ToSchema)]
 pub struct ForwardResponse {
     pub poses: Vec<ForwardPose>,
-}
-
-/// One seed for all targets, or one per target.
-#[derive(Debug, Clone, Deserialize, ToSchema)]
-#[serde(untagged)]
-pub enum Seeds {
-    One(Vec<f64>),
-    PerTarget(Vec<Vec<f64>>),
-}
-
-#[derive(Debug, Clone, Deserialize, ToSchema)]
-#[serde(deny_unknown_fields)]
-pub struct CompensateRequest {
-    pub targets: Vec<PoseDoc>,
-    #[serde(default)]
-    pub tool: Option<PoseDoc>,
-    #[serde(default)]
-    pub seed_joints_deg: Option<Seeds>,
-}
-
-/// Where the solver's run that found a target's joints started.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, ToSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum SolverStart {
-    /// The seed (`seed_joints_deg`, or mid-range joints without one).
-    Seed,
-    /// A closed-form branch of a spherical-wrist arm: the seed's own branch
-    /// left the joint limits.
-    Branch,
-    /// A grid of starts (arms without a spherical wrist).
-    MultiStart,
-}
-
-impl From<IkStart> for SolverStart {
-    fn from(s: IkStart) -> Self {
-        match s {
-            IkStart::Seed => SolverStart::Seed,
-            IkStart::Branch => SolverStart::Branch,
-            IkStart::MultiStart => SolverStart::MultiStart,
-        }
-    }
-}
-
-/// The arm configuration of a solution (spherical-wrist arms).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, ToSchema)]
-pub struct Configuration {
-    /// The wrist centre's side of joint 1, along the arm.
-    #[schema(schema_with = shoulder_schema)]
-    pub shoulder: ik_branches::Shoulder,
-    /// The elbow above or below the shoulder–wrist line.
-    #[schema(schema_with = elbow_schema)]
-    pub elbow: ik_branches::Elbow,
-    /// The sign of joint 5.
-    #[schema(schema_with = wrist_schema)]
-    pub wrist: ik_branches::Wrist,
-}
-
-/// A string enum schema (the numerics' enums carry no OpenAPI derive).
-fn string_enum(values: [&str; 2], description: &str) -> utoipa::openapi::Object {
-    utoipa::openapi::ObjectBuilder::new()
-        .schema_type(utoipa::openapi::schema::Type::String)
-        .enum_values(Some(values))
-        .description(Some(description))
-        .build()
-}
-
-fn shoulder_schema() -> utoipa::openapi::Object {
-    string_enum(
-        ["front", "back"],
-        "The wrist centre's side of joint 1, along the arm.",
-    )
-}
-
-fn elbow_schema() -> utoipa::openapi::Object {
-    string_enum(
-        ["up", "down"],
-        "The elbow above or below the shoulder–wrist line (in the arm's plane).",
-    )
-}
-
-fn wrist_schema() -> utoipa::openapi::Object {
-    string_enum(
-        ["no_flip", "flip"],
-        "The sign of joint 5 (with its offset).",
-    )
-}
-
-#[derive(Debug, Clone, Serialize, ToSchema)]
-pub struct CompensateResponse {
-    /// Per target: the in-limit joints nearest the seed.
-    pub joints_deg: Vec<Vec<f64>>,
-    pub residual_mm: Vec<f64>,
-    /// Per target: where the run that found the joints started.
-    pub start: Vec<SolverStart>,
-    /// Per target: the configuration of the joints, null for arms without
-    /// a spherical wrist.
-    pub configuration: Vec<Option<Configuration>>,
 }
 
 pub(crate) fn pose_of(doc: &PoseDoc, field: &str, c: &mut Checker) -> Option<Pose> {
@@ -233,103 +132,14 @@ pub fn forward(
     Ok(ForwardResponse { poses })
 }
 
-pub fn compensate(
-    model: &CalibratedModel,
-    req: &CompensateRequest,
-) -> Result<CompensateResponse, Vec<FieldError>> {
-    let mut c = Checker::default();
-    let targets = target_poses(&req.targets, &mut c);
-    let tool = req.tool.as_ref().and_then(|t| pose_of(t, "tool", &mut c));
-    let dof = model.robot.dof();
-    let seeds: Vec<Option<JointsDeg>> = match &req.seed_joints_deg {
-        Some(Seeds::One(seed)) => vec![JointsDeg::check(&mut c, "seed_joints_deg", seed, dof)],
-        Some(Seeds::PerTarget(rows)) => {
-            if rows.len() != req.targets.len() {
-                c.fail(
-                    "seed_joints_deg",
-                    "one seed for all targets, or exactly one per target",
-                );
-            }
-            rows.iter()
-                .enumerate()
-                .map(|(i, row)| {
-                    JointsDeg::check(&mut c, &format!("seed_joints_deg[{i}]"), row, dof)
-                })
-                .collect()
-        }
-        None => Vec::new(),
-    };
-    c.finish()?;
-    let seeds: Vec<Vec<f64>> = seeds
-        .into_iter()
-        .map(|s| s.expect("checked above").to_radians())
-        .collect();
-    let tool_model = tool.map_or_else(|| model.clone(), |t| model.with_tool(t));
-    // Without a seed: mid-range joints (the first of the default grid).
-    let mid_range = default_seeds(&tool_model).swap_remove(0);
-    let arm = SphericalWristArm::of(&tool_model.robot);
-    let mut answer = CompensateResponse {
-        joints_deg: Vec::new(),
-        residual_mm: Vec::new(),
-        start: Vec::new(),
-        configuration: Vec::new(),
-    };
-    let mut failed = Checker::default();
-    let mut failures = 0;
-    for (i, target) in targets.iter().enumerate() {
-        let target = target.expect("checked above");
-        // One seed for all, one per target, or none (mid-range).
-        let seed = match seeds.len() {
-            0 => mid_range.clone(),
-            1 => seeds[0].clone(),
-            _ => seeds[i].clone(),
-        };
-        let solution = match nearest_within_limits(&tool_model, &target, &seed) {
-            Ok(s) => s,
-            Err(e) => {
-                failures += 1;
-                if failures <= MAX_TARGET_ERRORS {
-                    failed.fail(format!("targets[{i}]"), e.to_string());
-                }
-                continue;
-            }
-        };
-        let configuration = arm
-            .as_ref()
-            .and_then(|a| a.configuration(&solution.joints_rad));
-        answer
-            .configuration
-            .push(configuration.map(|c| Configuration {
-                shoulder: c.shoulder,
-                elbow: c.elbow,
-                wrist: c.wrist,
-            }));
-        answer
-            .joints_deg
-            .push(JointsDeg::from_radians(&solution.joints_rad).into_vec());
-        answer.residual_mm.push(solution.residual_mm);
-        answer.start.push(solution.start.into());
-    }
-    if failures > MAX_TARGET_ERRORS {
-        failed.fail(
-            "targets",
-            format!(
-                "{} more targets have no solution within reach and joint limits",
-                failures - MAX_TARGET_ERRORS
-            ),
-        );
-    }
-    failed.finish()?;
-    Ok(answer)
-}
-
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use robocal_calib::kinematics::presets;
     use serde_json::json;
 
-    fn model() -> CalibratedModel {
+    /// The IRB 2400 preset with the base and tool at identity.
+    pub(crate) fn model() -> CalibratedModel {
         CalibratedModel {
             robot: presets::irb2400(),
             world_to_base: Pose::identity(),
@@ -337,7 +147,8 @@ mod tests {
         }
     }
 
-    fn fields(errors: Vec<FieldError>) -> Vec<String> {
+    /// The fields a refusal names.
+    pub(crate) fn fields(errors: Vec<FieldError>) -> Vec<String> {
         errors.into_iter().map(|e| e.field).collect()
     }
 
@@ -354,31 +165,5 @@ mod tests {
         let answer = forward(&model(), &ok).unwrap();
         // The IRB-2400 flange at zero joints (presets.rs doc): reach 940, height 1455.
         assert!((answer.poses[0].flange_in_base.translation_mm[0] - 940.0).abs() < 1e-9);
-    }
-
-    #[test]
-    fn compensate_reaches_a_reachable_target_and_names_an_unreachable_one() {
-        let m = model();
-        let q = [0.2, 0.3, -0.2, 0.4, 0.5, -0.3];
-        let target = m.world_to_tool(&q).unwrap();
-        let doc = json!({"translation_mm": [0, 0, 0], "rotation_deg": [0, 0, 0],
-                         "matrix": robocal_calib::geometry::pose_to_matrix_rows(&target)});
-        let req: CompensateRequest = serde_json::from_value(json!({
-            "targets": [doc], "seed_joints_deg": [10, 15, -10, 20, 25, -15]}))
-        .unwrap();
-        let answer = compensate(&m, &req).unwrap();
-        assert!(answer.residual_mm[0] < 1e-6, "{:?}", answer.residual_mm);
-        let far: CompensateRequest = serde_json::from_value(json!({
-            "targets": [{"translation_mm": [5000, 0, 0], "rotation_deg": [0, 0, 0]}]}))
-        .unwrap();
-        assert_eq!(fields(compensate(&m, &far).unwrap_err()), ["targets[0]"]);
-        let seeds: CompensateRequest = serde_json::from_value(json!({
-            "targets": [{"translation_mm": [900, 0, 1000], "rotation_deg": [0, 0, 0]}],
-            "seed_joints_deg": [[0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0]]}))
-        .unwrap();
-        assert_eq!(
-            fields(compensate(&m, &seeds).unwrap_err()),
-            ["seed_joints_deg"]
-        );
     }
 }

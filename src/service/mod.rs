@@ -11,6 +11,7 @@ pub mod campaign_plan_inputs;
 pub mod campaign_plan_noise;
 pub mod campaign_plans;
 pub mod checks;
+pub mod compensate;
 pub mod dataset;
 pub mod dataset_intake;
 pub mod error;
@@ -28,6 +29,7 @@ pub mod report_camera;
 pub mod results;
 pub mod stage_layout;
 pub mod staged_images;
+pub mod target_stream;
 pub mod uncertainty;
 pub mod webhooks;
 

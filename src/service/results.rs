@@ -1,13 +1,14 @@
 //! Results of a robot: its versioned parameter sets, and the calibrated
 //! model of one of them evaluated (forward kinematics, compensation).
 
-use robocal_calib::kinematics::CalibratedModel;
+use futures_util::Stream;
+use robocal_calib::kinematics::{CalibratedModel, RobotModel};
 
+use super::compensate::{self, CompensateRequest, CompensateResponse, Compensation};
 use super::error::{ServiceError, ServiceResult};
-use super::evaluate::{
-    self, CompensateRequest, CompensateResponse, ForwardRequest, ForwardResponse,
-};
-use super::filter::{self, FilterRequest, FilterResponse};
+use super::evaluate::{ForwardRequest, ForwardResponse};
+use super::filter::{self, FilterRequest, FilterResponse, Filtering};
+use super::target_stream;
 use super::uncertainty::{self, Uncertainty, UncertaintyMapRequest, UncertaintyMapResponse};
 use crate::domain::ParameterSet;
 use crate::pipeline::hand_eye_results::HAND_EYE_KIND;
@@ -138,10 +139,48 @@ pub async fn compensate(
     request: CompensateRequest,
 ) -> ServiceResult<CompensateResponse> {
     let model = model(store, serial, version).await?;
-    let answer = tokio::task::spawn_blocking(move || evaluate::compensate(&model, &request))
+    let answer = tokio::task::spawn_blocking(move || compensate::compensate(&model, &request))
         .await
         .map_err(ServiceError::internal)?;
     Ok(answer?)
+}
+
+/// [`compensate`] as one JSON line per target, solved as the client reads
+/// (`target_stream::ndjson`); the request is checked whole first, so a bad
+/// field is still a 422.
+pub async fn compensate_stream(
+    store: &DynStore,
+    serial: &str,
+    version: &str,
+    request: CompensateRequest,
+) -> ServiceResult<impl Stream<Item = Vec<u8>>> {
+    let model = model(store, serial, version).await?;
+    let plan = Compensation::check(&model, &request)?;
+    Ok(target_stream::ndjson(plan.len(), move |i| plan.solve(i)))
+}
+
+/// The robot's nominal chain (what its controller runs), for `filter`.
+async fn nominal_chain(store: &DynStore, serial: &str) -> ServiceResult<RobotModel> {
+    let robot = store
+        .get_robot(serial)
+        .await?
+        .ok_or_else(|| ServiceError::not_found("robot", serial))?;
+    let doc: KinematicsDoc =
+        serde_json::from_value(robot.kinematics).map_err(ServiceError::internal)?;
+    Ok(doc_to_model(&doc))
+}
+
+/// A filter request checked against a parameter set's calibrated model and
+/// the robot's nominal chain.
+async fn filtering(
+    store: &DynStore,
+    serial: &str,
+    version: &str,
+    request: &FilterRequest,
+) -> ServiceResult<Filtering> {
+    let model = model(store, serial, version).await?;
+    let nominal = nominal_chain(store, serial).await?;
+    Ok(Filtering::check(&model, nominal, request)?)
 }
 
 /// Filtered targets for the nominal controller (`filter`), on a blocking
@@ -152,16 +191,21 @@ pub async fn filter(
     version: &str,
     request: FilterRequest,
 ) -> ServiceResult<FilterResponse> {
-    let model = model(store, serial, version).await?;
-    let robot = store
-        .get_robot(serial)
-        .await?
-        .ok_or_else(|| ServiceError::not_found("robot", serial))?;
-    let doc: KinematicsDoc =
-        serde_json::from_value(robot.kinematics).map_err(ServiceError::internal)?;
-    let nominal = doc_to_model(&doc);
-    let answer = tokio::task::spawn_blocking(move || filter::filter(&model, &nominal, &request))
+    let plan = filtering(store, serial, version, &request).await?;
+    drop(request);
+    tokio::task::spawn_blocking(move || filter::filter(&plan))
         .await
-        .map_err(ServiceError::internal)?;
-    Ok(answer?)
+        .map_err(ServiceError::internal)
+}
+
+/// [`filter`] as one JSON line per target, solved as the client reads.
+pub async fn filter_stream(
+    store: &DynStore,
+    serial: &str,
+    version: &str,
+    request: FilterRequest,
+) -> ServiceResult<impl Stream<Item = Vec<u8>>> {
+    let plan = filtering(store, serial, version, &request).await?;
+    drop(request);
+    Ok(target_stream::ndjson(plan.len(), move |i| plan.solve(i)))
 }

@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
 use super::evaluate::{pose_of, ForwardRequest, ForwardResponse, MAX_ROWS};
-use super::filter::TargetError;
+use super::target_stream::TargetError;
 use crate::domain::{JointsDeg, ParameterSet};
 use crate::schema::{Checker, FieldError, PoseDoc, MAX_ANGLE_DEG, MAX_LENGTH_MM};
 

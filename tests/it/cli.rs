@@ -1,8 +1,9 @@
 //! The `robocal` client commands, run as the real binary against a server:
 //! `upload` keeps an existing robot unless `--replace-robot`, `calibrate`
 //! checks `--serial` and logs plain progress lines off a terminal,
-//! `forward` and `compensate` print tables or JSON; a hand–eye campaign
-//! (flange poses instead of joints) uploads as a directory or a zip.
+//! `forward` and `compensate` print tables or JSON, `filter FILE.csv`
+//! streams CSV lines; a hand–eye campaign (flange poses instead of joints)
+//! uploads as a directory or a zip.
 
 use std::process::Output;
 
@@ -42,6 +43,16 @@ fn text(bytes: &[u8]) -> String {
 fn ok(out: &Output) -> String {
     assert!(out.status.success(), "stderr: {}", text(&out.stderr));
     text(&out.stdout)
+}
+
+/// A served pose as the CLI's six cells: x, y, z (mm), rx, ry, rz (deg).
+fn pose_cells(pose: &Value) -> Vec<String> {
+    let numbers = |key: &str| pose[key].as_array().unwrap().clone();
+    [numbers("translation_mm"), numbers("rotation_deg")]
+        .concat()
+        .iter()
+        .map(|v| v.as_f64().unwrap().to_string())
+        .collect()
 }
 
 async fn robot_preset(app: &TestApp) -> Value {
@@ -141,15 +152,7 @@ async fn upload_calibrate_forward_and_compensate_through_the_binary() {
     )
     .await;
     let forward: Value = serde_json::from_str(&ok(&out)).unwrap();
-    let camera = &forward["poses"][0]["camera_in_target"];
-    let number = |v: &Value| v.as_f64().unwrap().to_string();
-    let target: Vec<String> = camera["translation_mm"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .chain(camera["rotation_deg"].as_array().unwrap())
-        .map(number)
-        .collect();
+    let target = pose_cells(&forward["poses"][0]["camera_in_target"]);
 
     // compensate: the forward pose back to (near) the same joints.
     let out = robocal(
@@ -186,6 +189,69 @@ async fn upload_calibrate_forward_and_compensate_through_the_binary() {
     assert!(
         table.lines().nth(1).is_some_and(|l| l.starts_with("1 ")),
         "{table}"
+    );
+
+    // filter FILE.csv: streamed, one CSV line per target as it is solved;
+    // a target out of reach is its own line with the error.
+    let set: Value = app
+        .get(&format!("/v1/robots/{SERIAL}/parameter-sets/latest"))
+        .await
+        .json()
+        .await
+        .unwrap();
+    let tool = pose_cells(&set["flange_to_camera"]);
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("targets.csv");
+    let far = "9000,0,0,0,0,0";
+    std::fs::write(
+        &csv,
+        format!(
+            "x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg\n{}\n{far}\n",
+            target.join(",")
+        ),
+    )
+    .unwrap();
+    let csv = csv.to_str().unwrap();
+    let filter_args = [
+        "filter",
+        csv,
+        "--serial",
+        SERIAL,
+        "--tool",
+        &tool.join(","),
+        "--seed",
+        joints,
+    ];
+    let out = robocal(&app, &filter_args).await;
+    let streamed = ok(&out);
+    let lines: Vec<&str> = streamed.lines().collect();
+    assert_eq!(lines.len(), 3, "{streamed}");
+    assert_eq!(lines[0], robocal::cli::filter::OUTPUT_COLUMNS);
+    let cells: Vec<&str> = lines[1].split(',').collect();
+    assert_eq!(cells[0], "0", "{streamed}");
+    assert!(
+        cells[8].parse::<f64>().unwrap() < MAX_RESIDUAL_MM,
+        "{streamed}"
+    );
+    assert!(lines[2].starts_with("1,,,,,,,,,\""), "{streamed}");
+    // The same numbers as the whole JSON answer.
+    let mut json_args = filter_args.to_vec();
+    json_args.push("--json");
+    let whole: Value = serde_json::from_str(&ok(&robocal(&app, &json_args).await)).unwrap();
+    assert_eq!(cells[1..7], pose_cells(&whole["nominal_targets"][0]));
+    assert_eq!(whole["errors"][0]["index"], 1, "{whole}");
+
+    // export: the URDF for the controller, written to a file.
+    let urdf = dir.path().join("robot.urdf");
+    let urdf_arg = urdf.to_str().unwrap();
+    let export_args = [
+        "export", "--serial", SERIAL, "--format", "urdf", "--out", urdf_arg,
+    ];
+    ok(&robocal(&app, &export_args).await);
+    let text = std::fs::read_to_string(&urdf).unwrap();
+    assert!(
+        text.contains("<robot") && text.contains("name=\"flange\""),
+        "{text}"
     );
 }
 

@@ -1,7 +1,8 @@
 //! Deploying a parameter set over HTTP (issue 12): `compensate` with ONE
 //! seed for targets spread over the whole workspace answers in-limit joints
 //! for every target (the seed's own branch leaves the limits for many of
-//! them), a target nothing reaches is a 422 naming it, and `forward` at
+//! them), a target nothing reaches is an error of its own index while the
+//! others are answered, and `forward` at
 //! joints beyond the limits warns per row.
 
 use rand::{rngs::StdRng, Rng, SeedableRng};
@@ -24,7 +25,11 @@ const REACH_MM: f64 = 1e-6;
 
 /// A calibrated-looking model (the simulator's perturbed robot) stored as
 /// version 1 of `serial`, and the simulator's home joints (deg) as the seed.
-async fn stored_model(app: &TestApp, preset: &str, serial: &str) -> (CalibratedModel, Vec<f64>) {
+pub(crate) async fn stored_model(
+    app: &TestApp,
+    preset: &str,
+    serial: &str,
+) -> (CalibratedModel, Vec<f64>) {
     let r = app
         .put_json(
             &format!("/v1/robots/{serial}"),
@@ -66,7 +71,7 @@ async fn stored_model(app: &TestApp, preset: &str, serial: &str) -> (CalibratedM
 }
 
 /// Joints (deg) spread uniformly over every joint's range.
-fn spread_joints(model: &CalibratedModel, rng: &mut StdRng) -> Vec<Vec<f64>> {
+pub(crate) fn spread_joints(model: &CalibratedModel, rng: &mut StdRng) -> Vec<Vec<f64>> {
     let joints = &model.robot.joints;
     let mut rows = Vec::new();
     while rows.len() < TARGETS {
@@ -81,7 +86,7 @@ fn spread_joints(model: &CalibratedModel, rng: &mut StdRng) -> Vec<Vec<f64>> {
     rows
 }
 
-async fn forward(app: &TestApp, serial: &str, joints_deg: &[Vec<f64>]) -> Value {
+pub(crate) async fn forward(app: &TestApp, serial: &str, joints_deg: &[Vec<f64>]) -> Value {
     let path = format!("/v1/robots/{serial}/parameter-sets/1/forward");
     let r = app
         .post_json(&path, &json!({ "joints_deg": joints_deg }))
@@ -90,7 +95,7 @@ async fn forward(app: &TestApp, serial: &str, joints_deg: &[Vec<f64>]) -> Value 
     r.json().await.unwrap()
 }
 
-fn target_of(pose: &Value) -> Value {
+pub(crate) fn target_of(pose: &Value) -> Value {
     json!({"translation_mm": pose["translation_mm"], "rotation_deg": pose["rotation_deg"],
            "matrix": pose["matrix"]})
 }
@@ -151,7 +156,7 @@ async fn one_seed_stays_within_limits(preset: &str, serial: &str) {
         assert_eq!(reached["poses"][i]["warnings"], json!([]), "{reached}");
     }
 
-    // A target nothing reaches is named; the reachable ones do not hide it.
+    // A target nothing reaches is named by its index; the others are answered.
     let mut with_far = targets.clone();
     with_far[7] = json!({"translation_mm": [9000.0, 0.0, 0.0], "rotation_deg": [0.0, 0.0, 0.0]});
     let r = app
@@ -160,10 +165,18 @@ async fn one_seed_stays_within_limits(preset: &str, serial: &str) {
             &json!({"targets": with_far, "seed_joints_deg": seed}),
         )
         .await;
-    assert_eq!(r.status(), 422);
-    let problem: Value = r.json().await.unwrap();
-    assert_eq!(problem["errors"][0]["field"], "targets[7]", "{problem}");
-    assert_eq!(problem["errors"].as_array().unwrap().len(), 1, "{problem}");
+    assert_eq!(r.status(), 200);
+    let answer: Value = r.json().await.unwrap();
+    assert_eq!(answer["errors"].as_array().unwrap().len(), 1, "{answer}");
+    assert_eq!(answer["errors"][0]["index"], 7, "{answer}");
+    assert!(answer["joints_deg"][7].is_null(), "{answer}");
+    for i in (0..TARGETS).filter(|&i| i != 7) {
+        assert_eq!(
+            answer["joints_deg"][i],
+            json!(rows[i]),
+            "{preset} target {i}"
+        );
+    }
 }
 
 #[tokio::test]

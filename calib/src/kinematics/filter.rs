@@ -64,6 +64,7 @@ pub fn filter_target(
 mod tests {
     use super::*;
     use crate::geometry::pose_from_xyz_rpy_deg;
+    use crate::kinematics::ik_branches::SphericalWristArm;
     use crate::kinematics::presets;
     use crate::sim::campaign::{perturb_robot, CampaignSpec};
     use rand::{rngs::StdRng, Rng, SeedableRng};
@@ -74,7 +75,8 @@ mod tests {
 
     /// With the calibrated model equal to the true robot, the nominal
     /// controller driven by the filtered targets puts the true tool on every
-    /// target; unfiltered, it misses by the kinematic error.
+    /// target; unfiltered, it misses by the kinematic error. Every solution
+    /// keeps the seed's configuration (shoulder, elbow, wrist).
     #[test]
     fn nominal_controller_reaches_targets_through_the_filter() {
         let spec = CampaignSpec::standard("irb2400", 3).unwrap();
@@ -92,6 +94,8 @@ mod tests {
             flange_to_tool: Pose::identity(),
         };
         let seed = vec![0.1, 0.3, 0.2, 0.1, 0.8, 0.1];
+        let arm = SphericalWristArm::of(&truth.robot).unwrap();
+        let seed_branch = arm.configuration(&seed).unwrap();
         let (mut worst, mut unfiltered) = (0.0f64, 0.0f64);
         for _ in 0..TARGETS {
             let q: Vec<f64> = seed
@@ -100,6 +104,7 @@ mod tests {
                 .collect();
             let target = truth.world_to_tool(&q).unwrap();
             let f = filter_target(&truth, &nominal, &target, &seed).unwrap();
+            assert_eq!(arm.configuration(&f.joints_rad), Some(seed_branch));
             // The controller's IK of the filtered target, driven on the truth.
             let q_ctrl = nearest_within_limits(&controller, &f.nominal_base_to_flange, &seed)
                 .unwrap()
