@@ -131,6 +131,7 @@ async fn approved_set(store: &DynStore, serial: &str) -> Result<Option<ApprovedS
         .ok()
         .map(|set| ApprovedSet {
             id: format!("{serial}/{}", record.version),
+            version: record.version,
             set,
         }))
 }
