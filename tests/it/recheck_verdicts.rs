@@ -51,11 +51,21 @@ const WAIT: Duration = Duration::from_secs(240);
 
 /// Renders `CHECK_POSES` of `campaign`'s poses (validation poses first) as
 /// the camera sees them on `truth`, into a campaign directory `out`.
-fn render_check(campaign: &Campaign, file: &CampaignFile, truth: &CalibratedModel, out: &Path, seed: u64) {
+fn render_check(
+    campaign: &Campaign,
+    file: &CampaignFile,
+    truth: &CalibratedModel,
+    out: &Path,
+    seed: u64,
+) {
     std::fs::create_dir_all(out.join("images")).unwrap();
     let (_, (width, height), _) = rendered_camera(PRESET);
     let target = campaign::simulated_target();
-    let mut chosen: Vec<_> = campaign.poses.iter().filter(|p| p.set == PoseSet::Val).collect();
+    let mut chosen: Vec<_> = campaign
+        .poses
+        .iter()
+        .filter(|p| p.set == PoseSet::Val)
+        .collect();
     chosen.extend(campaign.poses.iter().filter(|p| p.set == PoseSet::Cal));
     chosen.truncate(CHECK_POSES);
     let mut entries = Vec::new();
@@ -76,11 +86,23 @@ fn render_check(campaign: &Campaign, file: &CampaignFile, truth: &CalibratedMode
         entries.push(PoseEntry {
             joints_deg: pose.joints_rad.iter().map(|q| q.to_degrees()).collect(),
             image: image_name(i),
-            set: if i % 3 == 2 { PoseSet::Val } else { PoseSet::Cal },
+            set: if i % 3 == 2 {
+                PoseSet::Val
+            } else {
+                PoseSet::Cal
+            },
         });
     }
-    std::fs::write(out.join(CAMPAIGN_FILE), serde_json::to_string(file).unwrap()).unwrap();
-    std::fs::write(out.join("poses.json"), serde_json::to_string(&entries).unwrap()).unwrap();
+    std::fs::write(
+        out.join(CAMPAIGN_FILE),
+        serde_json::to_string(file).unwrap(),
+    )
+    .unwrap();
+    std::fs::write(
+        out.join("poses.json"),
+        serde_json::to_string(&entries).unwrap(),
+    )
+    .unwrap();
 }
 
 struct Robot {
@@ -97,22 +119,32 @@ impl Robot {
     async fn session(&self, name: &str, truth: &CalibratedModel, seed: u64) -> String {
         let out = self.dir.path().join(name);
         render_check(&self.campaign, &self.file, truth, &out, seed);
-        robocal::cli::upload(&self.client, SERIAL, &out, robocal::cli::RobotPolicy::CreateIfMissing)
-            .await
-            .unwrap()
+        robocal::cli::upload(
+            &self.client,
+            SERIAL,
+            &out,
+            robocal::cli::RobotPolicy::CreateIfMissing,
+        )
+        .await
+        .unwrap()
     }
 
     async fn run(&self, path: String, body: Value) -> Value {
         let r = self.app.post_json(&path, &body).await;
         assert_eq!(r.status(), 202, "{}", r.text().await.unwrap());
-        let job = r.json::<Value>().await.unwrap()["job_id"].as_str().unwrap().to_string();
+        let job = r.json::<Value>().await.unwrap()["job_id"]
+            .as_str()
+            .unwrap()
+            .to_string();
         let done = self.app.wait_job(&job, WAIT, is_finished).await;
         assert_eq!(done["state"], "succeeded", "{done}");
         done["result"].clone()
     }
 
     async fn check(&self, session: &str) -> Value {
-        let result = self.run(format!("/v1/sessions/{session}/checks"), json!({})).await;
+        let result = self
+            .run(format!("/v1/sessions/{session}/checks"), json!({}))
+            .await;
         eprintln!("re-check {session}: {result}");
         assert_eq!(result["checked_version"], 1, "{result}");
         result
@@ -121,7 +153,10 @@ impl Robot {
     /// A partial recalibration's summary.
     async fn recalibrate(&self, session: &str, scope: &str) -> Value {
         let result = self
-            .run(format!("/v1/sessions/{session}/calibrations"), json!({"scope": scope}))
+            .run(
+                format!("/v1/sessions/{session}/calibrations"),
+                json!({"scope": scope}),
+            )
             .await;
         eprintln!("scope {scope}: {result}");
         result["summary"].clone()
@@ -138,11 +173,25 @@ async fn calibrated_robot() -> Robot {
     let truth = campaign.truth.model().unwrap();
     let app = spawn_app_with(|c| c.test_validate_only = false).await;
     let client = Client::new(&app.base, None).unwrap();
-    let session = robocal::cli::upload(&client, SERIAL, &main, robocal::cli::RobotPolicy::CreateIfMissing)
-        .await
-        .unwrap();
-    let robot = Robot { app, client, campaign, file, truth, dir };
-    let result = robot.run(format!("/v1/sessions/{session}/calibrations"), json!({})).await;
+    let session = robocal::cli::upload(
+        &client,
+        SERIAL,
+        &main,
+        robocal::cli::RobotPolicy::CreateIfMissing,
+    )
+    .await
+    .unwrap();
+    let robot = Robot {
+        app,
+        client,
+        campaign,
+        file,
+        truth,
+        dir,
+    };
+    let result = robot
+        .run(format!("/v1/sessions/{session}/calibrations"), json!({}))
+        .await;
     assert_eq!(result["version"], 1, "{result}");
     assert_eq!(result["status"], "approved", "{result}");
     let set: Value = robot
@@ -154,7 +203,11 @@ async fn calibrated_robot() -> Robot {
         .unwrap();
     // The joint refinement's estimate is stored with the set, and the
     // checks below assume it.
-    assert!(set["joint_noise_deg"].as_f64().is_some_and(|d| d >= 0.0), "{}", set["joint_noise_deg"]);
+    assert!(
+        set["joint_noise_deg"].as_f64().is_some_and(|d| d >= 0.0),
+        "{}",
+        set["joint_noise_deg"]
+    );
     robot
 }
 
@@ -191,8 +244,14 @@ async fn rechecks_name_drift_and_a_moved_board_and_partial_scopes_recalibrate() 
     let r = robot.check(&board).await;
     assert_eq!(r["verdict"], "base_moved", "{r}");
     let summary = robot.recalibrate(&board, "base").await;
-    assert!(summary["after_mean_mm"].as_f64().unwrap() <= MAX_PARTIAL_MM, "{summary}");
-    assert!(summary["before_mean_mm"].as_f64().unwrap() > BOARD_MOVE_MM / 2.0, "{summary}");
+    assert!(
+        summary["after_mean_mm"].as_f64().unwrap() <= MAX_PARTIAL_MM,
+        "{summary}"
+    );
+    assert!(
+        summary["before_mean_mm"].as_f64().unwrap() > BOARD_MOVE_MM / 2.0,
+        "{summary}"
+    );
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -200,10 +259,19 @@ async fn a_re_mounted_camera_is_recalibrated_by_scope_hand_eye() {
     let robot = calibrated_robot().await;
     let mut remounted = robot.truth.clone();
     let (m, r) = (REMOUNT_MM, REMOUNT_DEG.to_radians());
-    remounted.flange_to_tool = perturb_left(&remounted.flange_to_tool, &Vector6::new(m, -m, 0.5 * m, r, -r, 0.5 * r));
+    remounted.flange_to_tool = perturb_left(
+        &remounted.flange_to_tool,
+        &Vector6::new(m, -m, 0.5 * m, r, -r, 0.5 * r),
+    );
     let session = robot.session("remount", &remounted, 401).await;
     let summary = robot.recalibrate(&session, "hand_eye").await;
-    assert!(summary["after_mean_mm"].as_f64().unwrap() <= MAX_PARTIAL_MM, "{summary}");
+    assert!(
+        summary["after_mean_mm"].as_f64().unwrap() <= MAX_PARTIAL_MM,
+        "{summary}"
+    );
     // The approved set as it was misses by about the re-mount.
-    assert!(summary["before_mean_mm"].as_f64().unwrap() > MAX_PARTIAL_MM * 10.0, "{summary}");
+    assert!(
+        summary["before_mean_mm"].as_f64().unwrap() > MAX_PARTIAL_MM * 10.0,
+        "{summary}"
+    );
 }

@@ -87,7 +87,10 @@ async fn a_hanging_or_failing_receiver_never_slows_the_api() {
     let fail_url = receiver(fail, &failed).await;
     for url in std::iter::repeat_n(&hang_url, HANGING_HOOKS).chain([&fail_url]) {
         let r = app
-            .post_json("/v1/webhooks", &json!({"url": url, "events": ["job.finished"]}))
+            .post_json(
+                "/v1/webhooks",
+                &json!({"url": url, "events": ["job.finished"]}),
+            )
             .await;
         assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
     }
@@ -101,9 +104,10 @@ async fn a_hanging_or_failing_receiver_never_slows_the_api() {
         hung.0.load(Ordering::SeqCst) >= HANGING_HOOKS
     })
     .await;
-    until("the failing receiver is retried off the request path", || {
-        failed.0.load(Ordering::SeqCst) >= FAILED_ATTEMPTS
-    })
+    until(
+        "the failing receiver is retried off the request path",
+        || failed.0.load(Ordering::SeqCst) >= FAILED_ATTEMPTS,
+    )
     .await;
 
     // The deliveries hang (or keep failing): the API still answers.
