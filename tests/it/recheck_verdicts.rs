@@ -141,6 +141,16 @@ impl Robot {
         done["result"].clone()
     }
 
+    /// Version 1, as served.
+    async fn first_set(&self) -> Value {
+        let r = self
+            .app
+            .get(&format!("/v1/robots/{SERIAL}/parameter-sets/1"))
+            .await;
+        assert_eq!(r.status(), 200);
+        r.json().await.unwrap()
+    }
+
     async fn check(&self, session: &str) -> Value {
         let result = self
             .run(format!("/v1/sessions/{session}/checks"), json!({}))
@@ -194,13 +204,7 @@ async fn calibrated_robot() -> Robot {
         .await;
     assert_eq!(result["version"], 1, "{result}");
     assert_eq!(result["status"], "approved", "{result}");
-    let set: Value = robot
-        .app
-        .get(&format!("/v1/robots/{SERIAL}/parameter-sets/1"))
-        .await
-        .json()
-        .await
-        .unwrap();
+    let set = robot.first_set().await;
     // The joint refinement's estimate is stored with the set, and the
     // checks below assume it.
     assert!(
@@ -214,13 +218,7 @@ async fn calibrated_robot() -> Robot {
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn rechecks_name_drift_and_a_moved_board_and_partial_scopes_recalibrate() {
     let robot = calibrated_robot().await;
-    let set: Value = robot
-        .app
-        .get(&format!("/v1/robots/{SERIAL}/parameter-sets/1"))
-        .await
-        .json()
-        .await
-        .unwrap();
+    let set = robot.first_set().await;
 
     // Unchanged: pass, with the set's own joint noise.
     let same = robot.session("same", &robot.truth, 101).await;

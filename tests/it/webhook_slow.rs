@@ -75,6 +75,13 @@ async fn calibrate(app: &TestApp, client: &reqwest::Client, serial: &str) -> Val
     app.wait_job(&job, WAIT, is_finished).await
 }
 
+/// Every webhook with its delivery counts.
+async fn webhooks(app: &TestApp, client: &reqwest::Client) -> Value {
+    let r = client.get(app.url("/v1/webhooks")).send().await.unwrap();
+    assert_eq!(r.status(), 200);
+    r.json().await.unwrap()
+}
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_hanging_or_failing_receiver_never_slows_the_api() {
     let app = spawn_app_with(|c| {
@@ -113,14 +120,7 @@ async fn a_hanging_or_failing_receiver_never_slows_the_api() {
     // The deliveries hang (or keep failing): the API still answers.
     let robots = client.get(app.url("/v1/robots")).send().await.unwrap();
     assert_eq!(robots.status(), 200);
-    let hooks: Value = client
-        .get(app.url("/v1/webhooks"))
-        .send()
-        .await
-        .unwrap()
-        .json()
-        .await
-        .unwrap();
+    let hooks = webhooks(&app, &client).await;
     let pending: i64 = hooks["items"]
         .as_array()
         .unwrap_or_else(|| panic!("{hooks}"))
@@ -135,14 +135,7 @@ async fn a_hanging_or_failing_receiver_never_slows_the_api() {
     let second = calibrate(&app, &client, "WH-SLOW-2").await;
     assert_eq!(second["state"], "succeeded", "{second}");
     // The hung requests are still open: the answers above came while they hung.
-    let hooks: Value = client
-        .get(app.url("/v1/webhooks"))
-        .send()
-        .await
-        .unwrap()
-        .json()
-        .await
-        .unwrap();
+    let hooks = webhooks(&app, &client).await;
     assert!(
         hooks["items"]
             .as_array()
