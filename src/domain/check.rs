@@ -65,6 +65,16 @@ pub struct CheckDoc {
     pub test: String,
     /// The set judged: `"{serial}/{version}"`.
     pub checked_against: String,
+    /// That set's version (the `check.finished` event's `version`), typed
+    /// so nothing parses it back out of `checked_against`. Absent from
+    /// checks stored before it was carried (read as 0).
+    #[serde(default)]
+    pub checked_version: i64,
+    /// The joint noise the test assumed (deg): the set's own estimate, or
+    /// the service's fallback for a set that carries none. Absent from
+    /// checks stored before it was recorded (read as 0).
+    #[serde(default)]
+    pub joint_noise_deg: f64,
     /// Poses measured.
     pub poses: usize,
     pub suspects: Vec<CheckSuspect>,

@@ -40,6 +40,12 @@ pub struct ParameterSet {
     /// The identified parameters' full covariance (absent from sets
     /// stored before it was kept).
     pub covariance: Option<CovarianceDoc>,
+    /// Joint noise (encoders, repeatability; deg, one standard deviation
+    /// per joint) the joint refinement estimated from the images (method.md
+    /// §6): a re-check's covariance needs it beside `covariance`. Absent
+    /// when the refinement did not run and from sets stored before it was
+    /// kept.
+    pub joint_noise_deg: Option<f64>,
 }
 
 /// The contract's names of a set's frames.
@@ -129,6 +135,8 @@ struct StoredSet {
     parameters: Vec<ParameterReport>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     covariance: Option<CovarianceDoc>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    joint_noise_deg: Option<f64>,
 }
 
 impl From<ParameterSet> for StoredSet {
@@ -149,6 +157,7 @@ impl From<ParameterSet> for StoredSet {
             fixed: set.fixed,
             parameters: set.parameters,
             covariance: set.covariance,
+            joint_noise_deg: set.joint_noise_deg,
         }
     }
 }
@@ -174,6 +183,7 @@ impl TryFrom<StoredSet> for ParameterSet {
             fixed: s.fixed,
             parameters: s.parameters,
             covariance: s.covariance,
+            joint_noise_deg: s.joint_noise_deg,
         })
     }
 }

@@ -132,6 +132,7 @@ async fn approved_set(store: &DynStore, serial: &str) -> Result<Option<ApprovedS
         .ok()
         .map(|set| ApprovedSet {
             id: format!("{serial}/{}", record.version),
+            version: record.version,
             set,
         }))
 }

@@ -13,9 +13,21 @@ use super::{Input, Output, PipelineError, Stage, Summary};
 use crate::domain::{CheckDoc, CheckSuspect, CheckVerdict};
 
 /// Joint noise (encoders, repeatability) assumed in the check's
-/// covariance: the sets do not store the refinement's estimate, and an
-/// industrial robot's repeatability is about this (0.02 mm at 1 m).
-const CHECK_JOINT_SIGMA_DEG: f64 = 1e-3;
+/// covariance for a set that does not carry the joint refinement's
+/// estimate (`joint_noise_deg`: sets stored before it was kept, tracker
+/// sets, paper-mode sets): an industrial robot's repeatability is about
+/// this (0.02 mm at 1 m). Larger than the estimates of the simulated
+/// campaigns, so such a check is lenient, never alarmist.
+const FALLBACK_JOINT_SIGMA_DEG: f64 = 1e-3;
+
+/// The joint noise (rad) a check of `set` assumes: the set's own estimate
+/// (method.md §6, the joint refinement), else [`FALLBACK_JOINT_SIGMA_DEG`].
+fn joint_sigma_rad(set: &crate::domain::ParameterSet) -> f64 {
+    set.joint_noise_deg
+        .filter(|d| d.is_finite() && *d >= 0.0)
+        .unwrap_or(FALLBACK_JOINT_SIGMA_DEG)
+        .to_radians()
+}
 
 fn numerical(message: impl std::fmt::Display) -> PipelineError {
     PipelineError::numerical(Stage::Identify, message)
@@ -56,11 +68,12 @@ pub fn run(
     let data: Vec<_> = (0..input.poses.len())
         .filter_map(|i| measurement_of(&input.poses[i], i, camera, None, kind))
         .collect();
+    let joint_sigma_rad = joint_sigma_rad(&approved.set);
     let found = recheck(&RecheckInput {
         model: &model,
         instrument,
         covariance: &covariance,
-        joint_sigma_rad: CHECK_JOINT_SIGMA_DEG.to_radians(),
+        joint_sigma_rad,
         data: &data,
     })
     .map_err(numerical)?;
@@ -104,6 +117,8 @@ pub fn run(
             found.dof
         ),
         checked_against: approved.id.clone(),
+        checked_version: approved.version,
+        joint_noise_deg: joint_sigma_rad.to_degrees(),
         poses: data.len(),
         suspects,
     };

@@ -49,6 +49,8 @@ pub struct Input {
 pub struct ApprovedSet {
     /// `"{serial}/{version}"`.
     pub id: String,
+    /// The set's version.
+    pub version: i64,
     pub set: ParameterSet,
 }
 

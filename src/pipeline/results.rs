@@ -103,6 +103,7 @@ pub fn parameter_set(ctx: &Context, id: &Identified) -> ParameterSet {
             &id.covariance,
             &id.identification.identifiability.free,
         )),
+        joint_noise_deg: id.joint_noise_rad.map(f64::to_degrees),
     }
 }
 

@@ -63,18 +63,9 @@ pub(super) async fn record_success_tx<B: Backend>(
             job_id: s.job_id.to_string(),
             serial: s.serial.to_string(),
             verdict: check.verdict.as_str().to_string(),
-            version: version_of(&check.checked_against),
+            version: check.checked_version,
         };
         record_event_tx::<B>(tx, &event, now_unix_ms()).await?;
     }
     Ok((result, version))
-}
-
-/// The version of a `"{serial}/{version}"` reference (0 when malformed:
-/// the check stored it from the set it loaded, so it never is).
-fn version_of(set_ref: &str) -> i64 {
-    set_ref
-        .rsplit_once('/')
-        .and_then(|(_, v)| v.parse().ok())
-        .unwrap_or(0)
 }
