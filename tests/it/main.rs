@@ -33,6 +33,7 @@ pub(crate) mod outliers;
 pub(crate) mod poses;
 pub(crate) mod processes;
 pub(crate) mod raw_http;
+pub(crate) mod regions;
 pub(crate) mod release_gate;
 pub(crate) mod report_links;
 pub(crate) mod restart;
