@@ -49,6 +49,10 @@ pub struct SessionSpecOut {
     pub flange_to_camera_guess: Option<PoseDoc>,
     /// The reused camera calibration, `latest` resolved to its version.
     pub camera_calibration_id: Option<String>,
+    /// Where the board was placed in the workspace (free text).
+    pub region: Option<String>,
+    /// The measurement volume the poses span (free text).
+    pub volume: Option<String>,
 }
 
 #[derive(Debug, Serialize, ToSchema)]

@@ -17,6 +17,8 @@ pub const MAX_POINTS_PER_POSE: usize = 100_000;
 pub const MAX_PIXEL_UM: f64 = 100.0;
 /// Longest focal length, millimetres.
 pub const MAX_FOCAL_MM: f64 = 1000.0;
+/// Longest `region` or `volume` name of a session (free text).
+pub const MAX_REGION_NAME_CHARS: usize = 100;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
 #[serde(rename_all = "snake_case")]
@@ -149,6 +151,15 @@ pub struct SessionBody {
     /// intrinsics measured on images of this session's size.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub camera_calibration_id: Option<String>,
+    /// Where in the workspace this session's board was placed (free text,
+    /// e.g. `"left table"`): one session is one board placement, one region
+    /// of the paper's section 5 (method.md §7).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub region: Option<String>,
+    /// The measurement volume the poses of this session span (free text,
+    /// e.g. `"600x400x300 mm"`), the paper's Fig. 10 groups by it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub volume: Option<String>,
 }
 
 impl SessionBody {
@@ -203,6 +214,15 @@ impl SessionBody {
         if let Some(id) = &self.camera_calibration_id {
             if id.is_empty() || id.len() > 100 {
                 c.fail("camera_calibration_id", "must be 1 to 100 characters");
+            }
+        }
+        for (field, text) in [("region", &self.region), ("volume", &self.volume)] {
+            let chars = text.as_deref().map(|t| t.trim().chars().count());
+            if chars.is_some_and(|n| !(1..=MAX_REGION_NAME_CHARS).contains(&n)) {
+                c.fail(
+                    field,
+                    format!("must be 1 to {MAX_REGION_NAME_CHARS} characters"),
+                );
             }
         }
         c.finish()

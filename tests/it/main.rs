@@ -35,6 +35,7 @@ pub(crate) mod poses;
 pub(crate) mod processes;
 pub(crate) mod raw_http;
 pub(crate) mod recheck_verdicts;
+pub(crate) mod regions;
 pub(crate) mod release_gate;
 pub(crate) mod report_links;
 pub(crate) mod restart;

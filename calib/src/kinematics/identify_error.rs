@@ -11,6 +11,8 @@ use crate::solver::SolverError;
 pub enum IdentifyError {
     #[error("no calibration poses")]
     NoPoses,
+    #[error("region {region} has no calibration poses")]
+    EmptyRegion { region: usize },
     #[error("pose {pose}: {source}")]
     Pose {
         pose: usize,

@@ -4,15 +4,22 @@
 //! corrections; the analytic Jacobian and the normal equations assembled
 //! per pose from 6x6 sums over its dots, as a block arrowhead (head: the
 //! kinematics and intrinsics; one block per pose: its joint corrections).
+//!
+//! Several board placements (sessions, the paper's regions, method.md §7):
+//! pose `k` sees the board of session `session_of[k]`; session 0's
+//! `target_to_base` is the layout's, every further session has its own
+//! copy of the free base values in the head, after the layout's free
+//! values. Kinematics, hand–eye and intrinsics stay shared.
 
 use nalgebra::{DMatrix, DVector, Matrix6, SMatrix};
 
 use super::image_pose::{ImageNoise, ImagePose};
 use super::jacobian::tool_pose_jacobian;
-use super::params::{CalibratedModel, ParamLayout};
+use super::params::{CalibratedModel, ParamKind, ParamLayout};
 use super::projection::{apply_intrinsics, project_with_jacobians, INTRINSIC_NAMES};
 use crate::arrow::ArrowMatrix;
 use crate::camera::model::Intrinsics;
+use crate::geometry::{perturb_left, Pose};
 use crate::solver::{LeastSquaresProblem, NormalMatrix};
 
 /// Intrinsic parameters refined with the kinematics.
@@ -27,6 +34,10 @@ pub(super) struct ImageFit<'a> {
     pub(super) noise: ImageNoise,
     /// The intrinsics are held at `intrinsics` (a reused camera).
     pub(super) hold_intrinsics: bool,
+    /// Reference `target_to_base` of sessions 1.. (empty: one session).
+    pub(super) extra_bases: &'a [Pose],
+    /// Session of each pose (empty: every pose in session 0).
+    pub(super) session_of: &'a [usize],
 }
 
 /// One pose's linearisation: the tool-pose Jacobian's free and joint
@@ -59,17 +70,61 @@ impl ImageFit<'_> {
         }
     }
 
+    /// Positions in `free` of the free base values (each further session
+    /// has one value per position).
+    pub(super) fn base_slots(&self) -> Vec<usize> {
+        (0..self.free.len())
+            .filter(|&k| matches!(self.layout.params[self.free[k]].kind, ParamKind::Base(_)))
+            .collect()
+    }
+
+    /// Kinematic unknowns: the layout's free values, then the further
+    /// sessions' base values.
+    pub(super) fn nk(&self) -> usize {
+        self.free.len() + self.base_slots().len() * self.extra_bases.len()
+    }
+
+    fn session(&self, k: usize) -> usize {
+        self.session_of.get(k).copied().unwrap_or(0)
+    }
+
+    /// Session 0's model and the intrinsics at `x`.
     pub(super) fn unpack(&self, x: &DVector<f64>) -> (CalibratedModel, Intrinsics) {
         let mut full = DVector::zeros(self.layout.len());
         for (k, &i) in self.free.iter().enumerate() {
             full[i] = x[k];
         }
-        let nf = self.free.len();
+        let nk = self.nk();
         let cam = match self.ni() {
             0 => *self.intrinsics,
-            ni => apply_intrinsics(self.intrinsics, &x.as_slice()[nf..nf + ni]),
+            ni => apply_intrinsics(self.intrinsics, &x.as_slice()[nk..nk + ni]),
         };
         (self.layout.apply(self.reference, &full), cam)
+    }
+
+    /// `target_to_base` of every session at `x` (session 0 first).
+    pub(super) fn session_bases(&self, x: &DVector<f64>, model: &CalibratedModel) -> Vec<Pose> {
+        let slots = self.base_slots();
+        let nf = self.free.len();
+        let mut bases = vec![model.world_to_base];
+        for (s, reference) in self.extra_bases.iter().enumerate() {
+            let mut v = nalgebra::Vector6::zeros();
+            for (j, &k) in slots.iter().enumerate() {
+                if let ParamKind::Base(c) = self.layout.params[self.free[k]].kind {
+                    v[c] = x[nf + s * slots.len() + j];
+                }
+            }
+            bases.push(perturb_left(reference, &v));
+        }
+        bases
+    }
+
+    /// `model` moved to the board of pose `k`'s session.
+    fn pose_model(&self, model: &CalibratedModel, bases: &[Pose], k: usize) -> CalibratedModel {
+        CalibratedModel {
+            world_to_base: bases[self.session(k)],
+            ..model.clone()
+        }
     }
 
     /// Joints of pose `k` with its correction in `x` applied.
@@ -92,7 +147,7 @@ impl ImageFit<'_> {
 
     /// Unknowns before the joint corrections: kinematics, then intrinsics.
     pub(super) fn head(&self) -> usize {
-        self.free.len() + self.ni()
+        self.nk() + self.ni()
     }
 
     pub(super) fn params(&self) -> usize {
@@ -112,8 +167,22 @@ impl ImageFit<'_> {
         let q = self.pose_joints(x, k);
         let (t2c, jt) = tool_pose_jacobian(self.layout, model, &q).ok()?;
         let offsets = self.layout.joint_offset_indices();
+        let mut t_free = DMatrix::zeros(6, self.nk());
+        for (c, &i) in self.free.iter().enumerate() {
+            t_free.set_column(c, &jt.column(i));
+        }
+        let session = self.session(k);
+        if session > 0 {
+            // This board's base values move it, not session 0's.
+            let slots = self.base_slots();
+            let first = self.free.len() + (session - 1) * slots.len();
+            for (j, &c) in slots.iter().enumerate() {
+                t_free.set_column(first + j, &jt.column(self.free[c]));
+                t_free.column_mut(c).fill(0.0);
+            }
+        }
         let mut block = PoseBlock {
-            t_free: DMatrix::from_fn(6, self.free.len(), |r, c| jt[(r, self.free[c])]),
+            t_free,
             t_joint: DMatrix::from_fn(6, self.joints(), |r, c| jt[(r, offsets[c])]),
             h_pp: Matrix6::zeros(),
             h_pc: SMatrix::zeros(),
@@ -145,14 +214,16 @@ impl ImageFit<'_> {
         x: &DVector<f64>,
     ) -> Option<(ArrowMatrix, DVector<f64>)> {
         let (model, cam) = self.unpack(x);
-        let (nf, nj, ni, n) = (self.free.len(), self.joints(), self.ni(), self.params());
+        let bases = self.session_bases(x, &model);
+        let (nf, nj, ni, n) = (self.nk(), self.joints(), self.ni(), self.params());
         let poses_with_blocks = if nj > 0 { self.poses.len() } else { 0 };
         let mut a = ArrowMatrix::zeros(self.head(), nj, poses_with_blocks);
         let mut g = DVector::zeros(n);
         let prior = self.prior(x);
         let c0 = nf;
         for k in 0..self.poses.len() {
-            let b = self.linearise_pose(x, &model, &cam, k, |_, _| {})?;
+            let pose_model = self.pose_model(&model, &bases, k);
+            let b = self.linearise_pose(x, &pose_model, &cam, k, |_, _| {})?;
             let hf = b.h_pp * &b.t_free;
             let head = a.head_mut();
             let mut add = |r0: usize, c0: usize, m: &DMatrix<f64>| {
@@ -207,11 +278,16 @@ impl ImageFit<'_> {
 impl LeastSquaresProblem for ImageFit<'_> {
     fn residuals(&self, x: &DVector<f64>) -> Option<DVector<f64>> {
         let (model, cam) = self.unpack(x);
+        let bases = self.session_bases(x, &model);
         let prior = self.prior(x);
         let mut r = DVector::zeros(self.image_rows() + prior.len());
         let mut row = 0;
         for (k, pose) in self.poses.iter().enumerate() {
-            let inv = model.world_to_tool(&self.pose_joints(x, k)).ok()?.inverse();
+            let inv = self
+                .pose_model(&model, &bases, k)
+                .world_to_tool(&self.pose_joints(x, k))
+                .ok()?
+                .inverse();
             for (p, uv) in &pose.observations {
                 let pred = cam.project(&(inv * p))?;
                 r[row] = (pred.x - uv.x) / self.noise.sigma_px;
@@ -228,12 +304,14 @@ impl LeastSquaresProblem for ImageFit<'_> {
     /// tested against).
     fn jacobian(&self, x: &DVector<f64>) -> Option<DMatrix<f64>> {
         let (model, cam) = self.unpack(x);
-        let (nf, nj, ni) = (self.free.len(), self.joints(), self.ni());
+        let bases = self.session_bases(x, &model);
+        let (nf, nj, ni) = (self.nk(), self.joints(), self.ni());
         let mut jac = DMatrix::zeros(self.image_rows() + self.poses.len() * nj, self.params());
         let mut row = 0;
         for k in 0..self.poses.len() {
             let mut dots = Vec::new();
-            let block = self.linearise_pose(x, &model, &cam, k, |jp, jc| {
+            let pose_model = self.pose_model(&model, &bases, k);
+            let block = self.linearise_pose(x, &pose_model, &cam, k, |jp, jc| {
                 dots.push((*jp, *jc));
             })?;
             for (jp, jc) in dots {

@@ -25,10 +25,11 @@ use nalgebra::{DMatrix, DVector};
 
 use super::identify_error::IdentifyError;
 use super::identify_options::JointNoise;
-use super::image_fit::{ImageFit, INTRINSICS};
+use super::image_fit::ImageFit;
 pub use super::image_pose::{ImageNoise, ImagePose};
 use super::params::{CalibratedModel, Instrument, ParamLayout};
 use crate::camera::model::Intrinsics;
+use crate::geometry::Pose;
 use crate::solver::{solve, LmOptions, LmReport, Termination};
 
 #[derive(Debug, Clone)]
@@ -45,6 +46,9 @@ pub struct JointRefinement {
     /// with: as given, or estimated.
     pub sigma_px: f64,
     pub joint_sigma_rad: f64,
+    /// `target_to_base` of every session (board placement), session 0's
+    /// first (equal to `model.world_to_base`); one entry for one session.
+    pub session_target_to_base: Vec<Pose>,
     /// Estimated joint corrections per pose (rad), empty without joint noise.
     pub joint_corrections_rad: Vec<Vec<f64>>,
     pub iterations: usize,
@@ -79,6 +83,40 @@ pub fn joint_refine(
     noise: ImageNoise,
     hold_intrinsics: bool,
 ) -> Result<JointRefinement, IdentifyError> {
+    let sessions = Sessions {
+        extra_bases: &[],
+        session_of: &[],
+    };
+    refine_sessions(
+        start,
+        intrinsics,
+        poses,
+        free,
+        noise,
+        hold_intrinsics,
+        sessions,
+    )
+}
+
+/// Which board each pose sees (see [`super::image_fit`]): the reference
+/// `target_to_base` of sessions 1.. and the session of every pose.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Sessions<'a> {
+    pub(super) extra_bases: &'a [Pose],
+    pub(super) session_of: &'a [usize],
+}
+
+/// [`joint_refine`] over several sessions: `start.world_to_base` is
+/// session 0's board.
+pub(super) fn refine_sessions(
+    start: &CalibratedModel,
+    intrinsics: &Intrinsics,
+    poses: &[ImagePose],
+    free: &[usize],
+    noise: ImageNoise,
+    hold_intrinsics: bool,
+    sessions: Sessions,
+) -> Result<JointRefinement, IdentifyError> {
     if poses.is_empty() {
         return Err(IdentifyError::NoPoses);
     }
@@ -99,7 +137,19 @@ pub fn joint_refine(
         JointNoise::Known { sigma_rad } => sigma_rad.abs(),
         JointNoise::Estimate => JOINT_SIGMA_START_RAD,
     };
-    let kinematic = free.len() + if hold_intrinsics { 0 } else { INTRINSICS };
+    // Unknowns kept from round to round: kinematics, bases, intrinsics.
+    let kinematic = ImageFit {
+        layout: &layout,
+        reference: start,
+        intrinsics,
+        free,
+        poses,
+        noise,
+        hold_intrinsics,
+        extra_bases: sessions.extra_bases,
+        session_of: sessions.session_of,
+    }
+    .head();
     let mut x0: Option<DVector<f64>> = None;
     let mut previous: Option<(f64, f64)> = None;
     let mut round = 0;
@@ -118,6 +168,8 @@ pub fn joint_refine(
                 },
             },
             hold_intrinsics,
+            extra_bases: sessions.extra_bases,
+            session_of: sessions.session_of,
         };
         let n = problem.params();
         let x_start = match x0.take() {
@@ -162,6 +214,8 @@ pub fn joint_refine(
 struct Solution {
     model: CalibratedModel,
     intrinsics: Intrinsics,
+    /// `target_to_base` of every session, session 0 first.
+    bases: Vec<Pose>,
     /// Kinematics and intrinsics block.
     head_inverse: DMatrix<f64>,
     /// Diagonal of the joint corrections' block.
@@ -171,11 +225,13 @@ struct Solution {
 impl Solution {
     fn at(problem: &ImageFit, report: &LmReport) -> Result<Self, IdentifyError> {
         let (model, intrinsics) = problem.unpack(&report.x);
+        let bases = problem.session_bases(&report.x, &model);
         // Linearised at the solution itself (x = 0 around it, the joint
         // corrections kept as found).
         let at = ImageFit {
             reference: &model,
             intrinsics: &intrinsics,
+            extra_bases: &bases[1..],
             ..*problem
         };
         let kinematic = problem.head();
@@ -205,6 +261,7 @@ impl Solution {
             tail_diagonal: parts.tail_diagonal,
             model,
             intrinsics,
+            bases,
         })
     }
 
@@ -251,7 +308,7 @@ impl Solution {
             std_devs,
             intrinsics_std: std::array::from_fn(|k| {
                 if k < problem.ni() {
-                    sd(free.len() + k)
+                    sd(problem.nk() + k)
                 } else {
                     0.0
                 }
@@ -260,6 +317,7 @@ impl Solution {
             sigma_px: problem.noise.sigma_px,
             joint_sigma_rad: problem.noise.joint_sigma_rad(),
             joint_corrections_rad,
+            session_target_to_base: self.bases,
             iterations: report.iterations,
             termination: report.termination,
             layout,

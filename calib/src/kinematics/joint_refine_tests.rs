@@ -45,6 +45,8 @@ fn jacobian_matches_finite_differences_and_exact_points_are_fitted() {
             joint: JointNoise::Known { sigma_rad: 1e-5 },
         },
         hold_intrinsics: false,
+        extra_bases: &[],
+        session_of: &[],
     };
     let x = DVector::from_fn(
         fit.params(),

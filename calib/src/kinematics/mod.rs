@@ -31,6 +31,7 @@ mod pose_fit;
 pub mod presets;
 pub mod projection;
 pub mod recheck;
+pub mod regions;
 mod term_cv;
 mod term_elimination;
 mod term_fit;
