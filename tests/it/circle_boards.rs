@@ -81,10 +81,14 @@ fn views_read_half_turned(dir: &std::path::Path, spec: &AsymmetricCirclesSpec) -
     let entries: Vec<PoseEntry> = serde_json::from_str(&read("poses.json")).unwrap();
     let at = |i: usize, row: usize, col: usize| {
         let [x, y, z] = spec.dot_centre_mm(row, col);
-        let target_to_camera = pose_from_matrix_rows(&truth.target_to_camera[i]).unwrap();
+        // The simulator's names: `p_camera = target_to_camera⁻¹ * p_target`
+        // (as `rerendered_campaign` hands the renderer).
+        let camera_to_target = pose_from_matrix_rows(&truth.target_to_camera[i])
+            .unwrap()
+            .inverse();
         truth
             .intrinsics
-            .project(&(target_to_camera * Point3::new(x, y, z)))
+            .project(&(camera_to_target * Point3::new(x, y, z)))
             .unwrap()
     };
     let mut turned = Vec::new();
