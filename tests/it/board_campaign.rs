@@ -15,7 +15,7 @@ use crate::support::{spawn_app_with, upload_and_calibrate};
 pub const CAL_POSES: usize = 24;
 pub const VAL_POSES: usize = 8;
 /// Same bar as the dot-board campaign (`e2e.rs`).
-const MIN_IMPROVEMENT: f64 = 12.0;
+pub const MIN_IMPROVEMENT: f64 = 12.0;
 /// Reprojection RMS a rendered board must reach (px).
 const MAX_REPROJECTION_PX: f64 = 0.2;
 

@@ -1,15 +1,21 @@
 //! Circle boards other than robocal's marker board through the service
 //! (issue 14): OpenCV's asymmetric circle grid (printed, detected, and a
-//! whole simulated campaign re-rendered on it) and the marker-less dot grid.
+//! whole simulated campaign re-rendered on it, with odd and with even rows)
+//! and the marker-less dot grid.
 
+use nalgebra::Point3;
 use robocal::calib::vision::{detect_asymmetric, AsymmetricCirclesSpec};
+use robocal_calib::geometry::pose_from_matrix_rows;
+use robocal_calib::sim::campaign_io::{PoseEntry, Truth};
 use robocal_calib::sim::render::RenderOptions;
 use robocal_calib::sim::render_circles::render_circle_board;
-use robocal_calib::vision::CircleBoard;
+use robocal_calib::vision::{CircleBoard, GrayImage};
 use serde_json::{json, Value};
 
-use crate::board_campaign::{calibrates_through_the_service, rerendered_campaign};
-use crate::support::spawn_app;
+use crate::board_campaign::{
+    calibrates_through_the_service, rerendered_campaign, CAL_POSES, MIN_IMPROVEMENT, VAL_POSES,
+};
+use crate::support::{spawn_app, spawn_app_with, upload_and_calibrate};
 use crate::targets::rasterise;
 
 /// An asymmetric grid inside the simulator's 9x9 board area (200 x 200 mm):
@@ -23,20 +29,25 @@ fn board() -> AsymmetricCirclesSpec {
     }
 }
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn asymmetric_grid_campaign_calibrates_through_the_service() {
-    let dir = tempfile::tempdir().unwrap();
-    let spec = board();
-    let target = json!({
+/// Rows of the half-turn-symmetric variant of [`board`].
+const EVEN_ROWS: usize = 10;
+
+fn target_of(spec: &AsymmetricCirclesSpec) -> Value {
+    json!({
         "kind": "asymmetric_circles", "rows": spec.rows, "cols": spec.cols,
         "pitch_mm": spec.pitch_mm, "dot_diameter_mm": spec.dot_diameter_mm,
-    });
+    })
+}
+
+/// The IRB 2400 campaign (simulator seed `seed`) in `dir`, every image
+/// drawn again on the asymmetric grid `spec`.
+fn asymmetric_campaign(dir: &std::path::Path, spec: AsymmetricCirclesSpec, seed: u64) {
     let board = CircleBoard::Asymmetric(spec);
     rerendered_campaign(
-        dir.path(),
-        52,
+        dir,
+        seed,
         6,
-        target,
+        target_of(&spec),
         &|intrinsics, camera_to_target, w, h, rng| {
             render_circle_board(
                 intrinsics,
@@ -51,7 +62,130 @@ async fn asymmetric_grid_campaign_calibrates_through_the_service() {
             .image
         },
     );
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn asymmetric_grid_campaign_calibrates_through_the_service() {
+    let dir = tempfile::tempdir().unwrap();
+    asymmetric_campaign(dir.path(), board(), 52);
     calibrates_through_the_service(dir.path(), "ACIRCLES-1", "asymmetric_circles").await;
+}
+
+/// The images of the campaign in `dir` whose detection numbers the board
+/// from the other corner: the detector's first dot is nearer the image of
+/// the last dot than of the first one (truth projected through the truth
+/// intrinsics).
+fn views_read_half_turned(dir: &std::path::Path, spec: &AsymmetricCirclesSpec) -> Vec<String> {
+    let read = |name: &str| std::fs::read_to_string(dir.join(name)).unwrap();
+    let truth: Truth = serde_json::from_str(&read("truth.json")).unwrap();
+    let entries: Vec<PoseEntry> = serde_json::from_str(&read("poses.json")).unwrap();
+    let at = |i: usize, row: usize, col: usize| {
+        let [x, y, z] = spec.dot_centre_mm(row, col);
+        // The simulator's names: `p_camera = target_to_camera⁻¹ * p_target`
+        // (as `rerendered_campaign` hands the renderer).
+        let camera_to_target = pose_from_matrix_rows(&truth.target_to_camera[i])
+            .unwrap()
+            .inverse();
+        truth
+            .intrinsics
+            .project(&(camera_to_target * Point3::new(x, y, z)))
+            .unwrap()
+    };
+    let mut turned = Vec::new();
+    for (i, entry) in entries.iter().enumerate() {
+        let image = GrayImage::from_dynamic(&image::open(dir.join(&entry.image)).unwrap());
+        let found = detect_asymmetric(&image, spec).unwrap();
+        assert!(
+            !found.ordering_unique,
+            "{}: even rows are ambiguous",
+            entry.image
+        );
+        let first = nalgebra::Point2::new(found.dots[0].x, found.dots[0].y);
+        let (own, other) = (at(i, 0, 0), at(i, spec.rows - 1, spec.cols - 1));
+        if nalgebra::distance(&first, &other) < nalgebra::distance(&first, &own) {
+            turned.push(entry.image.clone());
+        }
+    }
+    turned
+}
+
+/// An asymmetric grid with an even number of rows looks the same after a
+/// half turn: the detector reads every image (at upload) with its first dot
+/// nearest the image's top-left corner, so views in which the board lies
+/// the other way are numbered from the other corner. The job must settle
+/// each view's turn from the joints, relabel exactly the views whose
+/// numbering disagrees with the majority (and say so), and calibrate as
+/// well as on an odd-row grid. Left unrelabelled, a turned view's board
+/// frame would be 180 mm away and turned by 180°: the job would fail or its
+/// validation error would be many times larger.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn asymmetric_grid_with_even_rows_is_settled_from_the_joints() {
+    const SERIAL: &str = "ACIRCLES-EVEN";
+    let spec = AsymmetricCirclesSpec {
+        rows: EVEN_ROWS,
+        ..board()
+    };
+    let dir = tempfile::tempdir().unwrap();
+    asymmetric_campaign(dir.path(), spec, 52);
+    let mut turned = views_read_half_turned(dir.path(), &spec);
+    let views = CAL_POSES + VAL_POSES;
+    if 2 * turned.len() > views {
+        // The majority's numbering is the one kept: the others are relabelled.
+        let all: Vec<PoseEntry> =
+            serde_json::from_str(&std::fs::read_to_string(dir.path().join("poses.json")).unwrap())
+                .unwrap();
+        turned = all
+            .into_iter()
+            .map(|e| e.image)
+            .filter(|name| !turned.contains(name))
+            .collect();
+    }
+    assert!(
+        !turned.is_empty() && 2 * turned.len() < views,
+        "the campaign must show the board both ways: {turned:?}"
+    );
+    let app = spawn_app_with(|c| c.test_validate_only = false).await;
+    upload_and_calibrate(&app, SERIAL, dir.path()).await;
+    let report: Value = app
+        .get(&format!("/v1/robots/{SERIAL}/parameter-sets/latest/report"))
+        .await
+        .json()
+        .await
+        .unwrap();
+    assert_eq!(
+        report["detection"]["images_detected"], views,
+        "{}",
+        report["detection"]
+    );
+    let notes: Vec<&str> = report["notes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(Value::as_str)
+        .collect();
+    let note = notes
+        .iter()
+        .find(|n| n.contains("half turn"))
+        .unwrap_or_else(|| panic!("no half-turn note in {notes:?}"));
+    assert!(
+        note.ends_with(&format!("relabelled: {}.", turned.join(", "))),
+        "expected {turned:?}: {note}"
+    );
+    assert!(
+        note.contains(&format!(
+            "the joints showed it turned in {} image(s)",
+            turned.len()
+        )),
+        "{note}"
+    );
+    let before = report["before"]["mean_mm"].as_f64().unwrap();
+    let after = report["after"]["mean_mm"].as_f64().unwrap();
+    eprintln!("{SERIAL}: {note} Validation mean {before:.3} mm before, {after:.4} mm after.");
+    assert!(
+        before / after >= MIN_IMPROVEMENT,
+        "before {before} after {after}"
+    );
+    app.shutdown().await;
 }
 
 #[tokio::test]
