@@ -112,3 +112,62 @@ fn xml(text: &str) -> String {
         .replace('"', "&quot;")
         .replace("--", "-&#45;")
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{Isometry3, Vector3};
+    use robocal_calib::kinematics::presets;
+
+    /// A tracker set's frames (api.md "export"): the chain ends in a fixed
+    /// `tool` link on the flange (the tool point, translation only, in
+    /// metres) and the tracker hangs off the base as a fixed link.
+    #[test]
+    fn a_tracker_set_ends_in_a_tool_link_and_hangs_the_tracker_off_the_base() {
+        let tool_mm = Vector3::new(12.0, -30.0, 95.0);
+        let tracker_to_base_mm = Vector3::new(1500.0, 200.0, -300.0);
+        let model = CalibratedModel {
+            robot: presets::ur5(),
+            world_to_base: Isometry3::translation(
+                tracker_to_base_mm.x,
+                tracker_to_base_mm.y,
+                tracker_to_base_mm.z,
+            ),
+            flange_to_tool: Isometry3::translation(tool_mm.x, tool_mm.y, tool_mm.z),
+        };
+        let frames = FrameNames {
+            world_to_base: "instrument_to_base",
+            flange_to_end: "flange_to_tool",
+            world: "tracker",
+            end: "tool",
+        };
+        let urdf = write_urdf("UR5-T", &model, frames);
+        assert!(urdf.contains(r#"<link name="tool"/>"#), "{urdf}");
+        assert!(!urdf.contains(r#"<link name="camera"/>"#), "{urdf}");
+        let tool_joint = urdf
+            .split("<joint ")
+            .find(|j| j.contains(r#"name="tool_joint""#))
+            .expect("a tool_joint");
+        assert!(tool_joint.contains(r#"type="fixed""#), "{tool_joint}");
+        assert!(tool_joint.contains(r#"<parent link="flange"/>"#), "{tool_joint}");
+        assert!(tool_joint.contains(r#"<child link="tool"/>"#), "{tool_joint}");
+        let xyz: Vec<f64> = tool_joint
+            .split(r#"xyz=""#)
+            .nth(1)
+            .and_then(|rest| rest.split('"').next())
+            .expect("an origin xyz")
+            .split_whitespace()
+            .map(|v| v.parse().expect("a number"))
+            .collect();
+        let expected_m = tool_mm / MM_PER_M;
+        for (got, want) in xyz.iter().zip(expected_m.iter()) {
+            assert!((got - want).abs() < 1e-12, "tool origin {xyz:?} vs {expected_m:?}");
+        }
+        let tracker_joint = urdf
+            .split("<joint ")
+            .find(|j| j.contains(r#"name="tracker_joint""#))
+            .expect("a tracker_joint");
+        assert!(tracker_joint.contains(r#"<parent link="base_link"/>"#));
+        assert!(tracker_joint.contains(r#"<child link="tracker"/>"#));
+    }
+}
