@@ -119,6 +119,9 @@ fn views_read_half_turned(dir: &std::path::Path, spec: &AsymmetricCirclesSpec) -
 /// frame would be 180 mm away and turned by 180°: the job would fail or its
 /// validation error would be many times larger.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+#[ignore = "the IRB 2400 campaign (seed 52) never shows the board half turned: \
+            the detector reads all 32 views like the truth; needs views rolled \
+            by joint 6 (session 9 targets2 notes)"]
 async fn asymmetric_grid_with_even_rows_is_settled_from_the_joints() {
     const SERIAL: &str = "ACIRCLES-EVEN";
     let spec = AsymmetricCirclesSpec {
