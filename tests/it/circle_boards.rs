@@ -71,12 +71,22 @@ const EVEN_GRID_TURN_DEG: f64 = 90.0;
 
 /// Whether `image`'s reading starts at the dot drawn as `(rows-1, cols-1)`
 /// (numbered from the other end), judged against the renderer's truth.
-fn read_half_turned(view: &robocal_calib::sim::render::RenderedView, spec: &AsymmetricCirclesSpec) -> bool {
+fn read_half_turned(
+    view: &robocal_calib::sim::render::RenderedView,
+    spec: &AsymmetricCirclesSpec,
+) -> bool {
     let found = detect_asymmetric(&view.image, spec).unwrap();
-    assert!(!found.ordering_unique, "an even-row grid must report its half turn");
+    assert!(
+        !found.ordering_unique,
+        "an even-row grid must report its half turn"
+    );
     let first = (found.dots[0].x, found.dots[0].y);
     let near = |row: usize, col: usize| {
-        let t = view.truth.iter().find(|t| t.row == row && t.col == col).unwrap();
+        let t = view
+            .truth
+            .iter()
+            .find(|t| t.row == row && t.col == col)
+            .unwrap();
         (t.x - first.0).hypot(t.y - first.1)
     };
     near(spec.rows - 1, spec.cols - 1) < near(0, 0)
@@ -98,7 +108,10 @@ async fn even_row_asymmetric_grid_is_read_at_upload_and_its_half_turn_settled_fr
         "kind": "asymmetric_circles", "rows": spec.rows, "cols": spec.cols,
         "pitch_mm": spec.pitch_mm, "dot_diameter_mm": spec.dot_diameter_mm,
     });
-    let (a, b) = (spec.dot_centre_mm(0, 0), spec.dot_centre_mm(spec.rows - 1, spec.cols - 1));
+    let (a, b) = (
+        spec.dot_centre_mm(0, 0),
+        spec.dot_centre_mm(spec.rows - 1, spec.cols - 1),
+    );
     let centre = Vector3::new(0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.0);
     let in_plane = Translation3::from(centre)
         * Isometry3::from_parts(
@@ -124,7 +137,9 @@ async fn even_row_asymmetric_grid_is_read_at_upload_and_its_half_turn_settled_fr
                 rng,
             )
             .unwrap();
-            half_turned.borrow_mut().push(read_half_turned(&view, &spec));
+            half_turned
+                .borrow_mut()
+                .push(read_half_turned(&view, &spec));
             view.image
         },
     );

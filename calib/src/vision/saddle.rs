@@ -198,7 +198,9 @@ fn symmetry_step<I: GreyLevels>(
     // Integer offsets: every sample `c ± d` has the bilinear fractions of
     // `c` itself, and the window's extreme offsets `(±r, 0)`, `(0, ±r)`
     // bound all samples, so one check covers the window.
-    let r = offsets.iter().fold(0.0f64, |m, o| m.max(o.0.abs()).max(o.1.abs())) as usize;
+    let r = offsets
+        .iter()
+        .fold(0.0f64, |m, o| m.max(o.0.abs()).max(o.1.abs())) as usize;
     let (floor_x, floor_y) = (c.x.floor(), c.y.floor());
     let (width, height) = (img.width(), img.height());
     if !(floor_x >= r as f64 && floor_y >= r as f64)
@@ -270,7 +272,11 @@ fn gradient_block(offsets: &[(f64, f64, f64)]) -> Matrix2<f64> {
 /// iterate on every `COARSE_STRIDE`-th row and column of pairs until the
 /// step is below `COARSE_CONVERGED_PX` (a quarter of the cost per step),
 /// then on all pairs to convergence: the fixed point is the full fit's.
-fn symmetry_fit<I: GreyLevels>(img: &I, start: Vector2<f64>, half: f64) -> Option<(Vector2<f64>, bool)> {
+fn symmetry_fit<I: GreyLevels>(
+    img: &I,
+    start: Vector2<f64>,
+    half: f64,
+) -> Option<(Vector2<f64>, bool)> {
     let mut c = start;
     let mut g = Vector2::zeros();
     let offsets = pair_offsets(half);
@@ -304,7 +310,11 @@ fn symmetry_fit<I: GreyLevels>(img: &I, start: Vector2<f64>, half: f64) -> Optio
 /// The X-junction near `guess_px` within `half_window_px` (the window must
 /// hold the four squares' edges and nothing else), or `None` when there is
 /// no junction or the fit leaves the window.
-pub fn refine_saddle<I: GreyLevels>(img: &I, guess_px: [f64; 2], half_window_px: f64) -> Option<[f64; 2]> {
+pub fn refine_saddle<I: GreyLevels>(
+    img: &I,
+    guess_px: [f64; 2],
+    half_window_px: f64,
+) -> Option<[f64; 2]> {
     if half_window_px.is_nan() || half_window_px < MIN_HALF_WINDOW_PX {
         return None;
     }
