@@ -13,7 +13,7 @@ use robocal_calib::vision::CircleBoard;
 use serde_json::{json, Value};
 
 use crate::board_campaign::{calibrates_through_the_service, rerendered_campaign};
-use crate::support::spawn_app;
+use crate::support::{report_note, spawn_app};
 use crate::targets::rasterise;
 
 /// An asymmetric grid inside the simulator's 9x9 board area (200 x 200 mm):
@@ -163,16 +163,7 @@ async fn even_row_asymmetric_grid_is_read_at_upload_and_its_half_turn_settled_fr
     );
     let report =
         calibrates_through_the_service(dir.path(), "ACIRCLES-EVEN", "asymmetric_circles").await;
-    let notes: Vec<&str> = report["notes"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .filter_map(Value::as_str)
-        .collect();
-    let note = notes
-        .iter()
-        .find(|n| n.contains("half turn"))
-        .unwrap_or_else(|| panic!("no half-turn note in {notes:?}"));
+    let note = report_note(&report, "half turn");
     eprintln!("even-row asymmetric grid: {note}");
     assert!(note.contains("the joints showed it turned"), "{note}");
     assert!(
