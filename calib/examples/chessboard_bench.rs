@@ -21,7 +21,6 @@ use robocal_calib::sim::render::RenderOptions;
 use robocal_calib::sim::render_chessboard::render_chessboard;
 use robocal_calib::sim::views::reference_camera;
 use robocal_calib::vision::chessboard::{detect_chessboard, ChessboardSpec};
-use robocal_calib::vision::GrayImage;
 
 const WIDTH: usize = 1280;
 const HEIGHT: usize = 1024;
@@ -135,10 +134,11 @@ fn main() {
             (0, 0, 0, 0.0, 0.0f64, 0u64);
         for k in 0..views {
             let name = format!("{kind}_{k:03}.png");
-            let (image, truth): (GrayImage, Vec<[f64; 2]>) = match (&from, &truth_of) {
+            // The detector reads the 8-bit image as decoded, as OpenCV does.
+            let (image, truth): (image::GrayImage, Vec<[f64; 2]>) = match (&from, &truth_of) {
                 (Some(dir), Some(all)) => {
                     let img = image::open(format!("{dir}/{name}")).expect("read png");
-                    (GrayImage::from_dynamic(&img), all[&name].clone())
+                    (img.to_luma8(), all[&name].clone())
                 }
                 _ => {
                     let (iso, opts) = view(kind, &mut rng);
@@ -152,10 +152,8 @@ fn main() {
                         &mut rng,
                     )
                     .expect("render");
-                    v.image
-                        .to_luma8()
-                        .save(format!("{out}/{name}"))
-                        .expect("write png");
+                    let png = v.image.to_luma8();
+                    png.save(format!("{out}/{name}")).expect("write png");
                     for (id, t) in v.truth.iter().enumerate() {
                         let _ = writeln!(
                             csv,
@@ -168,7 +166,7 @@ fn main() {
                         );
                     }
                     let truth = v.truth.iter().map(|t| [t.x, t.y]).collect();
-                    (v.image, truth)
+                    (png, truth)
                 }
             };
             let t0 = thread_cpu_ns();

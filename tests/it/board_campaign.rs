@@ -58,7 +58,12 @@ pub fn rerendered_campaign(
 /// Upload and calibrate the campaign in `dir` as robot `serial`; check that
 /// the session kept the target `kind`, every image was detected, the
 /// accuracy improved as on the dot board and the reprojection is small.
-pub async fn calibrates_through_the_service(dir: &std::path::Path, serial: &str, kind: &str) {
+/// Returns the calibration report.
+pub async fn calibrates_through_the_service(
+    dir: &std::path::Path,
+    serial: &str,
+    kind: &str,
+) -> Value {
     let app = spawn_app_with(|c| c.test_validate_only = false).await;
     let job = upload_and_calibrate(&app, serial, dir).await;
     let session = job["session_id"].as_str().unwrap();
@@ -93,4 +98,5 @@ pub async fn calibrates_through_the_service(dir: &std::path::Path, serial: &str,
     );
     assert!(rms < MAX_REPROJECTION_PX, "reprojection {rms} px");
     app.shutdown().await;
+    report
 }

@@ -1,21 +1,19 @@
 //! Circle boards other than robocal's marker board through the service
 //! (issue 14): OpenCV's asymmetric circle grid (printed, detected, and a
-//! whole simulated campaign re-rendered on it, with odd and with even rows)
-//! and the marker-less dot grid.
+//! whole simulated campaign re-rendered on it, with an odd and with an
+//! even number of rows) and the marker-less dot grid.
 
-use nalgebra::Point3;
+use std::cell::RefCell;
+
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use robocal::calib::vision::{detect_asymmetric, AsymmetricCirclesSpec};
-use robocal_calib::geometry::pose_from_matrix_rows;
-use robocal_calib::sim::campaign_io::{PoseEntry, Truth};
 use robocal_calib::sim::render::RenderOptions;
 use robocal_calib::sim::render_circles::render_circle_board;
-use robocal_calib::vision::{CircleBoard, GrayImage};
+use robocal_calib::vision::CircleBoard;
 use serde_json::{json, Value};
 
-use crate::board_campaign::{
-    calibrates_through_the_service, rerendered_campaign, CAL_POSES, MIN_IMPROVEMENT, VAL_POSES,
-};
-use crate::support::{spawn_app, spawn_app_with, upload_and_calibrate};
+use crate::board_campaign::{calibrates_through_the_service, rerendered_campaign};
+use crate::support::{report_note, spawn_app};
 use crate::targets::rasterise;
 
 /// An asymmetric grid inside the simulator's 9x9 board area (200 x 200 mm):
@@ -29,25 +27,20 @@ fn board() -> AsymmetricCirclesSpec {
     }
 }
 
-/// Rows of the half-turn-symmetric variant of [`board`].
-const EVEN_ROWS: usize = 10;
-
-fn target_of(spec: &AsymmetricCirclesSpec) -> Value {
-    json!({
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn asymmetric_grid_campaign_calibrates_through_the_service() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = board();
+    let target = json!({
         "kind": "asymmetric_circles", "rows": spec.rows, "cols": spec.cols,
         "pitch_mm": spec.pitch_mm, "dot_diameter_mm": spec.dot_diameter_mm,
-    })
-}
-
-/// The IRB 2400 campaign (simulator seed `seed`) in `dir`, every image
-/// drawn again on the asymmetric grid `spec`.
-fn asymmetric_campaign(dir: &std::path::Path, spec: AsymmetricCirclesSpec, seed: u64) {
+    });
     let board = CircleBoard::Asymmetric(spec);
     rerendered_campaign(
-        dir,
-        seed,
+        dir.path(),
+        52,
         6,
-        target_of(&spec),
+        target,
         &|intrinsics, camera_to_target, w, h, rng| {
             render_circle_board(
                 intrinsics,
@@ -62,133 +55,121 @@ fn asymmetric_campaign(dir: &std::path::Path, spec: AsymmetricCirclesSpec, seed:
             .image
         },
     );
-}
-
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn asymmetric_grid_campaign_calibrates_through_the_service() {
-    let dir = tempfile::tempdir().unwrap();
-    asymmetric_campaign(dir.path(), board(), 52);
     calibrates_through_the_service(dir.path(), "ACIRCLES-1", "asymmetric_circles").await;
 }
 
-/// The images of the campaign in `dir` whose detection numbers the board
-/// from the other corner: the detector's first dot is nearer the image of
-/// the last dot than of the first one (truth projected through the truth
-/// intrinsics).
-fn views_read_half_turned(dir: &std::path::Path, spec: &AsymmetricCirclesSpec) -> Vec<String> {
-    let read = |name: &str| std::fs::read_to_string(dir.join(name)).unwrap();
-    let truth: Truth = serde_json::from_str(&read("truth.json")).unwrap();
-    let entries: Vec<PoseEntry> = serde_json::from_str(&read("poses.json")).unwrap();
-    let at = |i: usize, row: usize, col: usize| {
-        let [x, y, z] = spec.dot_centre_mm(row, col);
-        // The simulator's names: `p_camera = target_to_camera⁻¹ * p_target`
-        // (as `rerendered_campaign` hands the renderer).
-        let camera_to_target = pose_from_matrix_rows(&truth.target_to_camera[i])
-            .unwrap()
-            .inverse();
-        truth
-            .intrinsics
-            .project(&(camera_to_target * Point3::new(x, y, z)))
-            .unwrap()
+/// 10 rows of 5 in the same 200 x 200 mm area: an even number of rows
+/// looks the same after a half turn about the dots' centre.
+const EVEN_ROWS: usize = 10;
+/// The grid is drawn turned in the board plane by this angle about its
+/// centre (a fixed target frame for the job): the detector then numbers
+/// the views of the IRB-2400 campaign from either end depending on the
+/// camera's roll (it starts nearest the image's top-left corner), so some
+/// are numbered half-turned against the others. Chosen so that both
+/// readings occur; the test asserts that they do.
+const EVEN_GRID_TURN_DEG: f64 = 90.0;
+
+/// Whether `image`'s reading starts at the dot drawn as `(rows-1, cols-1)`
+/// (numbered from the other end), judged against the renderer's truth.
+fn read_half_turned(
+    view: &robocal_calib::sim::render::RenderedView,
+    spec: &AsymmetricCirclesSpec,
+) -> bool {
+    let found = detect_asymmetric(&view.image, spec).unwrap();
+    assert!(
+        !found.ordering_unique,
+        "an even-row grid must report its half turn"
+    );
+    let first = (found.dots[0].x, found.dots[0].y);
+    let near = |row: usize, col: usize| {
+        let t = view
+            .truth
+            .iter()
+            .find(|t| t.row == row && t.col == col)
+            .unwrap();
+        (t.x - first.0).hypot(t.y - first.1)
     };
-    let mut turned = Vec::new();
-    for (i, entry) in entries.iter().enumerate() {
-        let image = GrayImage::from_dynamic(&image::open(dir.join(&entry.image)).unwrap());
-        let found = detect_asymmetric(&image, spec).unwrap();
-        assert!(
-            !found.ordering_unique,
-            "{}: even rows are ambiguous",
-            entry.image
-        );
-        let first = nalgebra::Point2::new(found.dots[0].x, found.dots[0].y);
-        let (own, other) = (at(i, 0, 0), at(i, spec.rows - 1, spec.cols - 1));
-        if nalgebra::distance(&first, &other) < nalgebra::distance(&first, &own) {
-            turned.push(entry.image.clone());
-        }
-    }
-    turned
+    near(spec.rows - 1, spec.cols - 1) < near(0, 0)
 }
 
-/// An asymmetric grid with an even number of rows looks the same after a
-/// half turn: the detector reads every image (at upload) with its first dot
-/// nearest the image's top-left corner, so views in which the board lies
-/// the other way are numbered from the other corner. The job must settle
-/// each view's turn from the joints, relabel exactly the views whose
-/// numbering disagrees with the majority (and say so), and calibrate as
-/// well as on an odd-row grid. Left unrelabelled, a turned view's board
-/// frame would be 180 mm away and turned by 180°: the job would fail or its
-/// validation error would be many times larger.
+/// An asymmetric grid with an even number of rows, read from the images at
+/// upload: the detector's numbering of each view is known only up to a
+/// half turn, the job settles it from the joints (relabelling exactly the
+/// minority of views numbered from the other end, and saying so) and
+/// calibrates as on the odd-row grid.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-#[ignore = "the IRB 2400 campaign (seed 52) never shows the board half turned: \
-            the detector reads all 32 views like the truth; needs views rolled \
-            by joint 6 (session 9 targets2 notes)"]
-async fn asymmetric_grid_with_even_rows_is_settled_from_the_joints() {
-    const SERIAL: &str = "ACIRCLES-EVEN";
+async fn even_row_asymmetric_grid_is_read_at_upload_and_its_half_turn_settled_from_the_joints() {
+    let dir = tempfile::tempdir().unwrap();
     let spec = AsymmetricCirclesSpec {
         rows: EVEN_ROWS,
         ..board()
     };
-    let dir = tempfile::tempdir().unwrap();
-    asymmetric_campaign(dir.path(), spec, 52);
-    let mut turned = views_read_half_turned(dir.path(), &spec);
-    let views = CAL_POSES + VAL_POSES;
-    if 2 * turned.len() > views {
-        // The majority's numbering is the one kept: the others are relabelled.
-        let all: Vec<PoseEntry> =
-            serde_json::from_str(&std::fs::read_to_string(dir.path().join("poses.json")).unwrap())
-                .unwrap();
-        turned = all
-            .into_iter()
-            .map(|e| e.image)
-            .filter(|name| !turned.contains(name))
-            .collect();
-    }
-    assert!(
-        !turned.is_empty() && 2 * turned.len() < views,
-        "the campaign must show the board both ways: {turned:?}"
+    let target = json!({
+        "kind": "asymmetric_circles", "rows": spec.rows, "cols": spec.cols,
+        "pitch_mm": spec.pitch_mm, "dot_diameter_mm": spec.dot_diameter_mm,
+    });
+    let (a, b) = (
+        spec.dot_centre_mm(0, 0),
+        spec.dot_centre_mm(spec.rows - 1, spec.cols - 1),
     );
-    let app = spawn_app_with(|c| c.test_validate_only = false).await;
-    upload_and_calibrate(&app, SERIAL, dir.path()).await;
-    let report: Value = app
-        .get(&format!("/v1/robots/{SERIAL}/parameter-sets/latest/report"))
-        .await
-        .json()
-        .await
-        .unwrap();
-    assert_eq!(
-        report["detection"]["images_detected"], views,
-        "{}",
-        report["detection"]
+    let centre = Vector3::new(0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.0);
+    let in_plane = Translation3::from(centre)
+        * Isometry3::from_parts(
+            Translation3::identity(),
+            UnitQuaternion::from_axis_angle(&Vector3::z_axis(), EVEN_GRID_TURN_DEG.to_radians()),
+        )
+        * Translation3::from(-centre);
+    let board = CircleBoard::Asymmetric(spec);
+    let half_turned = RefCell::new(Vec::new());
+    rerendered_campaign(
+        dir.path(),
+        52,
+        6,
+        target,
+        &|intrinsics, camera_to_target, w, h, rng| {
+            let view = render_circle_board(
+                intrinsics,
+                &(camera_to_target * in_plane),
+                &board,
+                w,
+                h,
+                &RenderOptions::default(),
+                rng,
+            )
+            .unwrap();
+            half_turned
+                .borrow_mut()
+                .push(read_half_turned(&view, &spec));
+            view.image
+        },
     );
-    let notes: Vec<&str> = report["notes"]
-        .as_array()
-        .unwrap()
+    let half_turned = half_turned.into_inner();
+    let entries: Vec<Value> =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("poses.json")).unwrap())
+            .unwrap();
+    // The job relabels the minority reading.
+    let turned_count = half_turned.iter().filter(|&&t| t).count();
+    let minority = turned_count * 2 < half_turned.len();
+    let expected: Vec<&str> = entries
         .iter()
-        .filter_map(Value::as_str)
+        .zip(&half_turned)
+        .filter(|&(_, &t)| t == minority)
+        .map(|(e, _)| e["image"].as_str().unwrap())
         .collect();
-    let note = notes
-        .iter()
-        .find(|n| n.contains("half turn"))
-        .unwrap_or_else(|| panic!("no half-turn note in {notes:?}"));
     assert!(
-        note.ends_with(&format!("relabelled: {}.", turned.join(", "))),
-        "expected {turned:?}: {note}"
+        !expected.is_empty() && expected.len() * 2 < entries.len(),
+        "both readings must occur: {turned_count} of {} views numbered from the other end",
+        entries.len()
     );
+    let report =
+        calibrates_through_the_service(dir.path(), "ACIRCLES-EVEN", "asymmetric_circles").await;
+    let note = report_note(&report, "half turn");
+    eprintln!("even-row asymmetric grid: {note}");
+    assert!(note.contains("the joints showed it turned"), "{note}");
     assert!(
-        note.contains(&format!(
-            "the joints showed it turned in {} image(s)",
-            turned.len()
-        )),
-        "{note}"
+        note.ends_with(&format!("relabelled: {}.", expected.join(", "))),
+        "expected {expected:?}: {note}"
     );
-    let before = report["before"]["mean_mm"].as_f64().unwrap();
-    let after = report["after"]["mean_mm"].as_f64().unwrap();
-    eprintln!("{SERIAL}: {note} Validation mean {before:.3} mm before, {after:.4} mm after.");
-    assert!(
-        before / after >= MIN_IMPROVEMENT,
-        "before {before} after {after}"
-    );
-    app.shutdown().await;
 }
 
 #[tokio::test]

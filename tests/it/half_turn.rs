@@ -216,16 +216,7 @@ async fn run_turned(
 /// The report's note on the relabelled views names exactly [`TURNED`],
 /// and no pose is an outlier.
 fn assert_relabelled_exactly_the_turned_views(report: &Value, data: &str) -> String {
-    let notes: Vec<&str> = report["notes"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .filter_map(Value::as_str)
-        .collect();
-    let note = notes
-        .iter()
-        .find(|n| n.contains("half turn"))
-        .unwrap_or_else(|| panic!("no half-turn note in {notes:?}"));
+    let note = report_note(report, "half turn");
     let expected: Vec<String> = TURNED.iter().map(|&i| label(i)).collect();
     assert!(
         note.ends_with(&format!("relabelled: {}.", expected.join(", "))),
@@ -282,16 +273,7 @@ async fn quarter_turned_views_of_a_square_grid_are_relabelled_from_the_joints() 
     let (job, report) =
         run_turned(&app, "QUARTER-TURN", &c, target, RobotData::Joints, &turns).await;
     assert_eq!(job["state"], "succeeded", "{job}");
-    let notes: Vec<&str> = report["notes"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .filter_map(Value::as_str)
-        .collect();
-    let note = notes
-        .iter()
-        .find(|n| n.contains("quarter or half turn"))
-        .unwrap_or_else(|| panic!("no quarter-turn note in {notes:?}"));
+    let note = report_note(&report, "quarter or half turn");
     let expected: Vec<String> = QUARTER.iter().map(|&(i, _)| label(i)).collect();
     assert!(
         note.ends_with(&format!("relabelled: {}.", expected.join(", "))),

@@ -255,6 +255,21 @@ pub async fn upload_and_calibrate(app: &TestApp, serial: &str, dir: &std::path::
     job
 }
 
+/// The report's note containing `words` (panics naming the notes if none).
+pub fn report_note<'a>(report: &'a Value, words: &str) -> &'a str {
+    let notes: Vec<&str> = report["notes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(Value::as_str)
+        .collect();
+    notes
+        .iter()
+        .find(|n| n.contains(words))
+        .copied()
+        .unwrap_or_else(|| panic!("no note with {words:?} in {notes:?}"))
+}
+
 pub fn is_finished(v: &Value) -> bool {
     matches!(
         v["state"].as_str(),

@@ -16,7 +16,7 @@
 
 use nalgebra::{Matrix2, Matrix4, Matrix6, Vector2, Vector4, Vector6};
 
-use crate::vision::image::GrayImage;
+use crate::vision::image::GreyLevels;
 
 /// Pre-smoothing sigma of the quadratic fit as a fraction of the half window
 /// (a sharp X-junction is not a quadratic; its blurred version is, near the
@@ -47,9 +47,11 @@ const COARSE_STRIDE: isize = 2;
 /// `SYMMETRY_CONVERGED_PX`).
 const COARSE_CONVERGED_PX: f64 = 0.02;
 /// The symmetry fit stops after a step below this, pixels: Gauss–Newton
-/// near its fixed point leaves a small fraction of its last step, far
-/// below the corners' 0.015 px error on sharp rendered boards.
-const SYMMETRY_CONVERGED_PX: f64 = 5e-3;
+/// near its fixed point leaves a small fraction of its last step. The
+/// full-window stage starts at the coarse stage's fixed point, so its first
+/// step usually ends it; the rendered benches' RMS is the same as with
+/// 5e-3 to four digits (BENCHMARKS.md, session 9 — targets).
+const SYMMETRY_CONVERGED_PX: f64 = 0.02;
 /// Smallest half window the fits accept, pixels.
 pub const MIN_HALF_WINDOW_PX: f64 = 1.5;
 
@@ -64,25 +66,26 @@ fn gaussian_kernel(sigma: f64) -> Vec<f64> {
 
 /// One quadratic fit centred on pixel `(cx, cy)`: the saddle's offset from
 /// it, or `None` when the fitted surface has no saddle (no corner there).
-fn quadratic_once(img: &GrayImage, cx: isize, cy: isize, half: f64) -> Option<Vector2<f64>> {
+fn quadratic_once<I: GreyLevels>(img: &I, cx: isize, cy: isize, half: f64) -> Option<Vector2<f64>> {
     let r = half.ceil() as isize;
     let kernel = gaussian_kernel((SMOOTH_SIGMA_FRACTION * half).max(MIN_SMOOTH_SIGMA_PX));
     let kr = (kernel.len() / 2) as isize;
     let (x0, y0) = (cx - r - kr, cy - r - kr);
     let side = (2 * (r + kr) + 1) as usize;
-    if x0 < 0 || y0 < 0 || x0 as usize + side > img.width || y0 as usize + side > img.height {
+    let (width, height) = (img.width(), img.height());
+    if x0 < 0 || y0 < 0 || x0 as usize + side > width || y0 as usize + side > height {
         return None;
     }
     // Separable blur of the patch (rows, then columns inside the fit window).
     let inner = (2 * r + 1) as usize;
     let mut rows = vec![0.0f64; side * inner];
     for y in 0..side {
-        let line = &img.data[(y0 as usize + y) * img.width + x0 as usize..];
+        let line = (y0 as usize + y) * width + x0 as usize;
         for x in 0..inner {
             rows[y * inner + x] = kernel
                 .iter()
                 .enumerate()
-                .map(|(k, w)| w * line[x + k] as f64)
+                .map(|(k, w)| w * img.level(line + x + k) as f64)
                 .sum();
         }
     }
@@ -112,7 +115,7 @@ fn quadratic_once(img: &GrayImage, cx: isize, cy: isize, half: f64) -> Option<Ve
 
 /// The saddle of the fitted quadratic, re-centred; `None` if there is no
 /// saddle or it lies farther than `half` from the guess.
-pub fn quadratic_saddle(img: &GrayImage, guess_px: [f64; 2], half: f64) -> Option<[f64; 2]> {
+pub fn quadratic_saddle<I: GreyLevels>(img: &I, guess_px: [f64; 2], half: f64) -> Option<[f64; 2]> {
     let guess = Vector2::new(guess_px[0], guess_px[1]);
     let mut p = guess;
     for _ in 0..QUADRATIC_PASSES {
@@ -130,29 +133,23 @@ pub fn quadratic_saddle(img: &GrayImage, guess_px: [f64; 2], half: f64) -> Optio
     Some([p.x, p.y])
 }
 
-/// Bilinear grey level and its gradient at `(x, y)`, or `None` outside.
+/// Bilinear grey level and its gradient at fractions `(fx, fy)` inside the
+/// pixel square whose top-left pixel has index `i` (in bounds: checked by
+/// the caller once per window). f32: the levels are 8-bit, and the fit's
+/// sums of a few hundred terms keep ~1e-5 relative precision, far below
+/// its noise (about 1e-3 of the corner error).
 #[inline]
-fn sample(img: &GrayImage, x: f64, y: f64) -> Option<(f64, f64, f64)> {
-    if !(x >= 0.0 && y >= 0.0) {
-        return None;
-    }
-    // Non-negative: truncation is the floor (and no libm call).
-    let (x0, y0) = (x as usize, y as usize);
-    if x0 + 1 >= img.width || y0 + 1 >= img.height {
-        return None;
-    }
-    let (fx, fy) = (x - x0 as f64, y - y0 as f64);
-    let i = y0 * img.width + x0;
-    let a = img.data[i] as f64;
-    let b = img.data[i + 1] as f64;
-    let c = img.data[i + img.width] as f64;
-    let d = img.data[i + img.width + 1] as f64;
+fn sample_at<I: GreyLevels>(img: &I, i: usize, width: usize, fx: f32, fy: f32) -> (f32, f32, f32) {
+    let a = img.level(i);
+    let b = img.level(i + 1);
+    let c = img.level(i + width);
+    let d = img.level(i + width + 1);
     let top = a + (b - a) * fx;
     let bottom = c + (d - c) * fx;
     let v = top + (bottom - top) * fy;
     let gx = (b - a) + ((d - c) - (b - a)) * fy;
     let gy = bottom - top;
-    Some((v, gx, gy))
+    (v, gx, gy)
 }
 
 /// The point pairs of a symmetry fit: offsets `(dx, dy)` of the upper
@@ -191,20 +188,39 @@ fn coarse_offsets(offsets: &[(f64, f64, f64)]) -> Vec<(f64, f64, f64)> {
 /// sample leaves the image or the normal equations are singular. The
 /// Jacobian row is `(∇a − ∇b, −2 d)`: its `g` block `4 Σ w d dᵀ` does not
 /// depend on `c`, so `dd` holds it (computed once per window).
-fn symmetry_step(
-    img: &GrayImage,
+fn symmetry_step<I: GreyLevels>(
+    img: &I,
     offsets: &[(f64, f64, f64)],
     dd: &Matrix2<f64>,
     c: Vector2<f64>,
     g: Vector2<f64>,
 ) -> Option<Vector4<f64>> {
-    let (mut uxx, mut uxy, mut uyy) = (0.0, 0.0, 0.0);
-    let (mut bxx, mut bxy, mut byx, mut byy) = (0.0, 0.0, 0.0, 0.0);
-    let (mut rx, mut ry, mut rgx, mut rgy) = (0.0, 0.0, 0.0, 0.0);
+    // Integer offsets: every sample `c ± d` has the bilinear fractions of
+    // `c` itself, and the window's extreme offsets `(±r, 0)`, `(0, ±r)`
+    // bound all samples, so one check covers the window.
+    let r = offsets
+        .iter()
+        .fold(0.0f64, |m, o| m.max(o.0.abs()).max(o.1.abs())) as usize;
+    let (floor_x, floor_y) = (c.x.floor(), c.y.floor());
+    let (width, height) = (img.width(), img.height());
+    if !(floor_x >= r as f64 && floor_y >= r as f64)
+        || floor_x as usize + r + 1 >= width
+        || floor_y as usize + r + 1 >= height
+    {
+        return None;
+    }
+    let centre = floor_y as usize * width + floor_x as usize;
+    let (fx, fy) = ((c.x - floor_x) as f32, (c.y - floor_y) as f32);
+    let (gx, gy) = (g.x as f32, g.y as f32);
+    let (mut uxx, mut uxy, mut uyy) = (0.0f32, 0.0f32, 0.0f32);
+    let (mut bxx, mut bxy, mut byx, mut byy) = (0.0f32, 0.0f32, 0.0f32, 0.0f32);
+    let (mut rx, mut ry, mut rgx, mut rgy) = (0.0f32, 0.0f32, 0.0f32, 0.0f32);
     for &(dx, dy, w) in offsets {
-        let (a, ax, ay) = sample(img, c.x + dx, c.y + dy)?;
-        let (b, bx, by) = sample(img, c.x - dx, c.y - dy)?;
-        let res = w * (a - b - 2.0 * (g.x * dx + g.y * dy));
+        let shift = dy as isize * width as isize + dx as isize;
+        let (dx, dy, w) = (dx as f32, dy as f32, w as f32);
+        let (a, ax, ay) = sample_at(img, centre.wrapping_add_signed(shift), width, fx, fy);
+        let (b, bx, by) = sample_at(img, centre.wrapping_add_signed(-shift), width, fx, fy);
+        let res = w * (a - b - 2.0 * (gx * dx + gy * dy));
         let (ux, uy) = (ax - bx, ay - by);
         let (wux, wuy) = (w * ux, w * uy);
         uxx += wux * ux;
@@ -219,6 +235,8 @@ fn symmetry_step(
         rgx += res * dx;
         rgy += res * dy;
     }
+    let [uxx, uxy, uyy, bxx, bxy, byx, byy, rx, ry, rgx, rgy] =
+        [uxx, uxy, uyy, bxx, bxy, byx, byy, rx, ry, rgx, rgy].map(f64::from);
     let jtj = Matrix4::new(
         uxx,
         uxy,
@@ -254,7 +272,11 @@ fn gradient_block(offsets: &[(f64, f64, f64)]) -> Matrix2<f64> {
 /// iterate on every `COARSE_STRIDE`-th row and column of pairs until the
 /// step is below `COARSE_CONVERGED_PX` (a quarter of the cost per step),
 /// then on all pairs to convergence: the fixed point is the full fit's.
-fn symmetry_fit(img: &GrayImage, start: Vector2<f64>, half: f64) -> Option<(Vector2<f64>, bool)> {
+fn symmetry_fit<I: GreyLevels>(
+    img: &I,
+    start: Vector2<f64>,
+    half: f64,
+) -> Option<(Vector2<f64>, bool)> {
     let mut c = start;
     let mut g = Vector2::zeros();
     let offsets = pair_offsets(half);
@@ -288,7 +310,11 @@ fn symmetry_fit(img: &GrayImage, start: Vector2<f64>, half: f64) -> Option<(Vect
 /// The X-junction near `guess_px` within `half_window_px` (the window must
 /// hold the four squares' edges and nothing else), or `None` when there is
 /// no junction or the fit leaves the window.
-pub fn refine_saddle(img: &GrayImage, guess_px: [f64; 2], half_window_px: f64) -> Option<[f64; 2]> {
+pub fn refine_saddle<I: GreyLevels>(
+    img: &I,
+    guess_px: [f64; 2],
+    half_window_px: f64,
+) -> Option<[f64; 2]> {
     if half_window_px.is_nan() || half_window_px < MIN_HALF_WINDOW_PX {
         return None;
     }
@@ -306,8 +332,8 @@ pub fn refine_saddle(img: &GrayImage, guess_px: [f64; 2], half_window_px: f64) -
 /// the guess, which lands where `refine_saddle` does at a fraction of its
 /// cost (the quadratic's smoothing dominates it); the full two-stage fit
 /// where that fails.
-pub fn refine_saddle_near(
-    img: &GrayImage,
+pub fn refine_saddle_near<I: GreyLevels>(
+    img: &I,
     guess_px: [f64; 2],
     half_window_px: f64,
 ) -> Option<[f64; 2]> {

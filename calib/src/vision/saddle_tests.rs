@@ -6,6 +6,7 @@ use rand::{Rng, SeedableRng};
 
 use super::*;
 use crate::sim::render::RenderOptions;
+use crate::vision::image::GrayImage;
 use crate::sim::render_chessboard::render_chessboard;
 use crate::sim::views::reference_camera;
 use crate::vision::chessboard::ChessboardSpec;

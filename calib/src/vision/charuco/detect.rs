@@ -137,7 +137,7 @@ pub fn detect_charuco_with(
 /// Detects the inner corners, refined by the shared saddle/point-symmetry
 /// fit (`vision::saddle`; see `detect_charuco_with`).
 pub fn detect_charuco(img: &GrayImage, spec: &CharucoSpec) -> Result<BoardDetection, DetectError> {
-    detect_charuco_with(img, spec, Some(&refine_saddle))
+    detect_charuco_with(img, spec, Some(&refine_saddle::<GrayImage>))
 }
 
 #[cfg(test)]

@@ -10,7 +10,7 @@
 
 use nalgebra::Vector2;
 
-use crate::vision::image::GrayImage;
+use crate::vision::image::{GrayImage, GreyLevels};
 
 /// Smoothing of the decimated image before the Hessian, level pixels.
 const RESPONSE_SIGMA_PX: f64 = 1.0;
@@ -44,11 +44,10 @@ const ROW_SUBSAMPLE_FACTOR: usize = 4;
 
 /// Box-decimates `img` by `factor` (mean of each `factor`² block); level
 /// pixel `(u, v)` has its centre at `((u + 0.5) f - 0.5, (v + 0.5) f - 0.5)`.
-pub fn decimate(img: &GrayImage, factor: usize) -> GrayImage {
-    if factor <= 1 {
-        return img.clone();
-    }
-    let (w, h) = (img.width / factor, img.height / factor);
+/// Factor 1 is an f32 copy.
+pub fn decimate<I: GreyLevels>(img: &I, factor: usize) -> GrayImage {
+    let factor = factor.max(1);
+    let (w, h) = (img.width() / factor, img.height() / factor);
     let mut data = vec![0.0f32; w * h];
     // Factors divisible by 4 average the middle half of each block's rows
     // (same centre, half the memory read: the level only seeds the search,
@@ -62,13 +61,10 @@ pub fn decimate(img: &GrayImage, factor: usize) -> GrayImage {
     // Rows are summed first (whole-row adds, which vectorise), then each
     // block of `factor` columns of the sum.
     let mut acc = vec![0.0f32; w * factor];
-    for (v, out) in data.chunks_exact_mut(w).enumerate() {
+    for (v, out) in data.chunks_exact_mut(w.max(1)).enumerate() {
         acc.fill(0.0);
         for dy in first_row..first_row + rows {
-            let line = &img.data[(v * factor + dy) * img.width..][..w * factor];
-            for (a, x) in acc.iter_mut().zip(line) {
-                *a += x;
-            }
+            img.add_row(v * factor + dy, &mut acc);
         }
         for (o, block) in out.iter_mut().zip(acc.chunks_exact(factor)) {
             *o = block.iter().sum::<f32>() * norm;
@@ -136,7 +132,8 @@ pub fn bilinear(img: &GrayImage, x: f64, y: f64) -> Option<f32> {
     if x.is_nan() || y.is_nan() || x < 0.0 || y < 0.0 {
         return None;
     }
-    let (x0, y0) = (x.floor() as usize, y.floor() as usize);
+    // Non-negative: truncation is the floor (and no libm call).
+    let (x0, y0) = (x as usize, y as usize);
     if x0 + 1 >= img.width || y0 + 1 >= img.height {
         return None;
     }
@@ -169,15 +166,10 @@ fn response(s: &GrayImage) -> Vec<f32> {
 
 /// Whether the ring around `p` shows the four alternating, point-symmetric
 /// sectors of an X-junction.
-fn ring_is_x_junction(s: &GrayImage, p: Vector2<f64>) -> bool {
+fn ring_is_x_junction(s: &GrayImage, p: Vector2<f64>, ring_dirs: &[(f64, f64)]) -> bool {
     let mut ring = [0.0f32; RING_SAMPLES];
-    for (k, v) in ring.iter_mut().enumerate() {
-        let a = std::f64::consts::TAU * k as f64 / RING_SAMPLES as f64;
-        match bilinear(
-            s,
-            p.x + RING_RADIUS_PX * a.cos(),
-            p.y + RING_RADIUS_PX * a.sin(),
-        ) {
+    for (v, &(cos, sin)) in ring.iter_mut().zip(ring_dirs) {
+        match bilinear(s, p.x + RING_RADIUS_PX * cos, p.y + RING_RADIUS_PX * sin) {
             Some(g) => *v = g,
             None => return false,
         }
@@ -238,7 +230,12 @@ pub fn find_candidates(level: &GrayImage, max_count: usize) -> (Vec<Candidate>, 
         }
     }
     out.sort_by(|a, b| b.response.total_cmp(&a.response));
-    out.retain(|c| ring_is_x_junction(&s, c.pos));
+    // The ring's directions once per image, not a sin and cos per sample.
+    let ring_dirs: Vec<(f64, f64)> = (0..RING_SAMPLES)
+        .map(|k| (std::f64::consts::TAU * k as f64 / RING_SAMPLES as f64).sin_cos())
+        .map(|(sin, cos)| (cos, sin))
+        .collect();
+    out.retain(|c| ring_is_x_junction(&s, c.pos, &ring_dirs));
     out.truncate(max_count);
     (out, s)
 }
