@@ -149,8 +149,14 @@ mod tests {
             .find(|j| j.contains(r#"name="tool_joint""#))
             .expect("a tool_joint");
         assert!(tool_joint.contains(r#"type="fixed""#), "{tool_joint}");
-        assert!(tool_joint.contains(r#"<parent link="flange"/>"#), "{tool_joint}");
-        assert!(tool_joint.contains(r#"<child link="tool"/>"#), "{tool_joint}");
+        assert!(
+            tool_joint.contains(r#"<parent link="flange"/>"#),
+            "{tool_joint}"
+        );
+        assert!(
+            tool_joint.contains(r#"<child link="tool"/>"#),
+            "{tool_joint}"
+        );
         let xyz: Vec<f64> = tool_joint
             .split(r#"xyz=""#)
             .nth(1)
@@ -161,7 +167,10 @@ mod tests {
             .collect();
         let expected_m = tool_mm / MM_PER_M;
         for (got, want) in xyz.iter().zip(expected_m.iter()) {
-            assert!((got - want).abs() < 1e-12, "tool origin {xyz:?} vs {expected_m:?}");
+            assert!(
+                (got - want).abs() < 1e-12,
+                "tool origin {xyz:?} vs {expected_m:?}"
+            );
         }
         let tracker_joint = urdf
             .split("<joint ")

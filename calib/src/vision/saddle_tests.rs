@@ -6,10 +6,10 @@ use rand::{Rng, SeedableRng};
 
 use super::*;
 use crate::sim::render::RenderOptions;
-use crate::vision::image::GrayImage;
 use crate::sim::render_chessboard::render_chessboard;
 use crate::sim::views::reference_camera;
 use crate::vision::chessboard::ChessboardSpec;
+use crate::vision::image::GrayImage;
 
 /// RMS and worst error of corners refined from guesses up to `offset_px`
 /// away from the truth.
