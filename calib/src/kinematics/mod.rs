@@ -34,6 +34,7 @@ pub mod recheck;
 mod term_cv;
 mod term_elimination;
 mod term_fit;
+pub mod term_model;
 pub mod term_report;
 pub mod term_selection;
 pub mod term_validate;
