@@ -49,6 +49,8 @@ pub struct SessionSpecOut {
     pub flange_to_camera_guess: Option<PoseDoc>,
     /// The reused camera calibration, `latest` resolved to its version.
     pub camera_calibration_id: Option<String>,
+    /// Payload at the tool during the campaign (kg).
+    pub payload_kg: Option<f64>,
 }
 
 #[derive(Debug, Serialize, ToSchema)]

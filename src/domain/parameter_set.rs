@@ -8,10 +8,11 @@
 //! [`ParameterSet::model`] is the one conversion to the numerics' model.
 
 use robocal_calib::camera::Intrinsics;
+use robocal_calib::kinematics::term_model::TermModel;
 use robocal_calib::kinematics::{CalibratedModel, ParamLayout};
 use serde::{Deserialize, Serialize};
 
-use super::CovarianceDoc;
+use super::{CovarianceDoc, TermsDoc};
 use crate::report::ParameterReport;
 use crate::schema::robot::{doc_to_model, KinematicsDoc};
 use crate::schema::session::Instrument;
@@ -40,6 +41,9 @@ pub struct ParameterSet {
     /// The identified parameters' full covariance (absent from sets
     /// stored before it was kept).
     pub covariance: Option<CovarianceDoc>,
+    /// The non-geometric terms kept by the selection (issue 19); absent
+    /// when none was kept and in sets stored before terms were selected.
+    pub terms: Option<TermsDoc>,
 }
 
 /// The contract's names of a set's frames.
@@ -102,6 +106,17 @@ impl ParameterSet {
             flange_to_tool: self.flange_to_tool.pose()?,
         })
     }
+
+    /// [`Self::model`] with the kept non-geometric terms (none for sets
+    /// without): what `forward`, `compensate`, `filter` and the predicted
+    /// uncertainty evaluate.
+    pub fn term_model(&self) -> Result<TermModel, String> {
+        let model = self.model()?;
+        match &self.terms {
+            Some(t) => t.term_model(model),
+            None => Ok(TermModel::geometric(model)),
+        }
+    }
 }
 
 /// The document as stored and served: each frame under the contract's
@@ -129,6 +144,8 @@ struct StoredSet {
     parameters: Vec<ParameterReport>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     covariance: Option<CovarianceDoc>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    terms: Option<TermsDoc>,
 }
 
 impl From<ParameterSet> for StoredSet {
@@ -149,6 +166,7 @@ impl From<ParameterSet> for StoredSet {
             fixed: set.fixed,
             parameters: set.parameters,
             covariance: set.covariance,
+            terms: set.terms,
         }
     }
 }
@@ -174,6 +192,7 @@ impl TryFrom<StoredSet> for ParameterSet {
             fixed: s.fixed,
             parameters: s.parameters,
             covariance: s.covariance,
+            terms: s.terms,
         })
     }
 }

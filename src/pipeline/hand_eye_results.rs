@@ -343,6 +343,7 @@ fn report(
         }),
         notes,
         uncertainty_map: None,
+        terms: None,
         gate: None,
     }
 }

@@ -39,6 +39,8 @@ use stage::stage_span;
 pub use stage::Stage;
 pub use validate::validate;
 
+use robocal_calib::kinematics::nongeometric::CandidateOptions;
+
 use crate::schema::session::Instrument;
 use crate::schema::{FieldError, PoseDoc};
 use crate::store::{NewParameterSet, PoseDetection};
@@ -227,6 +229,10 @@ fn run_stages(
         });
     }
     within(Stage::Identify, "kinematic identification", 0.0);
+    let candidates = input.options.non_geometric.then(|| CandidateOptions {
+        payload_kg: input.session.payload_kg.unwrap_or(0.0),
+        ..CandidateOptions::for_robot(&input.robot)
+    });
     let identify = |usable: &[usize], outliers: &[screen_stage::Outlier]| {
         identify_stage::identify_robot(
             &input.robot,
@@ -239,6 +245,7 @@ fn run_stages(
             intrinsics_held,
             usable,
             &outliers.iter().map(|o| o.pose).collect::<Vec<_>>(),
+            candidates.as_ref(),
         )
     };
     let mut identified = identify(&usable, &outliers)?;

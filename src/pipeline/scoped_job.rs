@@ -183,6 +183,7 @@ pub fn run(
         hand_eye: None,
         notes,
         uncertainty_map: None,
+        terms: None,
         gate: Some(gate.report),
     };
     let summary = Summary {

@@ -20,6 +20,7 @@ pub mod schema;
 pub mod svg;
 mod svg_writer;
 mod table;
+pub mod terms;
 mod uncertainty_chart;
 #[cfg(test)]
 mod xml_check;
@@ -29,3 +30,4 @@ pub use html::render_html;
 pub use model::*;
 pub use svg::render_svg;
 pub use table::render_table;
+pub use terms::{TermLine, TermsReport};

@@ -218,6 +218,9 @@ pub struct Report {
     /// and in sets stored without a job).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gate: Option<GateReport>,
+    /// The selection of non-geometric terms (absent when it did not run).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub terms: Option<super::terms::TermsReport>,
 }
 
 /// Predicted 1σ of the tool (camera or tracker tool point) position over a

@@ -86,6 +86,12 @@ pub struct CalibrationOptions {
     /// poses holding everything else at the latest approved set.
     #[serde(default, skip_serializing_if = "CalibrationScope::is_full")]
     pub scope: CalibrationScope,
+    /// Select non-geometric terms (joint compliance, angle-periodic joint
+    /// errors) after the geometric fit and keep those the campaign
+    /// identifies and that lower the held-out error (issue 19); `false`:
+    /// geometry only.
+    #[serde(default = "yes")]
+    pub non_geometric: bool,
 }
 
 fn yes() -> bool {
@@ -103,6 +109,7 @@ impl Default for CalibrationOptions {
             joint_refinement: true,
             validation: val_set(),
             scope: CalibrationScope::Full,
+            non_geometric: true,
         }
     }
 }

@@ -127,7 +127,15 @@ pub struct SessionBody {
     /// intrinsics measured on images of this session's size.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub camera_calibration_id: Option<String>,
+    /// Payload at the tool during the campaign (kg), when known: the
+    /// compliance terms then get a candidate driven by its gravity torque
+    /// (issue 19). A finite mass from 0 to `MAX_PAYLOAD_KG`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub payload_kg: Option<f64>,
 }
+
+/// Largest payload a session may state (kg): beyond any industrial arm's.
+pub const MAX_PAYLOAD_KG: f64 = 5_000.0;
 
 impl SessionBody {
     pub fn check(&self) -> Result<(), Vec<FieldError>> {
@@ -161,6 +169,14 @@ impl SessionBody {
         }
         if let Some(p) = &self.flange_to_camera_guess {
             p.check(&mut c, "flange_to_camera_guess");
+        }
+        if let Some(kg) = self.payload_kg {
+            if !(kg.is_finite() && (0.0..=MAX_PAYLOAD_KG).contains(&kg)) {
+                c.fail(
+                    "payload_kg",
+                    format!("must be a finite mass from 0 to {MAX_PAYLOAD_KG} kg"),
+                );
+            }
         }
         if let Some(id) = &self.camera_calibration_id {
             if id.is_empty() || id.len() > 100 {

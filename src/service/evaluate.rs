@@ -1,11 +1,13 @@
 //! What off-line programming asks of a parameter set (api.md "Results"):
 //! forward kinematics and compensated joints (method.md §8), evaluated on
-//! the stored calibrated model.
+//! the stored calibrated model with its kept non-geometric terms (issue 19:
+//! the joints a request names are the commanded ones, deflected by the
+//! terms before the chain; compensation answers commanded joints).
 
 use robocal_calib::geometry::Pose;
-use robocal_calib::kinematics::ik::{default_seeds, nearest_within_limits, IkStart};
+use robocal_calib::kinematics::ik::{default_seeds, IkStart};
 use robocal_calib::kinematics::ik_branches::{self, SphericalWristArm};
-use robocal_calib::kinematics::CalibratedModel;
+use robocal_calib::kinematics::term_model::TermModel;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
@@ -189,7 +191,7 @@ pub(crate) fn target_poses(targets: &[PoseDoc], c: &mut Checker) -> Vec<Option<P
 }
 
 pub fn forward(
-    model: &CalibratedModel,
+    model: &TermModel,
     req: &ForwardRequest,
 ) -> Result<ForwardResponse, Vec<FieldError>> {
     let mut c = Checker::default();
@@ -201,7 +203,12 @@ pub fn forward(
         .iter()
         .enumerate()
         .map(|(i, row)| {
-            JointsDeg::check(&mut c, &format!("joints_deg[{i}]"), row, model.robot.dof())
+            JointsDeg::check(
+                &mut c,
+                &format!("joints_deg[{i}]"),
+                row,
+                model.model.robot.dof(),
+            )
         })
         .collect();
     let tool = req.tool.as_ref().and_then(|t| pose_of(t, "tool", &mut c));
@@ -210,15 +217,15 @@ pub fn forward(
     for (i, row) in rows.into_iter().enumerate() {
         let q = row.expect("checked above").to_radians();
         let flange = model
-            .robot
             .base_to_flange(&q)
             .map_err(|e| vec![FieldError::new(format!("joints_deg[{i}]"), e.to_string())])?;
-        let world_flange = model.world_to_base * flange;
+        let world_flange = model.model.world_to_base * flange;
         poses.push(ForwardPose {
             flange_in_base: PoseOut::new(&flange),
-            camera_in_target: PoseOut::new(&(world_flange * model.flange_to_tool)),
+            camera_in_target: PoseOut::new(&(world_flange * model.model.flange_to_tool)),
             tool_in_target: tool.map(|t| PoseOut::new(&(world_flange * t))),
             warnings: model
+                .model
                 .robot
                 .limit_violations(&q)
                 .iter()
@@ -234,13 +241,13 @@ pub fn forward(
 }
 
 pub fn compensate(
-    model: &CalibratedModel,
+    model: &TermModel,
     req: &CompensateRequest,
 ) -> Result<CompensateResponse, Vec<FieldError>> {
     let mut c = Checker::default();
     let targets = target_poses(&req.targets, &mut c);
     let tool = req.tool.as_ref().and_then(|t| pose_of(t, "tool", &mut c));
-    let dof = model.robot.dof();
+    let dof = model.model.robot.dof();
     let seeds: Vec<Option<JointsDeg>> = match &req.seed_joints_deg {
         Some(Seeds::One(seed)) => vec![JointsDeg::check(&mut c, "seed_joints_deg", seed, dof)],
         Some(Seeds::PerTarget(rows)) => {
@@ -266,8 +273,8 @@ pub fn compensate(
         .collect();
     let tool_model = tool.map_or_else(|| model.clone(), |t| model.with_tool(t));
     // Without a seed: mid-range joints (the first of the default grid).
-    let mid_range = default_seeds(&tool_model).swap_remove(0);
-    let arm = SphericalWristArm::of(&tool_model.robot);
+    let mid_range = default_seeds(&tool_model.model).swap_remove(0);
+    let arm = SphericalWristArm::of(&tool_model.model.robot);
     let mut answer = CompensateResponse {
         joints_deg: Vec::new(),
         residual_mm: Vec::new(),
@@ -284,7 +291,7 @@ pub fn compensate(
             1 => seeds[0].clone(),
             _ => seeds[i].clone(),
         };
-        let solution = match nearest_within_limits(&tool_model, &target, &seed) {
+        let solution = match tool_model.nearest_within_limits(&target, &seed) {
             Ok(s) => s,
             Err(e) => {
                 failures += 1;
@@ -329,12 +336,12 @@ mod tests {
     use robocal_calib::kinematics::presets;
     use serde_json::json;
 
-    fn model() -> CalibratedModel {
-        CalibratedModel {
+    fn model() -> TermModel {
+        TermModel::geometric(robocal_calib::kinematics::CalibratedModel {
             robot: presets::irb2400(),
             world_to_base: Pose::identity(),
             flange_to_tool: Pose::identity(),
-        }
+        })
     }
 
     fn fields(errors: Vec<FieldError>) -> Vec<String> {

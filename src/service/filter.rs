@@ -1,10 +1,12 @@
 //! `POST …/parameter-sets/{version}/filter`: Cartesian targets for a
 //! controller that runs the robot's nominal model (issue "Deploy the
-//! result"), computed exactly by `calib::kinematics::filter`.
+//! result"), computed exactly by `calib::kinematics::filter`, through the
+//! set's kept non-geometric terms (issue 19).
 
-use robocal_calib::kinematics::filter::filter_target;
+use robocal_calib::kinematics::filter::filter_target_with_terms;
 use robocal_calib::kinematics::ik::default_seeds;
-use robocal_calib::kinematics::{CalibratedModel, RobotModel};
+use robocal_calib::kinematics::term_model::TermModel;
+use robocal_calib::kinematics::RobotModel;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
@@ -52,18 +54,22 @@ pub struct FilterResponse {
 /// is an entry of `errors`, the others are answered. A malformed request
 /// (NaN in a pose, wrong seed length) is refused whole.
 pub fn filter(
-    calibrated: &CalibratedModel,
+    calibrated: &TermModel,
     nominal: &RobotModel,
     req: &FilterRequest,
 ) -> Result<FilterResponse, Vec<FieldError>> {
     let mut c = Checker::default();
     let targets = target_poses(&req.targets, &mut c);
     let tool = pose_of(&req.tool, "tool", &mut c);
-    let seed = req
-        .seed_joints_deg
-        .as_ref()
-        .map(|seed| JointsDeg::check(&mut c, "seed_joints_deg", seed, calibrated.robot.dof()));
-    if nominal.dof() != calibrated.robot.dof() {
+    let seed = req.seed_joints_deg.as_ref().map(|seed| {
+        JointsDeg::check(
+            &mut c,
+            "seed_joints_deg",
+            seed,
+            calibrated.model.robot.dof(),
+        )
+    });
+    if nominal.dof() != calibrated.model.robot.dof() {
         c.fail(
             "robot",
             "the robot's joint table no longer matches this parameter set",
@@ -73,7 +79,7 @@ pub fn filter(
     let model = calibrated.with_tool(tool.expect("checked above"));
     let seed: Vec<f64> = match seed {
         Some(deg) => deg.expect("checked above").to_radians(),
-        None => default_seeds(&model).swap_remove(0),
+        None => default_seeds(&model.model).swap_remove(0),
     };
     let mut answer = FilterResponse {
         nominal_targets: Vec::with_capacity(targets.len()),
@@ -83,7 +89,7 @@ pub fn filter(
     };
     for (index, target) in targets.iter().enumerate() {
         let target = target.expect("checked above");
-        match filter_target(&model, nominal, &target, &seed) {
+        match filter_target_with_terms(&model, nominal, &target, &seed) {
             Ok(f) => {
                 answer
                     .nominal_targets
