@@ -82,12 +82,15 @@ async fn calibrate(app: &TestApp, session: &str, options: Value) {
         .to_string();
     let done = app.wait_job(&job, JOB_WAIT, is_finished).await;
     assert_eq!(done["state"], "succeeded", "{done}");
+    eprintln!("job: {done}");
 }
 
 async fn get_json(app: &TestApp, path: &str) -> Value {
     let r = app.get(path).await;
-    assert_eq!(r.status(), 200, "{path}");
-    r.json().await.unwrap()
+    let status = r.status();
+    let body: Value = r.json().await.unwrap();
+    assert_eq!(status, 200, "{path}: {body}");
+    body
 }
 
 /// RMS (mm) of `forward`'s tool position against the validation poses'
