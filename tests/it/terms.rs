@@ -12,7 +12,7 @@ use robocal_calib::kinematics::presets;
 use robocal_calib::sim::tracker_campaign::{simulate_tracker, TrackerCampaign, TrackerSpec};
 use serde_json::{json, Value};
 
-use crate::support::{is_finished, spawn_app, TestApp};
+use crate::support::{is_finished, spawn_app_with, TestApp};
 
 const CAL_POSES: usize = 300;
 const VAL_POSES: usize = 60;
@@ -122,7 +122,7 @@ async fn forward_rms_mm(app: &TestApp, serial: &str, version: u32, c: &TrackerCa
 
 #[tokio::test]
 async fn terms_are_kept_used_and_exported_and_absent_terms_are_not_kept() {
-    let app = spawn_app().await;
+    let app = spawn_app_with(|c| c.test_validate_only = false).await;
     // Bad payloads name the field.
     let r = app
         .put_json("/v1/robots/P1", &crate::support::robot_body())
