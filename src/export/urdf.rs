@@ -176,7 +176,7 @@ mod tests {
             world: "tracker",
             end: "tool",
         };
-        let urdf = write_urdf("UR5-T", &model, frames);
+        let urdf = write_urdf("UR5-T", &model, frames, None);
         assert!(urdf.contains(r#"<link name="tool"/>"#), "{urdf}");
         assert!(!urdf.contains(r#"<link name="camera"/>"#), "{urdf}");
         let tool_joint = urdf
