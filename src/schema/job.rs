@@ -162,3 +162,23 @@ pub struct JobEventFrame {
     /// The event's JSON document, as text.
     pub data: String,
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Term selection is on by default for a tracker and opt-in for a
+    /// camera (its kept terms skip the image-level joint refinement); an
+    /// explicit `non_geometric` wins either way.
+    #[test]
+    fn non_geometric_defaults_on_for_trackers_only() {
+        let absent: CalibrationOptions = serde_json::from_str("{}").unwrap();
+        assert!(absent.non_geometric_for(Instrument::Tracker));
+        assert!(!absent.non_geometric_for(Instrument::Camera));
+        assert!(!absent.non_geometric_for(Instrument::Stage));
+        let on: CalibrationOptions = serde_json::from_str(r#"{"non_geometric": true}"#).unwrap();
+        assert!(on.non_geometric_for(Instrument::Camera));
+        let off: CalibrationOptions = serde_json::from_str(r#"{"non_geometric": false}"#).unwrap();
+        assert!(!off.non_geometric_for(Instrument::Tracker));
+    }
+}
