@@ -207,6 +207,20 @@ async fn terms_are_kept_used_and_exported_and_absent_terms_are_not_kept() {
         let got = comp["joints_deg"][0][k].as_f64().unwrap();
         assert!((got - want).abs() < 1e-5, "joint {k}: {got} vs {want}");
     }
+    // The streamed answer (ndjson) goes through the terms too: its line
+    // equals the whole answer.
+    let streamed = app
+        .client
+        .post(app.url("/v1/robots/UR10-T/parameter-sets/1/compensate"))
+        .header("accept", "application/x-ndjson")
+        .json(&json!({"targets": [target], "seed_joints_deg": q}))
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(streamed.status(), 200);
+    let text = streamed.text().await.unwrap();
+    let line: Value = serde_json::from_str(text.lines().next().unwrap()).unwrap();
+    assert_eq!(line["joints_deg"], comp["joints_deg"][0], "{text}");
 
     // Exports: a terms table in dh-json and csv; URDF says it cannot hold them.
     let base = "/v1/robots/UR10-T/parameter-sets/1/export";
