@@ -57,6 +57,7 @@ fn main() -> Result<(), String> {
         joints_deg,
         tool: None,
     };
+    let model = robocal_calib::kinematics::term_model::TermModel::geometric(model);
     let (wall, cpu) = (std::time::Instant::now(), thread_cpu_s());
     let answer = forward(&model, Some(&u), &req).map_err(|e| format!("{e:?}"))?;
     let (t_fwd, c_fwd) = (wall.elapsed().as_secs_f64(), thread_cpu_s());

@@ -55,8 +55,9 @@ fn main() -> Result<(), String> {
             let dot_px = robocal::testkit::accuracy::dot_noise_px(&report)?;
             let set: ParameterSet =
                 serde_json::from_value(set.parameters).map_err(|e| e.to_string())?;
-            let model = set.model()?;
-            let u = Uncertainty::of(&set, &model).ok_or("no covariance")??;
+            // The set with its kept terms (none unless the job selected some).
+            let model = set.term_model()?;
+            let u = Uncertainty::of(&set, &model.model).ok_or("no covariance")??;
             let truth = campaign.truth.model().map_err(|e| e.to_string())?;
             let (mut sp, mut sr, mut n) = (0.0, 0.0, 0.0);
             let (mut ep, mut gp) = (0.0, 0.0);

@@ -102,6 +102,10 @@ pub struct ParameterSetFields {
     /// `parameters` (what `forward`'s predicted σ propagate). Absent for
     /// sets stored before it was kept.
     pub covariance: Option<crate::domain::CovarianceDoc>,
+    /// The non-geometric terms kept by the selection (issue 19), each with
+    /// its value, σ and unit; `forward`, `compensate`, `filter` and the
+    /// predicted σ include them. Absent when none was kept.
+    pub terms: Option<crate::domain::TermsDoc>,
 }
 
 #[derive(Debug, Serialize, ToSchema)]

@@ -53,6 +53,8 @@ pub struct SessionSpecOut {
     pub region: Option<String>,
     /// The measurement volume the poses span (free text).
     pub volume: Option<String>,
+    /// Payload at the tool during the campaign (kg).
+    pub payload_kg: Option<f64>,
 }
 
 #[derive(Debug, Serialize, ToSchema)]

@@ -14,6 +14,7 @@ mod label;
 mod measured_pose;
 mod parameter_covariance;
 mod parameter_set;
+mod parameter_terms;
 mod pose_set;
 mod release;
 mod serial;
@@ -34,6 +35,7 @@ pub use label::{
 pub use measured_pose::{MeasuredPoint, MeasuredPose};
 pub use parameter_covariance::CovarianceDoc;
 pub use parameter_set::{FrameNames, ParameterSet};
+pub use parameter_terms::{KeptTerm, TermsDoc};
 pub use pose_set::PoseSet;
 pub use release::{Decision, Release, ReleaseStatus, ANONYMOUS_ACTOR, GATE_ACTOR};
 pub use serial::{InvalidSerial, Serial, MAX_SERIAL_LEN, SERIAL_RULE};

@@ -8,10 +8,11 @@
 //! [`ParameterSet::model`] is the one conversion to the numerics' model.
 
 use robocal_calib::camera::Intrinsics;
+use robocal_calib::kinematics::term_model::TermModel;
 use robocal_calib::kinematics::{CalibratedModel, ParamLayout};
 use serde::{Deserialize, Serialize};
 
-use super::CovarianceDoc;
+use super::{CovarianceDoc, TermsDoc};
 use crate::report::ParameterReport;
 use crate::schema::robot::{doc_to_model, KinematicsDoc};
 use crate::schema::session::Instrument;
@@ -46,6 +47,9 @@ pub struct ParameterSet {
     /// when the refinement did not run and from sets stored before it was
     /// kept.
     pub joint_noise_deg: Option<f64>,
+    /// The non-geometric terms kept by the selection (issue 19); absent
+    /// when none was kept and in sets stored before terms were selected.
+    pub terms: Option<TermsDoc>,
 }
 
 /// The contract's names of a set's frames.
@@ -108,6 +112,17 @@ impl ParameterSet {
             flange_to_tool: self.flange_to_tool.pose()?,
         })
     }
+
+    /// [`Self::model`] with the kept non-geometric terms (none for sets
+    /// without): what `forward`, `compensate`, `filter` and the predicted
+    /// uncertainty evaluate.
+    pub fn term_model(&self) -> Result<TermModel, String> {
+        let model = self.model()?;
+        match &self.terms {
+            Some(t) => t.term_model(model),
+            None => Ok(TermModel::geometric(model)),
+        }
+    }
 }
 
 /// The document as stored and served: each frame under the contract's
@@ -137,6 +152,8 @@ struct StoredSet {
     covariance: Option<CovarianceDoc>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     joint_noise_deg: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    terms: Option<TermsDoc>,
 }
 
 impl From<ParameterSet> for StoredSet {
@@ -158,6 +175,7 @@ impl From<ParameterSet> for StoredSet {
             parameters: set.parameters,
             covariance: set.covariance,
             joint_noise_deg: set.joint_noise_deg,
+            terms: set.terms,
         }
     }
 }
@@ -184,6 +202,7 @@ impl TryFrom<StoredSet> for ParameterSet {
             parameters: s.parameters,
             covariance: s.covariance,
             joint_noise_deg: s.joint_noise_deg,
+            terms: s.terms,
         })
     }
 }

@@ -6,8 +6,7 @@ use std::fmt::Write;
 
 use serde::Serialize;
 
-use crate::domain::CovarianceDoc;
-use crate::domain::ParameterSet;
+use crate::domain::{CovarianceDoc, ParameterSet, TermsDoc};
 use crate::report::{IdentifiabilityReport, ParameterReport};
 use crate::schema::robot::Convention;
 use crate::schema::session::Instrument;
@@ -69,6 +68,10 @@ pub struct DhTable {
     /// `matrix`); absent for sets stored before it was kept.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub covariance: Option<CovarianceDoc>,
+    /// The kept non-geometric terms with σ and units (issue 19); absent
+    /// when the set keeps none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub terms: Option<TermsDoc>,
 }
 
 /// The table of a stored parameter set; `identifiability` from its report
@@ -124,6 +127,7 @@ pub fn dh_table(
         flange_to_tool: set.flange_to_tool.clone(),
         parameters,
         covariance: set.covariance.clone(),
+        terms: set.terms.clone(),
     }
 }
 
@@ -147,8 +151,12 @@ fn parameter_row(p: &ParameterReport, ident: Option<&IdentifiabilityReport>) -> 
 /// Column names of the CSV: units in the names.
 pub const CSV_HEADER: &str = "joint,convention,a_mm,a_mm_std,alpha_deg,alpha_deg_std,d_mm,d_mm_std,theta_offset_deg,theta_offset_deg_std,beta_deg,beta_deg_std,min_deg,max_deg";
 
-/// The joint table as CSV, one row per joint; numbers in shortest
-/// round-trip form.
+/// Column names of the CSV's second table, the kept non-geometric terms
+/// (after one empty line; only when the set keeps terms).
+pub const CSV_TERMS_HEADER: &str = "term,value,value_std,unit";
+
+/// The joint table as CSV, one row per joint, then the kept terms' table
+/// when there are any; numbers in shortest round-trip form.
 pub fn write_csv(table: &DhTable) -> String {
     let mut s = String::from(CSV_HEADER);
     s.push('\n');
@@ -174,6 +182,14 @@ pub fn write_csv(table: &DhTable) -> String {
             j.min_deg,
             j.max_deg
         );
+    }
+    if let Some(terms) = &table.terms {
+        s.push('\n');
+        s.push_str(CSV_TERMS_HEADER);
+        s.push('\n');
+        for k in &terms.terms {
+            let _ = writeln!(s, "{},{:?},{:?},{}", k.name, k.value, k.std_dev, k.unit);
+        }
     }
     s
 }

@@ -14,7 +14,7 @@ use std::fmt::Write;
 use robocal_calib::geometry::Pose;
 use robocal_calib::kinematics::CalibratedModel;
 
-use crate::domain::FrameNames;
+use crate::domain::{FrameNames, TermsDoc};
 
 /// Millimetres per metre.
 const MM_PER_M: f64 = 1000.0;
@@ -24,10 +24,20 @@ const MM_PER_M: f64 = 1000.0;
 const UNKNOWN_EFFORT: f64 = 0.0;
 const UNKNOWN_VELOCITY: f64 = 0.0;
 
-/// The URDF document of `model`, robot named `name`.
-pub fn write_urdf(name: &str, model: &CalibratedModel, frames: FrameNames) -> String {
+/// The URDF document of `model`, robot named `name`; `terms`, the set's
+/// kept non-geometric terms, are named in a comment: a URDF has no element
+/// for a joint deflection that depends on the configuration (issue 19).
+pub fn write_urdf(
+    name: &str,
+    model: &CalibratedModel,
+    frames: FrameNames,
+    terms: Option<&TermsDoc>,
+) -> String {
     let mut s = String::new();
     let _ = writeln!(s, r#"<?xml version="1.0"?>"#);
+    if let Some(t) = terms {
+        s.push_str(&terms_comment(t));
+    }
     let _ = writeln!(
         s,
         "<!-- robocal calibrated model of {}: lengths in metres, angles in radians.\n     \
@@ -78,6 +88,31 @@ pub fn write_urdf(name: &str, model: &CalibratedModel, frames: FrameNames) -> St
         &model.world_to_base.inverse(),
     );
     let _ = writeln!(s, "</robot>");
+    s
+}
+
+/// What a URDF leaves out of a set with terms, and the error that leaves.
+fn terms_comment(terms: &TermsDoc) -> String {
+    let mut s = String::from(
+        "<!-- This parameter set also keeps non-geometric joint terms, which URDF cannot hold:\n     \
+         each deflects its joint by value * basis(q) before the chain (periodic: basis sin/cos of\n     \
+         the joint angle, at most 1; compliance: the gravity torque in N*m of the lumped mass).\n     \
+         A tool driven by this URDF misses those deflections: the error left is the difference\n     \
+         between `forward` of this set and this chain, up to |value| rad on the joint for a\n     \
+         periodic term, times the joint's lever arm to the tool. Use `forward`, `compensate`\n     \
+         or `filter` (or the dh-json/csv export's terms table) to include them.\n",
+    );
+    for k in &terms.terms {
+        let _ = writeln!(
+            s,
+            "     {}: {:e} +- {:e} {}",
+            xml(&k.name),
+            k.value,
+            k.std_dev,
+            xml(&k.unit)
+        );
+    }
+    s.push_str("-->\n");
     s
 }
 
@@ -141,7 +176,7 @@ mod tests {
             world: "tracker",
             end: "tool",
         };
-        let urdf = write_urdf("UR5-T", &model, frames);
+        let urdf = write_urdf("UR5-T", &model, frames, None);
         assert!(urdf.contains(r#"<link name="tool"/>"#), "{urdf}");
         assert!(!urdf.contains(r#"<link name="camera"/>"#), "{urdf}");
         let tool_joint = urdf

@@ -333,6 +333,7 @@ fn report(
         }),
         notes,
         uncertainty_map: None,
+        terms: None,
         gate: None,
         measurement_accuracy: None,
     }

@@ -12,11 +12,16 @@ use robocal_calib::kinematics::identify::{
 use robocal_calib::kinematics::initial::initial_world_to_base;
 use robocal_calib::kinematics::joint_covariance::joint_refine_covariance;
 use robocal_calib::kinematics::joint_refine::{joint_refine, ImageNoise, ImagePose};
+use robocal_calib::kinematics::nongeometric::CandidateOptions;
+use robocal_calib::kinematics::term_model::TermModel;
+use robocal_calib::kinematics::term_selection::{identify_with_terms, TermIdentification};
+use robocal_calib::kinematics::term_validate::validate_with_terms;
 use robocal_calib::kinematics::{CalibratedModel, Instrument, RobotModel};
 use robocal_calib::stats::AccuracyStats;
 
 use super::camera_stage::CameraStep;
 use super::{PipelineError, PoseInput, Stage};
+use crate::domain::TermsDoc;
 use crate::schema::job::{Measurement as MeasurementKind, Validation};
 use crate::schema::session::PoseSet;
 
@@ -56,6 +61,20 @@ pub struct Identified {
     /// compares the approved set on the same poses).
     pub cal_data: Vec<Measurement>,
     pub val_data: Vec<Measurement>,
+    /// The selection of non-geometric terms, when it ran (issue 19).
+    pub selection: Option<TermIdentification>,
+    /// The kept terms as the set stores them (`None`: none kept).
+    pub terms: Option<TermsDoc>,
+}
+
+impl Identified {
+    /// `model` with the kept terms, as the stored set evaluates it.
+    pub fn term_model(&self) -> Result<TermModel, String> {
+        match &self.terms {
+            Some(t) => t.term_model(self.model.clone()),
+            None => Ok(TermModel::geometric(self.model.clone())),
+        }
+    }
 }
 
 fn numerical(stage: Stage, message: impl std::fmt::Display) -> PipelineError {
@@ -140,6 +159,7 @@ pub fn identify_robot(
     hold_intrinsics: bool,
     usable: &[usize],
     outliers: &[usize],
+    candidates: Option<&CandidateOptions>,
 ) -> Result<Identified, PipelineError> {
     let instrument = if camera.is_some() {
         Instrument::Camera
@@ -166,14 +186,31 @@ pub fn identify_robot(
         mode: IdentifyMode::Weighted,
         joint_noise: JointNoise::default(),
     };
-    let identification = identify(&start, instrument, &cal_data, options)
-        .map_err(|e| numerical(Stage::Identify, e))?;
+    // The term selection refits the geometry itself first (calib's
+    // `identify_with_terms`), so the geometric fit is its `geometric`.
+    let (identification, selection) = match candidates {
+        Some(c) => {
+            let s = identify_with_terms(&start, instrument, &cal_data, options, c)
+                .map_err(|e| numerical(Stage::Identify, e))?;
+            (s.geometric.clone(), Some(s))
+        }
+        None => (
+            identify(&start, instrument, &cal_data, options)
+                .map_err(|e| numerical(Stage::Identify, e))?,
+            None,
+        ),
+    };
+    let terms = selection.as_ref().and_then(TermsDoc::of);
     let mut model = identification.model.clone();
     let mut std_devs = identification.std_devs.clone();
     let mut covariance = identification.covariance.clone();
     let mut refined_intrinsics = None;
     let mut joint_noise_rad = None;
-    if let (Some(step), true) = (camera, joint_refinement && kind == MeasurementKind::Pose) {
+    if let (Some(s), Some(_)) = (&selection, &terms) {
+        // Geometry refitted jointly with the kept terms; the joint
+        // refinement on the image points has no terms, so it is not run.
+        model = s.model.clone();
+    } else if let (Some(step), true) = (camera, joint_refinement && kind == MeasurementKind::Pose) {
         let images: Vec<ImagePose> = cal
             .iter()
             .filter_map(|&i| {
@@ -212,6 +249,11 @@ pub fn identify_robot(
             joint.reprojection_rms_px,
         ));
     }
+    let evaluated = match &terms {
+        Some(t) => t.term_model(model.clone()),
+        None => Ok(TermModel::geometric(model.clone())),
+    }
+    .map_err(|e| numerical(Stage::Identify, e))?;
     // Validation: every val pose measured with the final intrinsics.
     let final_intrinsics = refined_intrinsics
         .as_ref()
@@ -232,8 +274,8 @@ pub fn identify_robot(
     }
     let (before, before_errors) =
         validate(&identification.before, &val_data).map_err(|e| numerical(Stage::Identify, e))?;
-    let (after, after_errors) =
-        validate(&model, &val_data).map_err(|e| numerical(Stage::Identify, e))?;
+    let (after, after_errors) = validate_with_terms(&evaluated.model, &evaluated.terms, &val_data)
+        .map_err(|e| numerical(Stage::Identify, e))?;
     let val_errors = val_index
         .iter()
         .zip(before_errors.iter().zip(&after_errors))
@@ -244,9 +286,10 @@ pub fn identify_robot(
         let measured = measurement_of(&poses[o], o, camera, final_intrinsics.as_ref(), kind);
         if let Some(m) = measured {
             let one = std::slice::from_ref(&m);
-            if let (Ok((_, b)), Ok((_, a))) =
-                (validate(&identification.before, one), validate(&model, one))
-            {
+            if let (Ok((_, b)), Ok((_, a))) = (
+                validate(&identification.before, one),
+                validate_with_terms(&evaluated.model, &evaluated.terms, one),
+            ) {
                 outlier_errors.push((o, b[0], a[0]));
             }
         }
@@ -266,5 +309,7 @@ pub fn identify_robot(
         outlier_errors,
         cal_data,
         val_data,
+        selection,
+        terms,
     })
 }

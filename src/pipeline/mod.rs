@@ -41,6 +41,8 @@ use stage::stage_span;
 pub use stage::Stage;
 pub use validate::validate;
 
+use robocal_calib::kinematics::nongeometric::CandidateOptions;
+
 use crate::schema::session::Instrument;
 use crate::schema::{FieldError, PoseDoc};
 use crate::store::{NewParameterSet, PoseDetection};
@@ -213,6 +215,16 @@ fn run_stages(
         });
     }
     within(Stage::Identify, "kinematic identification", 0.0);
+    // Term selection: default on for trackers, opt-in for cameras (kept
+    // terms there skip the image-level joint refinement; see
+    // `CalibrationOptions::non_geometric_for`).
+    let candidates = input
+        .options
+        .non_geometric_for(input.session.instrument)
+        .then(|| CandidateOptions {
+            payload_kg: input.session.payload_kg.unwrap_or(0.0),
+            ..CandidateOptions::for_robot(&input.robot)
+        });
     let identify = |usable: &[usize], outliers: &[screen_stage::Outlier]| {
         identify_stage::identify_robot(
             &input.robot,
@@ -225,6 +237,7 @@ fn run_stages(
             intrinsics_held,
             usable,
             &outliers.iter().map(|o| o.pose).collect::<Vec<_>>(),
+            candidates.as_ref(),
         )
     };
     let mut identified = identify(&usable, &outliers)?;

@@ -12,6 +12,7 @@ use super::{PoseInput, Summary};
 use crate::domain::{CovarianceDoc, ParameterSet};
 use crate::report::{
     CameraStd, IdentifiabilityReport, ParameterReport, PoseReport, Report, ResidualSample,
+    TermsReport,
 };
 use crate::schema::robot::model_to_doc;
 use crate::schema::session::Instrument as SessionInstrument;
@@ -104,6 +105,7 @@ pub fn parameter_set(ctx: &Context, id: &Identified) -> ParameterSet {
             &id.identification.identifiability.free,
         )),
         joint_noise_deg: id.joint_noise_rad.map(f64::to_degrees),
+        terms: id.terms.clone(),
     }
 }
 
@@ -192,6 +194,9 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSet) -> Report {
             }
         ));
     }
+    if id.terms.is_some() {
+        notes.push("Non-geometric terms kept (see terms): the geometry was refitted with them at pose level; the parameter σ are the geometric fit's and the joint refinement on the image points, which has no terms, was not run.".to_string());
+    }
     if !ident.weak.is_empty() {
         notes.push(format!(
             "The poses did not determine {}: held at nominal. Add poses that move these joints more widely to identify them.",
@@ -237,6 +242,10 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSet) -> Report {
         uncertainty_map: super::uncertainty_map::workspace_map(id, ctx.poses),
         gate: None,
         measurement_accuracy: None,
+        terms: id
+            .selection
+            .as_ref()
+            .map(|s| TermsReport::of(s, s.terms.payload_kg)),
     }
 }
 

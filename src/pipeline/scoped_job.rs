@@ -184,6 +184,7 @@ pub fn run(
         hand_eye: None,
         notes,
         uncertainty_map: None,
+        terms: None,
         gate: Some(gate.report),
         measurement_accuracy: None,
     };

@@ -128,6 +128,7 @@ pub fn stage_output(
         notes,
         uncertainty_map: None,
         gate: None,
+        terms: None,
         measurement_accuracy: Some(MeasurementAccuracyReport {
             sequences: fit
                 .accuracy

@@ -23,6 +23,7 @@ mod stage_section;
 pub mod svg;
 mod svg_writer;
 mod table;
+pub mod terms;
 mod uncertainty_chart;
 #[cfg(test)]
 mod xml_check;
@@ -35,3 +36,4 @@ pub use measurement_accuracy::{
 pub use model::*;
 pub use svg::render_svg;
 pub use table::render_table;
+pub use terms::{TermLine, TermsReport};

@@ -226,6 +226,9 @@ pub struct Report {
     /// accuracy per sequence (paper Table 1, Fig. 5).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub measurement_accuracy: Option<super::MeasurementAccuracyReport>,
+    /// The selection of non-geometric terms (absent when it did not run).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub terms: Option<super::terms::TermsReport>,
 }
 
 /// Predicted 1σ of the tool (camera or tracker tool point) position over a

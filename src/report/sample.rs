@@ -122,6 +122,7 @@ pub fn sample_report_sized(calibration: usize, validation: usize) -> Report {
             "Joint compliance and gear backlash are not modelled; expect larger errors under heavy payloads.".into(),
         ],
         uncertainty_map: Some(super::uncertainty_chart::sample_map()),
+        terms: None,
         gate: None,
         measurement_accuracy: None,
     }

@@ -3,6 +3,7 @@
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
+use super::session::Instrument;
 use super::{Checker, FieldError};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
@@ -86,6 +87,13 @@ pub struct CalibrationOptions {
     /// poses holding everything else at the latest approved set.
     #[serde(default, skip_serializing_if = "CalibrationScope::is_full")]
     pub scope: CalibrationScope,
+    /// Select non-geometric terms (joint compliance, angle-periodic joint
+    /// errors) after the geometric fit and keep those the campaign
+    /// identifies and that lower the held-out error (issue 19); `false`:
+    /// geometry only. Absent: on for tracker sessions, off for camera
+    /// sessions (see [`CalibrationOptions::non_geometric_for`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub non_geometric: Option<bool>,
 }
 
 fn yes() -> bool {
@@ -103,7 +111,23 @@ impl Default for CalibrationOptions {
             joint_refinement: true,
             validation: val_set(),
             scope: CalibrationScope::Full,
+            non_geometric: None,
         }
+    }
+}
+
+impl CalibrationOptions {
+    /// Whether the job selects non-geometric terms for a session measured
+    /// by `instrument`: the request's `non_geometric`, else on for a
+    /// tracker and off otherwise. A camera session is opt-in because, when
+    /// terms are kept there, the job skips the joint refinement on the
+    /// image points (that refinement has no terms: it would re-fit the
+    /// geometry without them), so the set loses the image-level fit and
+    /// its joint noise; a tracker session has no such refinement to lose.
+    /// A stage session identifies no robot, so it has no terms either.
+    pub fn non_geometric_for(&self, instrument: Instrument) -> bool {
+        self.non_geometric
+            .unwrap_or(instrument == Instrument::Tracker)
     }
 }
 
@@ -137,4 +161,24 @@ pub struct JobEventFrame {
     pub event: String,
     /// The event's JSON document, as text.
     pub data: String,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Term selection is on by default for a tracker and opt-in for a
+    /// camera (its kept terms skip the image-level joint refinement); an
+    /// explicit `non_geometric` wins either way.
+    #[test]
+    fn non_geometric_defaults_on_for_trackers_only() {
+        let absent: CalibrationOptions = serde_json::from_str("{}").unwrap();
+        assert!(absent.non_geometric_for(Instrument::Tracker));
+        assert!(!absent.non_geometric_for(Instrument::Camera));
+        assert!(!absent.non_geometric_for(Instrument::Stage));
+        let on: CalibrationOptions = serde_json::from_str(r#"{"non_geometric": true}"#).unwrap();
+        assert!(on.non_geometric_for(Instrument::Camera));
+        let off: CalibrationOptions = serde_json::from_str(r#"{"non_geometric": false}"#).unwrap();
+        assert!(!off.non_geometric_for(Instrument::Tracker));
+    }
 }

@@ -160,7 +160,15 @@ pub struct SessionBody {
     /// e.g. `"600x400x300 mm"`), the paper's Fig. 10 groups by it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub volume: Option<String>,
+    /// Payload at the tool during the campaign (kg), when known: the
+    /// compliance terms then get a candidate driven by its gravity torque
+    /// (issue 19). A finite mass from 0 to `MAX_PAYLOAD_KG`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub payload_kg: Option<f64>,
 }
+
+/// Largest payload a session may state (kg): beyond any industrial arm's.
+pub const MAX_PAYLOAD_KG: f64 = 5_000.0;
 
 impl SessionBody {
     pub fn check(&self) -> Result<(), Vec<FieldError>> {
@@ -208,6 +216,14 @@ impl SessionBody {
                 c.fail(
                     "camera_calibration_id",
                     "a stage session calibrates the camera itself",
+                );
+            }
+        }
+        if let Some(kg) = self.payload_kg {
+            if !(kg.is_finite() && (0.0..=MAX_PAYLOAD_KG).contains(&kg)) {
+                c.fail(
+                    "payload_kg",
+                    format!("must be a finite mass from 0 to {MAX_PAYLOAD_KG} kg"),
                 );
             }
         }

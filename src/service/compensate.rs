@@ -1,14 +1,17 @@
 //! `POST …/parameter-sets/{version}/compensate`: the joints that put the
-//! tool on each target by the calibrated model (method.md §8), the in-limit
-//! solution nearest the seed (`calib::kinematics::ik::nearest_within_limits`).
+//! tool on each target by the calibrated model with its kept non-geometric
+//! terms (method.md §8, issue 19), the in-limit solution nearest the seed
+//! (`calib::kinematics::term_model::TermModel::nearest_within_limits`: the
+//! answered joints are the commanded ones, which the terms deflect onto the
+//! target).
 //! A target out of reach or beyond the joint limits is an error of its own
 //! index; the others are answered, whole or streamed line by line
 //! (`service::target_stream`).
 
 use robocal_calib::geometry::Pose;
-use robocal_calib::kinematics::ik::{default_seeds, nearest_within_limits, IkStart};
+use robocal_calib::kinematics::ik::{default_seeds, IkStart};
 use robocal_calib::kinematics::ik_branches::{self, SphericalWristArm};
-use robocal_calib::kinematics::CalibratedModel;
+use robocal_calib::kinematics::term_model::TermModel;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
@@ -150,7 +153,7 @@ pub struct CompensateLine {
 /// A compensate request checked whole: the targets as poses, the model
 /// with the request's tool, one seed per target or one for all.
 pub struct Compensation {
-    model: CalibratedModel,
+    model: TermModel,
     targets: Vec<Pose>,
     seeds: Vec<Vec<f64>>,
     arm: Option<SphericalWristArm>,
@@ -159,14 +162,11 @@ pub struct Compensation {
 impl Compensation {
     /// Every field of the request checked (a bad one is a 422 naming it,
     /// before anything is solved).
-    pub fn check(
-        model: &CalibratedModel,
-        req: &CompensateRequest,
-    ) -> Result<Self, Vec<FieldError>> {
+    pub fn check(model: &TermModel, req: &CompensateRequest) -> Result<Self, Vec<FieldError>> {
         let mut c = Checker::default();
         let targets = target_poses(&req.targets, &mut c);
         let tool = req.tool.as_ref().and_then(|t| pose_of(t, "tool", &mut c));
-        let dof = model.robot.dof();
+        let dof = model.model.robot.dof();
         let seeds: Vec<Option<JointsDeg>> = match &req.seed_joints_deg {
             Some(Seeds::One(seed)) => vec![JointsDeg::check(&mut c, "seed_joints_deg", seed, dof)],
             Some(Seeds::PerTarget(rows)) => {
@@ -193,10 +193,10 @@ impl Compensation {
             .collect();
         if seeds.is_empty() {
             // Without a seed: mid-range joints (the first of the default grid).
-            seeds.push(default_seeds(&model).swap_remove(0));
+            seeds.push(default_seeds(&model.model).swap_remove(0));
         }
         Ok(Compensation {
-            arm: SphericalWristArm::of(&model.robot),
+            arm: SphericalWristArm::of(&model.model.robot),
             targets: targets
                 .into_iter()
                 .map(|t| t.expect("checked above"))
@@ -220,7 +220,9 @@ impl Compensation {
     pub fn solve(&self, index: usize) -> Result<CompensatedTarget, String> {
         // One seed for all, or one per target.
         let seed = &self.seeds[if self.seeds.len() == 1 { 0 } else { index }];
-        let solution = nearest_within_limits(&self.model, &self.targets[index], seed)
+        let solution = self
+            .model
+            .nearest_within_limits(&self.targets[index], seed)
             .map_err(|e| e.to_string())?;
         let configuration = self
             .arm
@@ -243,7 +245,7 @@ impl Compensation {
 /// Every target compensated in one answer (the columns of
 /// [`CompensateResponse`]).
 pub fn compensate(
-    model: &CalibratedModel,
+    model: &TermModel,
     req: &CompensateRequest,
 ) -> Result<CompensateResponse, Vec<FieldError>> {
     let plan = Compensation::check(model, req)?;
@@ -322,8 +324,8 @@ mod tests {
     fn a_target_beyond_the_joint_limits_is_named_and_the_others_answered() {
         let mut m = model();
         let (lo, hi) = (-20f64.to_radians(), 20f64.to_radians());
-        m.robot.joints[0].min_rad = lo;
-        m.robot.joints[0].max_rad = hi;
+        m.model.robot.joints[0].min_rad = lo;
+        m.model.robot.joints[0].max_rad = hi;
         let inside = m.world_to_tool(&[0.1, 0.3, -0.2, 0.4, 0.5, -0.3]).unwrap();
         // Joint 1 at 90 deg: the same arm pose turned out of the limits.
         let outside = m.world_to_tool(&[1.6, 0.3, -0.2, 0.4, 0.5, -0.3]).unwrap();
@@ -346,7 +348,7 @@ mod tests {
                 .iter()
                 .map(|d| d.to_radians())
                 .collect();
-            assert!(m.robot.check_limits(&q).is_ok(), "{q:?}");
+            assert!(m.model.robot.check_limits(&q).is_ok(), "{q:?}");
             assert!(answer.residual_mm[i].unwrap() < 1e-6);
         }
     }

@@ -1,9 +1,11 @@
 //! What off-line programming asks of a parameter set (api.md "Results"):
 //! forward kinematics (method.md §8) evaluated on the stored calibrated
-//! model, and the target checks `compensate` and `filter` share.
+//! model with its kept non-geometric terms (issue 19: the joints a request
+//! names are the commanded ones, deflected by the terms before the chain),
+//! and the target checks `compensate` and `filter` share.
 
 use robocal_calib::geometry::Pose;
-use robocal_calib::kinematics::CalibratedModel;
+use robocal_calib::kinematics::term_model::TermModel;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
@@ -88,7 +90,7 @@ pub(crate) fn target_poses(targets: &[PoseDoc], c: &mut Checker) -> Vec<Option<P
 }
 
 pub fn forward(
-    model: &CalibratedModel,
+    model: &TermModel,
     req: &ForwardRequest,
 ) -> Result<ForwardResponse, Vec<FieldError>> {
     let mut c = Checker::default();
@@ -100,7 +102,12 @@ pub fn forward(
         .iter()
         .enumerate()
         .map(|(i, row)| {
-            JointsDeg::check(&mut c, &format!("joints_deg[{i}]"), row, model.robot.dof())
+            JointsDeg::check(
+                &mut c,
+                &format!("joints_deg[{i}]"),
+                row,
+                model.model.robot.dof(),
+            )
         })
         .collect();
     let tool = req.tool.as_ref().and_then(|t| pose_of(t, "tool", &mut c));
@@ -109,15 +116,15 @@ pub fn forward(
     for (i, row) in rows.into_iter().enumerate() {
         let q = row.expect("checked above").to_radians();
         let flange = model
-            .robot
             .base_to_flange(&q)
             .map_err(|e| vec![FieldError::new(format!("joints_deg[{i}]"), e.to_string())])?;
-        let world_flange = model.world_to_base * flange;
+        let world_flange = model.model.world_to_base * flange;
         poses.push(ForwardPose {
             flange_in_base: PoseOut::new(&flange),
-            camera_in_target: PoseOut::new(&(world_flange * model.flange_to_tool)),
+            camera_in_target: PoseOut::new(&(world_flange * model.model.flange_to_tool)),
             tool_in_target: tool.map(|t| PoseOut::new(&(world_flange * t))),
             warnings: model
+                .model
                 .robot
                 .limit_violations(&q)
                 .iter()
@@ -138,13 +145,13 @@ pub(crate) mod tests {
     use robocal_calib::kinematics::presets;
     use serde_json::json;
 
-    /// The IRB 2400 preset with the base and tool at identity.
-    pub(crate) fn model() -> CalibratedModel {
-        CalibratedModel {
+    /// The IRB 2400 preset with the base and tool at identity, no terms.
+    pub(crate) fn model() -> TermModel {
+        TermModel::geometric(robocal_calib::kinematics::CalibratedModel {
             robot: presets::irb2400(),
             world_to_base: Pose::identity(),
             flange_to_tool: Pose::identity(),
-        }
+        })
     }
 
     /// The fields a refusal names.

@@ -38,7 +38,7 @@ pub async fn export(
         ExportFormat::Urdf => {
             let model = set.model().map_err(ServiceError::internal)?;
             (
-                write_urdf(serial, &model, set.frame_names()).into_bytes(),
+                write_urdf(serial, &model, set.frame_names(), set.terms.as_ref()).into_bytes(),
                 "urdf",
             )
         }

@@ -1,12 +1,15 @@
 //! `POST …/parameter-sets/{version}/filter`: Cartesian targets for a
 //! controller that runs the robot's nominal model (issue "Deploy the
-//! result"), computed exactly by `calib::kinematics::filter`; answered
-//! whole or streamed line by line (`service::target_stream`).
+//! result"), computed exactly by `calib::kinematics::filter` through the
+//! set's kept non-geometric terms (issue 19: the answered joints are the
+//! commanded ones); answered whole or streamed line by line
+//! (`service::target_stream`), both through [`Filtering::solve`].
 
 use robocal_calib::geometry::Pose;
-use robocal_calib::kinematics::filter::filter_target;
+use robocal_calib::kinematics::filter::filter_target_with_terms;
 use robocal_calib::kinematics::ik::default_seeds;
-use robocal_calib::kinematics::{CalibratedModel, RobotModel};
+use robocal_calib::kinematics::term_model::TermModel;
+use robocal_calib::kinematics::RobotModel;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
@@ -73,7 +76,7 @@ pub struct FilterLine {
 /// A filter request checked whole: the targets as poses, the calibrated
 /// model with the request's tool, the nominal chain and the seed.
 pub struct Filtering {
-    model: CalibratedModel,
+    model: TermModel,
     nominal: RobotModel,
     targets: Vec<Pose>,
     seed: Vec<f64>,
@@ -84,18 +87,19 @@ impl Filtering {
     /// that is not one, wrong seed length) is a 422 naming the field,
     /// before anything is solved.
     pub fn check(
-        calibrated: &CalibratedModel,
+        calibrated: &TermModel,
         nominal: RobotModel,
         req: &FilterRequest,
     ) -> Result<Self, Vec<FieldError>> {
         let mut c = Checker::default();
         let targets = target_poses(&req.targets, &mut c);
         let tool = pose_of(&req.tool, "tool", &mut c);
+        let dof = calibrated.model.robot.dof();
         let seed = req
             .seed_joints_deg
             .as_ref()
-            .map(|seed| JointsDeg::check(&mut c, "seed_joints_deg", seed, calibrated.robot.dof()));
-        if nominal.dof() != calibrated.robot.dof() {
+            .map(|seed| JointsDeg::check(&mut c, "seed_joints_deg", seed, dof));
+        if nominal.dof() != dof {
             c.fail(
                 "robot",
                 "the robot's joint table no longer matches this parameter set",
@@ -105,7 +109,7 @@ impl Filtering {
         let model = calibrated.with_tool(tool.expect("checked above"));
         let seed: Vec<f64> = match seed {
             Some(deg) => deg.expect("checked above").to_radians(),
-            None => default_seeds(&model).swap_remove(0),
+            None => default_seeds(&model.model).swap_remove(0),
         };
         Ok(Filtering {
             model,
@@ -130,8 +134,9 @@ impl Filtering {
 
     /// Target `index` filtered, or why it cannot be.
     pub fn solve(&self, index: usize) -> Result<FilteredTarget, String> {
-        let f = filter_target(&self.model, &self.nominal, &self.targets[index], &self.seed)
-            .map_err(|e| e.to_string())?;
+        let f =
+            filter_target_with_terms(&self.model, &self.nominal, &self.targets[index], &self.seed)
+                .map_err(|e| e.to_string())?;
         Ok(FilteredTarget {
             nominal_target: PoseOut::new(&f.nominal_base_to_flange),
             joints_deg: JointsDeg::from_radians(&f.joints_rad).into_vec(),
@@ -182,11 +187,11 @@ mod tests {
         let mut robot = presets::irb2400();
         robot.joints[0].min_rad = -20f64.to_radians();
         robot.joints[0].max_rad = 20f64.to_radians();
-        let calibrated = CalibratedModel {
+        let calibrated = TermModel::geometric(robocal_calib::kinematics::CalibratedModel {
             robot: robot.clone(),
             world_to_base: Pose::identity(),
             flange_to_tool: Pose::identity(),
-        };
+        });
         let inside = calibrated
             .world_to_tool(&[0.1, 0.3, -0.2, 0.4, 0.5, -0.3])
             .unwrap();

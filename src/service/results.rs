@@ -2,7 +2,8 @@
 //! model of one of them evaluated (forward kinematics, compensation).
 
 use futures_util::Stream;
-use robocal_calib::kinematics::{CalibratedModel, RobotModel};
+use robocal_calib::kinematics::term_model::TermModel;
+use robocal_calib::kinematics::RobotModel;
 
 use super::compensate::{self, CompensateRequest, CompensateResponse, Compensation};
 use super::error::{ServiceError, ServiceResult};
@@ -71,11 +72,12 @@ pub fn refuse_hand_eye(set: &ParameterSetRecord) -> ServiceResult<()> {
     Ok(())
 }
 
-/// The calibrated model of a parameter set (409 when it holds none).
-async fn model(store: &DynStore, serial: &str, version: &str) -> ServiceResult<CalibratedModel> {
+/// The calibrated model of a parameter set with its kept terms (409 when
+/// it holds none).
+async fn model(store: &DynStore, serial: &str, version: &str) -> ServiceResult<TermModel> {
     let record = find_parameter_set(store, serial, version).await?;
     refuse_hand_eye(&record)?;
-    typed(&record)?.model().map_err(|_| no_model())
+    typed(&record)?.term_model().map_err(|_| no_model())
 }
 
 /// A parameter set's calibrated model and its stored covariance (`None`
@@ -84,12 +86,12 @@ async fn model_and_uncertainty(
     store: &DynStore,
     serial: &str,
     version: &str,
-) -> ServiceResult<(CalibratedModel, Option<Uncertainty>)> {
+) -> ServiceResult<(TermModel, Option<Uncertainty>)> {
     let record = find_parameter_set(store, serial, version).await?;
     refuse_hand_eye(&record)?;
     let doc = typed(&record)?;
-    let model = doc.model().map_err(|_| no_model())?;
-    let uncertainty = Uncertainty::of(&doc, &model)
+    let model = doc.term_model().map_err(|_| no_model())?;
+    let uncertainty = Uncertainty::of(&doc, &model.model)
         .transpose()
         .map_err(ServiceError::internal)?;
     Ok((model, uncertainty))

@@ -5,7 +5,8 @@
 
 use nalgebra::DMatrix;
 use robocal_calib::geometry::Pose;
-use robocal_calib::kinematics::ik::{default_seeds, nearest_within_limits};
+use robocal_calib::kinematics::ik::default_seeds;
+use robocal_calib::kinematics::term_model::TermModel;
 use robocal_calib::kinematics::uncertainty::{CovarianceFactor, PoseFrame};
 use robocal_calib::kinematics::{CalibratedModel, ParamLayout};
 use serde::{Deserialize, Serialize};
@@ -61,35 +62,47 @@ impl Uncertainty {
         Ok(Self { factor })
     }
 
-    /// σ at joints `q_rad` of the tool `tool` (in the flange frame; the
-    /// calibrated camera or tool point when `None`) and of the flange.
+    /// σ at commanded joints `q_rad` of the tool `tool` (in the flange
+    /// frame; the calibrated camera or tool point when `None`) and of the
+    /// flange: the parameter covariance at the joints the terms deflect
+    /// `q_rad` to, plus the kept terms' own σ (`TermModel::term_variance`;
+    /// the two are taken as independent).
     pub fn at(
         &self,
-        model: &CalibratedModel,
+        model: &TermModel,
         q_rad: &[f64],
         tool: Option<Pose>,
     ) -> Result<PredictedStd, String> {
+        let text = |e: robocal_calib::kinematics::KinematicsError| e.to_string();
+        let bent = model.deflected(q_rad).map_err(text)?;
         let frame = tool.map_or(PoseFrame::ToolInWorld, PoseFrame::GivenToolInWorld);
         let end = self
             .factor
-            .pose_std(model, q_rad, frame)
+            .pose_std(&model.model, &bent, frame)
             .map_err(|e| e.to_string())?;
         let flange = self
             .factor
-            .pose_std(model, q_rad, PoseFrame::FlangeInBase)
+            .pose_std(&model.model, &bent, PoseFrame::FlangeInBase)
             .map_err(|e| e.to_string())?;
+        let end_model = tool.map_or_else(|| model.model.clone(), |t| model.model.with_tool(t));
+        let end_terms = model.term_variance(&end_model, q_rad).map_err(text)?;
+        let flange_terms = model
+            .term_variance(&flange_only(&model.model), q_rad)
+            .map_err(text)?;
+        let add = |sd: f64, var: f64| (sd * sd + var).sqrt();
         Ok(PredictedStd {
-            position_std_mm: end.position_mm,
-            rotation_std_deg: end.rotation_rad.to_degrees(),
-            flange_position_std_mm: flange.position_mm,
-            flange_rotation_std_deg: flange.rotation_rad.to_degrees(),
+            position_std_mm: add(end.position_mm, end_terms.position_mm2),
+            rotation_std_deg: add(end.rotation_rad, end_terms.rotation_rad2).to_degrees(),
+            flange_position_std_mm: add(flange.position_mm, flange_terms.position_mm2),
+            flange_rotation_std_deg: add(flange.rotation_rad, flange_terms.rotation_rad2)
+                .to_degrees(),
         })
     }
 }
 
 /// `forward` with each row's predicted σ when the set has a covariance.
 pub fn forward(
-    model: &CalibratedModel,
+    model: &TermModel,
     uncertainty: Option<&Uncertainty>,
     req: &ForwardRequest,
 ) -> Result<ForwardResponse, Vec<FieldError>> {
@@ -215,12 +228,12 @@ fn check_box(b: &BoxDoc, c: &mut Checker) {
 /// solved by IK (a position out of reach or beyond the limits is an entry
 /// of `errors`, the others are answered).
 pub fn uncertainty_map(
-    model: &CalibratedModel,
+    model: &TermModel,
     uncertainty: &Uncertainty,
     req: &UncertaintyMapRequest,
 ) -> Result<UncertaintyMapResponse, Vec<FieldError>> {
     let mut c = Checker::default();
-    let dof = model.robot.dof();
+    let dof = model.model.robot.dof();
     let tool = req.tool.as_ref().and_then(|t| pose_of(t, "tool", &mut c));
     if let Some(seed) = &req.seed_joints_deg {
         JointsDeg::check(&mut c, "seed_joints_deg", seed, dof);
@@ -255,7 +268,10 @@ pub fn uncertainty_map(
             )])
         }
     };
-    let flange_model = flange_only(model);
+    let flange_model = TermModel {
+        model: flange_only(&model.model),
+        ..model.clone()
+    };
     let mut answer = UncertaintyMapResponse {
         points: Vec::with_capacity(joints.len()),
         errors: Vec::new(),
@@ -290,16 +306,20 @@ fn flange_only(model: &CalibratedModel) -> CalibratedModel {
     }
 }
 
-/// The joints of every box position, each from the seed (its branch kept).
+/// The (commanded) joints of every box position, each from the seed (its
+/// branch kept).
 fn solve_box(
-    model: &CalibratedModel,
+    model: &TermModel,
     req: &UncertaintyMapRequest,
     b: &BoxDoc,
 ) -> Vec<Result<Vec<f64>, String>> {
-    let flange_model = flange_only(model);
+    let flange_model = TermModel {
+        model: flange_only(&model.model),
+        ..model.clone()
+    };
     let seed: Vec<f64> = match &req.seed_joints_deg {
         Some(deg) => deg.iter().map(|d| d.to_radians()).collect(),
-        None => default_seeds(&flange_model).swap_remove(0),
+        None => default_seeds(&flange_model.model).swap_remove(0),
     };
     let rotation = req.rotation_deg.unwrap_or(DEFAULT_ROTATION_DEG);
     box_points(b)
@@ -307,7 +327,8 @@ fn solve_box(
         .map(|p| {
             let target = robocal_calib::geometry::pose_from_xyz_rpy_deg(p, rotation)
                 .map_err(|e| e.to_string())?;
-            nearest_within_limits(&flange_model, &target, &seed)
+            flange_model
+                .nearest_within_limits(&target, &seed)
                 .map(|s| s.joints_rad)
                 .map_err(|e| e.to_string())
         })

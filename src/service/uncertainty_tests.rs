@@ -1,17 +1,17 @@
 use super::*;
 use robocal_calib::kinematics::{presets, Instrument};
 
-fn model() -> CalibratedModel {
-    CalibratedModel {
+fn model() -> TermModel {
+    TermModel::geometric(CalibratedModel {
         robot: presets::irb2400(),
         world_to_base: Pose::identity(),
         flange_to_tool: Pose::identity(),
-    }
+    })
 }
 
 /// Every parameter uncertain by 0.01 (mm or rad), uncorrelated.
 fn uncertainty() -> Uncertainty {
-    let layout = ParamLayout::new(&model().robot, Instrument::Camera);
+    let layout = ParamLayout::new(&model().model.robot, Instrument::Camera);
     let n = layout.len();
     Uncertainty::from_covariance(layout, DMatrix::identity(n, n) * 1e-4).unwrap()
 }
@@ -144,4 +144,43 @@ fn forward_fills_sigma_only_with_a_covariance() {
     let p = &with.poses[0];
     assert!(p.position_std_mm.unwrap() > p.flange_position_std_mm.unwrap());
     assert!(p.rotation_std_deg.unwrap() > 0.0);
+}
+
+#[test]
+fn a_kept_terms_sigma_adds_to_the_forward_sigma() {
+    use robocal_calib::kinematics::nongeometric::TermKind;
+    let m = model();
+    let req = ForwardRequest {
+        joints_deg: vec![vec![30.0, 10.0, 20.0, 0.0, 30.0, 0.0]],
+        tool: None,
+    };
+    let u = uncertainty();
+    let plain = forward(&m, Some(&u), &req).unwrap().poses[0].clone();
+    // A base-joint gear eccentricity of 0 ± 1e-2 rad: sin(30°) = 0.5, so the
+    // flange gains 0.5e-2 rad times its lever.
+    let mut with_term = m.clone();
+    with_term.terms.terms = vec![TermKind::Periodic {
+        joint: 0,
+        harmonic: 1,
+        cosine: false,
+    }];
+    with_term.terms.values = vec![0.0];
+    with_term.term_std_devs = vec![1e-2];
+    let bent = forward(&with_term, Some(&u), &req).unwrap().poses[0].clone();
+    let lever_mm = {
+        let p = bent.flange_in_base.translation_mm;
+        (p[0] * p[0] + p[1] * p[1]).sqrt()
+    };
+    let expected =
+        (plain.flange_position_std_mm.unwrap().powi(2) + (0.5e-2 * lever_mm).powi(2)).sqrt();
+    let got = bent.flange_position_std_mm.unwrap();
+    assert!(
+        (got - expected).abs() < 1e-6 * expected,
+        "{got} vs {expected}"
+    );
+    // A zero-valued term moves nothing.
+    assert_eq!(
+        bent.flange_in_base.translation_mm,
+        plain.flange_in_base.translation_mm
+    );
 }

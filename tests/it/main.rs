@@ -45,6 +45,7 @@ pub(crate) mod storage;
 pub(crate) mod store_ops;
 pub(crate) mod support;
 pub(crate) mod targets;
+pub(crate) mod terms;
 pub(crate) mod test_db;
 pub(crate) mod timeouts;
 pub(crate) mod tls;

@@ -14,6 +14,7 @@
 
 use super::ik::{nearest_within_limits, IkError, IkSolution};
 use super::params::CalibratedModel;
+use super::term_model::TermModel;
 use super::RobotModel;
 use crate::geometry::Pose;
 
@@ -40,7 +41,21 @@ pub fn filter_target(
     world_to_tool: &Pose,
     seed_rad: &[f64],
 ) -> Result<FilteredTarget, IkError> {
-    let solution = nearest_within_limits(calibrated, world_to_tool, seed_rad)?;
+    let geometric = TermModel::geometric(calibrated.clone());
+    filter_target_with_terms(&geometric, nominal, world_to_tool, seed_rad)
+}
+
+/// [`filter_target`] for a model with non-geometric terms (issue 19): the
+/// joints are the commanded ones (the controller's, which the terms then
+/// deflect onto the target), so the nominal target is the nominal flange
+/// at the commanded joints.
+pub fn filter_target_with_terms(
+    calibrated: &TermModel,
+    nominal: &RobotModel,
+    world_to_tool: &Pose,
+    seed_rad: &[f64],
+) -> Result<FilteredTarget, IkError> {
+    let solution = calibrated.nearest_within_limits(world_to_tool, seed_rad)?;
     let nominal_base_to_flange = nominal.base_to_flange(&solution.joints_rad)?;
     // Replay the controller: its IK of the filtered target from the same
     // seed, in its own (nominal) model with no base or tool.

@@ -35,6 +35,7 @@ pub mod regions;
 mod term_cv;
 mod term_elimination;
 mod term_fit;
+pub mod term_model;
 pub mod term_report;
 pub mod term_selection;
 pub mod term_validate;

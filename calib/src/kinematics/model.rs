@@ -96,6 +96,12 @@ pub enum KinematicsError {
     },
     #[error("the robot has no joints")]
     NoJoints,
+    /// The commanded joints of a model with non-geometric terms were not
+    /// found: the deflections are too large to invert (method.md §6).
+    #[error(
+        "joint deflections did not converge: {change_rad:.1e} rad left after {iterations} steps"
+    )]
+    DeflectionNotInverted { iterations: usize, change_rad: f64 },
 }
 
 /// A serial chain of revolute joints, base frame to flange frame.
