@@ -7,7 +7,7 @@
 //! X-Y-Z roll–pitch–yaw, `R = Rz(rz) Ry(ry) Rx(rx)`, or a 4x4 row-major matrix.
 
 use nalgebra::{
-    Isometry3, Matrix3, Matrix4, Rotation3, Translation3, UnitQuaternion, Vector3, Vector6,
+    Isometry3, Matrix3, Matrix4, Point3, Rotation3, Translation3, UnitQuaternion, Vector3, Vector6,
 };
 use serde::{Deserialize, Serialize};
 
@@ -104,6 +104,21 @@ pub fn pose_from_matrix_rows(rows: &[[f64; 4]; 4]) -> Result<Pose, GeometryError
         Translation3::new(m[(0, 3)], m[(1, 3)], m[(2, 3)]),
         UnitQuaternion::from_rotation_matrix(&rotation),
     ))
+}
+
+/// The axis-aligned bounding box `(lo, hi)` of `points`; for no points
+/// `lo` is +∞ and `hi` −∞ in every coordinate (callers decide what an
+/// empty box means).
+pub fn bounding_box(points: impl Iterator<Item = Point3<f64>>) -> (Vector3<f64>, Vector3<f64>) {
+    let (mut lo, mut hi) = (
+        Vector3::repeat(f64::INFINITY),
+        Vector3::repeat(f64::NEG_INFINITY),
+    );
+    for p in points {
+        lo = lo.inf(&p.coords);
+        hi = hi.sup(&p.coords);
+    }
+    (lo, hi)
 }
 
 /// Nearest rotation (Frobenius norm) to a 3x3 matrix, by SVD; used after

@@ -10,7 +10,7 @@ use nalgebra::{DMatrix, DVector, Matrix3, Point3, Vector3};
 
 use super::error::HandEyeError;
 use super::robust::median;
-use crate::geometry::{orthonormalize, rotation_vector, Pose};
+use crate::geometry::{bounding_box, orthonormalize, rotation_vector, Pose};
 
 /// Reweighting rounds of the robust AX = XB.
 const IRLS_ROUNDS: usize = 10;
@@ -174,14 +174,7 @@ pub fn board_consensus(estimates: &[Pose], probe: &[Point3<f64>]) -> Option<(usi
 /// The corners of the bounding box of the board points (z = 0 plane):
 /// where a wrong board pose shows most.
 pub fn board_probe(points: impl Iterator<Item = Point3<f64>>) -> Vec<Point3<f64>> {
-    let (mut lo, mut hi) = (
-        Vector3::repeat(f64::INFINITY),
-        Vector3::repeat(f64::NEG_INFINITY),
-    );
-    for p in points {
-        lo = lo.inf(&p.coords);
-        hi = hi.sup(&p.coords);
-    }
+    let (lo, hi) = bounding_box(points);
     if !lo.x.is_finite() {
         return vec![Point3::origin()];
     }

@@ -20,6 +20,7 @@ use crate::camera::observations::{ImageSize, ViewObservations};
 use crate::camera::pose::{estimate_pose, PoseEstimate};
 use crate::camera::refine::IntrinsicsBlock;
 use crate::camera::CameraError;
+use crate::geometry::bounding_box;
 use crate::solver::{solve, LmOptions};
 
 /// One image's result.
@@ -248,13 +249,6 @@ fn board_centre(observations: &[ViewObservations]) -> Point3<f64> {
     let points = observations
         .iter()
         .flat_map(|v| v.dots.iter().map(|d| d.target_mm));
-    let (mut lo, mut hi) = (
-        Vector3::repeat(f64::INFINITY),
-        Vector3::repeat(f64::NEG_INFINITY),
-    );
-    for p in points {
-        lo = lo.inf(&p.coords);
-        hi = hi.sup(&p.coords);
-    }
+    let (lo, hi) = bounding_box(points);
     Point3::from(0.5 * (lo + hi))
 }
