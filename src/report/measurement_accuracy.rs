@@ -43,6 +43,11 @@ pub struct SequenceAccuracyReport {
     /// made before it existed.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stage_referenced_mm: Option<AxisStatsReport>,
+    /// σ per target axis (mm) of the offset common to every image of the
+    /// sequence, from the intrinsics' covariance: the part of the error
+    /// neither table sees. Absent in reports made before it existed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub offset_sd_mm: Option<[f64; 3]>,
 }
 
 /// Per target axis `[x, y, z]` (mm).
@@ -87,6 +92,7 @@ impl From<&SequenceAccuracy> for SequenceAccuracyReport {
                 max: a.travelled_distance_error_mm.max_mm,
             },
             stage_referenced_mm: Some(AxisStatsReport::from(&a.stage_referenced)),
+            offset_sd_mm: Some(a.offset_sd_mm),
         }
     }
 }

@@ -102,6 +102,7 @@ mod tests {
             max_3d_mm: 4.0 * mean,
             travelled_distance_error_mm: TravelErrorReport { mean, max: mean },
             stage_referenced_mm: None,
+            offset_sd_mm: None,
         }
     }
 

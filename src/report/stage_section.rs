@@ -26,21 +26,26 @@ fn stage_referenced_table(page: &mut String, rows: &[SequenceAccuracyReport]) {
         "<p>Against the stage: each image's camera position less the stage's readings \
          fitted rigidly to its sequence. These figures hold each image's depth noise, which \
          the average-rotation method cannot see; neither sees an offset common to a whole \
-         sequence (that needs the board's pose on the stage).</p>\n\
+         sequence (that needs the board's pose on the stage); its σ, from the intrinsics' \
+         covariance, is the last three columns.</p>\n\
          <table class=\"data\"><tr><th>sequence</th>\
          <th class=\"num\">mean x</th><th class=\"num\">y</th><th class=\"num\">z</th>\
          <th class=\"num\">median x</th><th class=\"num\">y</th><th class=\"num\">z</th>\
-         <th class=\"num\">std x</th><th class=\"num\">y</th><th class=\"num\">z</th></tr>\n",
+         <th class=\"num\">std x</th><th class=\"num\">y</th><th class=\"num\">z</th>\
+         <th class=\"num\">offset σ x</th><th class=\"num\">y</th><th class=\"num\">z</th></tr>\n",
     );
     for s in rows {
         if let Some(t) = &s.stage_referenced_mm {
             let _ = writeln!(
                 page,
-                "<tr><td>{}</td>{}{}{}</tr>",
+                "<tr><td>{}</td>{}{}{}{}</tr>",
                 s.sequence,
                 cells(t.mean),
                 cells(t.median),
-                cells(t.std)
+                cells(t.std),
+                s.offset_sd_mm
+                    .map(cells)
+                    .unwrap_or_else(|| "<td></td>".repeat(3)),
             );
         }
     }

@@ -27,6 +27,8 @@ const MAX_FOCAL_ERROR_REL: f64 = 1e-4;
 const DISTANCE_TOLERANCE_MM: f64 = 10.0;
 /// The stage-referenced table must find the true errors' scatter within this factor.
 const STAGE_TABLE_FACTOR: f64 = 2.0;
+/// The common offset must lie within this many of its served σ per axis.
+const MAX_OFFSET_Z: f64 = 3.0;
 
 fn campaign() -> StageCampaign {
     let spec = StageSpec {
@@ -216,6 +218,13 @@ async fn rendered_stage_campaign_measures_the_camera_and_its_set_is_reused() {
                 .sum::<f64>()
                 / n
         });
+        let offset_sd = vec3(&row["offset_sd_mm"]);
+        let z = offset.component_div(&offset_sd);
+        println!("sequence {sequence}: common offset {offset:?} / served σ {offset_sd:?} = {z:?}");
+        assert!(
+            z.iter().all(|z| z.abs() <= MAX_OFFSET_Z),
+            "sequence {sequence}: offset {offset:?} vs σ {offset_sd:?}"
+        );
         let staged = vec3(&row["stage_referenced_mm"]["mean"]);
         let ratio = staged.norm() / scatter_mean.norm();
         println!("sequence {sequence}: stage-referenced mean {staged:?} / true scatter {scatter_mean:?} = {ratio:.2}");

@@ -17,6 +17,8 @@ use crate::stage::{calibrate_stage, StageCalibration, StageError};
 const MAX_MEAN_POSITION_ERROR_MM: f64 = 0.06;
 const MAX_MEAN_TRAVEL_ERROR_MM: f64 = 0.03;
 const TABLE_FACTOR: f64 = 2.0;
+/// The common offset must lie within this many of its predicted σ per axis.
+const MAX_OFFSET_Z: f64 = 3.0;
 /// Dot noise of the point campaign (px per axis).
 const DETECTOR_SIGMA_PX: f64 = 0.01;
 
@@ -110,6 +112,34 @@ fn check_campaign(campaign: &StageCampaign, fit: &StageCalibration) {
                     acc.sequence, paper, truth
                 ));
             }
+        }
+        // The offset against its σ from the intrinsics' covariance.
+        let z: Vec<f64> = (0..3).map(|k| offset[k] / acc.offset_sd_mm[k]).collect();
+        println!(
+            "  common offset {:.4?} / predicted σ {:.4?} = {z:.2?}",
+            offset, acc.offset_sd_mm
+        );
+        if z.iter().any(|z| z.abs() > MAX_OFFSET_Z) {
+            failures.push(format!(
+                "sequence {}: offset {offset:.4?} vs σ {:.4?}",
+                acc.sequence, acc.offset_sd_mm
+            ));
+        }
+        // The whole per-axis error the service states (the stage-referenced
+        // scatter and the offset's σ) against the true per-axis RMS.
+        let rms = |t: &AxisTable, k: usize| t.mean_mm[k].hypot(t.std_mm[k]);
+        let stated: Vec<f64> = (0..3)
+            .map(|k| rms(&acc.stage_referenced, k).hypot(acc.offset_sd_mm[k]) / rms(&true_table, k))
+            .collect();
+        println!("  stated per-axis RMS / true RMS {stated:.2?}");
+        if stated
+            .iter()
+            .any(|r| !(1.0 / TABLE_FACTOR..=TABLE_FACTOR).contains(r))
+        {
+            failures.push(format!(
+                "sequence {}: stated / true RMS {stated:.2?}",
+                acc.sequence
+            ));
         }
         // The stage-referenced table per axis against the true scatter (the
         // true errors less their common offset, which no method without

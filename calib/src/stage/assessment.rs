@@ -53,6 +53,11 @@ pub struct SequenceAccuracy {
     /// The same statistics of the stage-referenced errors
     /// ([`stage_fit_errors`]): the per-axis table the stage itself vouches for.
     pub stage_referenced: AxisTable,
+    /// σ of the offset common to every image of the sequence, per target
+    /// axis (mm), from the intrinsics' covariance ([`super::offset`]): the
+    /// part of the error neither table sees. Zero until the calibration
+    /// fills it in.
+    pub offset_sd_mm: [f64; 3],
 }
 
 /// Per-axis statistics in Table 1's layout.
@@ -162,6 +167,7 @@ pub fn assess_sequence(
         max_3d_mm: table.max_3d_mm,
         travelled_distance_error_mm: travelled_distance_error(stage_mm, &camera_mm),
         stage_referenced: AxisTable::from_errors(&stage_fit_errors(stage_mm, &camera_mm)),
+        offset_sd_mm: [0.0; 3],
     }
 }
 
