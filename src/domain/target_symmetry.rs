@@ -251,7 +251,7 @@ mod tests {
             &mut rng,
         )
         .unwrap();
-        let found = Target::Dots(spec).detect(&view.image).unwrap();
+        let found = Target::Dots(spec).detect(&view.image.into()).unwrap();
         assert_eq!(found.len(), 63);
     }
 }

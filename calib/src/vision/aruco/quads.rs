@@ -5,7 +5,7 @@
 //! white square, so it is one 4-connected dark region; its hull is the
 //! marker outline whatever the bits are.
 
-use crate::vision::image::GrayImage;
+use crate::vision::image::GreyLevels;
 use crate::vision::threshold::{auto_window_radius, local_threshold};
 
 /// Fewest pixels of a candidate region (a 5x5-bit marker at ~1.5 px per bit).
@@ -22,16 +22,17 @@ pub const MIN_QUAD_HULL_RATIO: f64 = 0.90;
 pub type Quad = [[f64; 2]; 4];
 
 /// Dark mask of the image by the local-mean threshold.
-fn dark_mask(img: &GrayImage) -> Vec<bool> {
-    let thr = local_threshold(img, auto_window_radius(img.width, img.height));
-    let mut row = vec![0.0f32; img.width];
+fn dark_mask<I: GreyLevels>(img: &I) -> Vec<bool> {
+    let (w, h) = (img.width(), img.height());
+    let thr = local_threshold(img, auto_window_radius(w, h));
+    let mut row = vec![0.0f32; w];
     let mut scratch = Vec::new();
-    let mut mask = vec![false; img.data.len()];
-    for y in 0..img.height {
+    let mut mask = vec![false; w * h];
+    for y in 0..h {
         thr.row(y, &mut row, &mut scratch);
-        let base = y * img.width;
-        for x in 0..img.width {
-            mask[base + x] = img.data[base + x] < row[x];
+        let base = y * w;
+        for (x, (m, t)) in mask[base..base + w].iter_mut().zip(&row).enumerate() {
+            *m = img.level(base + x) < *t;
         }
     }
     mask
@@ -168,9 +169,9 @@ fn to_outline(quad: Quad) -> Quad {
 }
 
 /// Candidate marker quads of an image.
-pub fn find_quads(img: &GrayImage) -> Vec<Quad> {
+pub fn find_quads<I: GreyLevels>(img: &I) -> Vec<Quad> {
     let mask = dark_mask(img);
-    region_boundaries(&mask, img.width, img.height)
+    region_boundaries(&mask, img.width(), img.height())
         .into_iter()
         .filter_map(|boundary| {
             let hull = convex_hull(boundary);

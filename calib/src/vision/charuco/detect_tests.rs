@@ -8,6 +8,7 @@ use super::*;
 use crate::sim::render::RenderOptions;
 use crate::sim::render_charuco::render_charuco;
 use crate::sim::views::reference_camera;
+use crate::vision::image::GrayImage;
 
 const W: usize = 1280;
 const H: usize = 1024;
