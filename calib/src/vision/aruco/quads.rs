@@ -38,45 +38,59 @@ fn dark_mask<I: GreyLevels>(img: &I) -> Vec<bool> {
     mask
 }
 
-/// Every 4-connected dark region that does not touch the image border,
-/// as the list of its boundary pixels (dark pixels with a light 4-neighbour).
-fn region_boundaries(mask: &[bool], w: usize, h: usize) -> Vec<Vec<[f64; 2]>> {
+/// Every 4-connected dark region that does not touch the image border, as
+/// the leftmost and rightmost pixel of each of its rows: the region's
+/// convex hull is theirs, so the hull sorts two points a row instead of
+/// every boundary pixel (issue 14's time per image). The fill clears the
+/// mask as it goes (the mask is its own "seen" set).
+fn region_row_extremes(mut mask: Vec<bool>, w: usize, h: usize) -> Vec<Vec<[f64; 2]>> {
     let max_px = (MAX_REGION_FRACTION * (w * h) as f64) as usize;
-    let mut seen = vec![false; mask.len()];
     let mut out = Vec::new();
     let mut stack = Vec::new();
-    let mut pixels = Vec::new();
+    // Per row from the region's first (top) row: leftmost, rightmost x.
+    let mut rows: Vec<(usize, usize)> = Vec::new();
     for start in 0..mask.len() {
-        if !mask[start] || seen[start] {
+        if !mask[start] {
             continue;
         }
-        seen[start] = true;
+        mask[start] = false;
         stack.push(start);
-        pixels.clear();
+        rows.clear();
+        let top = start / w;
+        let mut count = 0usize;
         let mut touches_border = false;
         while let Some(p) = stack.pop() {
-            pixels.push(p);
+            count += 1;
             let (x, y) = (p % w, p / w);
+            let k = y - top;
+            if k >= rows.len() {
+                rows.resize(k + 1, (usize::MAX, 0));
+            }
+            let r = &mut rows[k];
+            (r.0, r.1) = (r.0.min(x), r.1.max(x));
             if x == 0 || y == 0 || x + 1 == w || y + 1 == h {
                 touches_border = true;
                 continue;
             }
             for q in [p - 1, p + 1, p - w, p + w] {
-                if mask[q] && !seen[q] {
-                    seen[q] = true;
+                if mask[q] {
+                    mask[q] = false;
                     stack.push(q);
                 }
             }
         }
-        if touches_border || pixels.len() < MIN_REGION_PX || pixels.len() > max_px {
+        if touches_border || count < MIN_REGION_PX || count > max_px {
             continue;
         }
-        let boundary = pixels
-            .iter()
-            .filter(|&&p| !(mask[p - 1] && mask[p + 1] && mask[p - w] && mask[p + w]))
-            .map(|&p| [(p % w) as f64, (p / w) as f64])
-            .collect();
-        out.push(boundary);
+        let mut extremes = Vec::with_capacity(2 * rows.len());
+        for (k, &(lo, hi)) in rows.iter().enumerate() {
+            let y = (top + k) as f64;
+            extremes.push([lo as f64, y]);
+            if hi != lo {
+                extremes.push([hi as f64, y]);
+            }
+        }
+        out.push(extremes);
     }
     out
 }
@@ -171,10 +185,10 @@ fn to_outline(quad: Quad) -> Quad {
 /// Candidate marker quads of an image.
 pub fn find_quads<I: GreyLevels>(img: &I) -> Vec<Quad> {
     let mask = dark_mask(img);
-    region_boundaries(&mask, img.width(), img.height())
+    region_row_extremes(mask, img.width(), img.height())
         .into_iter()
-        .filter_map(|boundary| {
-            let hull = convex_hull(boundary);
+        .filter_map(|extremes| {
+            let hull = convex_hull(extremes);
             if hull.len() < 4 {
                 return None;
             }
