@@ -258,3 +258,45 @@ pub fn decode_grey(bytes: &[u8], limits: &DecodeLimits) -> Result<DecodedGrey, D
     let img = r.decode().map_err(|e| DetectError::Decode(e.to_string()))?;
     Ok(DecodedGrey::from_dynamic(img))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn png(img: DynamicImage) -> Vec<u8> {
+        let mut out = Vec::new();
+        img.write_to(&mut Cursor::new(&mut out), image::ImageFormat::Png)
+            .unwrap();
+        out
+    }
+
+    /// 8-bit grey and colour sources stay 8-bit with the levels the f32
+    /// decode gives; 16-bit sources keep their precision in f32.
+    #[test]
+    fn eight_bit_sources_stay_eight_bit_and_deeper_ones_become_float() {
+        let limits = DecodeLimits::default();
+        let grey = image::GrayImage::from_fn(5, 3, |x, y| image::Luma([(40 * x + 7 * y) as u8]));
+        let decoded = decode_grey(&png(DynamicImage::ImageLuma8(grey.clone())), &limits).unwrap();
+        assert_eq!(decoded, DecodedGrey::Levels8(grey.clone()));
+        assert_eq!(decoded.size(), (5, 3));
+        let float = decode_image(&png(DynamicImage::ImageLuma8(grey.clone())), &limits).unwrap();
+        assert_eq!(*decoded.to_float(), float);
+        assert_eq!(float.at(3, 2), 134.0);
+
+        let rgb = image::RgbImage::from_fn(4, 2, |x, _| image::Rgb([60 * x as u8, 10, 200]));
+        let dynamic = DynamicImage::ImageRgb8(rgb);
+        let decoded = decode_grey(&png(dynamic.clone()), &limits).unwrap();
+        assert_eq!(decoded, DecodedGrey::Levels8(dynamic.to_luma8()));
+
+        let deep = image::ImageBuffer::<image::Luma<u16>, _>::from_fn(3, 2, |x, _| {
+            image::Luma([1000 + 257 * x as u16])
+        });
+        match decode_grey(&png(DynamicImage::ImageLuma16(deep)), &limits).unwrap() {
+            DecodedGrey::Float(g) => {
+                assert!((g.at(0, 0) - 1000.0 / 257.0).abs() < 1e-4, "{}", g.at(0, 0));
+                assert!((g.at(2, 1) - (1000.0 / 257.0 + 2.0)).abs() < 1e-4);
+            }
+            other => panic!("16-bit decoded as {other:?}"),
+        }
+    }
+}
