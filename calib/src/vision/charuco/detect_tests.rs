@@ -6,7 +6,7 @@ use rand::SeedableRng;
 
 use super::*;
 use crate::sim::render::RenderOptions;
-use crate::sim::render_charuco::render_charuco;
+use crate::sim::render_charuco::{render_charuco, TruthCorner};
 use crate::sim::views::reference_camera;
 use crate::vision::image::GrayImage;
 
@@ -60,6 +60,20 @@ fn score(
     let visible = view.truth.iter().filter(|t| t.visible).count();
     let n = det.points.len();
     (n, visible, (sum2 / n.max(1) as f64).sqrt(), worst)
+}
+
+/// RMS distance, px, of a detection's corners from their truth.
+fn rms_px(spec: &CharucoSpec, det: &BoardDetection, truth: &[TruthCorner]) -> f64 {
+    let nx = spec.cols() - 1;
+    let s: f64 = det
+        .points
+        .iter()
+        .map(|p| {
+            let t = truth[p.row * nx + p.col];
+            (p.x_px - t.x).powi(2) + (p.y_px - t.y).powi(2)
+        })
+        .sum();
+    (s / det.points.len().max(1) as f64).sqrt()
 }
 
 #[test]
@@ -144,18 +158,7 @@ fn refinement_beats_the_homography_prediction_several_fold() {
     let mut rng = StdRng::seed_from_u64(7);
     let iso = pose(620.0, 40.0, 25.0, [0.0, 0.0]);
     let view = render_charuco(&reference_camera(), &iso, &spec, W, H, &opts, &mut rng).unwrap();
-    let rms = |det: &BoardDetection| {
-        let nx = spec.cols() - 1;
-        let s: f64 = det
-            .points
-            .iter()
-            .map(|p| {
-                let t = view.truth[p.row * nx + p.col];
-                (p.x_px - t.x).powi(2) + (p.y_px - t.y).powi(2)
-            })
-            .sum();
-        (s / det.points.len() as f64).sqrt()
-    };
+    let rms = |det: &BoardDetection| rms_px(&spec, det, &view.truth);
     let predicted = rms(&detect_charuco_with(&view.image, &spec, None).unwrap());
     let refined = rms(&detect_charuco(&view.image, &spec).unwrap());
     eprintln!("predicted RMS {predicted:.3} px, refined {refined:.3} px");
@@ -215,7 +218,6 @@ fn far_steep_blurred_views_give_every_corner_from_the_eight_bit_image() {
         noise_sigma_grey: 3.0,
         ..RenderOptions::default()
     };
-    let nx = spec.cols() - 1;
     for (k, roll_deg) in [0.0, 57.0, 123.0, 211.0, 300.0].into_iter().enumerate() {
         let iso = pose(800.0, 45.0, roll_deg, [20.0, -20.0]);
         let mut rng = StdRng::seed_from_u64(90 + k as u64);
@@ -224,15 +226,7 @@ fn far_steep_blurred_views_give_every_corner_from_the_eight_bit_image() {
         let det = detect_charuco(&bytes, &spec).unwrap();
         let visible = view.truth.iter().filter(|t| t.visible).count();
         assert_eq!(det.points.len(), visible, "roll {roll_deg}");
-        let sum2: f64 = det
-            .points
-            .iter()
-            .map(|p| {
-                let t = view.truth[p.row * nx + p.col];
-                (p.x_px - t.x).powi(2) + (p.y_px - t.y).powi(2)
-            })
-            .sum();
-        let rms = (sum2 / visible as f64).sqrt();
+        let rms = rms_px(&spec, &det, &view.truth);
         assert!(rms < 0.05, "roll {roll_deg}: RMS {rms}");
         let float = detect_charuco(&GrayImage::from_dynamic(&bytes.clone().into()), &spec).unwrap();
         assert_eq!(float.points.len(), det.points.len());
