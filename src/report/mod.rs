@@ -15,6 +15,7 @@ mod html_sections;
 pub mod measurement_accuracy;
 pub mod model;
 mod plot;
+pub mod regions;
 mod pose_chart;
 pub mod sample;
 pub mod schema;
