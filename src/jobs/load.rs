@@ -5,11 +5,11 @@ use std::time::Duration;
 
 use crate::domain::{label_or_number, FlangePose, ParameterSet};
 use crate::imaging::DecodeGate;
-use crate::report::regions::LocalModel;
-use crate::report::Report;
 use crate::pipeline::{
     ApprovedSet, FixedCamera, ImageSource, Input, PoseImage, PoseInput, RegionInput,
 };
+use crate::report::regions::LocalModel;
+use crate::report::Report;
 use crate::schema::job::CalibrationOptions;
 use crate::schema::robot::KinematicsDoc;
 use crate::service::camera_reuse::{self, ReuseError};

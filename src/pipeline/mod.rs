@@ -117,7 +117,8 @@ fn run_stages(
             return stage_job::run(input, &measured, &target, camera_doc, notes, &within);
         }
         Instrument::Camera => {
-            let (measured, step) = camera_session(input, &within, detected, cancel, cause, &mut notes)?;
+            let (measured, step) =
+                camera_session(input, &within, detected, cancel, cause, &mut notes)?;
             (Some(measured), Some(step))
         }
         Instrument::Tracker => (None, None),
