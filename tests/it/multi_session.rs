@@ -244,7 +244,7 @@ async fn one_model_over_three_board_placements_matches_the_local_models() {
         .json()
         .await
         .unwrap();
-    let boards = set["parameters"]["session_target_to_base"]
+    let boards = set["session_target_to_base"]
         .as_array()
         .unwrap_or_else(|| panic!("{set}"));
     let ids: Vec<&str> = boards
@@ -252,10 +252,7 @@ async fn one_model_over_three_board_placements_matches_the_local_models() {
         .map(|b| b["session_id"].as_str().unwrap())
         .collect();
     assert_eq!(ids, sessions.iter().map(String::as_str).collect::<Vec<_>>());
-    assert_eq!(
-        boards[0]["target_to_base"],
-        set["parameters"]["target_to_base"]
-    );
+    assert_eq!(boards[0]["target_to_base"], set["target_to_base"]);
     // The report: one region per session, its local set beside it.
     let report: Value = app
         .get(&format!(
