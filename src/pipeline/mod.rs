@@ -92,7 +92,12 @@ fn run_stages(
         progress(stage, message, lo + (hi - lo) * fraction.clamp(0.0, 1.0));
     };
     if !input.regions.is_empty() {
-        return regions_job::run(input, &within, detected, cancel, cause);
+        let fitted = regions_job::run(input, &within, detected, cancel, cause)?;
+        check_cancelled(cancel)?;
+        within(Stage::Report, "building the report", 0.0);
+        let output = regions_results::output(input, fitted)?;
+        within(Stage::Report, "done", 1.0);
+        return Ok(output);
     }
     let checked = validate(input, &within, cancel)?;
     within(Stage::Validate, "inputs valid", 1.0);
@@ -193,14 +198,7 @@ fn run_stages(
             candidates.as_ref(),
         )
     };
-    let mut identified = identify(&usable, &outliers)?;
-    let (back, outliers) = screen_stage::confirm(&identified, &outliers);
-    if !back.is_empty() {
-        let mut usable = usable;
-        usable.extend(back);
-        usable.sort_unstable();
-        identified = identify(&usable, &outliers)?;
-    }
+    let (identified, outliers) = screen_stage::identify_confirmed(usable, outliers, identify)?;
     notes.extend(screen_stage::note(&input.poses, &outliers));
     if let Some(sigma) = identified.joint_noise_rad {
         notes.push(format!(

@@ -66,7 +66,16 @@ impl JointFit {
     }
 }
 
-/// Runs the multi-session job (`input` is the first session, its
+/// Everything the multi-session job found, for the report stage
+/// (`regions_results`).
+pub(super) struct Fitted {
+    pub fits: Vec<SessionFit>,
+    pub joint: JointFit,
+    pub validations: Vec<SessionValidation>,
+    pub notes: Vec<String>,
+}
+
+/// Runs the multi-session job's fits (`input` is the first session, its
 /// `regions` the others).
 pub(super) fn run(
     input: &Input,
@@ -74,7 +83,7 @@ pub(super) fn run(
     detected: &dyn Fn(Vec<PoseDetection>),
     cancel: &AtomicBool,
     cause: &mut Option<String>,
-) -> Result<super::Output, PipelineError> {
+) -> Result<Fitted, PipelineError> {
     let sessions = input.sessions();
     let count = sessions.len();
     let mut notes = Vec::new();
@@ -100,11 +109,12 @@ pub(super) fn run(
         .enumerate()
         .map(|(s, f)| validate_session(f, &joint, s))
         .collect::<Result<Vec<_>, _>>()?;
-    super::check_cancelled(cancel)?;
-    within(Stage::Report, "building the report", 0.0);
-    let output = super::regions_results::output(input, fits, &joint, validations, notes);
-    within(Stage::Report, "done", 1.0);
-    output
+    Ok(Fitted {
+        fits,
+        joint,
+        validations,
+        notes,
+    })
 }
 
 /// The invalid-input error of session `s`, naming `sessions[s]`.
@@ -165,14 +175,7 @@ fn fit_session(
             None,
         )
     };
-    let mut identified = identify(&usable, &outliers)?;
-    let (back, outliers) = screen_stage::confirm(&identified, &outliers);
-    if !back.is_empty() {
-        let mut usable = usable;
-        usable.extend(back);
-        usable.sort_unstable();
-        identified = identify(&usable, &outliers)?;
-    }
+    let (identified, outliers) = screen_stage::identify_confirmed(usable, outliers, identify)?;
     notes.extend(screen_stage::note(&input.poses, &outliers));
     Ok((
         SessionFit {

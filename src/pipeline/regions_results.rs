@@ -7,7 +7,7 @@
 use robocal_calib::stats::AccuracyStats;
 
 use super::identify_stage::Identified;
-use super::regions_job::{JointFit, SessionFit, SessionValidation, INSTRUMENT};
+use super::regions_job::{Fitted, JointFit, SessionValidation, INSTRUMENT};
 use super::screen_stage::Outlier;
 use super::{detections, gate, results, Input, Output, PipelineError, PoseInput};
 use crate::domain::SessionBoard;
@@ -16,13 +16,14 @@ use crate::schema::PoseOut;
 use crate::store::NewParameterSet;
 
 /// The set, its report and the detections of a multi-session job.
-pub(super) fn output(
-    input: &Input,
-    fits: Vec<SessionFit>,
-    joint: &JointFit,
-    validations: Vec<SessionValidation>,
-    mut notes: Vec<String>,
-) -> Result<Output, PipelineError> {
+pub(super) fn output(input: &Input, fitted: Fitted) -> Result<Output, PipelineError> {
+    let Fitted {
+        fits,
+        joint,
+        validations,
+        mut notes,
+    } = fitted;
+    let joint = &joint;
     let offsets: Vec<usize> = fits
         .iter()
         .scan(0, |at, f| {

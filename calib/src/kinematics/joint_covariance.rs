@@ -104,8 +104,8 @@ pub fn joint_refine_covariance_sessions(
             rows += 2;
         }
         let mut t_free = DMatrix::zeros(6, nf);
-        for c in 0..nf_layout {
-            t_free.set_column(c, &jt.column(free[c]));
+        for (c, &i) in free.iter().enumerate() {
+            t_free.set_column(c, &jt.column(i));
         }
         if session > 0 {
             // This pose's board is its session's: its base columns move there.
