@@ -117,9 +117,10 @@ pub(super) fn run(
     })
 }
 
-/// The invalid-input error of session `s`, naming `sessions[s]`.
+/// The invalid-input error of session `s`, naming `sessions` (and the
+/// entry, `[s]`, in the message).
 fn in_session(s: usize, message: impl std::fmt::Display) -> PipelineError {
-    PipelineError::invalid(&format!("sessions[{s}]"), message.to_string())
+    PipelineError::invalid("sessions", format!("[{s}]: {message}"))
 }
 
 /// Session `s`'s own stages, up to its pose-level identification.

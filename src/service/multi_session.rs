@@ -19,8 +19,9 @@ fn invalid(field: &str, message: String) -> ServiceError {
 }
 
 /// Queues the calibration of `options.sessions`, all of robot `serial`:
-/// 422 naming `sessions` when the list is empty, repeats a session, or
-/// names one that does not exist or belongs to another robot.
+/// 422 naming `sessions` (the message says which entry, `[i]`) when the
+/// list is empty, repeats a session, or names one that does not exist or
+/// belongs to another robot.
 pub async fn start_robot_calibration(
     store: &DynStore,
     policy: &QueuePolicy,
@@ -52,19 +53,21 @@ async fn sessions_of(
     }
     let mut records: Vec<SessionRecord> = Vec::with_capacity(ids.len());
     for (i, id) in ids.iter().enumerate() {
-        let field = format!("{FIELD}[{i}]");
         if ids[..i].contains(id) {
-            return Err(invalid(&field, format!("session {id} is named twice")));
+            return Err(invalid(
+                FIELD,
+                format!("[{i}]: session {id} is named twice"),
+            ));
         }
         let session = store
             .get_session(id)
             .await?
-            .ok_or_else(|| invalid(&field, format!("session {id} does not exist")))?;
+            .ok_or_else(|| invalid(FIELD, format!("[{i}]: session {id} does not exist")))?;
         if session.serial != serial {
             return Err(invalid(
-                &field,
+                FIELD,
                 format!(
-                    "session {id} belongs to robot {}, not {serial}: one job calibrates one robot",
+                    "[{i}]: session {id} belongs to robot {}, not {serial}: one job calibrates one robot",
                     session.serial
                 ),
             ));
@@ -81,9 +84,9 @@ fn check_multi(records: &[SessionRecord], options: &CalibrationOptions) -> Servi
     for (i, s) in records.iter().enumerate() {
         if s.spec.instrument != Instrument::Camera {
             return Err(invalid(
-                &format!("{FIELD}[{i}]"),
+                FIELD,
                 format!(
-                    "session {} is a {} session: several sessions are fitted together on their camera images only",
+                    "[{i}]: session {} is a {} session: several sessions are fitted together on their camera images only",
                     s.id,
                     s.spec.instrument.as_str()
                 ),
