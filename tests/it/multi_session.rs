@@ -36,6 +36,9 @@ const VAL_POSES: usize = 12;
 /// The bound: the global model within this factor of each
 /// region's local model in that region.
 const MAX_GLOBAL_OVER_LOCAL: f64 = 1.15;
+/// Compensated joints of a true camera pose against the true joints (deg):
+/// the model's remaining error is hundredths of a millimetre.
+const MAX_COMPENSATED_JOINT_DEG: f64 = 0.05;
 const WAIT: Duration = Duration::from_secs(600);
 
 /// The same robot, its board placed by each home pose.
@@ -164,6 +167,57 @@ async fn true_error_mm(app: &TestApp, version: i64, session_id: Option<&str>, c:
     total / val.len() as f64
 }
 
+/// Largest joint difference (deg) of a compensate answer's first target
+/// from `truth_deg`; `None` when the target was not solved.
+fn joint_gap_deg(answer: &Value, truth_deg: &[f64]) -> Option<f64> {
+    let joints = answer["joints_deg"][0].as_array()?;
+    Some(
+        joints
+            .iter()
+            .zip(truth_deg)
+            .map(|(j, t)| (j.as_f64().unwrap() - t).abs())
+            .fold(0.0, f64::max),
+    )
+}
+
+/// `compensate` with `session_id` works in that session's board frame: the
+/// true camera pose of one of its validation views, as a target, gives
+/// back joints close to the true ones; without `session_id` (the first
+/// board's frame) it does not. An unknown `session_id` on the streamed
+/// path is a 422 naming it before any line.
+async fn compensates_in_a_session_frame(app: &TestApp, version: i64, session: &str, c: &Campaign) {
+    let p = c.poses.iter().find(|p| p.set == PoseSet::Val).unwrap();
+    let target = serde_json::to_value(robocal::schema::PoseOut::new(&p.target_to_camera)).unwrap();
+    let truth = joints_deg(&p.true_joints_rad);
+    let path = format!("/v1/robots/{SERIAL}/parameter-sets/{version}/compensate");
+    let mut body = json!({"targets": [target], "seed_joints_deg": joints_deg(&p.joints_rad),
+                          "session_id": session});
+    let r = app.post_json(&path, &body).await;
+    assert_eq!(r.status(), 200, "{}", r.text().await.unwrap());
+    let answer: Value = r.json().await.unwrap();
+    let gap = joint_gap_deg(&answer, &truth).unwrap_or_else(|| panic!("{answer}"));
+    assert!(gap < MAX_COMPENSATED_JOINT_DEG, "{gap} deg: {answer}");
+    body.as_object_mut().unwrap().remove("session_id");
+    let r = app.post_json(&path, &body).await;
+    assert_eq!(r.status(), 200);
+    let other_board: Value = r.json().await.unwrap();
+    let gap = joint_gap_deg(&other_board, &truth);
+    assert!(
+        gap.is_none_or(|g| g > 10.0 * MAX_COMPENSATED_JOINT_DEG),
+        "{other_board}"
+    );
+    body["session_id"] = json!("nope");
+    let r = app
+        .client
+        .post(app.url(&path))
+        .header("accept", "application/x-ndjson")
+        .json(&body)
+        .send()
+        .await
+        .unwrap();
+    problem_field(r, "session_id").await;
+}
+
 async fn problem_field(r: reqwest::Response, field: &str) -> Value {
     assert_eq!(r.status(), 422);
     assert_eq!(
@@ -283,6 +337,8 @@ async fn one_model_over_three_board_placements_matches_the_local_models() {
         .await
         .unwrap();
     assert!(html.contains("Regions"), "no regions section");
+
+    compensates_in_a_session_frame(&app, global_version, &sessions[1], &campaigns[1]).await;
 
     // A session the set does not know.
     let r = app
