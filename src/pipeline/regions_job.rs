@@ -13,7 +13,7 @@ use robocal_calib::kinematics::identify::{validate, JointNoise, Measurement};
 use robocal_calib::kinematics::initial::initial_world_to_base;
 use robocal_calib::kinematics::joint_covariance::joint_refine_covariance_sessions;
 use robocal_calib::kinematics::joint_refine::{ImageNoise, ImagePose, JointRefinement};
-use robocal_calib::kinematics::regions::{joint_refine_regions, RegionPoses};
+use robocal_calib::kinematics::regions::{joint_refine_regions, session_of, RegionPoses};
 use robocal_calib::kinematics::{CalibratedModel, Instrument as ModelInstrument};
 use robocal_calib::stats::AccuracyStats;
 
@@ -258,11 +258,7 @@ fn joint_fit(fits: &[SessionFit]) -> Result<JointFit, PipelineError> {
     )
     .map_err(|e| numerical(&e))?;
     let images: Vec<ImagePose> = regions.iter().flat_map(|r| r.poses.clone()).collect();
-    let session_of: Vec<usize> = regions
-        .iter()
-        .enumerate()
-        .flat_map(|(s, r)| std::iter::repeat_n(s, r.poses.len()))
-        .collect();
+    let session_of = session_of(&regions);
     let covariance =
         joint_refine_covariance_sessions(&refined, &images, &free, intrinsics_held, &session_of)
             .map_err(|e| numerical(&e))?;

@@ -316,11 +316,15 @@ fn multi_region_covariance_reproduces_the_fit_std_devs() {
     let free = shared_free(&regions);
     let global = global_fit(&regions, &free);
     let images: Vec<ImagePose> = regions.iter().flat_map(|r| r.images.clone()).collect();
-    let session_of: Vec<usize> = regions
-        .iter()
-        .enumerate()
-        .flat_map(|(s, r)| std::iter::repeat_n(s, r.images.len()))
-        .collect();
+    let session_of: Vec<usize> = session_of(
+        &regions
+            .iter()
+            .map(|r| RegionPoses {
+                target_to_base_start: r.start.world_to_base,
+                poses: r.images.clone(),
+            })
+            .collect::<Vec<_>>(),
+    );
     let cov =
         joint_refine_covariance_sessions(&global, &images, &free, false, &session_of).unwrap();
     for &i in &free {
