@@ -56,6 +56,7 @@ fn main() -> Result<(), String> {
     let req = ForwardRequest {
         joints_deg,
         tool: None,
+        session_id: None,
     };
     let model = robocal_calib::kinematics::term_model::TermModel::geometric(model);
     let (wall, cpu) = (std::time::Instant::now(), thread_cpu_s());

@@ -1,4 +1,5 @@
-//! Calibration jobs: `POST /v1/sessions/{id}/calibrations`, `GET /v1/jobs`
+//! Calibration jobs: `POST /v1/sessions/{id}/calibrations`,
+//! `POST /v1/robots/{serial}/calibrations` (several sessions), `GET /v1/jobs`
 //! (newest first, filtered by state, serial and kind) and `/v1/jobs/{id}`.
 //! A job's live events are `job_events.rs`.
 
@@ -13,7 +14,7 @@ use utoipa_axum::router::OpenApiRouter;
 use utoipa_axum::routes;
 
 use super::error::{ApiError, ApiResult, Problem};
-use super::extract::{JobQuery, OptionalJson, Paging};
+use super::extract::{ApiJson, JobQuery, OptionalJson, Paging, SerialPath};
 use super::sessions::find_session;
 use super::AppState;
 use crate::domain::JobState;
@@ -23,6 +24,7 @@ use crate::store::JobRecord;
 pub fn router() -> OpenApiRouter<AppState> {
     OpenApiRouter::new()
         .routes(routes!(start_calibration))
+        .routes(routes!(start_robot_calibration))
         .routes(routes!(list_jobs))
         .routes(routes!(get_job, cancel_job))
 }
@@ -125,6 +127,32 @@ async fn start_calibration(
     let job =
         crate::service::checks::start_calibration(&state.store, &state.policy, &session, &options)
             .await?;
+    state.wake.notify_one();
+    Ok(JobAccepted::response(job))
+}
+
+/// Queue one calibration over several sessions of the robot (issue 18):
+/// each session one board placement (region); one kinematic model and
+/// hand–eye, one `target_to_base` per session, shared intrinsics. One
+/// session is that session's own calibration.
+#[utoipa::path(post, path = "/v1/robots/{serial}/calibrations", tag = "jobs",
+    params(("serial" = String, Path, description = "Robot serial number")),
+    request_body(content = CalibrationOptions, content_type = "application/json", description = "`sessions` (required, at least one) and the other calibration options"),
+    responses((status = 202, description = "The job is queued; `Location` is its URL", body = JobAccepted, headers(("Location" = String, description = "/v1/jobs/{job_id}"))),
+              (status = 422, description = "`sessions` empty, naming an unknown session or one of another robot (the problem names it), or an option a multi-session fit cannot take", body = Problem, content_type = "application/problem+json"),
+              (status = 429, description = "The queue is full (`--max-queued`): retry after `Retry-After` seconds", body = Problem, content_type = "application/problem+json")))]
+async fn start_robot_calibration(
+    State(state): State<AppState>,
+    SerialPath(serial): SerialPath,
+    ApiJson(options): ApiJson<CalibrationOptions>,
+) -> ApiResult<Response> {
+    let job = crate::service::multi_session::start_robot_calibration(
+        &state.store,
+        &state.policy,
+        serial.as_str(),
+        &options,
+    )
+    .await?;
     state.wake.notify_one();
     Ok(JobAccepted::response(job))
 }

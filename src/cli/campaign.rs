@@ -234,6 +234,8 @@ pub fn run_local_with(
         images: local_images(),
         test_stage_delay: std::time::Duration::ZERO,
         validate_only: false,
+        regions: Vec::new(),
+        local_models: Vec::new(),
         approved: None,
         check: false,
     };

@@ -34,7 +34,7 @@ pub use label::{
 };
 pub use measured_pose::{MeasuredPoint, MeasuredPose};
 pub use parameter_covariance::CovarianceDoc;
-pub use parameter_set::{FrameNames, ParameterSet};
+pub use parameter_set::{FrameNames, ParameterSet, SessionBoard};
 pub use parameter_terms::{KeptTerm, TermsDoc};
 pub use pose_set::PoseSet;
 pub use release::{Decision, Release, ReleaseStatus, ANONYMOUS_ACTOR, GATE_ACTOR};

@@ -50,6 +50,17 @@ pub struct ParameterSet {
     /// The non-geometric terms kept by the selection (issue 19); absent
     /// when none was kept and in sets stored before terms were selected.
     pub terms: Option<TermsDoc>,
+    /// A set calibrated over several sessions (board placements, issue
+    /// 18): each session's board in the base frame, the first session's
+    /// equal to `world_to_base`. Empty for a one-session set.
+    pub session_target_to_base: Vec<SessionBoard>,
+}
+
+/// One session's board placement in a multi-session set.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct SessionBoard {
+    pub session_id: String,
+    pub target_to_base: PoseOut,
 }
 
 /// The contract's names of a set's frames.
@@ -104,6 +115,36 @@ impl ParameterSet {
         }
     }
 
+    /// The set seen from session `session_id`'s board: `world_to_base` is
+    /// that session's `target_to_base` (issue 18). `None` when the set
+    /// knows no such session (a one-session set knows its own).
+    pub fn in_session(&self, session_id: &str) -> Option<ParameterSet> {
+        let board = match self
+            .session_target_to_base
+            .iter()
+            .find(|b| b.session_id == session_id)
+        {
+            Some(b) => b.target_to_base.clone(),
+            None if session_id == self.session_id => self.world_to_base.clone(),
+            None => return None,
+        };
+        Some(ParameterSet {
+            world_to_base: board,
+            ..self.clone()
+        })
+    }
+
+    /// The sessions whose boards the set knows, the first session's first.
+    pub fn session_ids(&self) -> Vec<&str> {
+        if self.session_target_to_base.is_empty() {
+            return vec![self.session_id.as_str()];
+        }
+        self.session_target_to_base
+            .iter()
+            .map(|b| b.session_id.as_str())
+            .collect()
+    }
+
     /// The calibrated model, as the numerics take it.
     pub fn model(&self) -> Result<CalibratedModel, String> {
         Ok(CalibratedModel {
@@ -154,6 +195,8 @@ struct StoredSet {
     joint_noise_deg: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     terms: Option<TermsDoc>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    session_target_to_base: Vec<SessionBoard>,
 }
 
 impl From<ParameterSet> for StoredSet {
@@ -176,6 +219,7 @@ impl From<ParameterSet> for StoredSet {
             covariance: set.covariance,
             joint_noise_deg: set.joint_noise_deg,
             terms: set.terms,
+            session_target_to_base: set.session_target_to_base,
         }
     }
 }
@@ -203,6 +247,7 @@ impl TryFrom<StoredSet> for ParameterSet {
             covariance: s.covariance,
             joint_noise_deg: s.joint_noise_deg,
             terms: s.terms,
+            session_target_to_base: s.session_target_to_base,
         })
     }
 }

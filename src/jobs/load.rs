@@ -5,7 +5,11 @@ use std::time::Duration;
 
 use crate::domain::{label_or_number, FlangePose, ParameterSet};
 use crate::imaging::DecodeGate;
-use crate::pipeline::{ApprovedSet, FixedCamera, ImageSource, Input, PoseImage, PoseInput};
+use crate::pipeline::{
+    ApprovedSet, FixedCamera, ImageSource, Input, PoseImage, PoseInput, RegionInput,
+};
+use crate::report::regions::LocalModel;
+use crate::report::Report;
 use crate::schema::job::CalibrationOptions;
 use crate::schema::robot::KinematicsDoc;
 use crate::service::camera_reuse::{self, ReuseError};
@@ -63,11 +67,139 @@ pub async fn load_input(
         }),
         None => None,
     };
+    let poses = load_poses(store, &session.id).await?;
+    let mut regions = Vec::new();
+    for id in options.sessions.iter().filter(|id| **id != session.id) {
+        let further = store
+            .get_session(id)
+            .await?
+            .ok_or_else(|| LoadError::Gone(format!("session {id} was deleted")))?;
+        regions.push(RegionInput {
+            poses: load_poses(store, &further.id).await?,
+            session_id: further.id,
+            session: further.spec,
+        });
+    }
+    let local_models = if regions.is_empty() {
+        Vec::new()
+    } else {
+        let ids: Vec<&str> = std::iter::once(session.id.as_str())
+            .chain(regions.iter().map(|r| r.session_id.as_str()))
+            .collect();
+        local_models(store, &session.serial, &ids).await?
+    };
+    Ok(Input {
+        session_id: session.id.clone(),
+        serial: session.serial,
+        robot: crate::schema::robot::doc_to_model(&kinematics),
+        kinematics,
+        session: spec,
+        poses,
+        options,
+        fixed_camera,
+        images: store_images(store, gate),
+        test_stage_delay,
+        validate_only: false,
+        approved,
+        check,
+        local_models,
+        regions,
+    })
+}
+
+/// Sets looked at for the local models of a multi-session job (newest
+/// first): one page.
+const LOCAL_SETS_SCANNED: i64 = 200;
+
+/// The newest local (one-session) set of each of `sessions`, with its
+/// report's validation figures: the side by side of local and global
+/// models in each region (issue 18).
+async fn local_models(
+    store: &DynStore,
+    serial: &str,
+    sessions: &[&str],
+) -> Result<Vec<(String, LocalModel)>, LoadError> {
+    let page = store
+        .list_parameter_sets(serial, LOCAL_SETS_SCANNED, None)
+        .await?;
+    let mut found: Vec<(String, LocalModel)> = Vec::new();
+    for record in page.items {
+        let Ok(set) = serde_json::from_value::<ParameterSet>(record.parameters) else {
+            continue;
+        };
+        let wanted = sessions.contains(&set.session_id.as_str())
+            && set.session_target_to_base.is_empty()
+            && !found.iter().any(|(id, _)| *id == set.session_id);
+        if !wanted || !full_scope(store, record.job_id.as_deref()).await? {
+            continue;
+        }
+        let report = store.get_report(serial, record.version).await?;
+        let after = report
+            .and_then(|r| serde_json::from_value::<Report>(r).ok())
+            .map(|r| r.after);
+        if let Some(after) = after {
+            found.push((
+                set.session_id,
+                LocalModel {
+                    version: record.version,
+                    after,
+                },
+            ));
+        }
+    }
+    Ok(found)
+}
+
+/// The serial's newest approved set, typed; `None` when it has none, or
+/// when that set holds no calibrated model (a hand–eye set, a test marker):
+/// the gate then compares with the nominal model.
+async fn approved_set(store: &DynStore, serial: &str) -> Result<Option<ApprovedSet>, LoadError> {
+    let Some(record) = store.get_parameter_set(serial, None).await? else {
+        return Ok(None);
+    };
+    Ok(serde_json::from_value::<ParameterSet>(record.parameters)
+        .ok()
+        .map(|set| ApprovedSet {
+            id: format!("{serial}/{}", record.version),
+            version: record.version,
+            set,
+        }))
+}
+
+/// Whether the job that made a set was a full calibration (a `scope:
+/// base` set carries another session's model over: not a local model).
+async fn full_scope(store: &DynStore, job_id: Option<&str>) -> Result<bool, LoadError> {
+    let Some(id) = job_id else {
+        return Ok(true);
+    };
+    Ok(store
+        .get_job(id)
+        .await?
+        .and_then(|job| serde_json::from_value::<CalibrationOptions>(job.options).ok())
+        .is_none_or(|options| options.scope.is_full()))
+}
+
+/// Reads images from the store's blobs, from the job's blocking thread.
+fn store_images(store: &DynStore, gate: Arc<DecodeGate>) -> ImageSource {
+    let (store, runtime) = (store.clone(), tokio::runtime::Handle::current());
+    ImageSource {
+        read: Arc::new(move |sha256: &str| {
+            runtime
+                .block_on(store.get_blob(sha256))
+                .map_err(|e| format!("reading image {sha256}: {e}"))?
+                .ok_or_else(|| format!("image {sha256} is missing from the store"))
+        }),
+        gate,
+    }
+}
+
+/// Every pose of a session, in upload order.
+async fn load_poses(store: &DynStore, session_id: &str) -> Result<Vec<PoseInput>, LoadError> {
     let mut poses = Vec::new();
     let mut cursor: Option<String> = None;
     loop {
         let page = store
-            .list_poses(&session.id, PAGE, cursor.as_deref())
+            .list_poses(session_id, PAGE, cursor.as_deref())
             .await?;
         for p in page.items {
             // A reference only: the detect stage reuses the stored detection,
@@ -104,49 +236,5 @@ pub async fn load_input(
             None => break,
         }
     }
-    Ok(Input {
-        session_id: session.id.clone(),
-        serial: session.serial,
-        robot: crate::schema::robot::doc_to_model(&kinematics),
-        kinematics,
-        session: spec,
-        poses,
-        options,
-        fixed_camera,
-        images: store_images(store, gate),
-        test_stage_delay,
-        validate_only: false,
-        approved,
-        check,
-    })
-}
-
-/// The serial's newest approved set, typed; `None` when it has none, or
-/// when that set holds no calibrated model (a hand–eye set, a test marker):
-/// the gate then compares with the nominal model.
-async fn approved_set(store: &DynStore, serial: &str) -> Result<Option<ApprovedSet>, LoadError> {
-    let Some(record) = store.get_parameter_set(serial, None).await? else {
-        return Ok(None);
-    };
-    Ok(serde_json::from_value::<ParameterSet>(record.parameters)
-        .ok()
-        .map(|set| ApprovedSet {
-            id: format!("{serial}/{}", record.version),
-            version: record.version,
-            set,
-        }))
-}
-
-/// Reads images from the store's blobs, from the job's blocking thread.
-fn store_images(store: &DynStore, gate: Arc<DecodeGate>) -> ImageSource {
-    let (store, runtime) = (store.clone(), tokio::runtime::Handle::current());
-    ImageSource {
-        read: Arc::new(move |sha256: &str| {
-            runtime
-                .block_on(store.get_blob(sha256))
-                .map_err(|e| format!("reading image {sha256}: {e}"))?
-                .ok_or_else(|| format!("image {sha256} is missing from the store"))
-        }),
-        gate,
-    }
+    Ok(poses)
 }

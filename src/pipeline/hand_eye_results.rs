@@ -336,5 +336,6 @@ fn report(
         terms: None,
         gate: None,
         measurement_accuracy: None,
+        regions: Vec::new(),
     }
 }

@@ -10,6 +10,7 @@ use robocal_calib::kinematics::{Instrument, RobotModel};
 use super::PipelineError;
 use crate::domain::{FlangePose, ImageDetection, JointsDeg, ParameterSet, StageReading};
 use crate::imaging::DecodeGate;
+use crate::report::regions::LocalModel;
 use crate::schema::job::{CalibrationOptions, Measurement as MeasurementKind};
 use crate::schema::robot::KinematicsDoc;
 use crate::schema::session::{ImagePointDoc, PoseSet, SessionBody};
@@ -42,6 +43,23 @@ pub struct Input {
     pub approved: Option<ApprovedSet>,
     /// A quick re-check (issue 17) instead of a calibration.
     pub check: bool,
+    /// The further sessions of a calibration over several board placements
+    /// (issue 18); empty for a one-session job. This input's own session
+    /// is the first placement.
+    pub regions: Vec<RegionInput>,
+    /// Per session of a multi-session job: the newest local (one-session)
+    /// set of that session when the job was loaded, for the report's side
+    /// by side of local and global models.
+    pub local_models: Vec<(String, LocalModel)>,
+}
+
+/// A further session of a multi-session job: its own board placement,
+/// the same robot, camera and options.
+#[derive(Debug, Clone)]
+pub struct RegionInput {
+    pub session_id: String,
+    pub session: SessionBody,
+    pub poses: Vec<PoseInput>,
 }
 
 /// An approved parameter set, typed, with its name.
@@ -82,6 +100,21 @@ impl ApprovedSet {
 }
 
 impl Input {
+    /// Every session of the job as a one-session input, this one first.
+    pub fn sessions(&self) -> Vec<Input> {
+        let first = Input {
+            regions: Vec::new(),
+            ..self.clone()
+        };
+        let further = self.regions.iter().map(|r| Input {
+            session_id: r.session_id.clone(),
+            session: r.session.clone(),
+            poses: r.poses.clone(),
+            ..first.clone()
+        });
+        std::iter::once(first.clone()).chain(further).collect()
+    }
+
     /// A hand–eye session: its (first) pose carries the controller's
     /// flange pose instead of joints, so the job identifies no kinematics.
     pub fn is_flange_session(&self) -> bool {

@@ -25,6 +25,8 @@ mod identify_stage;
 mod input;
 mod measure;
 mod output;
+mod regions_job;
+mod regions_results;
 pub mod results;
 mod scoped_job;
 mod screen_stage;
@@ -35,7 +37,9 @@ pub mod stage_results;
 mod uncertainty_map;
 mod validate;
 
-pub use input::{ApprovedSet, FixedCamera, ImageSource, Input, PoseImage, PoseInput, ReadImage};
+pub use input::{
+    ApprovedSet, FixedCamera, ImageSource, Input, PoseImage, PoseInput, ReadImage, RegionInput,
+};
 pub use output::{Output, PipelineError, Summary};
 use stage::stage_span;
 pub use stage::Stage;
@@ -87,13 +91,14 @@ fn run_stages(
         let (lo, hi) = stage_span(stage);
         progress(stage, message, lo + (hi - lo) * fraction.clamp(0.0, 1.0));
     };
-    let check_cancel = || {
-        if cancel.load(Ordering::Relaxed) {
-            Err(PipelineError::Cancelled)
-        } else {
-            Ok(())
-        }
-    };
+    if !input.regions.is_empty() {
+        let fitted = regions_job::run(input, &within, detected, cancel, cause)?;
+        check_cancelled(cancel)?;
+        within(Stage::Report, "building the report", 0.0);
+        let output = regions_results::output(input, fitted)?;
+        within(Stage::Report, "done", 1.0);
+        return Ok(output);
+    }
     let checked = validate(input, &within, cancel)?;
     within(Stage::Validate, "inputs valid", 1.0);
     if input.validate_only {
@@ -117,57 +122,13 @@ fn run_stages(
             return stage_job::run(input, &measured, &target, camera_doc, notes, &within);
         }
         Instrument::Camera => {
-            let (target, camera_doc) = board_and_camera(input)?;
-            let mut measured = detect(input, &target, &within, detected, cancel, cause)?;
-            notes.extend(cause.as_ref().map(|c| format!("{c}.")));
-            within(
-                Stage::CalibrateCamera,
-                "Tsai start and joint refinement",
-                0.0,
-            );
-            let mut step = camera_stage::calibrate_camera(
-                &input.poses,
-                &measured,
-                &target,
-                camera_doc,
-                input.options.refine_intrinsics,
-                input.fixed_camera.as_ref(),
-            )?;
-            let turned_note = board_turn::resolve(
-                &input.robot,
-                &input.poses,
-                &target,
-                &mut step,
-                &mut measured,
-            )?;
-            if !step.left_out.is_empty() {
-                let names: Vec<String> = step
-                    .left_out
-                    .iter()
-                    .map(|(i, why)| format!("{} ({why})", input.poses[*i].label))
-                    .collect();
-                notes.push(format!(
-                    "{} image(s) left out of the camera calibration: {}.",
-                    names.len(),
-                    names.join(", ")
-                ));
-            }
-            notes.extend(turned_note);
-            if let Some(fixed) = &input.fixed_camera {
-                notes.push(format!(
-                    "Camera intrinsics held fixed at those of calibration {} (camera_calibration_id); only the camera poses were fitted.",
-                    fixed.calibration_id
-                ));
-            } else if !input.options.refine_intrinsics {
-                notes.push(
-                    "Camera intrinsics from the paper's Tsai sequence (refine_intrinsics: false), not refined.".to_string(),
-                );
-            }
+            let (measured, step) =
+                camera_session(input, &within, detected, cancel, cause, &mut notes)?;
             (Some(measured), Some(step))
         }
         Instrument::Tracker => (None, None),
     };
-    check_cancel()?;
+    check_cancelled(cancel)?;
     within(Stage::MeasurePoses, "camera poses measured", 1.0);
     if let (true, Some(m), Some(step)) = (input.is_flange_session(), &measured, &camera) {
         return flange_job::run(input, m, step, notes, &within);
@@ -197,10 +158,7 @@ fn run_stages(
             Instrument::Camera | Instrument::Stage => crate::schema::job::Measurement::Pose,
             Instrument::Tracker => crate::schema::job::Measurement::Position,
         });
-    let guess = match &input.session.flange_to_camera_guess {
-        Some(p) => pose_of(p),
-        None => robocal_calib::geometry::Pose::identity(),
-    };
+    let guess = flange_guess(input);
     // Paper mode keeps the paper's pipeline: its Tsai intrinsics are not
     // the joint refinement's camera model, so refining on the image points
     // with them held fits the model error instead (tens of px). A reused
@@ -240,14 +198,7 @@ fn run_stages(
             candidates.as_ref(),
         )
     };
-    let mut identified = identify(&usable, &outliers)?;
-    let (back, outliers) = screen_stage::confirm(&identified, &outliers);
-    if !back.is_empty() {
-        let mut usable = usable;
-        usable.extend(back);
-        usable.sort_unstable();
-        identified = identify(&usable, &outliers)?;
-    }
+    let (identified, outliers) = screen_stage::identify_confirmed(usable, outliers, identify)?;
     notes.extend(screen_stage::note(&input.poses, &outliers));
     if let Some(sigma) = identified.joint_noise_rad {
         notes.push(format!(
@@ -255,7 +206,7 @@ fn run_stages(
             sigma.to_degrees()
         ));
     }
-    check_cancel()?;
+    check_cancelled(cancel)?;
     within(Stage::Report, "building the report", 0.0);
     if let Some(m) = &measured {
         if !m.failures.is_empty() {
@@ -317,6 +268,65 @@ fn run_stages(
     })
 }
 
+/// A camera session's detect and camera stages: every image's dots, the
+/// camera calibration and the half-turn resolution, with their notes.
+fn camera_session(
+    input: &Input,
+    within: &dyn Fn(Stage, &str, f64),
+    detected: &dyn Fn(Vec<PoseDetection>),
+    cancel: &AtomicBool,
+    cause: &mut Option<String>,
+    notes: &mut Vec<String>,
+) -> Result<(measure::Measured, camera_stage::CameraStep), PipelineError> {
+    let (target, camera_doc) = board_and_camera(input)?;
+    let mut measured = detect(input, &target, within, detected, cancel, cause)?;
+    notes.extend(cause.as_ref().map(|c| format!("{c}.")));
+    within(
+        Stage::CalibrateCamera,
+        "Tsai start and joint refinement",
+        0.0,
+    );
+    let mut step = camera_stage::calibrate_camera(
+        &input.poses,
+        &measured,
+        &target,
+        camera_doc,
+        input.options.refine_intrinsics,
+        input.fixed_camera.as_ref(),
+    )?;
+    let turned_note = board_turn::resolve(
+        &input.robot,
+        &input.poses,
+        &target,
+        &mut step,
+        &mut measured,
+    )?;
+    if !step.left_out.is_empty() {
+        let names: Vec<String> = step
+            .left_out
+            .iter()
+            .map(|(i, why)| format!("{} ({why})", input.poses[*i].label))
+            .collect();
+        notes.push(format!(
+            "{} image(s) left out of the camera calibration: {}.",
+            names.len(),
+            names.join(", ")
+        ));
+    }
+    notes.extend(turned_note);
+    if let Some(fixed) = &input.fixed_camera {
+        notes.push(format!(
+            "Camera intrinsics held fixed at those of calibration {} (camera_calibration_id); only the camera poses were fitted.",
+            fixed.calibration_id
+        ));
+    } else if !input.options.refine_intrinsics {
+        notes.push(
+            "Camera intrinsics from the paper's Tsai sequence (refine_intrinsics: false), not refined.".to_string(),
+        );
+    }
+    Ok((measured, step))
+}
+
 /// The detect stage of a camera or stage session: every image's dots,
 /// handed to `detected` at once; `cause` gets the session-level cause of
 /// the failures.
@@ -356,6 +366,23 @@ fn board_and_camera(
             "session",
             "a camera or stage session needs target and camera",
         )])),
+    }
+}
+
+/// The session's `flange_to_camera_guess`, else identity.
+fn flange_guess(input: &Input) -> robocal_calib::geometry::Pose {
+    match &input.session.flange_to_camera_guess {
+        Some(p) => pose_of(p),
+        None => robocal_calib::geometry::Pose::identity(),
+    }
+}
+
+/// `Cancelled` once `cancel` is set.
+fn check_cancelled(cancel: &AtomicBool) -> Result<(), PipelineError> {
+    if cancel.load(Ordering::Relaxed) {
+        Err(PipelineError::Cancelled)
+    } else {
+        Ok(())
     }
 }
 

@@ -106,6 +106,7 @@ pub fn parameter_set(ctx: &Context, id: &Identified) -> ParameterSet {
         )),
         joint_noise_deg: id.joint_noise_rad.map(f64::to_degrees),
         terms: id.terms.clone(),
+        session_target_to_base: Vec::new(),
     }
 }
 
@@ -242,6 +243,7 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSet) -> Report {
         uncertainty_map: super::uncertainty_map::workspace_map(id, ctx.poses),
         gate: None,
         measurement_accuracy: None,
+        regions: Vec::new(),
         terms: id
             .selection
             .as_ref()

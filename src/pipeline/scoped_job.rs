@@ -102,6 +102,9 @@ pub fn run(
         // The camera is the approved set's, held fixed.
         camera_mode: camera.map(|_| "fixed".to_string()),
         camera_calibration_id: camera.map(|_| approved.id.clone()),
+        // One session's board: the approved set's other placements are
+        // not this set's.
+        session_target_to_base: Vec::new(),
         ..approved.set.clone()
     };
     let frame = match scope {
@@ -187,6 +190,7 @@ pub fn run(
         terms: None,
         gate: Some(gate.report),
         measurement_accuracy: None,
+        regions: Vec::new(),
     };
     let summary = Summary {
         calibration_poses: cal_data.len(),

@@ -21,7 +21,7 @@ use robocal_calib::kinematics::{CalibratedModel, RobotModel};
 
 use super::camera_stage::CameraStep;
 use super::identify_stage::Identified;
-use super::PoseInput;
+use super::{PipelineError, PoseInput};
 
 /// Fewest usable poses for a screening to mean anything: with fewer, a
 /// liar cannot be told from the truth by majority.
@@ -98,6 +98,25 @@ pub fn note(poses: &[PoseInput], outliers: &[Outlier]) -> Option<String> {
             names.join(", ")
         )
     })
+}
+
+/// Identifies on `usable` with `candidates` left out, then gives back the
+/// candidates the identified model explains ([`confirm`]) and identifies
+/// again with them; the identification and the confirmed outliers.
+pub fn identify_confirmed(
+    usable: Vec<usize>,
+    candidates: Vec<Outlier>,
+    identify: impl Fn(&[usize], &[Outlier]) -> Result<Identified, PipelineError>,
+) -> Result<(Identified, Vec<Outlier>), PipelineError> {
+    let mut identified = identify(&usable, &candidates)?;
+    let (back, outliers) = confirm(&identified, &candidates);
+    if !back.is_empty() {
+        let mut usable = usable;
+        usable.extend(back);
+        usable.sort_unstable();
+        identified = identify(&usable, &outliers)?;
+    }
+    Ok((identified, outliers))
 }
 
 /// The candidates split, under the identified model, into poses to give

@@ -92,6 +92,7 @@ pub fn render_html(report: &Report) -> String {
     header(&mut page, report);
     accuracy(&mut page, report);
     super::stage_section::measurement_accuracy(&mut page, report);
+    super::regions_section::regions(&mut page, report);
     camera(&mut page, report);
     parameters(&mut page, report);
     identifiability(&mut page, report);

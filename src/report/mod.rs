@@ -16,6 +16,8 @@ pub mod measurement_accuracy;
 pub mod model;
 mod plot;
 mod pose_chart;
+pub mod regions;
+mod regions_section;
 pub mod sample;
 pub mod schema;
 mod stage_chart;

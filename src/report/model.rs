@@ -229,6 +229,10 @@ pub struct Report {
     /// The selection of non-geometric terms (absent when it did not run).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub terms: Option<super::terms::TermsReport>,
+    /// A multi-session set (issue 18): each session's (region's)
+    /// validation accuracy, before and after, on its own validation poses.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub regions: Vec<super::regions::RegionReport>,
 }
 
 /// Predicted 1σ of the tool (camera or tracker tool point) position over a

@@ -125,6 +125,7 @@ pub fn sample_report_sized(calibration: usize, validation: usize) -> Report {
         terms: None,
         gate: None,
         measurement_accuracy: None,
+        regions: Vec::new(),
     }
 }
 

@@ -94,6 +94,12 @@ pub struct CalibrationOptions {
     /// sessions (see [`CalibrationOptions::non_geometric_for`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub non_geometric: Option<bool>,
+    /// `POST /v1/robots/{serial}/calibrations` only (issue 18): the
+    /// sessions (board placements, regions) of one robot fitted together:
+    /// one kinematic model and hand–eye, one `target_to_base` per session,
+    /// the camera intrinsics shared. Empty for a one-session job.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub sessions: Vec<String>,
 }
 
 fn yes() -> bool {
@@ -112,6 +118,7 @@ impl Default for CalibrationOptions {
             validation: val_set(),
             scope: CalibrationScope::Full,
             non_geometric: None,
+            sessions: Vec::new(),
         }
     }
 }
@@ -132,6 +139,11 @@ impl CalibrationOptions {
 }
 
 impl CalibrationOptions {
+    /// A job over several sessions (issue 18).
+    pub fn is_multi_session(&self) -> bool {
+        self.sessions.len() > 1
+    }
+
     pub fn check(&self) -> Result<(), Vec<FieldError>> {
         let mut c = Checker::default();
         if let Validation::Holdout(h) = self.validation {

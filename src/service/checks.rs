@@ -35,6 +35,15 @@ pub async fn start_calibration(
     options: &CalibrationOptions,
 ) -> ServiceResult<JobRecord> {
     options.check()?;
+    if !options.sessions.is_empty() {
+        return Err(ServiceError::Invalid(vec![crate::schema::FieldError::new(
+            "sessions",
+            format!(
+                "a session's calibration is its own: name several sessions in POST /v1/robots/{}/calibrations",
+                session.serial
+            ),
+        )]));
+    }
     if session.spec.instrument == crate::schema::session::Instrument::Stage {
         super::stage_layout::check(store, session).await?;
     }

@@ -25,6 +25,7 @@ pub mod intake;
 pub mod release;
 
 pub mod job_events;
+pub mod multi_session;
 pub mod report_camera;
 pub mod results;
 pub mod stage_layout;

@@ -74,10 +74,34 @@ pub fn refuse_hand_eye(set: &ParameterSetRecord) -> ServiceResult<()> {
 
 /// The calibrated model of a parameter set with its kept terms (409 when
 /// it holds none).
-async fn model(store: &DynStore, serial: &str, version: &str) -> ServiceResult<TermModel> {
+async fn model(
+    store: &DynStore,
+    serial: &str,
+    version: &str,
+    session_id: Option<&str>,
+) -> ServiceResult<TermModel> {
     let record = find_parameter_set(store, serial, version).await?;
     refuse_hand_eye(&record)?;
-    typed(&record)?.term_model().map_err(|_| no_model())
+    in_session(typed(&record)?, session_id)?
+        .term_model()
+        .map_err(|_| no_model())
+}
+
+/// The set in session `session_id`'s board frame (issue 18); 422 naming
+/// `session_id` when the set knows no such session.
+fn in_session(set: ParameterSet, session_id: Option<&str>) -> ServiceResult<ParameterSet> {
+    let Some(id) = session_id else {
+        return Ok(set);
+    };
+    set.in_session(id).ok_or_else(|| {
+        ServiceError::Invalid(vec![crate::schema::FieldError::new(
+            "session_id",
+            format!(
+                "this parameter set has no session {id}: it knows {}",
+                set.session_ids().join(", ")
+            ),
+        )])
+    })
 }
 
 /// A parameter set's calibrated model and its stored covariance (`None`
@@ -86,10 +110,11 @@ async fn model_and_uncertainty(
     store: &DynStore,
     serial: &str,
     version: &str,
+    session_id: Option<&str>,
 ) -> ServiceResult<(TermModel, Option<Uncertainty>)> {
     let record = find_parameter_set(store, serial, version).await?;
     refuse_hand_eye(&record)?;
-    let doc = typed(&record)?;
+    let doc = in_session(typed(&record)?, session_id)?;
     let model = doc.term_model().map_err(|_| no_model())?;
     let uncertainty = Uncertainty::of(&doc, &model.model)
         .transpose()
@@ -105,7 +130,8 @@ pub async fn forward(
     version: &str,
     request: &ForwardRequest,
 ) -> ServiceResult<ForwardResponse> {
-    let (model, uncertainty) = model_and_uncertainty(store, serial, version).await?;
+    let (model, uncertainty) =
+        model_and_uncertainty(store, serial, version, request.session_id.as_deref()).await?;
     Ok(uncertainty::forward(&model, uncertainty.as_ref(), request)?)
 }
 
@@ -117,7 +143,7 @@ pub async fn uncertainty_map(
     version: &str,
     request: UncertaintyMapRequest,
 ) -> ServiceResult<UncertaintyMapResponse> {
-    let (model, uncertainty) = model_and_uncertainty(store, serial, version).await?;
+    let (model, uncertainty) = model_and_uncertainty(store, serial, version, None).await?;
     let uncertainty = uncertainty.ok_or_else(|| {
         ServiceError::Conflict(
             "this parameter set was stored without its covariance: calibrate again to predict uncertainties"
@@ -140,7 +166,7 @@ pub async fn compensate(
     version: &str,
     request: CompensateRequest,
 ) -> ServiceResult<CompensateResponse> {
-    let model = model(store, serial, version).await?;
+    let model = model(store, serial, version, request.session_id.as_deref()).await?;
     let answer = tokio::task::spawn_blocking(move || compensate::compensate(&model, &request))
         .await
         .map_err(ServiceError::internal)?;
@@ -156,7 +182,7 @@ pub async fn compensate_stream(
     version: &str,
     request: CompensateRequest,
 ) -> ServiceResult<impl Stream<Item = Vec<u8>>> {
-    let model = model(store, serial, version).await?;
+    let model = model(store, serial, version, request.session_id.as_deref()).await?;
     let plan = Compensation::check(&model, &request)?;
     Ok(target_stream::ndjson(plan.len(), move |i| plan.solve(i)))
 }
@@ -180,7 +206,7 @@ async fn filtering(
     version: &str,
     request: &FilterRequest,
 ) -> ServiceResult<Filtering> {
-    let model = model(store, serial, version).await?;
+    let model = model(store, serial, version, request.session_id.as_deref()).await?;
     let nominal = nominal_chain(store, serial).await?;
     Ok(Filtering::check(&model, nominal, request)?)
 }

@@ -137,6 +137,7 @@ fn forward_fills_sigma_only_with_a_covariance() {
     let req = ForwardRequest {
         joints_deg: vec![vec![0.0, 10.0, 20.0, 0.0, 30.0, 0.0]],
         tool: None,
+        session_id: None,
     };
     let without = forward(&m, None, &req).unwrap();
     assert!(without.poses[0].position_std_mm.is_none());
@@ -153,6 +154,7 @@ fn a_kept_terms_sigma_adds_to_the_forward_sigma() {
     let req = ForwardRequest {
         joints_deg: vec![vec![30.0, 10.0, 20.0, 0.0, 30.0, 0.0]],
         tool: None,
+        session_id: None,
     };
     let u = uncertainty();
     let plain = forward(&m, Some(&u), &req).unwrap().poses[0].clone();

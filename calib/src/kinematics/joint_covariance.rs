@@ -16,6 +16,7 @@ use super::identify_error::IdentifyError;
 use super::image_pose::ImagePose;
 use super::jacobian::tool_pose_jacobian;
 use super::joint_refine::JointRefinement;
+use super::params::{CalibratedModel, ParamKind};
 use super::projection::{project_with_jacobians, INTRINSIC_NAMES};
 use super::uncertainty::embed_covariance;
 use crate::covariance::covariance_from_normal;
@@ -31,9 +32,32 @@ pub fn joint_refine_covariance(
     free: &[usize],
     hold_intrinsics: bool,
 ) -> Result<DMatrix<f64>, IdentifyError> {
+    joint_refine_covariance_sessions(refined, poses, free, hold_intrinsics, &[])
+}
+
+/// [`joint_refine_covariance`] of a refinement over several board
+/// placements ([`super::regions::joint_refine_regions`]): pose `k` sees the
+/// board `refined.session_target_to_base[session_of[k]]` (empty
+/// `session_of`: one session). The further sessions' free base values are
+/// unknowns of their own, marginalised like the intrinsics, so the
+/// kinematic block is neither conditioned on them nor on session 0's.
+pub fn joint_refine_covariance_sessions(
+    refined: &JointRefinement,
+    poses: &[ImagePose],
+    free: &[usize],
+    hold_intrinsics: bool,
+    session_of: &[usize],
+) -> Result<DMatrix<f64>, IdentifyError> {
     let layout = &refined.layout;
     let ni = if hold_intrinsics { 0 } else { INTRINSICS };
-    let nf = free.len();
+    let base_slots: Vec<usize> = (0..free.len())
+        .filter(|&c| matches!(layout.params[free[c]].kind, ParamKind::Base(_)))
+        .collect();
+    let sessions = refined.session_target_to_base.len().max(1);
+    let nf_layout = free.len();
+    // The kinematic unknowns: the layout's free values, then each further
+    // session's free base values (as in the refinement's own head).
+    let nf = nf_layout + base_slots.len() * (sessions - 1);
     let head = nf + ni;
     let sigma_q = refined.joint_sigma_rad;
     let nj = if sigma_q > 0.0 { layout.joints() } else { 0 };
@@ -52,7 +76,16 @@ pub fn joint_refine_covariance(
             .enumerate()
             .map(|(j, q)| q + correction.and_then(|c| c.get(j)).copied().unwrap_or(0.0))
             .collect();
-        let (t2c, jt) = tool_pose_jacobian(layout, &refined.model, &q)
+        let session = session_of.get(k).copied().unwrap_or(0);
+        let model = CalibratedModel {
+            world_to_base: refined
+                .session_target_to_base
+                .get(session)
+                .copied()
+                .unwrap_or(refined.model.world_to_base),
+            ..refined.model.clone()
+        };
+        let (t2c, jt) = tool_pose_jacobian(layout, &model, &q)
             .map_err(|source| IdentifyError::Pose { pose: k, source })?;
         let (mut h_pp, mut h_pc, mut h_cc) = (
             Matrix6::<f64>::zeros(),
@@ -70,7 +103,19 @@ pub fn joint_refine_covariance(
             cost += ((pred.coords - uv.coords) / s).norm_squared();
             rows += 2;
         }
-        let t_free = DMatrix::from_fn(6, nf, |r, c| jt[(r, free[c])]);
+        let mut t_free = DMatrix::zeros(6, nf);
+        for (c, &i) in free.iter().enumerate() {
+            t_free.set_column(c, &jt.column(i));
+        }
+        if session > 0 {
+            // This pose's board is its session's: its base columns move there.
+            let at = nf_layout + (session - 1) * base_slots.len();
+            for (j, &c) in base_slots.iter().enumerate() {
+                let column = t_free.column(c).into_owned();
+                t_free.set_column(at + j, &column);
+                t_free.column_mut(c).fill(0.0);
+            }
+        }
         let h_pp = DMatrix::from_column_slice(6, 6, h_pp.as_slice());
         let h_pc = DMatrix::from_column_slice(6, INTRINSICS, h_pc.as_slice())
             .columns(0, ni)
@@ -111,7 +156,7 @@ pub fn joint_refine_covariance(
     }
     let dof = rows.saturating_sub(head).max(1) as f64;
     let head_cov = covariance_from_normal(&reduced, cost / dof);
-    let kinematic = head_cov.view((0, 0), (nf, nf)).into_owned();
+    let kinematic = head_cov.view((0, 0), (nf_layout, nf_layout)).into_owned();
     Ok(embed_covariance(layout.len(), free, &kinematic))
 }
 

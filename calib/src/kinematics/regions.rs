@@ -21,6 +21,17 @@ pub struct RegionPoses {
     pub poses: Vec<ImagePose>,
 }
 
+/// The session (region index) of every pose of `regions`, in the order
+/// the fit takes them: what [`super::joint_covariance::joint_refine_covariance_sessions`]
+/// needs beside the poses.
+pub fn session_of(regions: &[RegionPoses]) -> Vec<usize> {
+    regions
+        .iter()
+        .enumerate()
+        .flat_map(|(s, r)| std::iter::repeat_n(s, r.poses.len()))
+        .collect()
+}
+
 /// Refine kinematics, hand–eye and intrinsics on the image points of every
 /// region, one `target_to_base` per region. `start` holds the starting
 /// kinematics and hand–eye (its `world_to_base` is ignored); `free` are the
@@ -47,11 +58,7 @@ pub fn joint_refine_regions(
         .iter()
         .map(|r| r.target_to_base_start)
         .collect();
-    let session_of: Vec<usize> = regions
-        .iter()
-        .enumerate()
-        .flat_map(|(s, r)| std::iter::repeat_n(s, r.poses.len()))
-        .collect();
+    let session_of = session_of(regions);
     let poses: Vec<ImagePose> = regions.iter().flat_map(|r| r.poses.clone()).collect();
     let sessions = Sessions {
         extra_bases: &extra_bases,

@@ -305,3 +305,37 @@ const BOARD_TO_BOARD_TOLERANCE_MM: f64 = 0.2;
 const BOARD_TO_BOARD_TOLERANCE_RAD: f64 = 2e-4;
 /// Recovered focal length (px of 3480).
 const FX_TOLERANCE_PX: f64 = 1.0;
+
+/// The covariance of the multi-region fit, recomputed with every pose on
+/// its own session's board, reproduces the fit's own standard deviations
+/// (the further sessions' bases marginalised, as in the fit).
+#[test]
+fn multi_region_covariance_reproduces_the_fit_std_devs() {
+    use crate::kinematics::joint_covariance::joint_refine_covariance_sessions;
+    let regions = regions(18, 0.0);
+    let free = shared_free(&regions);
+    let global = global_fit(&regions, &free);
+    let images: Vec<ImagePose> = regions.iter().flat_map(|r| r.images.clone()).collect();
+    let session_of: Vec<usize> = session_of(
+        &regions
+            .iter()
+            .map(|r| RegionPoses {
+                target_to_base_start: r.start.world_to_base,
+                poses: r.images.clone(),
+            })
+            .collect::<Vec<_>>(),
+    );
+    let cov =
+        joint_refine_covariance_sessions(&global, &images, &free, false, &session_of).unwrap();
+    for &i in &free {
+        let (sd, want) = (cov[(i, i)].max(0.0).sqrt(), global.std_devs[i]);
+        assert!(
+            (sd - want).abs() <= COVARIANCE_RELATIVE * want,
+            "{}: {sd} vs {want}",
+            global.layout.params[i].name
+        );
+    }
+}
+
+/// Relative agreement of the recomputed σ with the fit's.
+const COVARIANCE_RELATIVE: f64 = 0.02;
