@@ -46,6 +46,7 @@ pub(crate) mod store_ops;
 pub(crate) mod support;
 pub(crate) mod targets;
 pub(crate) mod terms;
+pub(crate) mod terms_gate;
 pub(crate) mod test_db;
 pub(crate) mod timeouts;
 pub(crate) mod tls;
