@@ -34,6 +34,7 @@ pub(crate) mod outliers;
 pub(crate) mod poses;
 pub(crate) mod processes;
 pub(crate) mod raw_http;
+pub(crate) mod real_tracker;
 pub(crate) mod recheck_verdicts;
 pub(crate) mod regions;
 pub(crate) mod release_gate;
