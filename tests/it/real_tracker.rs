@@ -17,7 +17,7 @@ use robocal_calib::kinematics::presets;
 use robocal_calib::kinematics::RobotModel;
 use serde_json::{json, Value};
 
-use crate::support::{is_finished, spawn_app_with, TestApp};
+use crate::support::{spawn_app_with, TestApp};
 
 const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/calib/tests/data/kinematic");
 /// The UR5 data's nominal tool (its targets are the nominal flange plus
@@ -115,57 +115,25 @@ async fn session(
         "instrument": "tracker",
         "flange_to_camera_guess": {"translation_mm": tool_mm, "rotation_deg": [0.0, 0.0, 0.0]},
     });
-    let r = app
-        .post_json(&format!("/v1/robots/{serial}/sessions"), &body)
-        .await;
-    assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
-    let id = r.json::<Value>().await.unwrap()["id"]
-        .as_str()
-        .unwrap()
-        .to_string();
     let sets = cal
         .iter()
         .map(|p| (p, "cal"))
         .chain(val.iter().map(|p| (p, "val")));
-    for (p, set) in sets {
-        let body =
-            json!({"joints_deg": p.joints_deg, "measured_position_mm": p.position_mm, "set": set});
-        let r = app
-            .post_json(&format!("/v1/sessions/{id}/poses"), &body)
-            .await;
-        assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
-    }
-    id
+    let poses = sets.map(|(p, set)| (p.joints_deg.to_vec(), p.position_mm, set));
+    app.tracker_session(serial, &body, poses).await
 }
 
 /// Runs a calibration job of `session` with `options`; its result.
 async fn calibrate(app: &TestApp, session: &str, options: Value) -> Value {
-    let r = app
-        .post_json(&format!("/v1/sessions/{session}/calibrations"), &options)
-        .await;
-    assert_eq!(r.status(), 202, "{}", r.text().await.unwrap());
-    let job = r.json::<Value>().await.unwrap()["job_id"]
-        .as_str()
-        .unwrap()
-        .to_string();
-    let done = app.wait_job(&job, WAIT, is_finished).await;
-    assert_eq!(done["state"], "succeeded", "{done}");
-    done["result"].clone()
-}
-
-async fn get_json(app: &TestApp, path: &str) -> Value {
-    let r = app.get(path).await;
-    assert_eq!(r.status(), 200, "{path}");
-    r.json().await.unwrap()
+    let path = format!("/v1/sessions/{session}/calibrations");
+    app.finished_job(&path, &options, WAIT).await["result"].clone()
 }
 
 /// The kept terms of set `version` (name, value, σ, unit), one a line.
 async fn kept_terms(app: &TestApp, serial: &str, version: u32) -> Vec<String> {
-    let set = get_json(
-        app,
-        &format!("/v1/robots/{serial}/parameter-sets/{version}"),
-    )
-    .await;
+    let set = app
+        .get_ok(&format!("/v1/robots/{serial}/parameter-sets/{version}"))
+        .await;
     set["terms"]["terms"]
         .as_array()
         .map(|terms| {
@@ -218,7 +186,9 @@ async fn ur5_tracker_campaign_calibrates_with_terms_allowed() {
     let (with, without, _) = ur5_campaign(&app, GRID_STRIDE).await;
     assert!(without < UR5_SUBSET_MAX_MM, "{without}");
     assert!(with < without + TERMS_SLACK_MM, "{with} vs {without}");
-    let report = get_json(&app, "/v1/robots/UR5-JACOBI/parameter-sets/1/report").await;
+    let report = app
+        .get_ok("/v1/robots/UR5-JACOBI/parameter-sets/1/report")
+        .await;
     let terms = &report["terms"];
     assert!(
         terms["lines"].as_array().is_some_and(|l| !l.is_empty()),
@@ -245,7 +215,9 @@ async fn ur10_campaign(app: &TestApp, serial: &str, options: Value) -> Vec<(Stri
     options["validation"] = json!({"holdout_fraction": UR10_HOLDOUT});
     let fit = calibrate(app, &s, options).await;
     let mut out = vec![("B (holdout)".to_string(), after_mm(&fit))];
-    let report = get_json(app, &format!("/v1/robots/{serial}/parameter-sets/1/report")).await;
+    let report = app
+        .get_ok(&format!("/v1/robots/{serial}/parameter-sets/1/report"))
+        .await;
     if report["gate"]["status"] != "approved" {
         let r = app
             .post_json(

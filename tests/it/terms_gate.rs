@@ -22,7 +22,7 @@ use robocal_calib::sim::tracker_campaign::{simulate_tracker, TrackerCampaign, Tr
 use serde_json::{json, Value};
 
 use crate::ndjson::{lines, post_ndjson};
-use crate::support::{is_finished, spawn_app_with, TestApp};
+use crate::support::{spawn_app_with, TestApp};
 
 const SERIAL: &str = "UR10-TG";
 const NOISE_MM: f64 = 0.01;
@@ -69,49 +69,18 @@ async fn session(
     cal: usize,
     moved: &Isometry3<f64>,
 ) -> String {
-    let r = app
-        .post_json(
-            &format!("/v1/robots/{SERIAL}/sessions"),
-            &json!({"instrument": "tracker", "payload_kg": 0.0}),
-        )
-        .await;
-    assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
-    let id = r.json::<Value>().await.unwrap()["id"]
-        .as_str()
-        .unwrap()
-        .to_string();
-    for (i, m) in poses.iter().enumerate() {
+    let poses = poses.iter().enumerate().map(|(i, m)| {
         let p = moved * Point3::from(m.observed.position_mm());
-        let body = json!({
-            "joints_deg": deg(&m.joints_rad),
-            "measured_position_mm": [p.x, p.y, p.z],
-            "set": if i < cal { "cal" } else { "val" },
-        });
-        let r = app
-            .post_json(&format!("/v1/sessions/{id}/poses"), &body)
-            .await;
-        assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
-    }
-    id
+        let set = if i < cal { "cal" } else { "val" };
+        (deg(&m.joints_rad), [p.x, p.y, p.z], set)
+    });
+    let body = json!({"instrument": "tracker", "payload_kg": 0.0});
+    app.tracker_session(SERIAL, &body, poses).await
 }
 
 /// The finished (succeeded) job `POST path` queued.
 async fn run(app: &TestApp, path: &str, body: Value) -> Value {
-    let r = app.post_json(path, &body).await;
-    assert_eq!(r.status(), 202, "{}", r.text().await.unwrap());
-    let job = r.json::<Value>().await.unwrap()["job_id"]
-        .as_str()
-        .unwrap()
-        .to_string();
-    let done = app.wait_job(&job, WAIT, is_finished).await;
-    assert_eq!(done["state"], "succeeded", "{done}");
-    done
-}
-
-async fn get_json(app: &TestApp, path: &str) -> Value {
-    let r = app.get(path).await;
-    assert_eq!(r.status(), 200, "{path}");
-    r.json().await.unwrap()
+    app.finished_job(path, &body, WAIT).await
 }
 
 /// Robot `SERIAL` with set 1 calibrated (terms kept) on session A.
@@ -132,9 +101,13 @@ async fn approved_terms_set(app: &TestApp, c: &TrackerCampaign) {
     )
     .await;
     run(app, &format!("/v1/sessions/{a}/calibrations"), json!({})).await;
-    let set = get_json(app, &format!("/v1/robots/{SERIAL}/parameter-sets/1")).await;
+    let set = app
+        .get_ok(&format!("/v1/robots/{SERIAL}/parameter-sets/1"))
+        .await;
     assert!(set["terms"]["terms"].is_array(), "no terms kept: {set}");
-    let report = get_json(app, &format!("/v1/robots/{SERIAL}/parameter-sets/1/report")).await;
+    let report = app
+        .get_ok(&format!("/v1/robots/{SERIAL}/parameter-sets/1/report"))
+        .await;
     assert_eq!(report["gate"]["status"], "approved", "{}", report["gate"]);
 }
 
@@ -160,11 +133,9 @@ async fn the_gate_the_recheck_and_a_base_refit_judge_a_set_with_its_terms() {
         json!({"non_geometric": false}),
     )
     .await;
-    let gate = &get_json(
-        &app,
-        &format!("/v1/robots/{SERIAL}/parameter-sets/2/report"),
-    )
-    .await["gate"];
+    let gate = &app
+        .get_ok(&format!("/v1/robots/{SERIAL}/parameter-sets/2/report"))
+        .await["gate"];
     eprintln!("gate of the geometric-only set: {gate}");
     assert_eq!(gate["compared_with"], format!("{SERIAL}/1"), "{gate}");
     let theirs = gate["compared_mean_mm"].as_f64().unwrap();
@@ -209,8 +180,12 @@ async fn the_gate_the_recheck_and_a_base_refit_judge_a_set_with_its_terms() {
         summary["after_mean_mm"].as_f64().unwrap() < TERMS_FLOOR_MM,
         "{summary}"
     );
-    let set = get_json(&app, &format!("/v1/robots/{SERIAL}/parameter-sets/3")).await;
-    let first = get_json(&app, &format!("/v1/robots/{SERIAL}/parameter-sets/1")).await;
+    let set = app
+        .get_ok(&format!("/v1/robots/{SERIAL}/parameter-sets/3"))
+        .await;
+    let first = app
+        .get_ok(&format!("/v1/robots/{SERIAL}/parameter-sets/1"))
+        .await;
     assert_eq!(set["terms"], first["terms"]);
 }
 
@@ -240,7 +215,7 @@ async fn filter_streams_through_the_terms() {
         .map(|p| crate::compensate::target_of(&p["camera_in_target"]))
         .collect();
     // The set's own tool: the targets are where it puts it.
-    let tool = crate::compensate::target_of(&get_json(&app, &set).await["flange_to_tool"]);
+    let tool = crate::compensate::target_of(&app.get_ok(&set).await["flange_to_tool"]);
     let body = json!({"targets": targets, "tool": tool, "seed_joints_deg": joints[0]});
     let whole: Value = app
         .post_json(&format!("{set}/filter"), &body)
