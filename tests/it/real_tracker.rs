@@ -14,6 +14,7 @@
 use std::time::Duration;
 
 use robocal_calib::kinematics::presets;
+use robocal_calib::kinematics::tracker_csv::{jacobi2025_rows, landgraf2021_rows, TrackerRow};
 use robocal_calib::kinematics::RobotModel;
 use serde_json::{json, Value};
 
@@ -38,58 +39,35 @@ const TERMS_SLACK_MM: f64 = 0.01;
 const UR10_HOLDOUT: f64 = 0.1;
 const WAIT: Duration = Duration::from_secs(3600);
 
-/// One measured pose: joints (deg) and the tracker's position (mm).
-#[derive(Clone, Copy)]
+/// One measured pose: joints (deg) and the tracker's position (mm), as
+/// a user sends them.
+#[derive(Clone)]
 struct Pose {
-    joints_deg: [f64; 6],
+    joints_deg: Vec<f64>,
     position_mm: [f64; 3],
 }
 
-/// Jacobi 2025 CSV: `step_order,x_t,y_t,z_t,x_dif,y_dif,z_dif,joint_1..6`
-/// (mm, deg); the measured position is target minus difference.
-fn ur5(file: &str) -> Vec<Pose> {
-    let text = std::fs::read_to_string(format!("{DATA}/ur5_wam_jacobi2025/{file}")).unwrap();
-    text.lines()
-        .skip(1)
-        .filter(|l| !l.trim().is_empty())
-        .map(|line| {
-            let v: Vec<f64> = line.split(',').map(|s| s.trim().parse().unwrap()).collect();
-            Pose {
-                joints_deg: std::array::from_fn(|k| v[7 + k]),
-                position_mm: [v[1] - v[4], v[2] - v[5], v[3] - v[6]],
-            }
+fn poses(rows: Vec<TrackerRow>) -> Vec<Pose> {
+    rows.into_iter()
+        .map(|r| Pose {
+            joints_deg: r.joints_rad.iter().map(|q| q.to_degrees()).collect(),
+            position_mm: r.position_mm.into(),
         })
         .collect()
 }
 
-/// Landgraf 2021 CSV: `;`-separated, decimal comma; joints (rad) in
-/// columns 7..13, measured x, y, z (mm) in 14, 16, 18. Rows with a
-/// missing number are left out (a user could not send them).
+fn read(path: &str) -> String {
+    std::fs::read_to_string(format!("{DATA}/{path}")).unwrap()
+}
+
+/// A Jacobi 2025 UR5 file.
+fn ur5(file: &str) -> Vec<Pose> {
+    poses(jacobi2025_rows(&read(&format!("ur5_wam_jacobi2025/{file}"))).unwrap())
+}
+
+/// A Landgraf 2021 UR10 file.
 fn ur10(series: &str, file: &str) -> Vec<Pose> {
-    let text =
-        std::fs::read_to_string(format!("{DATA}/ur10_landgraf2021/{series}/{file}")).unwrap();
-    text.lines()
-        .skip(1)
-        .filter(|l| !l.trim().is_empty())
-        .filter_map(|line| {
-            let v: Vec<f64> = line
-                .split(';')
-                .map(|s| s.trim().replace(',', ".").parse().unwrap_or(f64::NAN))
-                .collect();
-            let pose = Pose {
-                joints_deg: std::array::from_fn(|k| {
-                    v.get(7 + k).copied().unwrap_or(f64::NAN).to_degrees()
-                }),
-                position_mm: [14, 16, 18].map(|k| v.get(k).copied().unwrap_or(f64::NAN)),
-            };
-            let finite = pose
-                .joints_deg
-                .iter()
-                .chain(&pose.position_mm)
-                .all(|x| x.is_finite());
-            finite.then_some(pose)
-        })
-        .collect()
+    poses(landgraf2021_rows(&read(&format!("ur10_landgraf2021/{series}/{file}"))).unwrap())
 }
 
 async fn put_robot(app: &TestApp, serial: &str, model: &str, robot: &RobotModel) {
@@ -119,7 +97,7 @@ async fn session(
         .iter()
         .map(|p| (p, "cal"))
         .chain(val.iter().map(|p| (p, "val")));
-    let poses = sets.map(|(p, set)| (p.joints_deg.to_vec(), p.position_mm, set));
+    let poses = sets.map(|(p, set)| (p.joints_deg.clone(), p.position_mm, set));
     app.tracker_session(serial, &body, poses).await
 }
 
