@@ -152,10 +152,15 @@ impl TestApp {
             .put_json(&format!("/v1/robots/{serial}"), &robot_body())
             .await;
         assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
+        self.new_session(serial, &session_body()).await
+    }
+
+    /// A session of robot `serial` with the fields `body`; its id.
+    pub async fn new_session(&self, serial: &str, body: &Value) -> String {
         let r = self
-            .post_json(&format!("/v1/robots/{serial}/sessions"), &session_body())
+            .post_json(&format!("/v1/robots/{serial}/sessions"), body)
             .await;
-        assert_eq!(r.status(), 201);
+        assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
         r.json::<Value>().await.unwrap()["id"]
             .as_str()
             .unwrap()
@@ -205,14 +210,7 @@ impl TestApp {
         body: &Value,
         poses: impl IntoIterator<Item = (Vec<f64>, [f64; 3], &'static str)>,
     ) -> String {
-        let r = self
-            .post_json(&format!("/v1/robots/{serial}/sessions"), body)
-            .await;
-        assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
-        let id = r.json::<Value>().await.unwrap()["id"]
-            .as_str()
-            .unwrap()
-            .to_string();
+        let id = self.new_session(serial, body).await;
         for (joints_deg, position_mm, set) in poses {
             let pose =
                 json!({"joints_deg": joints_deg, "measured_position_mm": position_mm, "set": set});
