@@ -259,3 +259,43 @@ async fn filter_streams_through_the_terms() {
         }
     }
 }
+
+/// The report's uncertainty map goes through the terms: its calibration
+/// poses' flanges are where `forward` (with the terms) puts them, to well
+/// under the deflections' ~0.1 mm, and every cell has a σ.
+#[tokio::test]
+async fn the_report_map_is_through_the_terms() {
+    let app = spawn_app_with(|c| c.test_validate_only = false).await;
+    let c = campaign();
+    approved_terms_set(&app, &c).await;
+    let set = format!("/v1/robots/{SERIAL}/parameter-sets/1");
+    let map = &app.get_ok(&format!("{set}/report")).await["uncertainty_map"];
+    let flanges = map["poses_xy_mm"].as_array().expect("a map");
+    assert_eq!(flanges.len(), A_CAL);
+    assert!(map["cells"]
+        .as_array()
+        .is_some_and(|cells| !cells.is_empty()
+            && cells
+                .iter()
+                .all(|c| c["position_std_mm"].as_f64().is_some_and(|s| s > 0.0))));
+    let joints: Vec<Vec<f64>> = c.measurements[..A_CAL]
+        .iter()
+        .map(|m| deg(&m.joints_rad))
+        .collect();
+    let poses = app
+        .post_json(&format!("{set}/forward"), &json!({"joints_deg": joints}))
+        .await
+        .json::<Value>()
+        .await
+        .unwrap();
+    for (k, xy) in flanges.iter().enumerate() {
+        let t = &poses["poses"][k]["flange_in_base"]["translation_mm"];
+        for axis in 0..2 {
+            let (got, want) = (xy[axis].as_f64().unwrap(), t[axis].as_f64().unwrap());
+            assert!(
+                (got - want).abs() < REACHED_MM,
+                "pose {k} axis {axis}: {got} vs {want}"
+            );
+        }
+    }
+}
