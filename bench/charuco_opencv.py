@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """OpenCV peer for the robocal ChArUco benchmark (issue 14).
 
-Usage: /tmp/bench-venv/bin/python bench/charuco_opencv.py DIR
+Usage: /tmp/bench-venv/bin/python bench/charuco_opencv.py DIR [KIND]
 DIR holds the PNGs and truth.csv written by
 `cargo run --release -p robocal-calib --example charuco_bench`.
 Runs cv2.aruco.CharucoDetector (default parameters, which refine the corners
@@ -32,7 +32,8 @@ def main():
         for r in csv.DictReader(f):
             truth[r["image"]][int(r["id"])] = (float(r["x"]), float(r["y"]), r["visible"] == "1")
     print(f"OpenCV {cv2.__version__} CharucoDetector, {folder}")
-    for kind in KINDS:
+    kinds = KINDS if len(sys.argv) < 3 else [sys.argv[2]]
+    for kind in kinds:
         names = sorted(n for n in truth if n.startswith(kind + "_"))
         found = visible = wrong = 0
         sq, worst, cpu = 0.0, 0.0, 0.0

@@ -6,10 +6,16 @@
 //! `bench/charuco_opencv.py DIR` runs OpenCV's CharucoDetector on the same
 //! PNGs with the same truth.
 //!
-//! cargo run --release -p robocal-calib --example charuco_bench -- [--views N] [--seed S] [--out DIR]
+//! The detector reads the 8-bit image as written (what OpenCV is given);
+//! `--from DIR` decodes an earlier run's PNGs and truth instead of rendering,
+//! `--kind K` keeps one kind (with `--from`: `bench/charuco_interleaved.sh`).
+//!
+//! cargo run --release -p robocal-calib --example charuco_bench -- [--views N] [--seed S] [--out DIR] [--from DIR] [--kind K]
 
-use std::fmt::Write as _;
+#[path = "support/bench_pngs.rs"]
+mod bench_pngs;
 
+use bench_pngs::{read_truth, Views, TRUTH_HEADER};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use rand::{rngs::StdRng, Rng, SeedableRng};
 use robocal_calib::sim::render::RenderOptions;
@@ -115,52 +121,51 @@ fn main() {
     let views: usize = arg("--views", 8);
     let seed: u64 = arg("--seed", 14);
     let out: String = arg("--out", "/tmp/charuco_bench".to_string());
-    std::fs::create_dir_all(&out).expect("output dir");
+    let from = Some(arg("--from", String::new())).filter(|d| !d.is_empty());
+    let only: String = arg("--kind", String::new());
+    let truth_of = from.as_deref().map(read_truth);
+    let mut csv = String::from(TRUTH_HEADER);
+    let mut source = match (&from, &truth_of) {
+        (Some(dir), Some(truth)) => Views::Read { dir, truth },
+        _ => Views::Render {
+            out: &out,
+            csv: &mut csv,
+        },
+    };
+    if from.is_none() {
+        std::fs::create_dir_all(&out).expect("output dir");
+    }
     let spec = board();
-    let nx = spec.cols() - 1;
     let mut rng = StdRng::seed_from_u64(seed);
-    let mut csv = String::from("image,id,row,col,x,y,visible\n");
     println!(
         "robocal ChArUco 9x7 DICT_5X5_100, {WIDTH}x{HEIGHT}, {views} views per kind, seed {seed}"
     );
-    for kind in KINDS {
+    for kind in KINDS.into_iter().filter(|k| only.is_empty() || *k == only) {
         let (mut found, mut visible, mut wrong, mut sum2, mut worst, mut cpu_ns) =
             (0, 0, 0, 0.0, 0.0f64, 0u64);
         for k in 0..views {
-            let (iso, opts) = view(kind, &mut rng);
-            let v = render_charuco(
-                &reference_camera(),
-                &iso,
-                &spec,
-                WIDTH,
-                HEIGHT,
-                &opts,
-                &mut rng,
-            )
-            .expect("render");
             let name = format!("{kind}_{k:03}.png");
-            v.image
-                .to_luma8()
-                .save(format!("{out}/{name}"))
-                .expect("write png");
-            for (id, t) in v.truth.iter().enumerate() {
-                let _ = writeln!(
-                    csv,
-                    "{name},{id},{},{},{:.6},{:.6},{}",
-                    t.row,
-                    t.col,
-                    t.x,
-                    t.y,
-                    u8::from(t.visible)
-                );
-            }
-            visible += v.truth.iter().filter(|t| t.visible).count();
+            let (image, truth) = source.get(&name, || {
+                let (iso, opts) = view(kind, &mut rng);
+                let v = render_charuco(
+                    &reference_camera(),
+                    &iso,
+                    &spec,
+                    WIDTH,
+                    HEIGHT,
+                    &opts,
+                    &mut rng,
+                )
+                .expect("render");
+                (v.image, v.truth)
+            });
+            visible += truth.iter().filter(|t| t.visible).count();
             let t0 = thread_cpu_ns();
-            let det = detect_charuco(&v.image, &spec);
+            let det = detect_charuco(&image, &spec);
             cpu_ns += thread_cpu_ns() - t0;
             let Ok(det) = det else { continue };
             for p in &det.points {
-                let t = v.truth[p.row * nx + p.col];
+                let t = truth[p.row * (spec.cols() - 1) + p.col];
                 let e = (p.x_px - t.x).hypot(p.y_px - t.y);
                 if e > WRONG_ID_PX {
                     wrong += 1;
@@ -178,6 +183,9 @@ fn main() {
             worst,
             cpu_ns as f64 / 1e6 / views as f64
         );
+    }
+    if from.is_some() {
+        return;
     }
     std::fs::write(format!("{out}/truth.csv"), csv).expect("write truth");
     println!("images + truth.csv in {out}; OpenCV: /tmp/bench-venv/bin/python bench/charuco_opencv.py {out}");

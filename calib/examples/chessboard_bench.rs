@@ -12,9 +12,10 @@
 //! so runs can be repeated cheaply on a loaded machine; `--kind K` runs one
 //! kind only)
 
-use std::collections::HashMap;
-use std::fmt::Write as _;
+#[path = "support/bench_pngs.rs"]
+mod bench_pngs;
 
+use bench_pngs::{read_truth, Views, TRUTH_HEADER};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use rand::{rngs::StdRng, Rng, SeedableRng};
 use robocal_calib::sim::render::RenderOptions;
@@ -104,18 +105,6 @@ fn view(kind: &str, rng: &mut StdRng) -> (Isometry3<f64>, RenderOptions) {
     (iso, opts)
 }
 
-/// The true corner positions of an earlier run's `truth.csv`, by image.
-fn read_truth(dir: &str) -> HashMap<String, Vec<[f64; 2]>> {
-    let text = std::fs::read_to_string(format!("{dir}/truth.csv")).expect("truth.csv");
-    let mut out: HashMap<String, Vec<[f64; 2]>> = HashMap::new();
-    for line in text.lines().skip(1) {
-        let f: Vec<&str> = line.split(',').collect();
-        let xy = [f[4].parse().expect("x"), f[5].parse().expect("y")];
-        out.entry(f[0].to_string()).or_default().push(xy);
-    }
-    out
-}
-
 fn main() {
     let views: usize = arg("--views", 8);
     let seed: u64 = arg("--seed", 14);
@@ -126,49 +115,35 @@ fn main() {
     std::fs::create_dir_all(&out).expect("output dir");
     let spec = board();
     let mut rng = StdRng::seed_from_u64(seed);
-    let mut csv = String::from("image,id,row,col,x,y,visible\n");
     let truth_of = from.as_deref().map(read_truth);
+    let mut csv = String::from(TRUTH_HEADER);
+    let mut source = match (&from, &truth_of) {
+        (Some(dir), Some(truth)) => Views::Read { dir, truth },
+        _ => Views::Render {
+            out: &out,
+            csv: &mut csv,
+        },
+    };
     println!("robocal chessboard 9x6, {WIDTH}x{HEIGHT}, {views} views per kind, seed {seed}");
     for kind in KINDS.into_iter().filter(|k| only.is_empty() || *k == only) {
         let (mut boards, mut found, mut wrong, mut sum2, mut worst, mut cpu_ns) =
             (0, 0, 0, 0.0, 0.0f64, 0u64);
         for k in 0..views {
             let name = format!("{kind}_{k:03}.png");
-            // The detector reads the 8-bit image as decoded, as OpenCV does.
-            let (image, truth): (image::GrayImage, Vec<[f64; 2]>) = match (&from, &truth_of) {
-                (Some(dir), Some(all)) => {
-                    let img = image::open(format!("{dir}/{name}")).expect("read png");
-                    (img.to_luma8(), all[&name].clone())
-                }
-                _ => {
-                    let (iso, opts) = view(kind, &mut rng);
-                    let v = render_chessboard(
-                        &reference_camera(),
-                        &iso,
-                        &spec,
-                        WIDTH,
-                        HEIGHT,
-                        &opts,
-                        &mut rng,
-                    )
-                    .expect("render");
-                    let png = v.image.to_luma8();
-                    png.save(format!("{out}/{name}")).expect("write png");
-                    for (id, t) in v.truth.iter().enumerate() {
-                        let _ = writeln!(
-                            csv,
-                            "{name},{id},{},{},{:.6},{:.6},{}",
-                            t.row,
-                            t.col,
-                            t.x,
-                            t.y,
-                            u8::from(t.visible)
-                        );
-                    }
-                    let truth = v.truth.iter().map(|t| [t.x, t.y]).collect();
-                    (png, truth)
-                }
-            };
+            let (image, truth) = source.get(&name, || {
+                let (iso, opts) = view(kind, &mut rng);
+                let v = render_chessboard(
+                    &reference_camera(),
+                    &iso,
+                    &spec,
+                    WIDTH,
+                    HEIGHT,
+                    &opts,
+                    &mut rng,
+                )
+                .expect("render");
+                (v.image, v.truth)
+            });
             let t0 = thread_cpu_ns();
             let det = detect_chessboard(&image, &spec);
             cpu_ns += thread_cpu_ns() - t0;
@@ -184,7 +159,7 @@ fn main() {
             boards += 1;
             for p in &det.points {
                 let t = truth[p.row * spec.cols() + p.col];
-                let e = (p.x_px - t[0]).hypot(p.y_px - t[1]);
+                let e = (p.x_px - t.x).hypot(p.y_px - t.y);
                 if e > WRONG_ID_PX {
                     wrong += 1;
                     continue;

@@ -7,7 +7,7 @@
 use robocal_calib::vision::charuco::{self, CharucoSpec};
 use robocal_calib::vision::chessboard::{self, ChessboardSpec};
 use robocal_calib::vision::{
-    self, AsymmetricCirclesSpec, CircleBoard, DetectError, DetectOptions, GrayImage, TargetSpec,
+    self, AsymmetricCirclesSpec, CircleBoard, DecodedGrey, DetectError, DetectOptions, TargetSpec,
 };
 
 use crate::schema::session::{TargetDoc, TargetKind, MAX_GRID_SIDE};
@@ -151,20 +151,32 @@ impl Target {
     /// the job settles from the robot data, [`Target::symmetry`]) is refused
     /// with `OrderingAmbiguous`: identities that might differ from image to
     /// image would bend the fit.
-    pub fn detect(&self, image: &GrayImage) -> Result<Vec<FoundPoint>, DetectError> {
-        let board = match self {
-            Target::Dots(t) => CircleBoard::Dots(*t),
-            Target::AsymmetricCircles(t) => CircleBoard::Asymmetric(*t),
-            Target::Charuco(t) => return Ok(found_points(&charuco::detect_charuco(image, t)?)),
-            Target::Chessboard(t) => {
-                return Ok(found_points(&chessboard::detect_chessboard(image, t)?))
+    ///
+    /// The saddle detectors (chessboard, ChArUco) read an 8-bit image as
+    /// decoded; the circle detectors read f32 levels.
+    pub fn detect(&self, image: &DecodedGrey) -> Result<Vec<FoundPoint>, DetectError> {
+        let board = match (self, image) {
+            (Target::Dots(t), _) => CircleBoard::Dots(*t),
+            (Target::AsymmetricCircles(t), _) => CircleBoard::Asymmetric(*t),
+            (Target::Charuco(t), DecodedGrey::Levels8(g)) => {
+                return Ok(found_points(&charuco::detect_charuco(g, t)?))
+            }
+            (Target::Charuco(t), DecodedGrey::Float(g)) => {
+                return Ok(found_points(&charuco::detect_charuco(g, t)?))
+            }
+            (Target::Chessboard(t), DecodedGrey::Levels8(g)) => {
+                return Ok(found_points(&chessboard::detect_chessboard(g, t)?))
+            }
+            (Target::Chessboard(t), DecodedGrey::Float(g)) => {
+                return Ok(found_points(&chessboard::detect_chessboard(g, t)?))
             }
         };
+        let image = image.to_float();
         let options = DetectOptions {
             correct_perspective_bias: false,
             ..DetectOptions::default()
         };
-        let found = vision::detect_board(image, &board, &options)?;
+        let found = vision::detect_board(&image, &board, &options)?;
         let settled_later = self
             .symmetry()
             .is_some_and(|s| found.equivalent_turns.iter().all(|k| s.turns.contains(k)));

@@ -3,7 +3,7 @@
 //! without its origin marker (a half turn; also quarter turns when square),
 //! an asymmetric circle grid with an even number of rows (a half turn). The
 //! detector reads such a board one way; the job settles each image's turn
-//! from the robot data (`pipeline::half_turn`). This file says which turns
+//! from the robot data (`pipeline::board_turn`). This file says which turns
 //! map the board onto itself and how a turn relabels its features.
 
 use std::collections::HashMap;
@@ -251,7 +251,7 @@ mod tests {
             &mut rng,
         )
         .unwrap();
-        let found = Target::Dots(spec).detect(&view.image).unwrap();
+        let found = Target::Dots(spec).detect(&view.image.into()).unwrap();
         assert_eq!(found.len(), 63);
     }
 }

@@ -1,7 +1,7 @@
 //! The dot detector run on one decoded image at upload or by a job; what it
 //! found is a [`crate::domain::ImageDetection`].
 
-use robocal_calib::vision::GrayImage;
+use robocal_calib::vision::DecodedGrey;
 
 use crate::domain::{ImageDetection, Target};
 use crate::schema::session::ImagePointDoc;
@@ -10,7 +10,7 @@ use crate::schema::session::ImagePointDoc;
 /// raw ellipse centres: the camera stage corrects their perspective bias
 /// from the calibrated model, which is more exact, and correcting twice
 /// would bias.
-pub fn detect(image: &GrayImage, target: &Target) -> ImageDetection {
+pub fn detect(image: &DecodedGrey, target: &Target) -> ImageDetection {
     match target.detect(image) {
         Ok(found) => ImageDetection {
             points: found

@@ -10,7 +10,7 @@ mod gate;
 use std::io::Cursor;
 
 use image::{ImageFormat, ImageReader};
-use robocal_calib::vision::{self, DecodeLimits, GrayImage};
+use robocal_calib::vision::{self, DecodeLimits, DecodedGrey};
 
 pub use found::detect;
 pub use gate::{DecodeGate, DecodePermit};
@@ -56,19 +56,21 @@ pub fn check_header(bytes: &[u8], expected: Option<(u32, u32)>) -> Result<(u32, 
 
 /// Decodes to grey after [`check_header`], the decoder allowed no more
 /// memory than the header's size needs (a lying header fails, it does not
-/// allocate). The caller holds a [`DecodePermit`].
+/// allocate). 8-bit sources stay 8-bit ([`DecodedGrey`]): the chessboard
+/// and ChArUco detectors read them as they are. The caller holds a
+/// [`DecodePermit`].
 pub fn decode_checked(
     bytes: &[u8],
     expected: Option<(u32, u32)>,
     _permit: &DecodePermit<'_>,
-) -> Result<GrayImage, String> {
+) -> Result<DecodedGrey, String> {
     let (w, h) = check_header(bytes, expected)?;
     let limits = DecodeLimits {
         max_width: w,
         max_height: h,
         max_alloc_bytes: w as u64 * h as u64 * MAX_BYTES_PER_PIXEL + DECODE_SLACK_BYTES,
     };
-    vision::decode_image(bytes, &limits).map_err(|e| e.to_string())
+    vision::decode_grey(bytes, &limits).map_err(|e| e.to_string())
 }
 
 /// What an upload learns from an image: its size, and when the session has

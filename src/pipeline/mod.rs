@@ -12,13 +12,13 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
+mod board_turn;
 mod camera_stage;
 mod check_job;
 mod detections;
 mod flange_job;
 mod flange_stage;
 mod gate;
-mod half_turn;
 pub mod hand_eye_results;
 mod hand_eye_sigmas;
 mod identify_stage;
@@ -133,7 +133,7 @@ fn run_stages(
                 input.options.refine_intrinsics,
                 input.fixed_camera.as_ref(),
             )?;
-            let turned_note = half_turn::resolve(
+            let turned_note = board_turn::resolve(
                 &input.robot,
                 &input.poses,
                 &target,

@@ -101,6 +101,8 @@ mod tests {
             max_mm: [2.0 * mean; 3],
             max_3d_mm: 4.0 * mean,
             travelled_distance_error_mm: TravelErrorReport { mean, max: mean },
+            stage_referenced_mm: None,
+            offset_sd_mm: None,
         }
     }
 

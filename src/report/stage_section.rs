@@ -5,6 +5,7 @@
 use std::fmt::Write;
 
 use super::format::mm;
+use super::measurement_accuracy::SequenceAccuracyReport;
 use super::model::Report;
 use super::stage_chart::stage_chart;
 use super::svg::{HALF_WIDTH, SMALL_CHART_HEIGHT};
@@ -14,6 +15,41 @@ fn cells(v: [f64; 3]) -> String {
     v.iter()
         .map(|c| format!("<td class=\"num\">{}</td>", mm(*c)))
         .collect()
+}
+
+/// The per-axis figures against the stage (absent in older reports).
+fn stage_referenced_table(page: &mut String, rows: &[SequenceAccuracyReport]) {
+    if rows.iter().all(|s| s.stage_referenced_mm.is_none()) {
+        return;
+    }
+    page.push_str(
+        "<p>Against the stage: each image's camera position less the stage's readings \
+         fitted rigidly to its sequence. These figures hold each image's depth noise, which \
+         the average-rotation method cannot see; neither sees an offset common to a whole \
+         sequence (that needs the board's pose on the stage); its σ, from the intrinsics' \
+         covariance, is the last three columns.</p>\n\
+         <table class=\"data\"><tr><th>sequence</th>\
+         <th class=\"num\">mean x</th><th class=\"num\">y</th><th class=\"num\">z</th>\
+         <th class=\"num\">median x</th><th class=\"num\">y</th><th class=\"num\">z</th>\
+         <th class=\"num\">std x</th><th class=\"num\">y</th><th class=\"num\">z</th>\
+         <th class=\"num\">offset σ x</th><th class=\"num\">y</th><th class=\"num\">z</th></tr>\n",
+    );
+    for s in rows {
+        if let Some(t) = &s.stage_referenced_mm {
+            let _ = writeln!(
+                page,
+                "<tr><td>{}</td>{}{}{}{}</tr>",
+                s.sequence,
+                cells(t.mean),
+                cells(t.median),
+                cells(t.std),
+                s.offset_sd_mm
+                    .map(cells)
+                    .unwrap_or_else(|| "<td></td>".repeat(3)),
+            );
+        }
+    }
+    page.push_str("</table>\n");
 }
 
 /// Nothing for a report without stage sequences.
@@ -49,6 +85,7 @@ pub fn measurement_accuracy(page: &mut String, report: &Report) {
         );
     }
     page.push_str("</table>\n");
+    stage_referenced_table(page, &m.sequences);
     let chart = stage_chart(report, HALF_WIDTH, SMALL_CHART_HEIGHT);
     let _ = writeln!(
         page,

@@ -1,5 +1,5 @@
 //! The half turn of a symmetric board settled from the robot data (issue
-//! 14, `src/pipeline/half_turn.rs`). An 8x6 chessboard, and an 8x6 dot grid
+//! 14, `src/pipeline/board_turn.rs`). An 8x6 chessboard, and an 8x6 dot grid
 //! without its origin marker, look the same after a half turn, so a
 //! detector numbers some views from the other corner; the simulator's
 //! IRB-2400 campaign is uploaded as image points labelled that way in a few

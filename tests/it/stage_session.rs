@@ -25,6 +25,10 @@ const MAX_MEAN_TRAVEL_ERROR_MM: f64 = 0.03;
 const MAX_FOCAL_ERROR_REL: f64 = 1e-4;
 /// A sequence's distance is the board centre's from the camera (mm).
 const DISTANCE_TOLERANCE_MM: f64 = 10.0;
+/// The stage-referenced table must find the true errors' scatter within this factor.
+const STAGE_TABLE_FACTOR: f64 = 2.0;
+/// The common offset must lie within this many of its served σ per axis.
+const MAX_OFFSET_Z: f64 = 3.0;
 
 fn campaign() -> StageCampaign {
     let spec = StageSpec {
@@ -185,7 +189,7 @@ async fn rendered_stage_campaign_measures_the_camera_and_its_set_is_reused() {
             );
         }
         // Every image's served camera position against the truth.
-        let errors: Vec<f64> = c
+        let error_vectors: Vec<Vector3<f64>> = c
             .poses
             .iter()
             .zip(&pose_ids)
@@ -198,10 +202,36 @@ async fn rendered_stage_campaign_measures_the_camera_and_its_set_is_reused() {
                     .find(|r| r["pose_id"] == id.as_str())
                     .unwrap();
                 let position = vec3(&served["camera_in_target"]["translation_mm"]);
-                (position - p.target_to_camera.translation.vector).norm()
+                position - p.target_to_camera.translation.vector
             })
             .collect();
+        let errors: Vec<f64> = error_vectors.iter().map(|e| e.norm()).collect();
         let mean = errors.iter().sum::<f64>() / errors.len() as f64;
+        // The stage-referenced table against the true errors' scatter (less
+        // their common offset, which no stage method sees), as 3-D figures.
+        let n = error_vectors.len() as f64;
+        let offset = error_vectors.iter().sum::<Vector3<f64>>() / n;
+        let scatter_mean = Vector3::from_fn(|k, _| {
+            error_vectors
+                .iter()
+                .map(|e| (e[k] - offset[k]).abs())
+                .sum::<f64>()
+                / n
+        });
+        let offset_sd = vec3(&row["offset_sd_mm"]);
+        let z = offset.component_div(&offset_sd);
+        println!("sequence {sequence}: common offset {offset:?} / served σ {offset_sd:?} = {z:?}");
+        assert!(
+            z.iter().all(|z| z.abs() <= MAX_OFFSET_Z),
+            "sequence {sequence}: offset {offset:?} vs σ {offset_sd:?}"
+        );
+        let staged = vec3(&row["stage_referenced_mm"]["mean"]);
+        let ratio = staged.norm() / scatter_mean.norm();
+        println!("sequence {sequence}: stage-referenced mean {staged:?} / true scatter {scatter_mean:?} = {ratio:.2}");
+        assert!(
+            (1.0 / STAGE_TABLE_FACTOR..=STAGE_TABLE_FACTOR).contains(&ratio),
+            "sequence {sequence}: stage-referenced {staged:?} vs true scatter {scatter_mean:?}"
+        );
         println!("sequence {sequence}: true mean 3-D error {mean:.4} mm, {row}");
         assert!(
             mean <= MAX_MEAN_POSITION_ERROR_MM,

@@ -17,6 +17,8 @@ use crate::stage::{calibrate_stage, StageCalibration, StageError};
 const MAX_MEAN_POSITION_ERROR_MM: f64 = 0.06;
 const MAX_MEAN_TRAVEL_ERROR_MM: f64 = 0.03;
 const TABLE_FACTOR: f64 = 2.0;
+/// The common offset must lie within this many of its predicted σ per axis.
+const MAX_OFFSET_Z: f64 = 3.0;
 /// Dot noise of the point campaign (px per axis).
 const DETECTOR_SIGMA_PX: f64 = 0.01;
 
@@ -27,7 +29,9 @@ fn options(spec: &StageSpec) -> CalibrationOptions {
     }
 }
 
-/// Per sequence: the true 3-D errors of every image's measured camera position.
+/// Per sequence: the true errors of every image's measured camera position
+/// in the target frame (`X_i`, the frame of the paper's Table 1;
+/// `target_to_camera` is the camera's pose in the target frame).
 fn true_errors(
     campaign: &StageCampaign,
     fit: &StageCalibration,
@@ -106,6 +110,71 @@ fn check_campaign(campaign: &StageCampaign, fit: &StageCalibration) {
                 failures.push(format!(
                     "sequence {} {what}: paper's method {:.4?} vs true {:.4?}",
                     acc.sequence, paper, truth
+                ));
+            }
+        }
+        // The offset against its σ from the intrinsics' covariance.
+        let z: Vec<f64> = (0..3).map(|k| offset[k] / acc.offset_sd_mm[k]).collect();
+        println!(
+            "  common offset {:.4?} / predicted σ {:.4?} = {z:.2?}",
+            offset, acc.offset_sd_mm
+        );
+        if z.iter().any(|z| z.abs() > MAX_OFFSET_Z) {
+            failures.push(format!(
+                "sequence {}: offset {offset:.4?} vs σ {:.4?}",
+                acc.sequence, acc.offset_sd_mm
+            ));
+        }
+        // The whole per-axis error the service states (the stage-referenced
+        // scatter and the offset's σ) against the true per-axis RMS.
+        let rms = |t: &AxisTable, k: usize| t.mean_mm[k].hypot(t.std_mm[k]);
+        let stated: Vec<f64> = (0..3)
+            .map(|k| rms(&acc.stage_referenced, k).hypot(acc.offset_sd_mm[k]) / rms(&true_table, k))
+            .collect();
+        println!("  stated per-axis RMS / true RMS {stated:.2?}");
+        if stated
+            .iter()
+            .any(|r| !(1.0 / TABLE_FACTOR..=TABLE_FACTOR).contains(r))
+        {
+            failures.push(format!(
+                "sequence {}: stated / true RMS {stated:.2?}",
+                acc.sequence
+            ));
+        }
+        // The stage-referenced table per axis against the true scatter (the
+        // true errors less their common offset, which no method without
+        // the board's pose on the stage can see).
+        let scatter: Vec<Vector3<f64>> = errors.iter().map(|e| e - offset).collect();
+        let true_scatter = AxisTable::from_errors(&scatter);
+        let staged = acc.stage_referenced;
+        println!(
+            "  stage-referenced: mean {:.4?} median {:.4?} std {:.4?}; true scatter mean {:.4?} median {:.4?} std {:.4?}",
+            staged.mean_mm, staged.median_mm, staged.std_mm,
+            true_scatter.mean_mm, true_scatter.median_mm, true_scatter.std_mm
+        );
+        let per_axis = [
+            ("mean", staged.mean_mm, true_scatter.mean_mm, acc.mean_mm),
+            (
+                "median",
+                staged.median_mm,
+                true_scatter.median_mm,
+                acc.median_mm,
+            ),
+            ("std", staged.std_mm, true_scatter.std_mm, acc.std_mm),
+        ];
+        for (what, staged, truth, paper) in per_axis {
+            let ratios: Vec<f64> = (0..3).map(|k| staged[k] / truth[k]).collect();
+            let paper_ratios: Vec<f64> = (0..3).map(|k| paper[k] / truth[k]).collect();
+            println!(
+                "  {what} per axis / true scatter: stage-referenced {ratios:.2?}, paper's {paper_ratios:.2?}"
+            );
+            if ratios
+                .iter()
+                .any(|r| !(1.0 / TABLE_FACTOR..=TABLE_FACTOR).contains(r))
+            {
+                failures.push(format!(
+                    "sequence {} {what}: stage-referenced {staged:.4?} vs true scatter {truth:.4?}",
+                    acc.sequence
                 ));
             }
         }

@@ -8,11 +8,12 @@
 
 use std::collections::HashSet;
 
-use nalgebra::{Isometry3, Point2, Point3, Rotation3, UnitQuaternion, Vector3};
+use nalgebra::{DVector, Isometry3, Point2, Point3, Rotation3, UnitQuaternion, Vector3};
 
 use super::assessment::{assess_sequence, average_rotation_errors, SequenceAccuracy};
 use super::bundle::{BundleView, SequenceFit, SequenceStart, StageBundle};
 use super::layout::{average_rotation, fit_stage_axes, group_sequences};
+use super::offset::sequence_offset_sd_mm;
 use super::{StageError, StageView};
 use crate::camera::calibrate::{calibrate, CalibrationOptions, CameraCalibration};
 use crate::camera::model::{Intrinsics, IntrinsicsStdDev};
@@ -117,10 +118,11 @@ pub fn calibrate_stage(
     )?;
     let intrinsics = bundle.intrinsics(&report.x);
     let dots: usize = bundle_views.iter().map(|v| v.observations.len()).sum();
+    let covariance = report.covariance();
     let std_dev = (!block.is_empty()).then(|| {
         let n = block.len();
-        let covariance = report.covariance().view((0, 0), (n, n)).into_owned();
-        IntrinsicsStdDev::from_covariance(&covariance, &intrinsics)
+        let block_covariance = covariance.view((0, 0), (n, n)).into_owned();
+        IntrinsicsStdDev::from_covariance(&block_covariance, &intrinsics)
     });
     let sequences: Vec<StageSequence> = layout
         .iter()
@@ -133,7 +135,7 @@ pub fn calibrate_stage(
     let results = measure_views(views, &bundle_views, &sequences, &intrinsics)?;
     let centre = board_centre(&observations);
     let mut results = results;
-    let accuracy = layout
+    let mut accuracy = layout
         .iter()
         .map(|seq| {
             let measured: Vec<Isometry3<f64>> = seq
@@ -151,7 +153,25 @@ pub fn calibrate_stage(
                 .collect();
             assess_sequence(seq.sequence, &measured, &stage, &centre)
         })
-        .collect();
+        .collect::<Vec<SequenceAccuracy>>();
+    let sequence_views: Vec<Vec<usize>> = layout.iter().map(|s| s.views.clone()).collect();
+    let camera_positions = |x: &DVector<f64>| -> Result<Vec<Vector3<f64>>, StageError> {
+        let moved = bundle.intrinsics(x);
+        Ok(measure_views(views, &bundle_views, &sequences, &moved)?
+            .iter()
+            .map(|r| r.pose.target_to_camera.translation.vector)
+            .collect())
+    };
+    let offsets = sequence_offset_sd_mm(
+        &report.x,
+        &covariance,
+        block.len(),
+        camera_positions,
+        &sequence_views,
+    )?;
+    for (acc, sd) in accuracy.iter_mut().zip(offsets) {
+        acc.offset_sd_mm = sd.into();
+    }
     Ok(StageCalibration {
         image_size: start.image_size,
         intrinsics,

@@ -39,7 +39,7 @@ pub use detect::{
 pub use drawing::{BoardDrawing, Mark};
 pub use ellipse::{DotQuality, Ellipse};
 pub use error::DetectError;
-pub use image::{decode_image, DecodeLimits, GrayImage};
+pub use image::{decode_grey, decode_image, DecodeLimits, DecodedGrey, GrayImage, GreyLevels};
 pub use target::TargetSpec;
 
 #[cfg(test)]

@@ -2,7 +2,9 @@
 //! is lit unevenly and vignetted, so one global threshold cannot separate
 //! dark dots from the light board everywhere).
 
+#[cfg(test)]
 use super::image::GrayImage;
+use super::image::GreyLevels;
 
 /// Fraction of the shorter image side used as the local-mean window radius.
 pub const WINDOW_RADIUS_FRACTION: f64 = 1.0 / 16.0;
@@ -75,15 +77,21 @@ impl LocalThreshold {
 /// Grey level below which each pixel counts as dark, from the mean of the
 /// window of about `(2 radius + 1)^2` pixels around it (clipped at the
 /// image border), computed through an integral image of block sums.
-pub fn local_threshold(img: &GrayImage, radius: usize) -> LocalThreshold {
-    let (w, h) = (img.width, img.height);
+pub fn local_threshold<I: GreyLevels>(img: &I, radius: usize) -> LocalThreshold {
+    let (w, h) = (img.width(), img.height());
     let (bw, bh) = (w.div_ceil(BLOCK_PX), h.div_ceil(BLOCK_PX));
     let mut sums = vec![0.0f64; bw * bh];
-    for y in 0..h {
-        let row = &img.data[y * w..(y + 1) * w];
-        let out = &mut sums[(y / BLOCK_PX) * bw..(y / BLOCK_PX + 1) * bw];
-        for (o, chunk) in out.iter_mut().zip(row.chunks(BLOCK_PX)) {
-            *o += chunk.iter().sum::<f32>() as f64;
+    // Each block row's pixel rows are added column-wise first (8-bit levels
+    // sum exactly in f32 over a block row), then split into blocks.
+    let mut column_sums = vec![0.0f32; w];
+    for by in 0..bh {
+        column_sums.fill(0.0);
+        for y in by * BLOCK_PX..((by + 1) * BLOCK_PX).min(h) {
+            img.add_row(y, &mut column_sums);
+        }
+        let out = &mut sums[by * bw..(by + 1) * bw];
+        for (o, chunk) in out.iter_mut().zip(column_sums.chunks(BLOCK_PX)) {
+            *o = chunk.iter().sum::<f32>() as f64;
         }
     }
     let count = |bx: usize, by: usize| -> f64 {

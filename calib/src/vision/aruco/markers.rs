@@ -7,7 +7,7 @@ use nalgebra::Vector2;
 use super::dictionary::{code_from_bits, Dictionary};
 use super::quads::{find_quads, Quad};
 use crate::vision::homography::Homography;
-use crate::vision::image::GrayImage;
+use crate::vision::image::GreyLevels;
 
 /// Samples per bit cell and axis, at these fractions of the cell.
 const SAMPLE_FRACTIONS: [f64; 3] = [0.3, 0.5, 0.7];
@@ -30,20 +30,22 @@ pub struct MarkerObservation {
 }
 
 /// Bilinear grey level at a sub-pixel position (pixel-centre convention).
-pub fn bilinear(img: &GrayImage, x: f64, y: f64) -> Option<f64> {
-    if !(x >= 0.0 && y >= 0.0 && x <= (img.width - 1) as f64 && y <= (img.height - 1) as f64) {
+pub fn bilinear<I: GreyLevels>(img: &I, x: f64, y: f64) -> Option<f64> {
+    let (w, h) = (img.width(), img.height());
+    if !(x >= 0.0 && y >= 0.0 && x <= (w - 1) as f64 && y <= (h - 1) as f64) {
         return None;
     }
     let (x0, y0) = (x.floor() as usize, y.floor() as usize);
-    let (x1, y1) = ((x0 + 1).min(img.width - 1), (y0 + 1).min(img.height - 1));
+    let (x1, y1) = ((x0 + 1).min(w - 1), (y0 + 1).min(h - 1));
     let (fx, fy) = (x - x0 as f64, y - y0 as f64);
-    let top = img.at(x0, y0) as f64 * (1.0 - fx) + img.at(x1, y0) as f64 * fx;
-    let bottom = img.at(x0, y1) as f64 * (1.0 - fx) + img.at(x1, y1) as f64 * fx;
+    let at = |x: usize, y: usize| f64::from(img.level(y * w + x));
+    let top = at(x0, y0) * (1.0 - fx) + at(x1, y0) * fx;
+    let bottom = at(x0, y1) * (1.0 - fx) + at(x1, y1) * fx;
     Some(top * (1.0 - fy) + bottom * fy)
 }
 
 /// Mean grey level of each of the `(size + 2)^2` cells, row-major.
-fn sample_cells(img: &GrayImage, quad: &Quad, cells: usize) -> Option<Vec<f64>> {
+fn sample_cells<I: GreyLevels>(img: &I, quad: &Quad, cells: usize) -> Option<Vec<f64>> {
     let n = cells as f64;
     let unit = [[0.0, 0.0], [n, 0.0], [n, n], [0.0, n]].map(|p| Vector2::new(p[0], p[1]));
     let corners = quad.map(|p| Vector2::new(p[0], p[1]));
@@ -90,7 +92,11 @@ fn two_means(values: &[f64]) -> Option<f64> {
 }
 
 /// Reads one quad; `None` when it is not a marker of `dict`.
-pub fn read_marker(img: &GrayImage, quad: &Quad, dict: &Dictionary) -> Option<MarkerObservation> {
+pub fn read_marker<I: GreyLevels>(
+    img: &I,
+    quad: &Quad,
+    dict: &Dictionary,
+) -> Option<MarkerObservation> {
     let size = dict.marker_size;
     let cells = size + 2;
     let values = sample_cells(img, quad, cells)?;
@@ -120,7 +126,7 @@ pub fn read_marker(img: &GrayImage, quad: &Quad, dict: &Dictionary) -> Option<Ma
 
 /// Every marker of `dict` in the image; one observation per id (the one
 /// with the fewest corrected bits) since a board prints each id once.
-pub fn detect_markers(img: &GrayImage, dict: &Dictionary) -> Vec<MarkerObservation> {
+pub fn detect_markers<I: GreyLevels>(img: &I, dict: &Dictionary) -> Vec<MarkerObservation> {
     let mut found: Vec<MarkerObservation> = Vec::new();
     for quad in find_quads(img) {
         let Some(m) = read_marker(img, &quad, dict) else {

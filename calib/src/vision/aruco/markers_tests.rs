@@ -2,7 +2,7 @@
 
 use super::*;
 use crate::vision::charuco::{marker_cells, CharucoSpec};
-use crate::vision::image::decode_image;
+use crate::vision::image::{decode_image, GrayImage};
 use crate::vision::DecodeLimits;
 
 const FIXTURE_DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/charuco");

@@ -16,16 +16,24 @@ use crate::vision::aruco::detect_markers;
 use crate::vision::board_point::{BoardDetection, BoardPoint};
 use crate::vision::error::DetectError;
 use crate::vision::homography::Homography;
-use crate::vision::image::GrayImage;
-use crate::vision::saddle::refine_saddle;
+use crate::vision::image::GreyLevels;
+use crate::vision::saddle::refine_saddle_near;
 
 /// Markers whose square centre lies within this many squares (Chebyshev)
 /// of an inner corner take part in its local homography.
 pub const NEIGHBOUR_RADIUS_SQUARES: f64 = 2.5;
-/// Refinement window half-size as a fraction of the gap between a corner
-/// and the nearest marker edge in the image (the window must hold only the
-/// four squares' edges, no marker).
+/// Refinement window half-size as a fraction of the reach of the corner's
+/// point symmetry in the image: the gap to the marker plus the marker's
+/// dark border cell. Each marker's border is dark and the markers of the
+/// two light squares at a corner face each other across it, so the four
+/// squares with both marker borders are point-symmetric about the corner up
+/// to the first bit cell; only the bits break the symmetry the fit assumes
+/// (`vision::saddle`). A window held inside the gap alone (0.9 of it, as
+/// before session 10) starves the fit on blurred views.
 pub const REFINE_WINDOW_FRACTION: f64 = 0.9;
+/// Room kept between the refinement window and the image's edge for the
+/// fit's steps, pixels.
+pub const EDGE_MARGIN_PX: f64 = 1.0;
 /// Bounds of the refinement half window, pixels.
 pub const MIN_REFINE_HALF_WINDOW_PX: f64 = 2.0;
 pub const MAX_REFINE_HALF_WINDOW_PX: f64 = 15.0;
@@ -33,15 +41,16 @@ pub const MAX_REFINE_HALF_WINDOW_PX: f64 = 15.0;
 /// Sub-pixel corner refinement: image, predicted position, half window
 /// (pixels) → refined position or `None` when no corner is there. The
 /// saddle-point fit `vision::saddle::refine_saddle` has this signature.
-pub type CornerRefiner<'a> = &'a dyn Fn(&GrayImage, [f64; 2], f64) -> Option<[f64; 2]>;
+pub type CornerRefiner<'a, I> = &'a dyn Fn(&I, [f64; 2], f64) -> Option<[f64; 2]>;
 
 /// Detects the inner corners of `spec` in `img`. With `refine = None` the
 /// corners are the local-homography predictions from the marker outlines.
-pub fn detect_charuco_with(
-    img: &GrayImage,
+pub fn detect_charuco_with<I: GreyLevels>(
+    img: &I,
     spec: &CharucoSpec,
-    refine: Option<CornerRefiner>,
+    refine: Option<CornerRefiner<I>>,
 ) -> Result<BoardDetection, DetectError> {
+    let (width, height) = (img.width(), img.height());
     spec.validate()?;
     let dict = spec.dictionary()?;
     let cells = marker_cells(spec);
@@ -64,6 +73,8 @@ pub fn detect_charuco_with(
         seen_square[c.row * spec.cols() + c.col] = Some(k);
     }
     let s = spec.square_mm;
+    let border_cell_mm = spec.marker_mm / (dict.marker_size + 2) as f64;
+    let symmetric_reach_mm = 0.5 * (s - spec.marker_mm) + border_cell_mm;
     let (nx, ny) = inner_corner_grid(spec);
     let mut points = Vec::new();
     for row in 0..ny {
@@ -98,16 +109,22 @@ pub fn detect_charuco_with(
             ) else {
                 continue;
             };
-            let inside = p.x >= 0.0
-                && p.y >= 0.0
-                && p.x <= (img.width - 1) as f64
-                && p.y <= (img.height - 1) as f64;
+            let inside =
+                p.x >= 0.0 && p.y >= 0.0 && p.x <= (width - 1) as f64 && p.y <= (height - 1) as f64;
             if !inside {
                 continue;
             }
             let square_px = (px - p).norm().min((py - p).norm());
-            let gap_px = square_px * 0.5 * (s - spec.marker_mm) / s;
-            let half = (REFINE_WINDOW_FRACTION * gap_px)
+            let reach_px = square_px * symmetric_reach_mm / s;
+            // A window past the image's edge fails the fit: near the edge
+            // it shrinks to fit (partial views), down to the least window.
+            let to_edge_px =
+                p.x.min(p.y)
+                    .min((width - 2) as f64 - p.x)
+                    .min((height - 2) as f64 - p.y)
+                    - EDGE_MARGIN_PX;
+            let half = (REFINE_WINDOW_FRACTION * reach_px)
+                .min(to_edge_px)
                 .clamp(MIN_REFINE_HALF_WINDOW_PX, MAX_REFINE_HALF_WINDOW_PX);
             let found = match refine {
                 None => Some([p.x, p.y]),
@@ -127,17 +144,24 @@ pub fn detect_charuco_with(
         }
     }
     Ok(BoardDetection {
-        image_width: img.width,
-        image_height: img.height,
+        image_width: width,
+        image_height: height,
         points,
         ordering_unique: true,
     })
 }
 
-/// Detects the inner corners, refined by the shared saddle/point-symmetry
-/// fit (`vision::saddle`; see `detect_charuco_with`).
-pub fn detect_charuco(img: &GrayImage, spec: &CharucoSpec) -> Result<BoardDetection, DetectError> {
-    detect_charuco_with(img, spec, Some(&refine_saddle::<GrayImage>))
+/// Detects the inner corners, refined by the shared point-symmetry fit
+/// started at the marker homography's prediction (`vision::saddle::
+/// refine_saddle_near`: the prediction is within a pixel or so, so the
+/// quadratic pre-fit, which cost most of the refinement, runs only where
+/// the symmetry fit alone fails; see `detect_charuco_with`). Generic over the grey
+/// levels: the service and the bench give it the decoder's 8-bit image.
+pub fn detect_charuco<I: GreyLevels>(
+    img: &I,
+    spec: &CharucoSpec,
+) -> Result<BoardDetection, DetectError> {
+    detect_charuco_with(img, spec, Some(&refine_saddle_near::<I>))
 }
 
 #[cfg(test)]
