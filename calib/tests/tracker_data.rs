@@ -6,9 +6,10 @@
 use nalgebra::Vector3;
 use robocal_calib::geometry::Pose;
 use robocal_calib::kinematics::identify::{
-    fit_parameters, frame_indices, identify, validate, IdentifyMode, Measurement, Observed,
+    fit_parameters, frame_indices, identify, validate, IdentifyMode, Measurement,
 };
 use robocal_calib::kinematics::initial::initial_world_to_base;
+use robocal_calib::kinematics::tracker_csv::{jacobi2025_rows, landgraf2021_rows, TrackerRow};
 use robocal_calib::kinematics::{presets, CalibratedModel, Instrument, ParamLayout, RobotModel};
 
 const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/kinematic");
@@ -18,60 +19,26 @@ const UR5_TOOL_GUESS_MM: [f64; 3] = [0.0, 0.0, 31.0];
 /// T-Mac probe to flange, `Trafo_TM_F_init.txt` (about 109 mm along z).
 const UR10_TOOL_GUESS_MM: [f64; 3] = [0.0, 0.0, 109.0];
 
-fn position(joints_rad: Vec<f64>, p: [f64; 3]) -> Measurement {
-    Measurement {
-        joints_rad,
-        observed: Observed::Position {
-            position_mm: Vector3::from(p),
-            covariance: None,
-        },
-    }
+fn read(path: &str) -> String {
+    std::fs::read_to_string(format!("{DATA}/{path}")).unwrap()
 }
 
-/// Jacobi 2025 CSV: `step_order,x_t,y_t,z_t,x_dif,y_dif,z_dif,joint_1..6`
-/// (mm, deg); the measured position is target minus difference.
+/// A Jacobi 2025 UR5 file (`tracker_csv::jacobi2025_rows`).
 fn load_ur5(file: &str) -> Vec<Measurement> {
-    let text = std::fs::read_to_string(format!("{DATA}/ur5_wam_jacobi2025/{file}")).unwrap();
-    text.lines()
-        .skip(1)
-        .filter(|l| !l.trim().is_empty())
-        .map(|line| {
-            let v: Vec<f64> = line.split(',').map(|s| s.trim().parse().unwrap()).collect();
-            let measured = [v[1] - v[4], v[2] - v[5], v[3] - v[6]];
-            position(v[7..13].iter().map(|d| d.to_radians()).collect(), measured)
-        })
-        .collect()
+    let rows = jacobi2025_rows(&read(&format!("ur5_wam_jacobi2025/{file}"))).unwrap();
+    rows.iter().map(TrackerRow::measurement).collect()
 }
 
 /// The data's own `*_dif` columns: the controller's error (nominal model).
 fn load_ur5_differences(file: &str) -> Vec<Vector3<f64>> {
-    let text = std::fs::read_to_string(format!("{DATA}/ur5_wam_jacobi2025/{file}")).unwrap();
-    text.lines()
-        .skip(1)
-        .filter(|l| !l.trim().is_empty())
-        .map(|line| {
-            let v: Vec<f64> = line.split(',').map(|s| s.trim().parse().unwrap()).collect();
-            Vector3::new(v[4], v[5], v[6])
-        })
-        .collect()
+    let rows = jacobi2025_rows(&read(&format!("ur5_wam_jacobi2025/{file}"))).unwrap();
+    rows.iter().filter_map(|r| r.controller_error_mm).collect()
 }
 
-/// Landgraf 2021 CSV: `;`-separated, decimal comma; joints (rad) in columns
-/// 7..13, measured x, y, z (mm) in columns 14, 16, 18.
+/// A Landgraf 2021 UR10 file (`tracker_csv::landgraf2021_rows`).
 fn load_ur10(series: &str, file: &str) -> Vec<Measurement> {
-    let text =
-        std::fs::read_to_string(format!("{DATA}/ur10_landgraf2021/{series}/{file}")).unwrap();
-    text.lines()
-        .skip(1)
-        .filter(|l| !l.trim().is_empty())
-        .map(|line| {
-            let v: Vec<f64> = line
-                .split(';')
-                .map(|s| s.trim().replace(',', ".").parse().unwrap_or(f64::NAN))
-                .collect();
-            position(v[7..13].to_vec(), [v[14], v[16], v[18]])
-        })
-        .collect()
+    let rows = landgraf2021_rows(&read(&format!("ur10_landgraf2021/{series}/{file}"))).unwrap();
+    rows.iter().map(TrackerRow::measurement).collect()
 }
 
 fn start(robot: RobotModel, tool_mm: [f64; 3], data: &[Measurement]) -> CalibratedModel {

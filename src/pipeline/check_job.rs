@@ -50,7 +50,8 @@ pub fn run(
         )
     })?;
     let (instrument, kind) = approved.measurement_for(camera.is_some(), "session")?;
-    let model = approved.set.model().map_err(numerical)?;
+    // A set with kept terms (issue 19) is checked with them.
+    let model = approved.set.term_model().map_err(numerical)?;
     let covariance = approved
         .set
         .covariance_matrix()
@@ -77,7 +78,7 @@ pub fn run(
         data: &data,
     })
     .map_err(numerical)?;
-    let layout = ParamLayout::new(&model.robot, instrument);
+    let layout = ParamLayout::new(&model.model.robot, instrument);
     let suspects = found
         .suspects
         .iter()

@@ -15,7 +15,7 @@
 
 use nalgebra::{Isometry3, Point3};
 use robocal_calib::camera::Intrinsics;
-use robocal_calib::kinematics::CalibratedModel;
+use robocal_calib::kinematics::term_model::TermModel;
 
 use super::camera_stage::CameraStep;
 use super::measure::{GridPoint, Measured};
@@ -88,12 +88,13 @@ fn failure(measured: &Measured, pose_id: &str) -> String {
 /// The final points: [`detected`] with the camera stage's bias-corrected
 /// centres as `x`, `y` (the raw ones kept as `raw_x`, `raw_y`) plus, when
 /// the job identified full poses (`full_pose`), every point's residual
-/// under the calibrated `model` and `intrinsics`.
+/// under the calibrated `model` (with its kept non-geometric terms: the
+/// pose's joints are the commanded ones) and `intrinsics`.
 pub fn with_residuals(
     poses: &[PoseInput],
     measured: &Measured,
     step: &CameraStep,
-    model: &CalibratedModel,
+    model: &TermModel,
     intrinsics: &Intrinsics,
     full_pose: bool,
 ) -> Vec<PoseDetection> {

@@ -9,7 +9,11 @@
 //! its kinematics held, the base and hand–eye frames re-fitted on this
 //! session's calibration poses (the board may have moved between the two
 //! sessions, the camera may have been re-mounted), then its mean 3-D error
-//! at this session's validation poses.
+//! at this session's validation poses. A set with kept non-geometric
+//! terms (issue 19) is evaluated with them, held at their values (its
+//! frames re-fitted through them): the candidate's own figure
+//! (`Identified::after`) uses its terms, so both sides are judged as
+//! they would be served.
 
 use robocal_calib::kinematics::identify::{
     fit_parameters, frame_indices, validate, IdentifyMode, IdentifyOptions, JointNoise,
@@ -41,7 +45,8 @@ fn approved_mean_mm(
     if approved.set.layout_instrument() != instrument {
         return Err("it was calibrated with another instrument".into());
     }
-    let model = approved.set.model()?;
+    let held = approved.set.term_model()?;
+    let model = held.model.clone();
     let (theirs, ours) = (model.robot.joints.len(), id.model.robot.joints.len());
     if theirs != ours {
         return Err(format!(
@@ -59,9 +64,13 @@ fn approved_mean_mm(
         joint_noise: JointNoise::default(),
     };
     let which = frame_indices(&layout, true);
-    let (refit, _) = fit_parameters(&start, instrument, &id.cal_data, &which, options)
+    // With the terms held, a geometric fit of the deflected joints is the
+    // fit through the terms (`TermModel::deflect_measurements`).
+    let deflect = |data| held.deflect_measurements(data).map_err(|e| e.to_string());
+    let (cal_data, val_data) = (deflect(&id.cal_data)?, deflect(&id.val_data)?);
+    let (refit, _) = fit_parameters(&start, instrument, &cal_data, &which, options)
         .map_err(|e| e.to_string())?;
-    let (stats, _) = validate(&refit, &id.val_data).map_err(|e| e.to_string())?;
+    let (stats, _) = validate(&refit, &val_data).map_err(|e| e.to_string())?;
     Ok(stats.norm.mean_mm)
 }
 

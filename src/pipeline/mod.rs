@@ -249,7 +249,9 @@ fn run_stages(
             &input.poses,
             m,
             step,
-            &identified.model,
+            &identified
+                .term_model()
+                .map_err(|e| PipelineError::numerical(Stage::Report, e))?,
             &set.camera.unwrap_or(step.intrinsics()),
             kind == crate::schema::job::Measurement::Pose,
         ),

@@ -4,7 +4,9 @@
 //! kinematics, the other frame and the camera intrinsics at the robot's
 //! latest approved set (the paper recalibrated the base in each region).
 //! "Before" is that set as it was; the gate approves the result when it
-//! predicts the validation poses better.
+//! predicts the validation poses better. The approved set's kept
+//! non-geometric terms (issue 19) stay in the result and are held at their
+//! values through the fit and both validations.
 
 use robocal_calib::kinematics::identify::{
     fit_parameters, validate, IdentifyMode, IdentifyOptions, JointNoise,
@@ -60,7 +62,8 @@ pub fn run(
         )
     })?;
     let (instrument, kind) = approved.measurement_for(camera.is_some(), "scope")?;
-    let held = approved.set.model().map_err(numerical)?;
+    let terms = approved.set.term_model().map_err(numerical)?;
+    let held = terms.model.clone();
     within(Stage::Identify, "re-fitting the scope's frame", 0.0);
     let usable: Vec<usize> = (0..input.poses.len())
         .filter(|&i| camera.is_none_or(|c| c.view_pose.contains(&i)))
@@ -72,8 +75,12 @@ pub fn run(
             .filter_map(|&i| Some((i, measurement_of(&input.poses[i], i, camera, None, kind)?)))
             .unzip()
     };
-    let (_, cal_data) = measure(&cal);
+    // With the terms held, the geometric fit and validation of the
+    // deflected joints are those through the terms.
+    let deflect = |data: Vec<_>| terms.deflect_measurements(&data).map_err(numerical);
+    let cal_data = deflect(measure(&cal).1)?;
     let (val_index, val_data) = measure(&val);
+    let val_data = deflect(val_data)?;
     if val_data.is_empty() {
         return Err(numerical(
             "no validation pose could be measured: upload poses with set \"val\" or use {\"validation\":{\"holdout_fraction\":0.3}}",
@@ -112,12 +119,17 @@ pub fn run(
         _ => set.frame_names().world_to_base,
     };
     notes.push(format!(
-        "Only {frame} was re-fitted (scope {:?}) from {} poses; the kinematics, the other frame{} \
+        "Only {frame} was re-fitted (scope {:?}) from {} poses; the kinematics, the other frame{}{} \
          and the covariance are those of the approved set {}. Before: that set as it was.",
         scope.as_str(),
         cal_data.len(),
         if camera.is_some() {
             ", the camera intrinsics"
+        } else {
+            ""
+        },
+        if terms.has_terms() {
+            ", its non-geometric terms (held through the fit)"
         } else {
             ""
         },

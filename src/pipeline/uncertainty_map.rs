@@ -3,10 +3,13 @@
 //! position (`calib::kinematics::uncertainty`) over a horizontal grid of
 //! flange positions around the calibration poses, each solved by the
 //! calibrated inverse kinematics. It shows where the calibration holds
-//! (inside the posed volume) and how fast it degrades outside it.
+//! (inside the posed volume) and how fast it degrades outside it. With
+//! kept non-geometric terms (issue 19) the flanges, the inverse kinematics
+//! and the σ go through them (`TermModel`), as `forward`'s σ does: the
+//! covariance at the deflected joints plus the terms' own σ.
 
 use robocal_calib::geometry::{pose_from_xyz_rpy_deg, Pose, PoseXyzRpy};
-use robocal_calib::kinematics::ik::nearest_within_limits;
+use robocal_calib::kinematics::term_model::TermModel;
 use robocal_calib::kinematics::uncertainty::{pose_std, PoseFrame};
 use robocal_calib::kinematics::CalibratedModel;
 
@@ -26,11 +29,15 @@ const MIN_SPAN_MM: f64 = 200.0;
 /// The map over the calibration poses of `id`; `None` when no grid point
 /// is reachable or the model cannot be evaluated.
 pub fn workspace_map(id: &Identified, poses: &[PoseInput]) -> Option<UncertaintyMapReport> {
-    let model = &id.model;
-    let flange_model = CalibratedModel {
-        robot: model.robot.clone(),
-        world_to_base: Pose::identity(),
-        flange_to_tool: Pose::identity(),
+    let evaluated = id.term_model().ok()?;
+    let model = &evaluated.model;
+    let flange_model = TermModel {
+        model: CalibratedModel {
+            robot: model.robot.clone(),
+            world_to_base: Pose::identity(),
+            flange_to_tool: Pose::identity(),
+        },
+        ..evaluated.clone()
     };
     let joints: Vec<Vec<f64>> = id
         .cal
@@ -39,7 +46,7 @@ pub fn workspace_map(id: &Identified, poses: &[PoseInput]) -> Option<Uncertainty
         .collect();
     let flanges: Vec<Pose> = joints
         .iter()
-        .map(|q| model.robot.base_to_flange(q).ok())
+        .map(|q| evaluated.base_to_flange(q).ok())
         .collect::<Option<_>>()?;
     // The pose at the median height sets the slice's height, orientation
     // and the IK seed.
@@ -68,7 +75,6 @@ pub fn workspace_map(id: &Identified, poses: &[PoseInput]) -> Option<Uncertainty
     let span = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(MIN_SPAN_MM) * (1.0 + 2.0 * MARGIN_FRACTION);
     let step_mm = span / (GRID_POINTS - 1) as f64;
     let centre = [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0];
-    let layout = &id.identification.layout;
     let mut cells = Vec::new();
     for iy in 0..GRID_POINTS {
         for ix in 0..GRID_POINTS {
@@ -77,15 +83,14 @@ pub fn workspace_map(id: &Identified, poses: &[PoseInput]) -> Option<Uncertainty
             let Ok(target) = pose_from_xyz_rpy_deg([x, y, z_mm], rotation_deg) else {
                 continue;
             };
-            let Ok(solution) = nearest_within_limits(&flange_model, &target, seed) else {
+            let Ok(solution) = flange_model.nearest_within_limits(&target, seed) else {
                 continue;
             };
-            let frame = PoseFrame::ToolInWorld;
-            if let Ok(std) = pose_std(layout, model, &id.covariance, &solution.joints_rad, frame) {
+            if let Some(position_std_mm) = position_std_mm(&evaluated, id, &solution.joints_rad) {
                 cells.push(UncertaintyCell {
                     x_mm: x,
                     y_mm: y,
-                    position_std_mm: std.position_mm,
+                    position_std_mm,
                 });
             }
         }
@@ -103,4 +108,15 @@ pub fn workspace_map(id: &Identified, poses: &[PoseInput]) -> Option<Uncertainty
             .map(|f| [f.translation.vector.x, f.translation.vector.y])
             .collect(),
     })
+}
+
+/// The tool's position σ at commanded joints `q_rad`: the identified
+/// covariance at the deflected joints plus the kept terms' σ (independent).
+fn position_std_mm(evaluated: &TermModel, id: &Identified, q_rad: &[f64]) -> Option<f64> {
+    let bent = evaluated.deflected(q_rad).ok()?;
+    let layout = &id.identification.layout;
+    let frame = PoseFrame::ToolInWorld;
+    let std = pose_std(layout, &evaluated.model, &id.covariance, &bent, frame).ok()?;
+    let terms = evaluated.term_variance(&evaluated.model, q_rad).ok()?;
+    Some((std.position_mm.powi(2) + terms.position_mm2).sqrt())
 }

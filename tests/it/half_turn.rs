@@ -177,14 +177,7 @@ async fn run_turned(
         "camera": {"width": t.image_width, "height": t.image_height,
                    "pixel_size_um": 3.45, "nominal_focal_mm": 12.0}
     });
-    let r = app
-        .post_json(&format!("/v1/robots/{serial}/sessions"), &session)
-        .await;
-    assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
-    let id = r.json::<Value>().await.unwrap()["id"]
-        .as_str()
-        .unwrap()
-        .to_string();
+    let id = app.new_session(serial, &session).await;
     for (i, &turn) in turns.iter().enumerate().take(c.poses.len()) {
         let body = pose_body_turned(c, i, turn, data);
         let r = app

@@ -17,7 +17,7 @@ const TARGETS: usize = 450;
 const FAR_INDEX: usize = 211;
 
 /// The lines of a streamed answer, parsed as each arrives.
-async fn lines(r: reqwest::Response) -> Vec<Value> {
+pub(crate) async fn lines(r: reqwest::Response) -> Vec<Value> {
     assert_eq!(r.status(), 200);
     assert_eq!(r.headers()["content-type"], "application/x-ndjson");
     let mut stream = r.bytes_stream();
@@ -33,7 +33,7 @@ async fn lines(r: reqwest::Response) -> Vec<Value> {
     lines
 }
 
-async fn post_ndjson(app: &TestApp, path: &str, body: &Value) -> reqwest::Response {
+pub(crate) async fn post_ndjson(app: &TestApp, path: &str, body: &Value) -> reqwest::Response {
     app.client
         .post(app.url(path))
         .header("accept", "application/x-ndjson")

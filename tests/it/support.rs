@@ -152,10 +152,15 @@ impl TestApp {
             .put_json(&format!("/v1/robots/{serial}"), &robot_body())
             .await;
         assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
+        self.new_session(serial, &session_body()).await
+    }
+
+    /// A session of robot `serial` with the fields `body`; its id.
+    pub async fn new_session(&self, serial: &str, body: &Value) -> String {
         let r = self
-            .post_json(&format!("/v1/robots/{serial}/sessions"), &session_body())
+            .post_json(&format!("/v1/robots/{serial}/sessions"), body)
             .await;
-        assert_eq!(r.status(), 201);
+        assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
         r.json::<Value>().await.unwrap()["id"]
             .as_str()
             .unwrap()
@@ -174,6 +179,47 @@ impl TestApp {
                 .await;
             assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
         }
+    }
+
+    /// `GET path`, 200, as JSON.
+    pub async fn get_ok(&self, path: &str) -> Value {
+        let r = self.get(path).await;
+        assert_eq!(r.status(), 200, "{path}");
+        r.json().await.unwrap()
+    }
+
+    /// `POST path` with `body` (a calibration, a check): accepted, and the
+    /// job it queued, succeeded within `timeout`.
+    pub async fn finished_job(&self, path: &str, body: &Value, timeout: Duration) -> Value {
+        let r = self.post_json(path, body).await;
+        assert_eq!(r.status(), 202, "{}", r.text().await.unwrap());
+        let job = r.json::<Value>().await.unwrap()["job_id"]
+            .as_str()
+            .unwrap()
+            .to_string();
+        let done = self.wait_job(&job, timeout, is_finished).await;
+        assert_eq!(done["state"], "succeeded", "{done}");
+        done
+    }
+
+    /// A session of robot `serial` (`body`: its fields) with one tracker
+    /// pose per `(joints_deg, measured_position_mm, set)`; its id.
+    pub async fn tracker_session(
+        &self,
+        serial: &str,
+        body: &Value,
+        poses: impl IntoIterator<Item = (Vec<f64>, [f64; 3], &'static str)>,
+    ) -> String {
+        let id = self.new_session(serial, body).await;
+        for (joints_deg, position_mm, set) in poses {
+            let pose =
+                json!({"joints_deg": joints_deg, "measured_position_mm": position_mm, "set": set});
+            let r = self
+                .post_json(&format!("/v1/sessions/{id}/poses"), &pose)
+                .await;
+            assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
+        }
+        id
     }
 
     /// Polls a job until `done(job)` or the timeout.

@@ -12,7 +12,7 @@ use robocal_calib::kinematics::presets;
 use robocal_calib::sim::tracker_campaign::{simulate_tracker, TrackerCampaign, TrackerSpec};
 use serde_json::{json, Value};
 
-use crate::support::{is_finished, spawn_app_with, TestApp};
+use crate::support::{spawn_app_with, TestApp};
 
 const CAL_POSES: usize = 300;
 const VAL_POSES: usize = 60;
@@ -45,52 +45,19 @@ async fn upload(app: &TestApp, serial: &str, c: &TrackerCampaign) -> String {
         )
         .await;
     assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
-    let r = app
-        .post_json(
-            &format!("/v1/robots/{serial}/sessions"),
-            &json!({"instrument": "tracker", "payload_kg": 0.0}),
-        )
-        .await;
-    assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
-    let session = r.json::<Value>().await.unwrap()["id"]
-        .as_str()
-        .unwrap()
-        .to_string();
-    for (i, m) in c.measurements.iter().enumerate() {
+    let poses = c.measurements.iter().enumerate().map(|(i, m)| {
         let p = m.observed.position_mm();
-        let body = json!({
-            "joints_deg": deg(&m.joints_rad),
-            "measured_position_mm": [p.x, p.y, p.z],
-            "set": if i < CAL_POSES { "cal" } else { "val" },
-        });
-        let r = app
-            .post_json(&format!("/v1/sessions/{session}/poses"), &body)
-            .await;
-        assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
-    }
-    session
+        let set = if i < CAL_POSES { "cal" } else { "val" };
+        (deg(&m.joints_rad), [p.x, p.y, p.z], set)
+    });
+    let body = json!({"instrument": "tracker", "payload_kg": 0.0});
+    app.tracker_session(serial, &body, poses).await
 }
 
 async fn calibrate(app: &TestApp, session: &str, options: Value) {
-    let r = app
-        .post_json(&format!("/v1/sessions/{session}/calibrations"), &options)
-        .await;
-    assert_eq!(r.status(), 202, "{}", r.text().await.unwrap());
-    let job = r.json::<Value>().await.unwrap()["job_id"]
-        .as_str()
-        .unwrap()
-        .to_string();
-    let done = app.wait_job(&job, JOB_WAIT, is_finished).await;
-    assert_eq!(done["state"], "succeeded", "{done}");
+    let path = format!("/v1/sessions/{session}/calibrations");
+    let done = app.finished_job(&path, &options, JOB_WAIT).await;
     eprintln!("job: {done}");
-}
-
-async fn get_json(app: &TestApp, path: &str) -> Value {
-    let r = app.get(path).await;
-    let status = r.status();
-    let body: Value = r.json().await.unwrap();
-    assert_eq!(status, 200, "{path}: {body}");
-    body
 }
 
 /// RMS (mm) of `forward`'s tool position against the validation poses'
@@ -146,7 +113,7 @@ async fn terms_are_kept_used_and_exported_and_absent_terms_are_not_kept() {
     let session = upload(&app, "UR10-T", &c).await;
     calibrate(&app, &session, json!({})).await;
     calibrate(&app, &session, json!({"non_geometric": false})).await;
-    let set = get_json(&app, "/v1/robots/UR10-T/parameter-sets/1").await;
+    let set = app.get_ok("/v1/robots/UR10-T/parameter-sets/1").await;
     let kept: Vec<&str> = set["terms"]["terms"]
         .as_array()
         .unwrap_or_else(|| panic!("no terms kept: {set}"))
@@ -159,7 +126,9 @@ async fn terms_are_kept_used_and_exported_and_absent_terms_are_not_kept() {
     for t in set["terms"]["terms"].as_array().unwrap() {
         assert!(t["std_dev"].as_f64().unwrap() > 0.0 && t["unit"].is_string());
     }
-    let report = get_json(&app, "/v1/robots/UR10-T/parameter-sets/1/report").await;
+    let report = app
+        .get_ok("/v1/robots/UR10-T/parameter-sets/1/report")
+        .await;
     let lines = report["terms"]["lines"].as_array().unwrap();
     assert_eq!(
         report["terms"]["kept"].as_u64().unwrap() as usize,
@@ -172,7 +141,7 @@ async fn terms_are_kept_used_and_exported_and_absent_terms_are_not_kept() {
         lines.len() > kept.len(),
         "rejected candidates are named too"
     );
-    assert!(get_json(&app, "/v1/robots/UR10-T/parameter-sets/2").await["terms"].is_null());
+    assert!(app.get_ok("/v1/robots/UR10-T/parameter-sets/2").await["terms"].is_null());
 
     let with = forward_rms_mm(&app, "UR10-T", 1, &c).await;
     let without = forward_rms_mm(&app, "UR10-T", 2, &c).await;
@@ -224,7 +193,7 @@ async fn terms_are_kept_used_and_exported_and_absent_terms_are_not_kept() {
 
     // Exports: a terms table in dh-json and csv; URDF says it cannot hold them.
     let base = "/v1/robots/UR10-T/parameter-sets/1/export";
-    let dh = get_json(&app, &format!("{base}?format=dh-json")).await;
+    let dh = app.get_ok(&format!("{base}?format=dh-json")).await;
     assert_eq!(dh["terms"], set["terms"]);
     let csv = app
         .get(&format!("{base}?format=csv"))
@@ -246,8 +215,10 @@ async fn terms_are_kept_used_and_exported_and_absent_terms_are_not_kept() {
     let c = campaign(8, false);
     let session = upload(&app, "UR10-G", &c).await;
     calibrate(&app, &session, json!({})).await;
-    let set = get_json(&app, "/v1/robots/UR10-G/parameter-sets/1").await;
+    let set = app.get_ok("/v1/robots/UR10-G/parameter-sets/1").await;
     assert!(set["terms"].is_null(), "{}", set["terms"]);
-    let report = get_json(&app, "/v1/robots/UR10-G/parameter-sets/1/report").await;
+    let report = app
+        .get_ok("/v1/robots/UR10-G/parameter-sets/1/report")
+        .await;
     assert_eq!(report["terms"]["kept"], 0);
 }

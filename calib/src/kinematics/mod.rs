@@ -39,6 +39,7 @@ pub mod term_model;
 pub mod term_report;
 pub mod term_selection;
 pub mod term_validate;
+pub mod tracker_csv;
 pub mod uncertainty;
 pub mod weights;
 

@@ -12,6 +12,12 @@
 //! check **passes** when its upper-tail p-value is at least
 //! [`SIGNIFICANCE`] (a false alarm in 1 % of checks of an unchanged robot).
 //!
+//! With non-geometric terms kept (issue 19) the check's joints are
+//! deflected by them before the chain (the terms held at their values),
+//! and each term's σ adds a column shared by every pose to `J Σ Jᵀ`: the
+//! `dθ_i` column of its joint times its basis `f_k(q)` (the stored
+//! covariance has no cross-covariance of terms and geometry).
+//!
 //! Otherwise the world-to-base transform alone is re-fitted (the board,
 //! or the tracker, or the robot's base moved), and every identified
 //! kinematic parameter is ranked by how much of the whitened residual it
@@ -28,8 +34,9 @@ use super::identify::{
     fit_parameters, IdentifyError, IdentifyMode, IdentifyOptions, JointNoise, Measurement,
 };
 use super::jacobian::tool_pose_jacobian;
-use super::params::{CalibratedModel, Instrument, ParamKind, ParamLayout};
+use super::params::{CalibratedModel, Instrument, ParamKind, ParamLayout, PARAMS_PER_JOINT};
 use super::pose_fit::unweighted_residuals;
+use super::term_model::TermModel;
 use super::weights::PoseCovariances;
 use crate::chi_square::chi_square_p_value;
 
@@ -96,10 +103,10 @@ pub struct Recheck {
     pub suspects: Vec<Suspect>,
 }
 
-/// What is checked: the set's model and covariance, the joint noise, and
-/// the check's measurements.
+/// What is checked: the set's model (with its kept terms) and covariance,
+/// the joint noise, and the check's measurements (commanded joints).
 pub struct RecheckInput<'a> {
-    pub model: &'a CalibratedModel,
+    pub model: &'a TermModel,
     pub instrument: Instrument,
     /// The set's parameter covariance (layout order, internal units).
     pub covariance: &'a DMatrix<f64>,
@@ -119,16 +126,74 @@ struct Whitened {
     expected_mean_mm: f64,
 }
 
-fn whiten(input: &RecheckInput, model: &CalibratedModel) -> Result<Whitened, RecheckError> {
+/// The check's measurements as the geometric chain sees them, and each
+/// pose's term bases `f_k(q)` at its commanded joints.
+struct Deflected {
+    data: Vec<Measurement>,
+    bases: Vec<Vec<f64>>,
+}
+
+impl Deflected {
+    fn new(model: &TermModel, data: &[Measurement]) -> Result<Self, RecheckError> {
+        let mut out = Self {
+            data: Vec::with_capacity(data.len()),
+            bases: Vec::with_capacity(data.len()),
+        };
+        for (pose, m) in data.iter().enumerate() {
+            let at = |source| IdentifyError::Pose { pose, source };
+            out.data.push(Measurement {
+                joints_rad: model.deflected(&m.joints_rad).map_err(at)?,
+                observed: m.observed.clone(),
+            });
+            out.bases
+                .push(model.terms.basis(&m.joints_rad).map_err(at)?);
+        }
+        Ok(out)
+    }
+}
+
+/// `Σ_k t_k t_kᵀ`: each kept term's σ through its joint's `dθ` column of
+/// the stacked Jacobian `jac`, times its basis at each pose (module doc).
+fn term_covariance(
+    terms: &TermModel,
+    d: &Deflected,
+    jac: &DMatrix<f64>,
+    rows: usize,
+) -> DMatrix<f64> {
+    let mut c = DMatrix::zeros(jac.nrows(), jac.nrows());
+    for (t, (term, sd)) in terms
+        .terms
+        .terms
+        .iter()
+        .zip(&terms.term_std_devs)
+        .enumerate()
+    {
+        let column = jac.column(term.joint() * PARAMS_PER_JOINT);
+        let mut v = DVector::zeros(jac.nrows());
+        for (k, basis) in d.bases.iter().enumerate() {
+            v.rows_mut(k * rows, rows)
+                .copy_from(&(column.rows(k * rows, rows) * (basis[t] * sd)));
+        }
+        c += &v * v.transpose();
+    }
+    c
+}
+
+fn whiten(
+    input: &RecheckInput,
+    model: &CalibratedModel,
+    d: &Deflected,
+) -> Result<Whitened, RecheckError> {
     let layout = ParamLayout::new(&model.robot, input.instrument);
     let rows = input.instrument.rows();
-    let n = input.data.len();
-    let residuals = unweighted_residuals(&layout, model, input.data)?;
-    let covariances = PoseCovariances::new(&layout, model, input.data)?;
+    let data = &d.data;
+    let n = data.len();
+    let residuals = unweighted_residuals(&layout, model, data)?;
+    let covariances = PoseCovariances::new(&layout, model, data)?;
     let mut r = DVector::zeros(n * rows);
     let mut jac = DMatrix::zeros(n * rows, layout.len());
     let mut c = DMatrix::zeros(n * rows, n * rows);
-    for (k, m) in input.data.iter().enumerate() {
+    for (k, m) in data.iter().enumerate() {
         r.rows_mut(k * rows, rows).copy_from(&residuals[k]);
         let (_, j) = tool_pose_jacobian(&layout, model, &m.joints_rad)
             .map_err(|source| IdentifyError::Pose { pose: k, source })?;
@@ -136,7 +201,7 @@ fn whiten(input: &RecheckInput, model: &CalibratedModel) -> Result<Whitened, Rec
         c.view_mut((k * rows, k * rows), (rows, rows))
             .copy_from(&covariances.covariance(k, input.joint_sigma_rad));
     }
-    c += &jac * input.covariance * jac.transpose();
+    c += &jac * input.covariance * jac.transpose() + term_covariance(input.model, d, &jac, rows);
     let mean_mm = residuals.iter().map(|e| e.rows(0, 3).norm()).sum::<f64>() / n as f64;
     let expected_mean_mm = (0..n)
         .map(|k| {
@@ -224,7 +289,7 @@ pub fn recheck(input: &RecheckInput) -> Result<Recheck, RecheckError> {
     if n < MIN_CHECK_POSES {
         return Err(RecheckError::TooFewPoses(n));
     }
-    let layout = ParamLayout::new(&input.model.robot, input.instrument);
+    let layout = ParamLayout::new(&input.model.model.robot, input.instrument);
     let size = input.covariance.nrows();
     if size != layout.len() || input.covariance.ncols() != size {
         return Err(RecheckError::CovarianceShape {
@@ -233,7 +298,8 @@ pub fn recheck(input: &RecheckInput) -> Result<Recheck, RecheckError> {
         });
     }
     let dof = n * input.instrument.rows();
-    let at_set = whiten(input, input.model)?;
+    let deflected = Deflected::new(input.model, input.data)?;
+    let at_set = whiten(input, &input.model.model, &deflected)?;
     let chi2 = at_set.residual.norm_squared();
     let p_value = chi_square_p_value(chi2, dof).ok_or(RecheckError::NotPositiveDefinite)?;
     let options = IdentifyOptions {
@@ -243,13 +309,13 @@ pub fn recheck(input: &RecheckInput) -> Result<Recheck, RecheckError> {
         },
     };
     let (refitted, _) = fit_parameters(
-        input.model,
+        &input.model.model,
         input.instrument,
-        input.data,
+        &deflected.data,
         &base_indices(&layout),
         options,
     )?;
-    let at_base = whiten(input, &refitted)?;
+    let at_base = whiten(input, &refitted, &deflected)?;
     let base_p_value = chi_square_p_value(at_base.residual.norm_squared(), dof - BASE_DOF)
         .ok_or(RecheckError::NotPositiveDefinite)?;
     let (suspects, tried) = rank_suspects(&layout, &at_base, input.covariance);

@@ -118,7 +118,7 @@ impl Approved {
 
     fn check(&self, data: &[Measurement]) -> Recheck {
         recheck(&RecheckInput {
-            model: &self.identification.model,
+            model: &TermModel::geometric(self.identification.model.clone()),
             instrument: Instrument::Camera,
             covariance: &self.identification.covariance,
             joint_sigma_rad: self.spec.encoder_sigma_deg.to_radians(),
@@ -244,7 +244,7 @@ fn degenerate_input_is_an_error() {
     let val = set.val_poses();
     let data = set.measure(&truth, &val[..2], &mut rng);
     let input = RecheckInput {
-        model: &set.identification.model,
+        model: &TermModel::geometric(set.identification.model.clone()),
         instrument: Instrument::Camera,
         covariance: &set.identification.covariance,
         joint_sigma_rad: 0.0,
@@ -262,4 +262,66 @@ fn degenerate_input_is_an_error() {
         recheck(&input),
         Err(RecheckError::CovarianceShape { .. })
     ));
+}
+
+/// A tracker check of a robot with compliance and periodic joint errors
+/// (issue 19), against its true geometry: with its terms it passes; the
+/// geometry alone (the terms' few-hundredths of a mm ignored) does not;
+/// the terms at zero with a σ three times their size pass (their σ enters
+/// the prediction covariance).
+#[test]
+fn a_set_with_terms_is_checked_with_them() {
+    use crate::kinematics::presets;
+    use crate::sim::tracker_campaign::{simulate_tracker, TrackerSpec};
+    const NOISE_MM: f64 = 0.01;
+    let c = simulate_tracker(
+        &presets::ur10(),
+        &TrackerSpec {
+            poses: 12,
+            noise_mm: NOISE_MM,
+            seed: 11,
+            non_geometric: true,
+        },
+    );
+    let data: Vec<Measurement> = c
+        .measurements
+        .iter()
+        .map(|m| Measurement {
+            joints_rad: m.joints_rad.clone(),
+            observed: Observed::Position {
+                position_mm: m.observed.position_mm(),
+                covariance: Some(nalgebra::Matrix3::identity() * NOISE_MM.powi(2)),
+            },
+        })
+        .collect();
+    let layout = ParamLayout::new(&c.truth.robot, Instrument::Tracker);
+    let covariance = DMatrix::zeros(layout.len(), layout.len());
+    let with = |model: &TermModel| {
+        recheck(&RecheckInput {
+            model,
+            instrument: Instrument::Tracker,
+            covariance: &covariance,
+            joint_sigma_rad: 0.0,
+            data: &data,
+        })
+        .unwrap()
+    };
+    let n = c.true_terms.terms.len();
+    let terms = TermModel {
+        model: c.truth.clone(),
+        terms: c.true_terms.clone(),
+        term_std_devs: vec![0.0; n],
+    };
+    let checked = with(&terms);
+    assert_eq!(checked.verdict, Verdict::Pass, "{checked:?}");
+    let geometric = with(&TermModel::geometric(c.truth.clone()));
+    assert_ne!(geometric.verdict, Verdict::Pass, "{geometric:?}");
+    assert!(geometric.mean_mm > 2.0 * checked.mean_mm, "{geometric:?}");
+    let mut unsure = terms.clone();
+    unsure.term_std_devs = unsure.terms.values.iter().map(|v| 3.0 * v.abs()).collect();
+    unsure.terms.values.iter_mut().for_each(|v| *v = 0.0);
+    let lenient = with(&unsure);
+    assert_eq!(lenient.verdict, Verdict::Pass, "{lenient:?}");
+    unsure.term_std_devs = vec![0.0; n];
+    assert_ne!(with(&unsure).verdict, Verdict::Pass);
 }

@@ -8,6 +8,7 @@
 
 use super::ik::{nearest_within_limits, IkError, IkSolution};
 use super::jacobian::tool_pose_jacobian;
+use super::measurement::Measurement;
 use super::model::KinematicsError;
 use super::nongeometric::NonGeometric;
 use super::params::{CalibratedModel, Instrument, ParamLayout, PARAMS_PER_JOINT};
@@ -69,6 +70,25 @@ impl TermModel {
     /// `world_to_tool` at commanded joints.
     pub fn world_to_tool(&self, q_rad: &[f64]) -> Result<Pose, KinematicsError> {
         self.model.world_to_tool(&self.deflected(q_rad)?)
+    }
+
+    /// `data` as the geometric chain sees it: each pose's commanded joints
+    /// replaced by the deflected ones. The deflections do not depend on the
+    /// geometric parameters (the bases are evaluated on a fixed chain), so
+    /// any geometric fit or residual on these (a frame re-fit, a re-check)
+    /// is the one with the terms held at their values.
+    pub fn deflect_measurements(
+        &self,
+        data: &[Measurement],
+    ) -> Result<Vec<Measurement>, KinematicsError> {
+        data.iter()
+            .map(|m| {
+                Ok(Measurement {
+                    joints_rad: self.deflected(&m.joints_rad)?,
+                    observed: m.observed.clone(),
+                })
+            })
+            .collect()
     }
 
     /// The commanded joints `q` with `q + Δθ(q) = deflected_rad`.
