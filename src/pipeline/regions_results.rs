@@ -4,6 +4,7 @@
 //! in job order; `before`/`after` are over all validation poses, each
 //! judged with its own session's board.
 
+use robocal_calib::kinematics::term_model::TermModel;
 use robocal_calib::stats::AccuracyStats;
 
 use super::identify_stage::Identified;
@@ -51,7 +52,8 @@ pub(super) fn output(input: &Input, fitted: Fitted) -> Result<Output, PipelineEr
                 &f.input.poses,
                 &f.measured,
                 &f.step,
-                &joint.model_of(s),
+                // Multi-session jobs keep no terms (non_geometric is refused).
+                &TermModel::geometric(joint.model_of(s)),
                 &joint.refined.intrinsics,
                 true,
             )
