@@ -46,6 +46,10 @@ pub(super) struct SessionValidation {
     pub after: AccuracyStats,
     /// (pose index in the session, error before, error after), mm.
     pub errors: Vec<(usize, nalgebra::Vector3<f64>, nalgebra::Vector3<f64>)>,
+    /// The same for the session's screened-out poses (how far their
+    /// joints and images disagree under the shared model), so the report
+    /// lists them with `outlier: true` as a one-session report does.
+    pub outlier_errors: Vec<(usize, nalgebra::Vector3<f64>, nalgebra::Vector3<f64>)>,
 }
 
 /// The joint fit and what goes with it.
@@ -282,26 +286,39 @@ fn validate_session(
         message: format!("session {}: {e}", fit.input.session_id),
     };
     let intrinsics = joint.refined.intrinsics;
-    let (mut index, mut data): (Vec<usize>, Vec<Measurement>) = (Vec::new(), Vec::new());
-    for &i in &fit.identified.val {
-        let pose = &fit.input.poses[i];
-        if let Some(m) = measurement_of(
-            pose,
+    let measure = |i: usize| {
+        measurement_of(
+            &fit.input.poses[i],
             i,
             Some(&fit.step),
             Some(&intrinsics),
             MeasurementKind::Pose,
-        ) {
+        )
+    };
+    let (mut index, mut data): (Vec<usize>, Vec<Measurement>) = (Vec::new(), Vec::new());
+    for &i in &fit.identified.val {
+        if let Some(m) = measure(i) {
             index.push(i);
             data.push(m);
         }
     }
+    let model = joint.model_of(s);
+    let outlier_errors = fit
+        .outliers
+        .iter()
+        .filter_map(|o| {
+            let one = [measure(o.pose)?];
+            let (_, b) = validate(&fit.identified.identification.before, &one).ok()?;
+            let (_, a) = validate(&model, &one).ok()?;
+            Some((o.pose, b[0], a[0]))
+        })
+        .collect();
     if data.is_empty() {
         return Err(numerical(&"no validation pose could be measured"));
     }
     let (before, before_errors) =
         validate(&fit.identified.identification.before, &data).map_err(|e| numerical(&e))?;
-    let (after, after_errors) = validate(&joint.model_of(s), &data).map_err(|e| numerical(&e))?;
+    let (after, after_errors) = validate(&model, &data).map_err(|e| numerical(&e))?;
     let errors = index
         .into_iter()
         .zip(before_errors.into_iter().zip(after_errors))
@@ -311,6 +328,7 @@ fn validate_session(
         before,
         after,
         errors,
+        outlier_errors,
     })
 }
 

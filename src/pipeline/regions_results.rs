@@ -169,7 +169,15 @@ fn combined(
         .flat_map(|(v, &at)| v.errors.iter().map(move |(i, b, a)| (i + at, *b, *a)))
         .collect();
     first.val = first.val_errors.iter().map(|(i, _, _)| *i).collect();
-    first.outlier_errors = Vec::new();
+    first.outlier_errors = validations
+        .iter()
+        .zip(offsets)
+        .flat_map(|(v, &at)| {
+            v.outlier_errors
+                .iter()
+                .map(move |(i, b, a)| (i + at, *b, *a))
+        })
+        .collect();
     let before: Vec<_> = first.val_errors.iter().map(|(_, b, _)| *b).collect();
     let after: Vec<_> = first.val_errors.iter().map(|(_, _, a)| *a).collect();
     first.before = AccuracyStats::from_errors(&before);

@@ -15,7 +15,7 @@
 
 use std::time::Duration;
 
-use robocal_calib::sim::campaign::{simulate_campaign, Campaign, CampaignSpec};
+use robocal_calib::sim::campaign::{simulate_campaign, Campaign, CampaignSpec, SimPose};
 use robocal_calib::sim::campaign_io::PoseSet;
 use serde_json::{json, Value};
 
@@ -40,6 +40,9 @@ const MAX_GLOBAL_OVER_LOCAL: f64 = 1.15;
 /// the model's remaining error is hundredths of a millimetre.
 const MAX_COMPENSATED_JOINT_DEG: f64 = 0.05;
 const WAIT: Duration = Duration::from_secs(600);
+/// The lying pose's joint-1 error (deg) and label.
+const LIE_DEG: f64 = 3.0;
+const LIE_LABEL: &str = "lying-pose";
 
 /// The same robot, its board placed by each home pose.
 fn campaigns() -> Vec<Campaign> {
@@ -79,26 +82,46 @@ async fn upload_session(app: &TestApp, serial: &str, c: &Campaign, region: &str)
         .as_str()
         .unwrap()
         .to_string();
-    let cols = t.board.cols;
     for (i, p) in c.poses.iter().enumerate() {
-        let points: Vec<Value> = p
-            .observed_px
-            .iter()
-            .enumerate()
-            .map(|(k, px)| json!({"row": k / cols, "col": k % cols, "x": px.x, "y": px.y}))
-            .collect();
-        let body = json!({
-            "set": if p.set == PoseSet::Cal { "cal" } else { "val" },
-            "label": format!("view-{i:02}"),
-            "joints_deg": joints_deg(&p.joints_rad),
-            "image_points": points,
-        });
-        let r = app
-            .post_json(&format!("/v1/sessions/{id}/poses"), &body)
-            .await;
-        assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
+        post_pose(
+            app,
+            &id,
+            c,
+            p,
+            &format!("view-{i:02}"),
+            joints_deg(&p.joints_rad),
+        )
+        .await;
     }
     id
+}
+
+/// Uploads pose `p`'s image points with `joints` under `label`.
+async fn post_pose(
+    app: &TestApp,
+    session: &str,
+    c: &Campaign,
+    p: &SimPose,
+    label: &str,
+    joints: Vec<f64>,
+) {
+    let cols = c.truth.board.cols;
+    let points: Vec<Value> = p
+        .observed_px
+        .iter()
+        .enumerate()
+        .map(|(k, px)| json!({"row": k / cols, "col": k % cols, "x": px.x, "y": px.y}))
+        .collect();
+    let body = json!({
+        "set": if p.set == PoseSet::Cal { "cal" } else { "val" },
+        "label": label,
+        "joints_deg": joints,
+        "image_points": points,
+    });
+    let r = app
+        .post_json(&format!("/v1/sessions/{session}/poses"), &body)
+        .await;
+    assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
 }
 
 /// Waits for job `r` (a 202) to succeed; the version of its set.
@@ -260,6 +283,26 @@ async fn one_model_over_three_board_placements_matches_the_local_models() {
             carried[s].push(true_error_mm(&app, moved, None, &campaigns[s]).await);
         }
     }
+    // A pose whose joints contradict its image (joint 1 off by
+    // LIE_DEG) in the last session, added after its local and carried-over sets:
+    // the multi-session job screens it out and lists it as an outlier.
+    let last = campaigns.len() - 1;
+    let lied = campaigns[last]
+        .poses
+        .iter()
+        .find(|p| p.set == PoseSet::Cal)
+        .unwrap();
+    let mut lie = joints_deg(&lied.joints_rad);
+    lie[0] += LIE_DEG;
+    post_pose(
+        &app,
+        &sessions[last],
+        &campaigns[last],
+        lied,
+        LIE_LABEL,
+        lie,
+    )
+    .await;
     // The one model over all three placements.
     let r = app
         .post_json(
@@ -337,6 +380,16 @@ async fn one_model_over_three_board_placements_matches_the_local_models() {
         .await
         .unwrap();
     assert!(html.contains("Regions"), "no regions section");
+    // The lying pose is in per_pose, marked, with its reason.
+    let flagged: Vec<&Value> = report["per_pose"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|p| p["outlier"] == true)
+        .collect();
+    assert_eq!(flagged.len(), 1, "{flagged:?}");
+    assert_eq!(flagged[0]["label"], LIE_LABEL, "{:?}", flagged[0]);
+    assert!(flagged[0]["reason"].as_str().is_some_and(|r| !r.is_empty()));
 
     compensates_in_a_session_frame(&app, global_version, &sessions[1], &campaigns[1]).await;
 
