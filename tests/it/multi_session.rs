@@ -203,42 +203,53 @@ fn joint_gap_deg(answer: &Value, truth_deg: &[f64]) -> Option<f64> {
     )
 }
 
-/// `compensate` with `session_id` works in that session's board frame: the
-/// true camera pose of one of its validation views, as a target, gives
-/// back joints close to the true ones; without `session_id` (the first
-/// board's frame) it does not. An unknown `session_id` on the streamed
-/// path is a 422 naming it before any line.
+/// `compensate` and `filter` with `session_id` work in that session's
+/// board frame: the true camera pose of one of its validation views, as a
+/// target, gives back joints close to the true ones; without `session_id`
+/// (the first board's frame) it does not. An unknown `session_id` on the
+/// streamed path is a 422 naming it before any line.
 async fn compensates_in_a_session_frame(app: &TestApp, version: i64, session: &str, c: &Campaign) {
     let p = c.poses.iter().find(|p| p.set == PoseSet::Val).unwrap();
     let target = serde_json::to_value(robocal::schema::PoseOut::new(&p.target_to_camera)).unwrap();
     let truth = joints_deg(&p.true_joints_rad);
-    let path = format!("/v1/robots/{SERIAL}/parameter-sets/{version}/compensate");
-    let mut body = json!({"targets": [target], "seed_joints_deg": joints_deg(&p.joints_rad),
-                          "session_id": session});
-    let r = app.post_json(&path, &body).await;
-    assert_eq!(r.status(), 200, "{}", r.text().await.unwrap());
-    let answer: Value = r.json().await.unwrap();
-    let gap = joint_gap_deg(&answer, &truth).unwrap_or_else(|| panic!("{answer}"));
-    assert!(gap < MAX_COMPENSATED_JOINT_DEG, "{gap} deg: {answer}");
-    body.as_object_mut().unwrap().remove("session_id");
-    let r = app.post_json(&path, &body).await;
-    assert_eq!(r.status(), 200);
-    let other_board: Value = r.json().await.unwrap();
-    let gap = joint_gap_deg(&other_board, &truth);
-    assert!(
-        gap.is_none_or(|g| g > 10.0 * MAX_COMPENSATED_JOINT_DEG),
-        "{other_board}"
-    );
-    body["session_id"] = json!("nope");
-    let r = app
-        .client
-        .post(app.url(&path))
-        .header("accept", "application/x-ndjson")
-        .json(&body)
-        .send()
-        .await
-        .unwrap();
-    problem_field(r, "session_id").await;
+    let set = format!("/v1/robots/{SERIAL}/parameter-sets/{version}");
+    // `filter` asks for the tool the targets are for: the set's camera.
+    let camera = app.get_ok(&set).await["flange_to_camera"].clone();
+    for verb in ["compensate", "filter"] {
+        let path = format!("{set}/{verb}");
+        let mut body = json!({"targets": [target], "seed_joints_deg": joints_deg(&p.joints_rad),
+                              "session_id": session});
+        if verb == "filter" {
+            body["tool"] = crate::compensate::target_of(&camera);
+        }
+        let r = app.post_json(&path, &body).await;
+        assert_eq!(r.status(), 200, "{verb}: {}", r.text().await.unwrap());
+        let answer: Value = r.json().await.unwrap();
+        let gap = joint_gap_deg(&answer, &truth).unwrap_or_else(|| panic!("{verb}: {answer}"));
+        assert!(
+            gap < MAX_COMPENSATED_JOINT_DEG,
+            "{verb}: {gap} deg: {answer}"
+        );
+        body.as_object_mut().unwrap().remove("session_id");
+        let r = app.post_json(&path, &body).await;
+        assert_eq!(r.status(), 200, "{verb}");
+        let other_board: Value = r.json().await.unwrap();
+        let gap = joint_gap_deg(&other_board, &truth);
+        assert!(
+            gap.is_none_or(|g| g > 10.0 * MAX_COMPENSATED_JOINT_DEG),
+            "{verb}: {other_board}"
+        );
+        body["session_id"] = json!("nope");
+        let r = app
+            .client
+            .post(app.url(&path))
+            .header("accept", "application/x-ndjson")
+            .json(&body)
+            .send()
+            .await
+            .unwrap();
+        problem_field(r, "session_id").await;
+    }
 }
 
 async fn problem_field(r: reqwest::Response, field: &str) -> Value {
