@@ -61,6 +61,12 @@ pub struct ParameterSet {
 pub struct SessionBoard {
     pub session_id: String,
     pub target_to_base: PoseOut,
+    /// The set's covariance as this session sees it: its own board's base
+    /// values in the base slots (the set's `covariance` is the first
+    /// session's). `forward`'s σ with this `session_id` uses it. Absent in
+    /// sets stored before it existed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub covariance: Option<CovarianceDoc>,
 }
 
 /// The contract's names of a set's frames.
@@ -119,17 +125,23 @@ impl ParameterSet {
     /// that session's `target_to_base` (issue 18). `None` when the set
     /// knows no such session (a one-session set knows its own).
     pub fn in_session(&self, session_id: &str) -> Option<ParameterSet> {
-        let board = match self
+        let (board, covariance) = match self
             .session_target_to_base
             .iter()
             .find(|b| b.session_id == session_id)
         {
-            Some(b) => b.target_to_base.clone(),
-            None if session_id == self.session_id => self.world_to_base.clone(),
+            Some(b) => (
+                b.target_to_base.clone(),
+                b.covariance.clone().or_else(|| self.covariance.clone()),
+            ),
+            None if session_id == self.session_id => {
+                (self.world_to_base.clone(), self.covariance.clone())
+            }
             None => return None,
         };
         Some(ParameterSet {
             world_to_base: board,
+            covariance,
             ..self.clone()
         })
     }

@@ -11,7 +11,7 @@ use std::sync::atomic::AtomicBool;
 
 use robocal_calib::kinematics::identify::{validate, JointNoise, Measurement};
 use robocal_calib::kinematics::initial::initial_world_to_base;
-use robocal_calib::kinematics::joint_covariance::joint_refine_covariance_sessions;
+use robocal_calib::kinematics::joint_covariance::session_covariances;
 use robocal_calib::kinematics::joint_refine::{ImageNoise, ImagePose, JointRefinement};
 use robocal_calib::kinematics::regions::{joint_refine_regions, session_of, RegionPoses};
 use robocal_calib::kinematics::{CalibratedModel, Instrument as ModelInstrument};
@@ -56,6 +56,9 @@ pub(super) struct SessionValidation {
 pub(super) struct JointFit {
     pub refined: JointRefinement,
     pub covariance: nalgebra::DMatrix<f64>,
+    /// The covariance as each session sees it (its own board's base values
+    /// in the base slots); the first equals `covariance`.
+    pub session_covariances: Vec<nalgebra::DMatrix<f64>>,
     /// Whether the intrinsics were held (a reused camera).
     pub intrinsics_held: bool,
 }
@@ -263,12 +266,15 @@ fn joint_fit(fits: &[SessionFit]) -> Result<JointFit, PipelineError> {
     .map_err(|e| numerical(&e))?;
     let images: Vec<ImagePose> = regions.iter().flat_map(|r| r.poses.clone()).collect();
     let session_of = session_of(&regions);
-    let covariance =
-        joint_refine_covariance_sessions(&refined, &images, &free, intrinsics_held, &session_of)
+    let mut session_covariances =
+        session_covariances(&refined, &images, &free, intrinsics_held, &session_of)
             .map_err(|e| numerical(&e))?;
+    let covariance = session_covariances[0].clone();
+    session_covariances.truncate(fits.len());
     Ok(JointFit {
         refined,
         covariance,
+        session_covariances,
         intrinsics_held,
     })
 }

@@ -11,7 +11,7 @@ use super::identify_stage::Identified;
 use super::regions_job::{Fitted, JointFit, SessionValidation, INSTRUMENT};
 use super::screen_stage::Outlier;
 use super::{detections, gate, results, Input, Output, PipelineError, PoseInput};
-use crate::domain::SessionBoard;
+use crate::domain::{CovarianceDoc, SessionBoard};
 use crate::report::regions::RegionReport;
 use crate::schema::PoseOut;
 use crate::store::NewParameterSet;
@@ -75,12 +75,13 @@ pub(super) fn output(input: &Input, fitted: Fitted) -> Result<Output, PipelineEr
                 .map(|(_, local)| local.clone()),
         })
         .collect();
-    let boards: Vec<SessionBoard> = fits
+    let mut boards: Vec<SessionBoard> = fits
         .iter()
         .zip(&joint.refined.session_target_to_base)
         .map(|(f, board)| SessionBoard {
             session_id: f.input.session_id.clone(),
             target_to_base: PoseOut::new(board),
+            covariance: None,
         })
         .collect();
     notes.insert(
@@ -114,6 +115,16 @@ pub(super) fn output(input: &Input, fitted: Fitted) -> Result<Output, PipelineEr
         notes,
     };
     let mut set = results::parameter_set(&context, &combined);
+    // Each board with the covariance as its session sees it (`forward`'s
+    // σ with that `session_id`), in the layout the set's own uses.
+    let ident = &combined.identification;
+    for (board, covariance) in boards.iter_mut().zip(&joint.session_covariances) {
+        board.covariance = Some(CovarianceDoc::from_layout(
+            &ident.layout,
+            covariance,
+            &ident.identifiability.free,
+        ));
+    }
     set.session_target_to_base = boards;
     let mut report = results::report(&context, &combined, &set);
     // Per-pose reprojection of the further sessions' poses: their own

@@ -403,6 +403,7 @@ async fn one_model_over_three_board_placements_matches_the_local_models() {
     assert!(flagged[0]["reason"].as_str().is_some_and(|r| !r.is_empty()));
 
     compensates_in_a_session_frame(&app, global_version, &sessions[1], &campaigns[1]).await;
+    sigma_is_the_sessions_own(&app, global_version, &sessions, &campaigns[1]).await;
 
     // A session the set does not know.
     let r = app
@@ -456,4 +457,53 @@ async fn a_multi_session_job_refuses_empty_unknown_and_foreign_sessions() {
     // One session is that session's own calibration.
     let r = app.post_json(path, &json!({"sessions": [mine]})).await;
     assert_eq!(r.status(), 202, "{}", r.text().await.unwrap());
+}
+
+/// `forward`'s σ in a session's board frame uses that board's own base
+/// covariance: the camera's σ differs between two sessions' frames for the
+/// same joints, the flange's (link parameters only) does not.
+async fn sigma_is_the_sessions_own(app: &TestApp, version: i64, sessions: &[String], c: &Campaign) {
+    let joints: Vec<Vec<f64>> = c
+        .poses
+        .iter()
+        .filter(|p| p.set == PoseSet::Val)
+        .map(|p| joints_deg(&p.joints_rad))
+        .collect();
+    let path = format!("/v1/robots/{SERIAL}/parameter-sets/{version}/forward");
+    let mut answers = Vec::new();
+    for session in &sessions[..2] {
+        let body = json!({"joints_deg": joints, "session_id": session});
+        let r = app.post_json(&path, &body).await;
+        assert_eq!(r.status(), 200);
+        answers.push(r.json::<Value>().await.unwrap());
+    }
+    let sigma = |a: &Value, key: &str| -> Vec<f64> {
+        a["poses"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| p[key].as_f64().unwrap_or_else(|| panic!("{key}: {p}")))
+            .collect()
+    };
+    let (flange_0, flange_1) = (
+        sigma(&answers[0], "flange_position_std_mm"),
+        sigma(&answers[1], "flange_position_std_mm"),
+    );
+    for (a, b) in flange_0.iter().zip(&flange_1) {
+        assert!((a - b).abs() <= 1e-6 * a.max(*b), "flange σ {a} vs {b}");
+    }
+    let (camera_0, camera_1) = (
+        sigma(&answers[0], "position_std_mm"),
+        sigma(&answers[1], "position_std_mm"),
+    );
+    let differ = camera_0
+        .iter()
+        .zip(&camera_1)
+        .filter(|(a, b)| (*a - *b).abs() > 1e-3 * a.max(**b))
+        .count();
+    eprintln!("camera σ in session 0's frame {camera_0:.4?}, in session 1's {camera_1:.4?}");
+    assert!(
+        differ > 0,
+        "the same σ in both boards' frames: {camera_0:?}"
+    );
 }

@@ -48,6 +48,22 @@ pub fn joint_refine_covariance_sessions(
     hold_intrinsics: bool,
     session_of: &[usize],
 ) -> Result<DMatrix<f64>, IdentifyError> {
+    let mut all = session_covariances(refined, poses, free, hold_intrinsics, session_of)?;
+    Ok(all.swap_remove(0))
+}
+
+/// [`joint_refine_covariance_sessions`] seen from every session: entry `s`
+/// is the layout-sized covariance with the base values of session `s`'s
+/// board in the base slots (its own correlations with the kinematics and
+/// hand–eye, the other boards marginalised). What `forward`'s σ needs when
+/// it works in session `s`'s board frame.
+pub fn session_covariances(
+    refined: &JointRefinement,
+    poses: &[ImagePose],
+    free: &[usize],
+    hold_intrinsics: bool,
+    session_of: &[usize],
+) -> Result<Vec<DMatrix<f64>>, IdentifyError> {
     let layout = &refined.layout;
     let ni = if hold_intrinsics { 0 } else { INTRINSICS };
     let base_slots: Vec<usize> = (0..free.len())
@@ -156,8 +172,20 @@ pub fn joint_refine_covariance_sessions(
     }
     let dof = rows.saturating_sub(head).max(1) as f64;
     let head_cov = covariance_from_normal(&reduced, cost / dof);
-    let kinematic = head_cov.view((0, 0), (nf_layout, nf_layout)).into_owned();
-    Ok(embed_covariance(layout.len(), free, &kinematic))
+    Ok((0..sessions)
+        .map(|session| {
+            // Head index of each layout free value as session `session` sees it.
+            let mut at: Vec<usize> = (0..nf_layout).collect();
+            if session > 0 {
+                let first = nf_layout + (session - 1) * base_slots.len();
+                for (j, &c) in base_slots.iter().enumerate() {
+                    at[c] = first + j;
+                }
+            }
+            let kinematic = DMatrix::from_fn(nf_layout, nf_layout, |r, c| head_cov[(at[r], at[c])]);
+            embed_covariance(layout.len(), free, &kinematic)
+        })
+        .collect())
 }
 
 #[cfg(test)]

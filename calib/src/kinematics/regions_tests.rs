@@ -339,3 +339,43 @@ fn multi_region_covariance_reproduces_the_fit_std_devs() {
 
 /// Relative agreement of the recomputed σ with the fit's.
 const COVARIANCE_RELATIVE: f64 = 0.02;
+
+/// Session 1's covariance equals session 0's of the same fit with the two
+/// sessions' places swapped: each board's σ is its own, not the first's.
+#[test]
+fn each_session_sees_its_own_board_covariance() {
+    use crate::kinematics::joint_covariance::session_covariances;
+    let regions = regions(18, 0.0);
+    let free = shared_free(&regions);
+    let global = global_fit(&regions, &free);
+    let images: Vec<ImagePose> = regions.iter().flat_map(|r| r.images.clone()).collect();
+    let session_of: Vec<usize> = session_of(
+        &regions
+            .iter()
+            .map(|r| RegionPoses {
+                target_to_base_start: r.start.world_to_base,
+                poses: r.images.clone(),
+            })
+            .collect::<Vec<_>>(),
+    );
+    let all = session_covariances(&global, &images, &free, false, &session_of).unwrap();
+    assert_eq!(all.len(), regions.len());
+    let mut swapped = global.clone();
+    swapped.session_target_to_base.swap(0, 1);
+    swapped.model.world_to_base = swapped.session_target_to_base[0];
+    let swapped_of: Vec<usize> = session_of
+        .iter()
+        .map(|&s| match s {
+            0 => 1,
+            1 => 0,
+            other => other,
+        })
+        .collect();
+    let seen = session_covariances(&swapped, &images, &free, false, &swapped_of).unwrap();
+    let scale = all[1].amax();
+    let gap = (&all[1] - &seen[0]).amax();
+    assert!(gap <= 1e-6 * scale, "{gap} of {scale}");
+    // And the boards differ: session 0's base σ is not session 1's.
+    let apart = (&all[0] - &all[1]).amax();
+    assert!(apart > 1e-2 * scale, "{apart} of {scale}");
+}
