@@ -18,6 +18,8 @@ use super::fleet_page::{read_token, robot_with_reported_set};
 use crate::support::*;
 
 /// Set (not `0`): a missing browser fails the test instead of skipping it.
+/// Validation delay per pose of the job the page shows running (ms).
+const BROWSER_STAGE_DELAY_MS: u64 = 15_000;
 const REQUIRE_BROWSER_VAR: &str = "ROBOCAL_TEST_REQUIRE_BROWSER";
 /// A phone's viewport, CSS pixels (the page must fit it without scrolling sideways).
 const PHONE_WIDTH: u32 = 412;
@@ -258,8 +260,11 @@ async fn a_person_signs_in_sees_the_fleet_and_follows_a_robot_in_chromium() {
         );
         return;
     };
-    // Jobs that stay running while the browser looks (4 poses × 3 s).
-    let app = spawn_app_with(|c| c.test_stage_delay_ms = 3000).await;
+    // Jobs that stay running while the browser looks (4 poses ×
+    // BROWSER_STAGE_DELAY_MS; cancelled at the end, so the length costs
+    // nothing). 3 s a pose was too short once under CI's load: Chromium's
+    // start outlasted the 12 s and the page showed no job in progress.
+    let app = spawn_app_with(|c| c.test_stage_delay_ms = BROWSER_STAGE_DELAY_MS).await;
     let mean = robot_with_reported_set(&app, "CELL-7").await;
     let session = app.robot_and_session("CELL-8").await;
     app.add_point_poses(&session, 3, 1).await;
