@@ -55,9 +55,8 @@ pub(super) struct SessionValidation {
 /// The joint fit and what goes with it.
 pub(super) struct JointFit {
     pub refined: JointRefinement,
-    pub covariance: nalgebra::DMatrix<f64>,
     /// The covariance as each session sees it (its own board's base values
-    /// in the base slots); the first equals `covariance`.
+    /// in the base slots); the first is the set's own.
     pub session_covariances: Vec<nalgebra::DMatrix<f64>>,
     /// Whether the intrinsics were held (a reused camera).
     pub intrinsics_held: bool,
@@ -266,14 +265,11 @@ fn joint_fit(fits: &[SessionFit]) -> Result<JointFit, PipelineError> {
     .map_err(|e| numerical(&e))?;
     let images: Vec<ImagePose> = regions.iter().flat_map(|r| r.poses.clone()).collect();
     let session_of = session_of(&regions);
-    let mut session_covariances =
+    let session_covariances =
         session_covariances(&refined, &images, &free, intrinsics_held, &session_of)
             .map_err(|e| numerical(&e))?;
-    let covariance = session_covariances[0].clone();
-    session_covariances.truncate(fits.len());
     Ok(JointFit {
         refined,
-        covariance,
         session_covariances,
         intrinsics_held,
     })

@@ -170,7 +170,7 @@ fn combined(
     let r = &joint.refined;
     first.model = r.model.clone();
     first.std_devs = r.std_devs.clone();
-    first.covariance = joint.covariance.clone();
+    first.covariance = joint.session_covariances[0].clone();
     first.refined_intrinsics =
         (!joint.intrinsics_held).then_some((r.intrinsics, r.intrinsics_std, r.reprojection_rms_px));
     first.joint_noise_rad = Some(r.joint_sigma_rad);

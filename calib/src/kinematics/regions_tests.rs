@@ -306,12 +306,15 @@ const BOARD_TO_BOARD_TOLERANCE_RAD: f64 = 2e-4;
 /// Recovered focal length (px of 3480).
 const FX_TOLERANCE_PX: f64 = 1.0;
 
-/// The covariance of the multi-region fit, recomputed with every pose on
-/// its own session's board, reproduces the fit's own standard deviations
-/// (the further sessions' bases marginalised, as in the fit).
-#[test]
-fn multi_region_covariance_reproduces_the_fit_std_devs() {
-    use crate::kinematics::joint_covariance::joint_refine_covariance_sessions;
+/// The three-region campaign fitted globally, with what the covariance
+/// takes: (regions, free set, fit, every image, each image's session).
+fn fitted_regions() -> (
+    Vec<Region>,
+    Vec<usize>,
+    JointRefinement,
+    Vec<ImagePose>,
+    Vec<usize>,
+) {
     let regions = regions(18, 0.0);
     let free = shared_free(&regions);
     let global = global_fit(&regions, &free);
@@ -325,6 +328,16 @@ fn multi_region_covariance_reproduces_the_fit_std_devs() {
             })
             .collect::<Vec<_>>(),
     );
+    (regions, free, global, images, session_of)
+}
+
+/// The covariance of the multi-region fit, recomputed with every pose on
+/// its own session's board, reproduces the fit's own standard deviations
+/// (the further sessions' bases marginalised, as in the fit).
+#[test]
+fn multi_region_covariance_reproduces_the_fit_std_devs() {
+    use crate::kinematics::joint_covariance::joint_refine_covariance_sessions;
+    let (_, free, global, images, session_of) = fitted_regions();
     let cov =
         joint_refine_covariance_sessions(&global, &images, &free, false, &session_of).unwrap();
     for &i in &free {
@@ -345,19 +358,7 @@ const COVARIANCE_RELATIVE: f64 = 0.02;
 #[test]
 fn each_session_sees_its_own_board_covariance() {
     use crate::kinematics::joint_covariance::session_covariances;
-    let regions = regions(18, 0.0);
-    let free = shared_free(&regions);
-    let global = global_fit(&regions, &free);
-    let images: Vec<ImagePose> = regions.iter().flat_map(|r| r.images.clone()).collect();
-    let session_of: Vec<usize> = session_of(
-        &regions
-            .iter()
-            .map(|r| RegionPoses {
-                target_to_base_start: r.start.world_to_base,
-                poses: r.images.clone(),
-            })
-            .collect::<Vec<_>>(),
-    );
+    let (regions, free, global, images, session_of) = fitted_regions();
     let all = session_covariances(&global, &images, &free, false, &session_of).unwrap();
     assert_eq!(all.len(), regions.len());
     let mut swapped = global.clone();
