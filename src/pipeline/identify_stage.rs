@@ -9,6 +9,7 @@ use robocal_calib::kinematics::identify::{
     holdout_split, identify, validate, Identification, IdentifyMode, IdentifyOptions, JointNoise,
     Measurement, Observed,
 };
+use robocal_calib::kinematics::image_term_selection::select_terms_on_images;
 use robocal_calib::kinematics::initial::initial_world_to_base;
 use robocal_calib::kinematics::joint_covariance::joint_refine_covariance;
 use robocal_calib::kinematics::joint_refine::{joint_refine, ImageNoise, ImagePose};
@@ -200,17 +201,18 @@ pub fn identify_robot(
             None,
         ),
     };
-    let terms = selection.as_ref().and_then(TermsDoc::of);
+    let mut selection = selection;
     let mut model = identification.model.clone();
     let mut std_devs = identification.std_devs.clone();
     let mut covariance = identification.covariance.clone();
     let mut refined_intrinsics = None;
     let mut joint_noise_rad = None;
-    if let (Some(s), Some(_)) = (&selection, &terms) {
-        // Geometry refitted jointly with the kept terms; the joint
-        // refinement on the image points has no terms, so it is not run.
+    if let Some(s) = &selection {
+        // Pose level only (a tracker, or no joint refinement): geometry
+        // refitted jointly with the kept terms.
         model = s.model.clone();
-    } else if let (Some(step), true) = (camera, joint_refinement && kind == MeasurementKind::Pose) {
+    }
+    if let (Some(step), true) = (camera, joint_refinement && kind == MeasurementKind::Pose) {
         let images: Vec<ImagePose> = cal
             .iter()
             .filter_map(|&i| {
@@ -220,26 +222,39 @@ pub fn identify_robot(
                 })
             })
             .collect();
-        let sigma_px = step.calibration.rms_px.max(1e-3);
-        let joint = joint_refine(
-            &identification.model,
-            &step.intrinsics(),
-            &images,
-            &identification.identifiability.free,
-            ImageNoise {
-                sigma_px,
-                joint: JointNoise::Estimate,
-            },
-            hold_intrinsics,
-        )
-        .map_err(|e| numerical(Stage::Identify, e))?;
-        covariance = joint_refine_covariance(
-            &joint,
-            &images,
-            &identification.identifiability.free,
-            hold_intrinsics,
-        )
-        .map_err(|e| numerical(Stage::Identify, e))?;
+        let noise = ImageNoise {
+            sigma_px: step.calibration.rms_px.max(1e-3),
+            joint: JointNoise::Estimate,
+        };
+        let free = &identification.identifiability.free;
+        let intrinsics = step.intrinsics();
+        let joint = match &selection {
+            // Terms selected again on the image points, refined with the
+            // geometry, hand–eye and intrinsics (calib's
+            // `image_term_selection`).
+            Some(s) => {
+                let on_images =
+                    select_terms_on_images(s, &intrinsics, &images, noise, hold_intrinsics)
+                        .map_err(|e| numerical(Stage::Identify, e))?;
+                selection = Some(on_images.selection);
+                on_images.refinement
+            }
+            None => joint_refine(
+                &identification.model,
+                &intrinsics,
+                &images,
+                free,
+                noise,
+                hold_intrinsics,
+            )
+            .map_err(|e| numerical(Stage::Identify, e))?,
+        };
+        covariance = match &joint.terms {
+            // Marginal over the terms: read from the refinement itself.
+            Some(t) => t.geometric_covariance.clone(),
+            None => joint_refine_covariance(&joint, &images, free, hold_intrinsics)
+                .map_err(|e| numerical(Stage::Identify, e))?,
+        };
         model = joint.model.clone();
         std_devs = joint.std_devs.clone();
         joint_noise_rad = Some(joint.joint_sigma_rad);
@@ -249,6 +264,7 @@ pub fn identify_robot(
             joint.reprojection_rms_px,
         ));
     }
+    let terms = selection.as_ref().and_then(TermsDoc::of);
     let evaluated = match &terms {
         Some(t) => t.term_model(model.clone()),
         None => Ok(TermModel::geometric(model.clone())),

@@ -173,8 +173,8 @@ fn run_stages(
         });
     }
     within(Stage::Identify, "kinematic identification", 0.0);
-    // Term selection: default on for trackers, opt-in for cameras (kept
-    // terms there skip the image-level joint refinement; see
+    // Term selection: default on for trackers, opt-in for cameras (there
+    // the terms are selected again on the image points; see
     // `CalibrationOptions::non_geometric_for`).
     let candidates = input
         .options

@@ -3,7 +3,7 @@
 //! "beyond": identifiability, the Wald test, held-out regions, BIC and
 //! cross-validation against the geometric fit).
 
-use robocal_calib::kinematics::term_selection::{TermIdentification, CRITERION};
+use robocal_calib::kinematics::term_selection::TermIdentification;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
@@ -56,7 +56,7 @@ impl TermsReport {
             })
             .collect();
         Self {
-            criterion: CRITERION.into(),
+            criterion: selection.criterion.into(),
             payload_kg,
             z_threshold: selection.z_threshold,
             bic_geometric: selection.bic_geometric,

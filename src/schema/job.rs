@@ -126,11 +126,11 @@ impl Default for CalibrationOptions {
 impl CalibrationOptions {
     /// Whether the job selects non-geometric terms for a session measured
     /// by `instrument`: the request's `non_geometric`, else on for a
-    /// tracker and off otherwise. A camera session is opt-in because, when
-    /// terms are kept there, the job skips the joint refinement on the
-    /// image points (that refinement has no terms: it would re-fit the
-    /// geometry without them), so the set loses the image-level fit and
-    /// its joint noise; a tracker session has no such refinement to lose.
+    /// tracker and off otherwise. A camera session is opt-in for its cost:
+    /// the terms are selected again on the image points (calib's
+    /// `image_term_selection`: three to five joint refinements instead of
+    /// one), and a camera campaign's narrow configurations leave most
+    /// candidates unidentifiable anyway; a tracker's pose-level fit is cheap.
     /// A stage session identifies no robot, so it has no terms either.
     pub fn non_geometric_for(&self, instrument: Instrument) -> bool {
         self.non_geometric
@@ -180,7 +180,7 @@ mod tests {
     use super::*;
 
     /// Term selection is on by default for a tracker and opt-in for a
-    /// camera (its kept terms skip the image-level joint refinement); an
+    /// camera (its image-level selection costs several refinements); an
     /// explicit `non_geometric` wins either way.
     #[test]
     fn non_geometric_defaults_on_for_trackers_only() {

@@ -10,11 +10,17 @@
 //! `target_to_base` is the layout's, every further session has its own
 //! copy of the free base values in the head, after the layout's free
 //! values. Kinematics, hand–eye and intrinsics stay shared.
+//!
+//! Non-geometric terms (issue 19, method.md §6 "beyond"): with
+//! [`ImageTerms`] each term's value is an unknown of the head after the
+//! base values; it deflects its joint by `value · f(q)` before the chain, so
+//! its column is that joint's `dθ` column times the pose's basis value.
 
 use nalgebra::{DMatrix, DVector, Matrix6, SMatrix};
 
 use super::image_pose::{ImageNoise, ImagePose};
 use super::jacobian::tool_pose_jacobian;
+use super::nongeometric::NonGeometric;
 use super::params::{CalibratedModel, ParamKind, ParamLayout};
 use super::projection::{apply_intrinsics, project_with_jacobians, INTRINSIC_NAMES};
 use crate::arrow::ArrowMatrix;
@@ -38,6 +44,18 @@ pub(super) struct ImageFit<'a> {
     pub(super) extra_bases: &'a [Pose],
     /// Session of each pose (empty: every pose in session 0).
     pub(super) session_of: &'a [usize],
+    /// Non-geometric terms fitted with the geometry (`None`: geometry only).
+    pub(super) terms: Option<ImageTerms<'a>>,
+}
+
+/// The terms an image-level fit refines: their starting values (`x` adds
+/// to them) and each pose's basis values `f_t(q_k)` (fixed: the bases are
+/// evaluated on the terms' own fixed chain at the recorded joints).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct ImageTerms<'a> {
+    pub(super) terms: &'a NonGeometric,
+    /// `bases[k][t]`: term `t`'s basis at pose `k`.
+    pub(super) bases: &'a [Vec<f64>],
 }
 
 /// One pose's linearisation: the tool-pose Jacobian's free and joint
@@ -78,10 +96,31 @@ impl ImageFit<'_> {
             .collect()
     }
 
-    /// Kinematic unknowns: the layout's free values, then the further
-    /// sessions' base values.
-    pub(super) fn nk(&self) -> usize {
+    /// Position in `x` of the first term value.
+    pub(super) fn term_start(&self) -> usize {
         self.free.len() + self.base_slots().len() * self.extra_bases.len()
+    }
+
+    /// Number of term values among the unknowns.
+    pub(super) fn nt(&self) -> usize {
+        self.terms.map_or(0, |t| t.terms.terms.len())
+    }
+
+    /// Kinematic unknowns: the layout's free values, the further sessions'
+    /// base values, then the term values.
+    pub(super) fn nk(&self) -> usize {
+        self.term_start() + self.nt()
+    }
+
+    /// The terms with their values at `x` (`None`: geometry only).
+    pub(super) fn terms_at(&self, x: &DVector<f64>) -> Option<NonGeometric> {
+        let t = self.terms?;
+        let start = self.term_start();
+        let mut out = t.terms.clone();
+        for (k, v) in out.values.iter_mut().enumerate() {
+            *v += x[start + k];
+        }
+        Some(out)
     }
 
     fn session(&self, k: usize) -> usize {
@@ -127,14 +166,24 @@ impl ImageFit<'_> {
         }
     }
 
-    /// Joints of pose `k` with its correction in `x` applied.
+    /// Joints of pose `k` as the chain sees them: deflected by the terms
+    /// at `x`, with the pose's correction in `x` applied.
     fn pose_joints(&self, x: &DVector<f64>, k: usize) -> Vec<f64> {
         let q = &self.poses[k].joints_rad;
         let nj = self.joints();
         let start = self.head() + k * nj;
-        (0..q.len())
+        let mut out: Vec<f64> = (0..q.len())
             .map(|j| q[j] + if j < nj { x[start + j] } else { 0.0 })
-            .collect()
+            .collect();
+        if let Some(t) = self.terms {
+            let first = self.term_start();
+            for (i, kind) in t.terms.terms.iter().enumerate() {
+                if let Some(qj) = out.get_mut(kind.joint()) {
+                    *qj += (t.terms.values[i] + x[first + i]) * t.bases[k][i];
+                }
+            }
+        }
+        out
     }
 
     pub(super) fn image_rows(&self) -> usize {
@@ -179,6 +228,13 @@ impl ImageFit<'_> {
             for (j, &c) in slots.iter().enumerate() {
                 t_free.set_column(first + j, &jt.column(self.free[c]));
                 t_free.column_mut(c).fill(0.0);
+            }
+        }
+        if let Some(t) = self.terms {
+            let first = self.term_start();
+            for (i, kind) in t.terms.terms.iter().enumerate() {
+                let column = jt.column(offsets[kind.joint()]) * t.bases[k][i];
+                t_free.set_column(first + i, &column);
             }
         }
         let mut block = PoseBlock {

@@ -25,9 +25,11 @@ use nalgebra::{DMatrix, DVector};
 
 use super::identify_error::IdentifyError;
 use super::identify_options::JointNoise;
-use super::image_fit::ImageFit;
+use super::image_fit::{ImageFit, ImageTerms};
 pub use super::image_pose::{ImageNoise, ImagePose};
+use super::nongeometric::NonGeometric;
 use super::params::{CalibratedModel, Instrument, ParamLayout};
+use super::refined_terms::RefinedTerms;
 use crate::camera::model::Intrinsics;
 use crate::geometry::Pose;
 use crate::solver::{solve, LmOptions, LmReport, Termination};
@@ -51,6 +53,9 @@ pub struct JointRefinement {
     pub session_target_to_base: Vec<Pose>,
     /// Estimated joint corrections per pose (rad), empty without joint noise.
     pub joint_corrections_rad: Vec<Vec<f64>>,
+    /// The non-geometric terms refined with the geometry, with their
+    /// covariance ([`joint_refine_with_terms`]); `None` for geometry only.
+    pub terms: Option<RefinedTerms>,
     pub iterations: usize,
     pub termination: Termination,
 }
@@ -83,10 +88,6 @@ pub fn joint_refine(
     noise: ImageNoise,
     hold_intrinsics: bool,
 ) -> Result<JointRefinement, IdentifyError> {
-    let sessions = Sessions {
-        extra_bases: &[],
-        session_of: &[],
-    };
     refine_sessions(
         start,
         intrinsics,
@@ -94,16 +95,47 @@ pub fn joint_refine(
         free,
         noise,
         hold_intrinsics,
-        sessions,
+        Extras::default(),
     )
 }
 
-/// Which board each pose sees (see [`super::image_fit`]): the reference
-/// `target_to_base` of sessions 1.. and the session of every pose.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Sessions<'a> {
+/// [`joint_refine`] with non-geometric terms (issue 19, method.md §6
+/// "beyond"): every term of `terms` is refined with the geometry, hand–eye
+/// and intrinsics on the image points, starting from its value there (the
+/// pose-level selection's). The result's `terms` holds the refined values
+/// and their covariance with the geometry; its `std_devs` are marginal over
+/// the terms.
+pub fn joint_refine_with_terms(
+    start: &CalibratedModel,
+    intrinsics: &Intrinsics,
+    poses: &[ImagePose],
+    free: &[usize],
+    terms: &NonGeometric,
+    noise: ImageNoise,
+    hold_intrinsics: bool,
+) -> Result<JointRefinement, IdentifyError> {
+    refine_sessions(
+        start,
+        intrinsics,
+        poses,
+        free,
+        noise,
+        hold_intrinsics,
+        Extras {
+            terms: Some(terms),
+            ..Extras::default()
+        },
+    )
+}
+
+/// What a refinement fits beyond one board and the geometry (see
+/// [`super::image_fit`]): the reference `target_to_base` of sessions 1..
+/// and the session of every pose; the non-geometric terms.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct Extras<'a> {
     pub(super) extra_bases: &'a [Pose],
     pub(super) session_of: &'a [usize],
+    pub(super) terms: Option<&'a NonGeometric>,
 }
 
 /// [`joint_refine`] over several sessions: `start.world_to_base` is
@@ -115,17 +147,28 @@ pub(super) fn refine_sessions(
     free: &[usize],
     noise: ImageNoise,
     hold_intrinsics: bool,
-    sessions: Sessions,
+    sessions: Extras,
 ) -> Result<JointRefinement, IdentifyError> {
     if poses.is_empty() {
         return Err(IdentifyError::NoPoses);
     }
+    let mut term_bases = Vec::new();
     for (pose, p) in poses.iter().enumerate() {
         start
             .robot
             .base_to_flange(&p.joints_rad)
             .map_err(|source| IdentifyError::Pose { pose, source })?;
+        if let Some(t) = sessions.terms {
+            let basis = t
+                .basis(&p.joints_rad)
+                .map_err(|source| IdentifyError::Pose { pose, source })?;
+            term_bases.push(basis);
+        }
     }
+    let terms = sessions.terms.map(|terms| ImageTerms {
+        terms,
+        bases: &term_bases,
+    });
     let layout = ParamLayout::new(&start.robot, Instrument::Camera);
     let estimate = noise.joint == JointNoise::Estimate;
     let mut sigma_px = if noise.sigma_px > 0.0 {
@@ -148,6 +191,7 @@ pub(super) fn refine_sessions(
         hold_intrinsics,
         extra_bases: sessions.extra_bases,
         session_of: sessions.session_of,
+        terms,
     }
     .head();
     let mut x0: Option<DVector<f64>> = None;
@@ -170,6 +214,7 @@ pub(super) fn refine_sessions(
             hold_intrinsics,
             extra_bases: sessions.extra_bases,
             session_of: sessions.session_of,
+            terms,
         };
         let n = problem.params();
         let x_start = match x0.take() {
@@ -216,6 +261,8 @@ struct Solution {
     intrinsics: Intrinsics,
     /// `target_to_base` of every session, session 0 first.
     bases: Vec<Pose>,
+    /// The terms at their solved values.
+    terms: Option<NonGeometric>,
     /// Kinematics and intrinsics block.
     head_inverse: DMatrix<f64>,
     /// Diagonal of the joint corrections' block.
@@ -226,12 +273,20 @@ impl Solution {
     fn at(problem: &ImageFit, report: &LmReport) -> Result<Self, IdentifyError> {
         let (model, intrinsics) = problem.unpack(&report.x);
         let bases = problem.session_bases(&report.x, &model);
+        let terms = problem.terms_at(&report.x);
         // Linearised at the solution itself (x = 0 around it, the joint
         // corrections kept as found).
         let at = ImageFit {
             reference: &model,
             intrinsics: &intrinsics,
             extra_bases: &bases[1..],
+            terms: problem
+                .terms
+                .zip(terms.as_ref())
+                .map(|(t, solved)| ImageTerms {
+                    terms: solved,
+                    bases: t.bases,
+                }),
             ..*problem
         };
         let kinematic = problem.head();
@@ -262,6 +317,7 @@ impl Solution {
             model,
             intrinsics,
             bases,
+            terms,
         })
     }
 
@@ -302,6 +358,15 @@ impl Solution {
         }
         let rows = problem.image_rows();
         let image_cost = report.residuals.rows(0, rows).norm_squared();
+        let terms = self.terms.map(|t| {
+            RefinedTerms::from_head(
+                t,
+                &(&self.head_inverse * variance),
+                layout.len(),
+                free,
+                problem.term_start(),
+            )
+        });
         JointRefinement {
             model: self.model,
             intrinsics: self.intrinsics,
@@ -317,6 +382,7 @@ impl Solution {
             sigma_px: problem.noise.sigma_px,
             joint_sigma_rad: problem.noise.joint_sigma_rad(),
             joint_corrections_rad,
+            terms,
             session_target_to_base: self.bases,
             iterations: report.iterations,
             termination: report.termination,
@@ -328,3 +394,7 @@ impl Solution {
 #[cfg(test)]
 #[path = "joint_refine_tests.rs"]
 mod tests;
+
+#[cfg(test)]
+#[path = "joint_refine_terms_tests.rs"]
+mod terms_tests;

@@ -47,6 +47,7 @@ fn jacobian_matches_finite_differences_and_exact_points_are_fitted() {
         hold_intrinsics: false,
         extra_bases: &[],
         session_of: &[],
+        terms: None,
     };
     let x = DVector::from_fn(
         fit.params(),

@@ -8,7 +8,7 @@
 
 use super::identify_error::IdentifyError;
 use super::image_pose::{ImageNoise, ImagePose};
-use super::joint_refine::{refine_sessions, JointRefinement, Sessions};
+use super::joint_refine::{refine_sessions, Extras, JointRefinement};
 use super::params::CalibratedModel;
 use crate::camera::model::Intrinsics;
 use crate::geometry::Pose;
@@ -60,9 +60,10 @@ pub fn joint_refine_regions(
         .collect();
     let session_of = session_of(regions);
     let poses: Vec<ImagePose> = regions.iter().flat_map(|r| r.poses.clone()).collect();
-    let sessions = Sessions {
+    let sessions = Extras {
         extra_bases: &extra_bases,
         session_of: &session_of,
+        terms: None,
     };
     refine_sessions(
         &start,

@@ -67,6 +67,9 @@ pub struct TermIdentification {
     pub z_threshold: f64,
     pub bic_geometric: f64,
     pub bic_with_terms: f64,
+    /// How this selection decided ([`CRITERION`] at pose level,
+    /// [`super::image_term_selection::IMAGE_CRITERION`] on the images).
+    pub criterion: &'static str,
 }
 
 /// Identify geometry and the candidate terms of `candidates`, keeping only
@@ -259,6 +262,7 @@ pub fn identify_with_terms(
         z_threshold,
         bic_geometric,
         bic_with_terms,
+        criterion: CRITERION,
         geometric: geo,
     })
 }

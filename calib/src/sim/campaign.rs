@@ -1,8 +1,9 @@
 //! Whole-campaign simulator (method.md §5–7): a robot with perturbed
 //! kinematics, a flange camera with an unknown hand–eye transform, camera
 //! stations 600–1000 mm from the board at 20–45 degrees reached through the
-//! *nominal* inverse kinematics, encoder noise and optional joint compliance
-//! (an unmodelled error), and the ideal (optionally noisy) image of every
+//! *nominal* inverse kinematics, encoder noise, optional joint compliance
+//! (an unmodelled error) and optional non-geometric terms (issue 19's
+//! switch, the ones the tracker simulator uses), and the ideal (optionally noisy) image of every
 //! dot. The renderer (`sim/render.rs`) turns [`SimPose::target_to_camera`]
 //! into images; this file only produces geometry and truth.
 
@@ -11,9 +12,11 @@ use rand::{rngs::StdRng, Rng, SeedableRng};
 use rand_distr::{Distribution, Normal};
 
 use super::campaign_io::{image_name, Board, PoseEntry, PoseSet, Truth};
+use super::tracker_campaign::typical_terms;
 use crate::camera::model::Intrinsics;
 use crate::geometry::{pose_from_xyz_rpy_deg, pose_to_matrix_rows, Pose};
 use crate::kinematics::ik::inverse_kinematics;
+use crate::kinematics::nongeometric::NonGeometric;
 use crate::kinematics::{CalibratedModel, Convention, RobotModel};
 
 /// Attempts per accepted station before the campaign is declared impossible.
@@ -48,6 +51,11 @@ pub struct CampaignSpec {
     pub encoder_sigma_deg: f64,
     /// Joint 2/3 deflection per metre of horizontal lever arm (rad/m); 0 = off.
     pub compliance_rad_per_m: f64,
+    /// Issue 19's switch: the true robot also has the non-geometric terms
+    /// of [`typical_terms`] (compliance of joints 2 and 3 under a tool
+    /// mass, periodic errors of joints 1 and 4) on top of any
+    /// `compliance_rad_per_m`.
+    pub non_geometric: bool,
     pub pixel_sigma_px: f64,
     pub distance_mm: (f64, f64),
     pub tilt_deg: (f64, f64),
@@ -82,6 +90,7 @@ impl CampaignSpec {
             twist_sigma_deg: 0.05,
             encoder_sigma_deg: 0.0001,
             compliance_rad_per_m: 0.0,
+            non_geometric: false,
             pixel_sigma_px: 0.1,
             distance_mm: (600.0, 1000.0),
             tilt_deg: (20.0, 45.0),
@@ -182,6 +191,34 @@ pub fn compliance(robot: &RobotModel, q: &[f64], rad_per_m: f64) -> Vec<f64> {
     out
 }
 
+/// The true non-geometric terms of `true_model`: [`typical_terms`] with
+/// the switch, none without.
+pub fn true_terms(spec: &CampaignSpec, true_model: &CalibratedModel) -> NonGeometric {
+    if spec.non_geometric {
+        typical_terms(true_model)
+    } else {
+        NonGeometric::none(true_model)
+    }
+}
+
+/// The joints the true robot has when its encoders read `read_rad` (the
+/// recorded joints plus their noise): [`compliance`] and the `terms`'
+/// deflections (evaluated at the reading, as a model of them is).
+pub fn true_joints(
+    spec: &CampaignSpec,
+    robot: &RobotModel,
+    terms: &NonGeometric,
+    read_rad: &[f64],
+) -> Vec<f64> {
+    let mut out = compliance(robot, read_rad, spec.compliance_rad_per_m);
+    if let Ok(bent) = terms.deflected(read_rad) {
+        for ((q, b), r) in out.iter_mut().zip(&bent).zip(read_rad) {
+            *q += b - r;
+        }
+    }
+    out
+}
+
 /// Ideal pixels of all dots, if every one is inside the image margins.
 fn image_of_board(spec: &CampaignSpec, target_to_camera: &Pose) -> Option<Vec<Point2<f64>>> {
     let inv = target_to_camera.inverse();
@@ -271,6 +308,7 @@ pub fn simulate_campaign(spec: &CampaignSpec) -> Result<Campaign, SimError> {
         world_to_base: target_to_base,
         flange_to_tool: flange_to_camera,
     };
+    let terms = true_terms(spec, &true_model);
     let wanted = spec.cal_poses + spec.val_poses;
     let mut poses = Vec::with_capacity(wanted);
     let pixel = Normal::new(0.0, spec.pixel_sigma_px.max(f64::MIN_POSITIVE))
@@ -294,7 +332,7 @@ pub fn simulate_campaign(spec: &CampaignSpec) -> Result<Campaign, SimError> {
             .iter()
             .map(|q| q + gauss(&mut rng, spec.encoder_sigma_deg.to_radians()))
             .collect();
-        let true_joints = compliance(&robot, &noisy, spec.compliance_rad_per_m);
+        let true_joints = true_joints(spec, &robot, &terms, &noisy);
         let Ok(target_to_camera) = true_model.world_to_tool(&true_joints) else {
             continue;
         };
@@ -350,6 +388,7 @@ fn campaign_truth(
         pixel_sigma_px: spec.pixel_sigma_px,
         encoder_sigma_deg: spec.encoder_sigma_deg,
         compliance_rad_per_m: spec.compliance_rad_per_m,
+        non_geometric: spec.non_geometric,
         true_joints_deg: Vec::new(),
         target_to_camera: Vec::new(),
         seed: spec.seed,

@@ -112,6 +112,10 @@ pub struct Truth {
     pub pixel_sigma_px: f64,
     pub encoder_sigma_deg: f64,
     pub compliance_rad_per_m: f64,
+    /// The true robot had [`super::tracker_campaign::typical_terms`] too
+    /// (issue 19's switch); its true joints below include them.
+    #[serde(default)]
+    pub non_geometric: bool,
     /// The joints the true robot really had, per pose (deg).
     pub true_joints_deg: Vec<Vec<f64>>,
     /// The true camera pose per pose (the renderer's input).

@@ -9,7 +9,7 @@ use nalgebra::{Point2, Vector2};
 use rand::{rngs::StdRng, SeedableRng};
 use rand_distr::{Distribution, Normal};
 
-use super::campaign::{compliance, Campaign, CampaignSpec, SimError};
+use super::campaign::{true_joints, true_terms, Campaign, CampaignSpec, SimError};
 use super::campaign_io::PoseSet;
 use super::experiment_error::ExperimentError;
 use super::oracle::truth_measurements;
@@ -84,12 +84,13 @@ pub fn shoot_with(
     let px = Normal::new(0.0, spec.pixel_sigma_px).map_err(spec_error)?;
     let enc = Normal::new(0.0, spec.encoder_sigma_deg.to_radians()).map_err(spec_error)?;
     let (w, h) = (f64::from(spec.image_size.0), f64::from(spec.image_size.1));
+    let terms = true_terms(spec, truth);
     joints
         .iter()
         .enumerate()
         .map(|(k, q)| {
             let noisy: Vec<f64> = q.iter().map(|v| v + enc.sample(&mut rng)).collect();
-            let true_q = compliance(&truth.robot, &noisy, spec.compliance_rad_per_m);
+            let true_q = true_joints(spec, &truth.robot, &terms, &noisy);
             let inv = truth.world_to_tool(&true_q)?.inverse();
             let observations = spec
                 .board
