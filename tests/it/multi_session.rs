@@ -15,10 +15,11 @@
 
 use std::time::Duration;
 
-use robocal_calib::sim::campaign::{simulate_campaign, Campaign, CampaignSpec, SimPose};
+use robocal_calib::sim::campaign::{simulate_campaign, Campaign, CampaignSpec};
 use robocal_calib::sim::campaign_io::PoseSet;
 use serde_json::{json, Value};
 
+use crate::sim_upload::{joints_deg, post_pose, true_error_mm, upload_session};
 use crate::support::*;
 
 const SERIAL: &str = "PUMA-REGIONS";
@@ -58,72 +59,6 @@ fn campaigns() -> Vec<Campaign> {
         .collect()
 }
 
-fn joints_deg(joints_rad: &[f64]) -> Vec<f64> {
-    joints_rad.iter().map(|q| q.to_degrees()).collect()
-}
-
-/// A session of campaign `c`'s image points, named `region`.
-async fn upload_session(app: &TestApp, serial: &str, c: &Campaign, region: &str) -> String {
-    let t = &c.truth;
-    let session = json!({
-        "instrument": "camera",
-        "region": region,
-        "target": {"rows": t.board.rows, "cols": t.board.cols, "pitch_mm": t.board.pitch_mm,
-                   "dot_diameter_mm": t.board.dot_diameter_mm},
-        "camera": {"width": t.image_width, "height": t.image_height,
-                   "pixel_size_um": 3.45, "nominal_focal_mm": 12.0},
-        "flange_to_camera_guess": {"translation_mm": [0.0, 60.0, 110.0], "rotation_deg": [0.0, 0.0, 0.0]}
-    });
-    let r = app
-        .post_json(&format!("/v1/robots/{serial}/sessions"), &session)
-        .await;
-    assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
-    let id = r.json::<Value>().await.unwrap()["id"]
-        .as_str()
-        .unwrap()
-        .to_string();
-    for (i, p) in c.poses.iter().enumerate() {
-        post_pose(
-            app,
-            &id,
-            c,
-            p,
-            &format!("view-{i:02}"),
-            joints_deg(&p.joints_rad),
-        )
-        .await;
-    }
-    id
-}
-
-/// Uploads pose `p`'s image points with `joints` under `label`.
-async fn post_pose(
-    app: &TestApp,
-    session: &str,
-    c: &Campaign,
-    p: &SimPose,
-    label: &str,
-    joints: Vec<f64>,
-) {
-    let cols = c.truth.board.cols;
-    let points: Vec<Value> = p
-        .observed_px
-        .iter()
-        .enumerate()
-        .map(|(k, px)| json!({"row": k / cols, "col": k % cols, "x": px.x, "y": px.y}))
-        .collect();
-    let body = json!({
-        "set": if p.set == PoseSet::Cal { "cal" } else { "val" },
-        "label": label,
-        "joints_deg": joints,
-        "image_points": points,
-    });
-    let r = app
-        .post_json(&format!("/v1/sessions/{session}/poses"), &body)
-        .await;
-    assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
-}
-
 /// Waits for job `r` (a 202) to succeed; the version of its set.
 async fn version_of(app: &TestApp, r: reqwest::Response) -> i64 {
     assert_eq!(r.status(), 202, "{}", r.text().await.unwrap());
@@ -153,41 +88,6 @@ async fn approve(app: &TestApp, version: i64) {
         )
         .await;
     assert!(r.status() == 200 || r.status() == 409, "{}", r.status());
-}
-
-/// Mean 3-D error (mm) of set `version` (in session `session_id`'s board
-/// frame, when given) at campaign `c`'s validation poses against the
-/// simulator's true camera positions.
-async fn true_error_mm(app: &TestApp, version: i64, session_id: Option<&str>, c: &Campaign) -> f64 {
-    let val: Vec<_> = c.poses.iter().filter(|p| p.set == PoseSet::Val).collect();
-    let mut body =
-        json!({"joints_deg": val.iter().map(|p| joints_deg(&p.joints_rad)).collect::<Vec<_>>()});
-    if let Some(id) = session_id {
-        body["session_id"] = json!(id);
-    }
-    let r = app
-        .post_json(
-            &format!("/v1/robots/{SERIAL}/parameter-sets/{version}/forward"),
-            &body,
-        )
-        .await;
-    assert_eq!(r.status(), 200, "{}", r.text().await.unwrap());
-    let answer: Value = r.json().await.unwrap();
-    let poses = answer["poses"].as_array().unwrap();
-    assert_eq!(poses.len(), val.len());
-    let total: f64 = poses
-        .iter()
-        .zip(&val)
-        .map(|(got, p)| {
-            let t = &got["camera_in_target"]["translation_mm"];
-            let truth = p.target_to_camera.translation.vector;
-            (0..3)
-                .map(|k| (t[k].as_f64().unwrap() - truth[k]).powi(2))
-                .sum::<f64>()
-                .sqrt()
-        })
-        .sum();
-    total / val.len() as f64
 }
 
 /// Largest joint difference (deg) of a compensate answer's first target
@@ -288,10 +188,10 @@ async fn one_model_over_three_board_placements_matches_the_local_models() {
         let v = calibrate(&app, &sessions[r], json!({})).await;
         approve(&app, v).await;
         local_versions[r] = v;
-        local[r] = true_error_mm(&app, v, None, &campaigns[r]).await;
+        local[r] = true_error_mm(&app, SERIAL, v, None, &campaigns[r]).await;
         for s in (0..n).filter(|&s| s != r) {
             let moved = calibrate(&app, &sessions[s], json!({"scope": "base"})).await;
-            carried[s].push(true_error_mm(&app, moved, None, &campaigns[s]).await);
+            carried[s].push(true_error_mm(&app, SERIAL, moved, None, &campaigns[s]).await);
         }
     }
     // A pose whose joints contradict its image (joint 1 off by
@@ -323,7 +223,14 @@ async fn one_model_over_three_board_placements_matches_the_local_models() {
         .await;
     let global_version = version_of(&app, r).await;
     for s in 0..n {
-        let global = true_error_mm(&app, global_version, Some(&sessions[s]), &campaigns[s]).await;
+        let global = true_error_mm(
+            &app,
+            SERIAL,
+            global_version,
+            Some(&sessions[s]),
+            &campaigns[s],
+        )
+        .await;
         let carried_mean = carried[s].iter().sum::<f64>() / carried[s].len() as f64;
         eprintln!(
             "region {s} ({}): global {global:.4} mm, local {:.4} mm ({:.2}x), carried over {:?} mm",
