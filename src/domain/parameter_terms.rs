@@ -7,10 +7,11 @@
 //! before the terms; the lever arms differ by the geometric corrections,
 //! below a millimetre in a metre, so the deflections by under 0.1 %).
 
+use nalgebra::DMatrix;
 use robocal_calib::kinematics::nongeometric::{NonGeometric, TermKind};
-use robocal_calib::kinematics::term_model::TermModel;
+use robocal_calib::kinematics::term_model::{TermCovariance, TermModel};
 use robocal_calib::kinematics::term_selection::TermIdentification;
-use robocal_calib::kinematics::CalibratedModel;
+use robocal_calib::kinematics::{CalibratedModel, Instrument, ParamLayout};
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
@@ -40,11 +41,96 @@ pub struct TermsDoc {
     /// The tool point the tool and payload torques act at, flange frame (mm).
     pub tool_point_mm: [f64; 3],
     pub terms: Vec<KeptTerm>,
+    /// The terms' covariance with the set's parameters, when they were
+    /// refined with them on the image points (camera sessions); absent:
+    /// `forward`'s σ takes terms and parameters as independent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub covariance: Option<TermsCovarianceDoc>,
+}
+
+/// Covariances of the kept terms (camera sets: the terms were refined on
+/// the image points), in the units of the set's `parameters` rows (mm or
+/// deg) and each term's `unit`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+pub struct TermsCovarianceDoc {
+    /// Parameter names, as the set's `covariance.names`.
+    pub names: Vec<String>,
+    /// One row per name, one column per term (`terms` order).
+    pub with_parameters: Vec<Vec<f64>>,
+    /// Term by term.
+    pub among_terms: Vec<Vec<f64>>,
+}
+
+impl TermsCovarianceDoc {
+    /// The free parameters `free` (layout indices) of `c` (internal units).
+    fn of(c: &TermCovariance, layout: &ParamLayout, free: &[usize]) -> Self {
+        Self {
+            names: free
+                .iter()
+                .map(|&i| layout.params[i].name.clone())
+                .collect(),
+            with_parameters: free
+                .iter()
+                .map(|&i| {
+                    let scale = if layout.is_angle(i) {
+                        1f64.to_degrees()
+                    } else {
+                        1.0
+                    };
+                    c.cross.row(i).iter().map(|v| v * scale).collect()
+                })
+                .collect(),
+            among_terms: c
+                .terms
+                .row_iter()
+                .map(|r| r.iter().copied().collect())
+                .collect(),
+        }
+    }
+
+    /// Back to internal units over `layout` (zero rows at parameters not
+    /// named), for `terms` terms.
+    fn covariance(&self, layout: &ParamLayout, terms: usize) -> Result<TermCovariance, String> {
+        let square =
+            self.among_terms.len() == terms && self.among_terms.iter().all(|r| r.len() == terms);
+        if !square
+            || self.with_parameters.len() != self.names.len()
+            || self.with_parameters.iter().any(|r| r.len() != terms)
+        {
+            return Err(format!(
+                "terms covariance is not {} x {terms} and {terms} x {terms}",
+                self.names.len()
+            ));
+        }
+        let mut cross = DMatrix::zeros(layout.len(), terms);
+        for (name, row) in self.names.iter().zip(&self.with_parameters) {
+            let i = layout
+                .index_of(name)
+                .ok_or_else(|| format!("terms covariance names unknown parameter {name}"))?;
+            let scale = if layout.is_angle(i) {
+                1f64.to_radians()
+            } else {
+                1.0
+            };
+            for (t, v) in row.iter().enumerate() {
+                cross[(i, t)] = v * scale;
+            }
+        }
+        Ok(TermCovariance {
+            cross,
+            terms: DMatrix::from_fn(terms, terms, |a, b| self.among_terms[a][b]),
+        })
+    }
 }
 
 impl TermsDoc {
-    /// The kept terms of a selection, `None` when it kept none.
-    pub fn of(selection: &TermIdentification) -> Option<Self> {
+    /// The kept terms of a selection, `None` when it kept none; their
+    /// covariance with the parameters `free` of `layout` when it has one.
+    pub fn of(
+        selection: &TermIdentification,
+        layout: &ParamLayout,
+        free: &[usize],
+    ) -> Option<Self> {
         if selection.terms.terms.is_empty() {
             return None;
         }
@@ -65,11 +151,18 @@ impl TermsDoc {
                     unit: term.unit().into(),
                 })
                 .collect(),
+            covariance: selection
+                .term_covariance
+                .as_ref()
+                .map(|c| TermsCovarianceDoc::of(c, layout, free)),
         })
     }
 
-    /// `model` with these terms (bases on `model`'s chain).
+    /// `model` with these terms (bases on `model`'s chain). Their
+    /// covariance is stored by camera sets only, so it is read in the
+    /// camera layout.
     pub fn term_model(&self, model: CalibratedModel) -> Result<TermModel, String> {
+        let layout = ParamLayout::new(&model.robot, Instrument::Camera);
         let dof = model.robot.dof();
         if let Some(bad) = self.terms.iter().find(|k| k.term.joint() >= dof) {
             return Err(format!("term {} names a joint the robot has not", bad.name));
@@ -85,6 +178,11 @@ impl TermsDoc {
             model,
             terms,
             term_std_devs: self.terms.iter().map(|k| k.std_dev).collect(),
+            covariance: self
+                .covariance
+                .as_ref()
+                .map(|c| c.covariance(&layout, self.terms.len()))
+                .transpose()?,
         })
     }
 }

@@ -264,7 +264,13 @@ pub fn identify_robot(
             joint.reprojection_rms_px,
         ));
     }
-    let terms = selection.as_ref().and_then(TermsDoc::of);
+    let terms = selection.as_ref().and_then(|s| {
+        TermsDoc::of(
+            s,
+            &identification.layout,
+            &identification.identifiability.free,
+        )
+    });
     let evaluated = match &terms {
         Some(t) => t.term_model(model.clone()),
         None => Ok(TermModel::geometric(model.clone())),

@@ -10,6 +10,7 @@
 
 use robocal_calib::geometry::{pose_from_xyz_rpy_deg, Pose, PoseXyzRpy};
 use robocal_calib::kinematics::term_model::TermModel;
+use robocal_calib::kinematics::term_uncertainty::TermCovarianceFactor;
 use robocal_calib::kinematics::uncertainty::{pose_std, PoseFrame};
 use robocal_calib::kinematics::CalibratedModel;
 
@@ -111,11 +112,17 @@ pub fn workspace_map(id: &Identified, poses: &[PoseInput]) -> Option<Uncertainty
 }
 
 /// The tool's position σ at commanded joints `q_rad`: the identified
-/// covariance at the deflected joints plus the kept terms' σ (independent).
+/// covariance at the deflected joints plus the kept terms' σ, through their
+/// joint covariance when the fit gave it (as `forward`'s σ), else taken as
+/// independent.
 fn position_std_mm(evaluated: &TermModel, id: &Identified, q_rad: &[f64]) -> Option<f64> {
-    let bent = evaluated.deflected(q_rad).ok()?;
     let layout = &id.identification.layout;
     let frame = PoseFrame::ToolInWorld;
+    if let Some(c) = &evaluated.covariance {
+        let joint = TermCovarianceFactor::new(layout, &id.covariance, c).ok()?;
+        return Some(joint.pose_std(evaluated, q_rad, frame).ok()?.position_mm);
+    }
+    let bent = evaluated.deflected(q_rad).ok()?;
     let std = pose_std(layout, &evaluated.model, &id.covariance, &bent, frame).ok()?;
     let terms = evaluated.term_variance(&evaluated.model, q_rad).ok()?;
     Some((std.position_mm.powi(2) + terms.position_mm2).sqrt())

@@ -7,6 +7,7 @@ use nalgebra::DMatrix;
 use robocal_calib::geometry::Pose;
 use robocal_calib::kinematics::ik::default_seeds;
 use robocal_calib::kinematics::term_model::TermModel;
+use robocal_calib::kinematics::term_uncertainty::TermCovarianceFactor;
 use robocal_calib::kinematics::uncertainty::{CovarianceFactor, PoseFrame};
 use robocal_calib::kinematics::{CalibratedModel, ParamLayout};
 use serde::{Deserialize, Serialize};
@@ -23,6 +24,9 @@ use crate::schema::{Checker, FieldError, PoseDoc, MAX_ANGLE_DEG, MAX_LENGTH_MM};
 #[derive(Debug, Clone)]
 pub struct Uncertainty {
     factor: CovarianceFactor,
+    /// With the kept terms' covariance, when the set stores it: the joint
+    /// covariance of parameters and terms, factored once.
+    with_terms: Option<TermCovarianceFactor>,
 }
 
 /// The predicted 1σ of one row (see [`PredictedStd`]'s fields).
@@ -52,21 +56,37 @@ impl Uncertainty {
             Err(e) => return Some(Err(e)),
         };
         let layout = ParamLayout::new(&model.robot, set.layout_instrument());
-        Some(Self::from_covariance(layout, covariance))
+        let terms = match set.term_model() {
+            Ok(t) => t.covariance,
+            Err(e) => return Some(Err(e)),
+        };
+        let with_terms = match terms {
+            Some(c) => match TermCovarianceFactor::new(&layout, &covariance, &c) {
+                Ok(f) => Some(f),
+                Err(e) => return Some(Err(e.to_string())),
+            },
+            None => None,
+        };
+        Some(Self::from_covariance(layout, covariance).map(|u| Self { with_terms, ..u }))
     }
 
     /// A covariance in `layout` order (internal units: mm, rad), checked
     /// once for all the poses it is propagated to.
     pub fn from_covariance(layout: ParamLayout, covariance: DMatrix<f64>) -> Result<Self, String> {
         let factor = CovarianceFactor::new(&layout, &covariance).map_err(|e| e.to_string())?;
-        Ok(Self { factor })
+        Ok(Self {
+            factor,
+            with_terms: None,
+        })
     }
 
     /// σ at commanded joints `q_rad` of the tool `tool` (in the flange
     /// frame; the calibrated camera or tool point when `None`) and of the
     /// flange: the parameter covariance at the joints the terms deflect
-    /// `q_rad` to, plus the kept terms' own σ (`TermModel::term_variance`;
-    /// the two are taken as independent).
+    /// `q_rad` to, plus the kept terms' own σ: through their joint
+    /// covariance with the parameters when the set stores it (calib's
+    /// `term_uncertainty`), else taken as independent
+    /// (`TermModel::term_variance`).
     pub fn at(
         &self,
         model: &TermModel,
@@ -74,8 +94,22 @@ impl Uncertainty {
         tool: Option<Pose>,
     ) -> Result<PredictedStd, String> {
         let text = |e: robocal_calib::kinematics::KinematicsError| e.to_string();
-        let bent = model.deflected(q_rad).map_err(text)?;
         let frame = tool.map_or(PoseFrame::ToolInWorld, PoseFrame::GivenToolInWorld);
+        if let Some(joint) = &self.with_terms {
+            let std = |frame| {
+                joint
+                    .pose_std(model, q_rad, frame)
+                    .map_err(|e| e.to_string())
+            };
+            let (end, flange) = (std(frame)?, std(PoseFrame::FlangeInBase)?);
+            return Ok(PredictedStd {
+                position_std_mm: end.position_mm,
+                rotation_std_deg: end.rotation_rad.to_degrees(),
+                flange_position_std_mm: flange.position_mm,
+                flange_rotation_std_deg: flange.rotation_rad.to_degrees(),
+            });
+        }
+        let bent = model.deflected(q_rad).map_err(text)?;
         let end = self
             .factor
             .pose_std(&model.model, &bent, frame)

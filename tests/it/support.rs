@@ -188,6 +188,13 @@ impl TestApp {
         r.json().await.unwrap()
     }
 
+    /// `POST path` with `body`, 200, as JSON.
+    pub async fn post_ok(&self, path: &str, body: &Value) -> Value {
+        let r = self.post_json(path, body).await;
+        assert_eq!(r.status(), 200, "{path}: {}", r.text().await.unwrap());
+        r.json().await.unwrap()
+    }
+
     /// `POST path` with `body` (a calibration, a check): accepted, and the
     /// job it queued, succeeded within `timeout`.
     pub async fn finished_job(&self, path: &str, body: &Value, timeout: Duration) -> Value {

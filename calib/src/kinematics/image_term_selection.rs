@@ -100,7 +100,7 @@ pub fn select_terms_on_images(
         )?;
         let fitted = all.terms.as_ref().ok_or(IdentifyError::NoPoses)?;
         values = DVector::from_column_slice(&fitted.terms.values);
-        let covariance = fitted.term_covariance.clone();
+        let covariance = fitted.covariance.terms.clone();
         outcome.eliminate(&mut active, &mut values, covariance);
     }
     let mut last = None;
@@ -122,7 +122,7 @@ pub fn select_terms_on_images(
         let fitted = refit.terms.as_ref().ok_or(IdentifyError::NoPoses)?;
         values = DVector::from_column_slice(&fitted.terms.values);
         let before = active.len();
-        outcome.eliminate(&mut active, &mut values, fitted.term_covariance.clone());
+        outcome.eliminate(&mut active, &mut values, fitted.covariance.terms.clone());
         if active.len() == before {
             last = Some(refit);
             break;
@@ -154,7 +154,7 @@ pub fn select_terms_on_images(
         }
     };
     let gain = last.is_some() && bic_with_terms < bic_geometric;
-    let (refinement, kept, term_std_devs) = match last {
+    let (refinement, kept, term_std_devs, term_covariance) = match last {
         Some(r) if gain => {
             let fitted = r.terms.clone().ok_or(IdentifyError::NoPoses)?;
             for (a, &c) in active.iter().enumerate() {
@@ -164,7 +164,7 @@ pub fn select_terms_on_images(
                     v.abs() / sd
                 ));
             }
-            (r, fitted.terms, fitted.std_devs)
+            (r, fitted.terms, fitted.std_devs, Some(fitted.covariance))
         }
         other => {
             if let Some(r) = &other {
@@ -174,7 +174,7 @@ pub fn select_terms_on_images(
                         format!("BIC {bic_with_terms:.1} of the image residuals not below the geometric {bic_geometric:.1}"));
                 }
             }
-            (geometric, candidates.subset(&[]), Vec::new())
+            (geometric, candidates.subset(&[]), Vec::new(), None)
         }
     };
     let selection = TermIdentification {
@@ -182,6 +182,7 @@ pub fn select_terms_on_images(
         model: refinement.model.clone(),
         terms: kept,
         term_std_devs,
+        term_covariance,
         report: report.into_iter().flatten().collect(),
         z_threshold,
         bic_geometric,

@@ -40,6 +40,7 @@ mod term_fit;
 pub mod term_model;
 pub mod term_report;
 pub mod term_selection;
+pub mod term_uncertainty;
 pub mod term_validate;
 pub mod tracker_csv;
 pub mod uncertainty;

@@ -311,6 +311,7 @@ fn a_set_with_terms_is_checked_with_them() {
         model: c.truth.clone(),
         terms: c.true_terms.clone(),
         term_std_devs: vec![0.0; n],
+        covariance: None,
     };
     let checked = with(&terms);
     assert_eq!(checked.verdict, Verdict::Pass, "{checked:?}");

@@ -9,6 +9,7 @@
 use nalgebra::DMatrix;
 
 use super::nongeometric::NonGeometric;
+use super::term_model::TermCovariance;
 use super::uncertainty::embed_covariance;
 
 /// The refined terms and their covariance with the geometry.
@@ -21,11 +22,8 @@ pub struct RefinedTerms {
     /// Layout-sized covariance of the geometry (internal units, zero where
     /// fixed), marginal over the terms and the intrinsics.
     pub geometric_covariance: DMatrix<f64>,
-    /// Covariance of each layout parameter (rows, zero where fixed) with
-    /// each term value (columns).
-    pub cross_covariance: DMatrix<f64>,
-    /// Covariance of the term values.
-    pub term_covariance: DMatrix<f64>,
+    /// The terms' covariance with the geometry and among themselves.
+    pub covariance: TermCovariance,
 }
 
 impl RefinedTerms {
@@ -57,8 +55,10 @@ impl RefinedTerms {
                 .map(|t| term_covariance[(t, t)].max(0.0).sqrt())
                 .collect(),
             geometric_covariance: embed_covariance(layout_len, free, &geometric),
-            cross_covariance,
-            term_covariance,
+            covariance: TermCovariance {
+                cross: cross_covariance,
+                terms: term_covariance,
+            },
             terms,
         }
     }

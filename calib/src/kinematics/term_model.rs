@@ -26,6 +26,20 @@ pub struct TermModel {
     pub terms: NonGeometric,
     /// σ of each term's value (its unit), 0 where unknown.
     pub term_std_devs: Vec<f64>,
+    /// The terms' covariance with the geometry, when the fit gave it (the
+    /// image-level refinement); `None`: terms and geometry taken as
+    /// independent ([`Self::term_variance`]).
+    pub covariance: Option<TermCovariance>,
+}
+
+/// The covariance of the term values with the geometry and among
+/// themselves (internal units: mm, rad, each term's unit).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TermCovariance {
+    /// Layout parameter (rows, zero where fixed) by term (columns).
+    pub cross: nalgebra::DMatrix<f64>,
+    /// Term by term.
+    pub terms: nalgebra::DMatrix<f64>,
 }
 
 /// Predicted variances (position mm², rotation rad²) of one pose.
@@ -42,6 +56,7 @@ impl TermModel {
             terms: NonGeometric::none(&model),
             model,
             term_std_devs: Vec::new(),
+            covariance: None,
         }
     }
 

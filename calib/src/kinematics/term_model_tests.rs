@@ -17,6 +17,7 @@ fn truth() -> TermModel {
         model: c.truth,
         terms: c.true_terms,
         term_std_devs: sds,
+        covariance: None,
     }
 }
 

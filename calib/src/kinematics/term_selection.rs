@@ -63,6 +63,9 @@ pub struct TermIdentification {
     pub terms: NonGeometric,
     /// σ of each kept term's value, in `terms` order.
     pub term_std_devs: Vec<f64>,
+    /// The kept terms' covariance with the geometry, when the selection
+    /// ran on the image points (`None` at pose level).
+    pub term_covariance: Option<super::term_model::TermCovariance>,
     pub report: Vec<TermReport>,
     pub z_threshold: f64,
     pub bic_geometric: f64,
@@ -258,6 +261,7 @@ pub fn identify_with_terms(
         model,
         terms: kept,
         term_std_devs,
+        term_covariance: None,
         report: report.into_iter().flatten().collect(),
         z_threshold,
         bic_geometric,

@@ -110,7 +110,7 @@ pub fn pose_std(
 
 /// The identification Jacobian of the pose `frame` (6 x layout), with the
 /// columns of the parameters that do not move that pose zeroed.
-fn frame_jacobian(
+pub(super) fn frame_jacobian(
     layout: &ParamLayout,
     model: &CalibratedModel,
     q_rad: &[f64],
@@ -163,20 +163,9 @@ pub struct CovarianceFactor {
 impl CovarianceFactor {
     pub fn new(layout: &ParamLayout, covariance: &DMatrix<f64>) -> Result<Self, UncertaintyError> {
         check_covariance(layout, covariance)?;
-        let symmetric = (covariance + covariance.transpose()) * 0.5;
-        let eigen = symmetric.symmetric_eigen();
-        let largest = eigen.eigenvalues.iter().cloned().fold(0.0, f64::max);
-        let kept: Vec<usize> = (0..eigen.eigenvalues.len())
-            .filter(|&k| eigen.eigenvalues[k] > FACTOR_RANK_TOLERANCE * largest)
-            .collect();
-        let n = layout.len();
-        let factor = DMatrix::from_fn(n, kept.len(), |i, c| {
-            let k = kept[c];
-            eigen.eigenvectors[(i, k)] * eigen.eigenvalues[k].sqrt()
-        });
         Ok(Self {
             layout: layout.clone(),
-            factor,
+            factor: psd_factor(covariance),
         })
     }
 
@@ -192,16 +181,35 @@ impl CovarianceFactor {
         frame: PoseFrame,
     ) -> Result<PoseStd, UncertaintyError> {
         let jac = frame_jacobian(&self.layout, model, q_rad, frame)?;
-        let spread = jac * &self.factor;
-        let position = spread.rows(0, 3);
-        let position_covariance: Matrix3<f64> =
-            Matrix3::from_fn(|a, b| position.row(a).dot(&position.row(b)));
-        let rotation_trace = spread.rows(3, 3).norm_squared();
-        Ok(PoseStd {
-            position_mm: position_covariance.trace().max(0.0).sqrt(),
-            rotation_rad: rotation_trace.max(0.0).sqrt(),
-            position_covariance,
-        })
+        Ok(std_of_spread(&(jac * &self.factor)))
+    }
+}
+
+/// `L` (n x rank) with `L L^T` the symmetric part of `covariance`, from its
+/// eigen-decomposition (see [`CovarianceFactor`]).
+pub(super) fn psd_factor(covariance: &DMatrix<f64>) -> DMatrix<f64> {
+    let symmetric = (covariance + covariance.transpose()) * 0.5;
+    let eigen = symmetric.symmetric_eigen();
+    let largest = eigen.eigenvalues.iter().cloned().fold(0.0, f64::max);
+    let kept: Vec<usize> = (0..eigen.eigenvalues.len())
+        .filter(|&k| eigen.eigenvalues[k] > FACTOR_RANK_TOLERANCE * largest)
+        .collect();
+    DMatrix::from_fn(covariance.nrows(), kept.len(), |i, c| {
+        let k = kept[c];
+        eigen.eigenvectors[(i, k)] * eigen.eigenvalues[k].sqrt()
+    })
+}
+
+/// The pose σ of `spread = J L` (6 x rank): `J Σ J^T = spread spread^T`.
+pub(super) fn std_of_spread(spread: &DMatrix<f64>) -> PoseStd {
+    let position = spread.rows(0, 3);
+    let position_covariance: Matrix3<f64> =
+        Matrix3::from_fn(|a, b| position.row(a).dot(&position.row(b)));
+    let rotation_trace = spread.rows(3, 3).norm_squared();
+    PoseStd {
+        position_mm: position_covariance.trace().max(0.0).sqrt(),
+        rotation_rad: rotation_trace.max(0.0).sqrt(),
+        position_covariance,
     }
 }
 
