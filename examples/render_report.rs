@@ -5,7 +5,8 @@
 //! `REPORT_JSON` set the report JSON is written to /tmp/report.json too.
 //! `--tracker` renders the laser-tracker variant (no camera); `--poses N`
 //! the sample with N poses (half of them validation poses), to check the
-//! charts stay readable from a handful of poses to hundreds.
+//! charts stay readable from a handful of poses to hundreds; `--regions`
+//! the sample as a multi-session set's, with three regions.
 
 use robocal::report::{render_html, render_svg, render_table, sample, Report};
 use std::error::Error;
@@ -14,6 +15,9 @@ use std::path::PathBuf;
 fn main() -> Result<(), Box<dyn Error>> {
     let report: Report = match std::env::args().nth(1) {
         Some(path) if path == "--tracker" => sample::sample_tracker_report(),
+        Some(flag) if flag == "--regions" => {
+            robocal::report::sample_regions::sample_regions_report()
+        }
         Some(flag) if flag == "--poses" => {
             let n: usize = std::env::args()
                 .nth(2)

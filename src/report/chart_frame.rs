@@ -14,6 +14,8 @@ pub const MARGIN_BOTTOM: f64 = 50.0;
 pub const TITLE_Y: f64 = 20.0;
 pub const LEGEND_Y: f64 = 40.0;
 pub const SMALL_FONT: f64 = 9.5;
+/// Approximate width of a digit in [`SMALL_FONT`], to see if a label fits.
+pub const SMALL_CHAR_WIDTH: f64 = 5.6;
 
 pub fn plot_area(width: f64, height: f64, extra_bottom: f64, margin_right: f64) -> Area {
     Area {

@@ -2,7 +2,8 @@
 //! of 3-D errors and the per-axis mean/max errors.
 
 use super::chart_frame::{
-    axis_label, judged_poses, no_data, plot_area, LEGEND_Y, MARGIN_RIGHT, SMALL_FONT, TITLE_Y,
+    axis_label, judged_poses, no_data, plot_area, LEGEND_Y, MARGIN_RIGHT, SMALL_CHAR_WIDTH,
+    SMALL_FONT, TITLE_Y,
 };
 use super::format::{fixed, mm};
 use super::model::Report;
@@ -17,8 +18,6 @@ const MIN_COUNT_AXIS: f64 = 5.0;
 /// Relative width of a bar inside its slot in the per-axis chart.
 const AXIS_BAR_FILL: f64 = 0.4;
 const WHISKER_CAP: f64 = 7.0;
-/// Approximate width of a digit in [`SMALL_FONT`], to see if a label fits.
-const SMALL_CHAR_WIDTH: f64 = 5.6;
 /// Offset of the note under the per-axis chart.
 const NOTE_OFFSET: f64 = 34.0;
 

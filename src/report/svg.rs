@@ -1,6 +1,7 @@
 //! The report's charts as SVG (issue 6): 3-D error per validation pose,
-//! error histogram, per-axis errors, and the reprojection residual field
-//! (in `field.rs`). [`render_svg`] puts them on one self-contained sheet
+//! error histogram, per-axis errors, a multi-session set's errors per
+//! region and per volume (`regions_chart.rs`, issue 18), and the
+//! reprojection residual field (in `field.rs`). [`render_svg`] puts them on one self-contained sheet
 //! under a header; the HTML report embeds the charts one by one.
 
 use super::distribution::{axis_chart, histogram_chart};
@@ -10,6 +11,7 @@ use super::model::Report;
 use super::plot::*;
 use super::pose_chart::pose_chart;
 pub use super::pose_chart::{pose_chart_height, POSE_CHART_HEIGHT};
+use super::regions_chart::{region_chart, volume_chart, REGION_CHART_TITLE, VOLUME_CHART_TITLE};
 use super::uncertainty_chart::{uncertainty_chart, uncertainty_height};
 
 /// Width of the whole sheet and of full-width charts.
@@ -44,6 +46,21 @@ pub fn render_svg(report: &Report) -> String {
         &axis_chart(report, HALF_WIDTH, SMALL_CHART_HEIGHT),
     );
     y += SMALL_CHART_HEIGHT;
+    if !report.regions.is_empty() {
+        place(
+            &mut sheet,
+            0.0,
+            y,
+            &region_chart(report, HALF_WIDTH, SMALL_CHART_HEIGHT),
+        );
+        place(
+            &mut sheet,
+            HALF_WIDTH,
+            y,
+            &volume_chart(report, HALF_WIDTH, SMALL_CHART_HEIGHT),
+        );
+        y += SMALL_CHART_HEIGHT;
+    }
     let field_h = field_height(report, SHEET_WIDTH);
     place(
         &mut sheet,
@@ -93,6 +110,24 @@ pub fn axis_errors_svg(report: &Report) -> String {
         SMALL_CHART_HEIGHT,
         "Error per axis",
         &axis_chart(report, HALF_WIDTH, SMALL_CHART_HEIGHT).body,
+    )
+}
+/// The paper's Figs 7 and 9 (errors per region) of a multi-session set.
+pub fn regions_svg(report: &Report) -> String {
+    standalone(
+        HALF_WIDTH,
+        SMALL_CHART_HEIGHT,
+        REGION_CHART_TITLE,
+        &region_chart(report, HALF_WIDTH, SMALL_CHART_HEIGHT).body,
+    )
+}
+/// The paper's Fig. 10 (errors per volume) of a multi-session set.
+pub fn volumes_svg(report: &Report) -> String {
+    standalone(
+        HALF_WIDTH,
+        SMALL_CHART_HEIGHT,
+        VOLUME_CHART_TITLE,
+        &volume_chart(report, HALF_WIDTH, SMALL_CHART_HEIGHT).body,
     )
 }
 pub fn residual_field_svg(report: &Report) -> String {

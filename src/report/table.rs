@@ -7,82 +7,8 @@ use super::format::{
     NOT_AVAILABLE, STAT_ROWS, TABLE_NAME_CHARS,
 };
 use super::model::Report;
+use super::text_table::{heading, printable, Align, TextTable, INDENT};
 use std::fmt::Write;
-
-/// Spaces between columns.
-const COLUMN_GAP: usize = 2;
-/// Indentation of tables under their heading.
-const INDENT: &str = "  ";
-
-#[derive(Clone, Copy, PartialEq)]
-enum Align {
-    Left,
-    Right,
-}
-
-/// Text with control characters (ANSI escapes, carriage returns) replaced.
-fn printable(text: &str) -> String {
-    text.chars()
-        .map(|c| if c.is_control() { '?' } else { c })
-        .collect()
-}
-
-/// Columns sized to their widest cell; numbers right-aligned.
-struct TextTable {
-    header: Vec<String>,
-    align: Vec<Align>,
-    rows: Vec<Vec<String>>,
-}
-
-impl TextTable {
-    fn new(columns: &[(&str, Align)]) -> Self {
-        TextTable {
-            header: columns.iter().map(|(h, _)| h.to_string()).collect(),
-            align: columns.iter().map(|(_, a)| *a).collect(),
-            rows: Vec::new(),
-        }
-    }
-
-    fn row(&mut self, cells: Vec<String>) {
-        self.rows
-            .push(cells.into_iter().map(|c| printable(&c)).collect());
-    }
-
-    fn render(&self, out: &mut String) {
-        let width = |i: usize| {
-            let cells = self
-                .rows
-                .iter()
-                .filter_map(|r| r.get(i))
-                .chain([&self.header[i]]);
-            cells.map(|c| c.chars().count()).max().unwrap_or(0)
-        };
-        let widths: Vec<usize> = (0..self.header.len()).map(width).collect();
-        let line = |out: &mut String, cells: &[String]| {
-            let mut text = String::from(INDENT);
-            for (i, w) in widths.iter().enumerate() {
-                let cell = cells.get(i).map(String::as_str).unwrap_or("");
-                let pad = " ".repeat(w - cell.chars().count().min(*w));
-                let gap = if i + 1 < widths.len() {
-                    " ".repeat(COLUMN_GAP)
-                } else {
-                    String::new()
-                };
-                match self.align[i] {
-                    Align::Left => text.push_str(&format!("{cell}{pad}{gap}")),
-                    Align::Right => text.push_str(&format!("{pad}{cell}{gap}")),
-                }
-            }
-            let _ = writeln!(out, "{}", text.trim_end());
-        };
-        line(out, &self.header);
-        let total = widths.iter().sum::<usize>() + COLUMN_GAP * widths.len().saturating_sub(1);
-        let _ = writeln!(out, "{INDENT}{}", "-".repeat(total));
-        for row in &self.rows {
-            line(out, row);
-        }
-    }
-}
 
 fn ratio(before: f64, after: f64) -> String {
     if after > 0.0 && before.is_finite() {
@@ -90,10 +16,6 @@ fn ratio(before: f64, after: f64) -> String {
     } else {
         NOT_AVAILABLE.to_string()
     }
-}
-
-fn heading(out: &mut String, text: &str) {
-    let _ = writeln!(out, "\n{text}");
 }
 
 /// The whole report as an aligned plain-text table.
@@ -164,6 +86,7 @@ pub fn render_table(report: &Report) -> String {
     }
     t.render(&mut out);
 
+    super::regions_table::regions(&mut out, report);
     camera(&mut out, report);
     parameters(&mut out, report);
     per_pose(&mut out, report);

@@ -298,6 +298,30 @@ async fn one_model_over_three_board_placements_matches_the_local_models() {
         .await
         .unwrap();
     assert!(html.contains("Regions"), "no regions section");
+    // report.svg draws the same figures; the terminal table (`robocal
+    // report`) has a row per region with its local set's version.
+    let svg = app
+        .get(&format!(
+            "/v1/robots/{SERIAL}/parameter-sets/{global_version}/report.svg"
+        ))
+        .await
+        .text()
+        .await
+        .unwrap();
+    for title in ["Error per region", "Error per volume"] {
+        assert!(svg.contains(title), "report.svg lacks {title:?}");
+    }
+    let typed: robocal::report::Report = serde_json::from_value(report.clone()).unwrap();
+    let table = robocal::report::render_table(&typed);
+    for (s, name) in REGION_NAMES.iter().enumerate() {
+        let version = format!("v{}", local_versions[s]);
+        assert!(
+            table.lines().any(|l| l.trim_start().starts_with(name)
+                && l.contains(sessions[s].as_str())
+                && l.contains(&version)),
+            "no row for region {name}:\n{table}"
+        );
+    }
     // The lying pose is in per_pose, marked, with its reason.
     let flagged: Vec<&Value> = report["per_pose"]
         .as_array()
