@@ -32,9 +32,10 @@ impl CheckVerdict {
 /// A parameter that may have changed, most likely first.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 pub struct CheckSuspect {
-    /// Its name in the parameter set (`dtheta_2`, `a_3`, ...).
+    /// Its name in the parameter set (`dtheta_2`, `a_3`, ...), or a kept
+    /// non-geometric term's (`periodic_4.cos2`, ...).
     pub name: String,
-    /// `deg` or `mm`.
+    /// `deg` or `mm`; a term's own unit (`rad`, `rad*kg/(N*m)`, ...).
     pub unit: String,
     /// The change that best explains the residuals beyond the base.
     pub change: f64,

@@ -4,7 +4,9 @@
 //! the residuals against the set's covariance and the measurement noise).
 //! No parameter set is stored; the verdict is the job's `result`.
 
-use robocal_calib::kinematics::recheck::{recheck, RecheckInput, Verdict, SIGNIFICANCE};
+use robocal_calib::kinematics::recheck::{
+    recheck, RecheckInput, SuspectKind, Verdict, SIGNIFICANCE,
+};
 use robocal_calib::kinematics::ParamLayout;
 
 use super::camera_stage::CameraStep;
@@ -83,15 +85,21 @@ pub fn run(
         .suspects
         .iter()
         .map(|s| {
-            let angle = layout.index_of(&s.name).is_some_and(|i| layout.is_angle(i));
+            let (unit, change) = match s.kind {
+                // A kept term: its own unit (rad for a periodic term).
+                SuspectKind::Term(term) => (term.unit(), s.change),
+                SuspectKind::Parameter(_) => {
+                    if layout.index_of(&s.name).is_some_and(|i| layout.is_angle(i)) {
+                        ("deg", s.change.to_degrees())
+                    } else {
+                        ("mm", s.change)
+                    }
+                }
+            };
             CheckSuspect {
                 name: s.name.clone(),
-                unit: if angle { "deg" } else { "mm" }.into(),
-                change: if angle {
-                    s.change.to_degrees()
-                } else {
-                    s.change
-                },
+                unit: unit.into(),
+                change,
                 change_sigmas: s.change_sigmas,
                 chi2_drop: s.chi2_drop,
             }

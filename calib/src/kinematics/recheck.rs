@@ -14,9 +14,12 @@
 //!
 //! With non-geometric terms kept (issue 19) the check's joints are
 //! deflected by them before the chain (the terms held at their values),
-//! and each term's σ adds a column shared by every pose to `J Σ Jᵀ`: the
-//! `dθ_i` column of its joint times its basis `f_k(q)` (the stored
-//! covariance has no cross-covariance of terms and geometry).
+//! and each term adds a column `T_k` shared by every pose (the `dθ_i`
+//! column of its joint times its basis `f_k(q)`): `J Σ Jᵀ` becomes
+//! `[J T] Σ_full [J T]ᵀ`, with the terms' covariance with the geometry when
+//! the set stores it (image-level sets), else each term independent with
+//! its σ. The terms are suspects too: a gear or a joint's stiffness that
+//! changed is named like a parameter.
 //!
 //! Otherwise the world-to-base transform alone is re-fitted (the board,
 //! or the tracker, or the robot's base moved), and every identified
@@ -34,6 +37,7 @@ use super::identify::{
     fit_parameters, IdentifyError, IdentifyMode, IdentifyOptions, JointNoise, Measurement,
 };
 use super::jacobian::tool_pose_jacobian;
+use super::nongeometric::TermKind;
 use super::params::{CalibratedModel, Instrument, ParamKind, ParamLayout, PARAMS_PER_JOINT};
 use super::pose_fit::unweighted_residuals;
 use super::term_model::TermModel;
@@ -68,13 +72,24 @@ pub enum Verdict {
     BaseMoved,
 }
 
-/// A parameter that may have changed.
+/// What a suspect is.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SuspectKind {
+    /// A parameter of the layout.
+    Parameter(ParamKind),
+    /// A kept non-geometric term (its value in the term's unit).
+    Term(TermKind),
+}
+
+/// A parameter or kept term that may have changed.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Suspect {
-    /// Its name in the layout (`dtheta_2`, `a_3`, ...).
+    /// Its name in the layout (`dtheta_2`, `a_3`, ...) or the term's
+    /// (`periodic_4.cos2`, ...).
     pub name: String,
-    pub kind: ParamKind,
-    /// The change that explains the residual best (mm or rad).
+    pub kind: SuspectKind,
+    /// The change that explains the residual best (mm or rad, or the
+    /// term's unit).
     pub change: f64,
     /// `change` over the set's standard deviation of the parameter.
     pub change_sigmas: f64,
@@ -121,6 +136,8 @@ struct Whitened {
     residual: DVector<f64>,
     /// `L⁻¹ J` (every layout column).
     jacobian: DMatrix<f64>,
+    /// `L⁻¹ T` (every kept term's column).
+    term_jacobian: DMatrix<f64>,
     /// Mean position residual length, and its prediction.
     mean_mm: f64,
     expected_mean_mm: f64,
@@ -152,29 +169,41 @@ impl Deflected {
     }
 }
 
-/// `Σ_k t_k t_kᵀ`: each kept term's σ through its joint's `dθ` column of
-/// the stacked Jacobian `jac`, times its basis at each pose (module doc).
-fn term_covariance(
-    terms: &TermModel,
-    d: &Deflected,
-    jac: &DMatrix<f64>,
-    rows: usize,
-) -> DMatrix<f64> {
-    let mut c = DMatrix::zeros(jac.nrows(), jac.nrows());
-    for (t, (term, sd)) in terms
-        .terms
-        .terms
-        .iter()
-        .zip(&terms.term_std_devs)
-        .enumerate()
-    {
+/// `T`: each kept term's column, its joint's `dθ` column of the stacked
+/// Jacobian `jac` times its basis at each pose (module doc).
+fn term_columns(terms: &TermModel, d: &Deflected, jac: &DMatrix<f64>, rows: usize) -> DMatrix<f64> {
+    let mut t_cols = DMatrix::zeros(jac.nrows(), terms.terms.terms.len());
+    for (t, term) in terms.terms.terms.iter().enumerate() {
         let column = jac.column(term.joint() * PARAMS_PER_JOINT);
-        let mut v = DVector::zeros(jac.nrows());
         for (k, basis) in d.bases.iter().enumerate() {
-            v.rows_mut(k * rows, rows)
-                .copy_from(&(column.rows(k * rows, rows) * (basis[t] * sd)));
+            t_cols
+                .view_mut((k * rows, t), (rows, 1))
+                .copy_from(&(column.rows(k * rows, rows) * basis[t]));
         }
-        c += &v * v.transpose();
+    }
+    t_cols
+}
+
+/// `[J T] Σ_full [J T]ᵀ` (module doc): the set's covariance `geometric`
+/// and the terms' (stored with the geometry, or independent with their σ).
+fn predicted_covariance(
+    terms: &TermModel,
+    geometric: &DMatrix<f64>,
+    jac: &DMatrix<f64>,
+    t_cols: &DMatrix<f64>,
+) -> DMatrix<f64> {
+    let mut c = jac * geometric * jac.transpose();
+    match &terms.covariance {
+        Some(tc) => {
+            let cross = jac * &tc.cross * t_cols.transpose();
+            c += &cross + cross.transpose() + t_cols * &tc.terms * t_cols.transpose();
+        }
+        None => {
+            for (t, sd) in terms.term_std_devs.iter().enumerate() {
+                let v = t_cols.column(t) * *sd;
+                c += &v * v.transpose();
+            }
+        }
     }
     c
 }
@@ -201,7 +230,8 @@ fn whiten(
         c.view_mut((k * rows, k * rows), (rows, rows))
             .copy_from(&covariances.covariance(k, input.joint_sigma_rad));
     }
-    c += &jac * input.covariance * jac.transpose() + term_covariance(input.model, d, &jac, rows);
+    let t_cols = term_columns(input.model, d, &jac, rows);
+    c += predicted_covariance(input.model, input.covariance, &jac, &t_cols);
     let mean_mm = residuals.iter().map(|e| e.rows(0, 3).norm()).sum::<f64>() / n as f64;
     let expected_mean_mm = (0..n)
         .map(|k| {
@@ -217,9 +247,13 @@ fn whiten(
     let jacobian = l
         .solve_lower_triangular(&jac)
         .ok_or(RecheckError::NotPositiveDefinite)?;
+    let term_jacobian = l
+        .solve_lower_triangular(&t_cols)
+        .ok_or(RecheckError::NotPositiveDefinite)?;
     Ok(Whitened {
         residual,
         jacobian,
+        term_jacobian,
         mean_mm,
         expected_mean_mm,
     })
@@ -241,42 +275,61 @@ fn project_out(b: &DMatrix<f64>, v: &DVector<f64>) -> DVector<f64> {
     }
 }
 
-/// Kinematic parameters ranked by the chi-square drop each explains beyond
-/// the base, at the base-refitted model's whitened residual, and how many
-/// were tried.
+/// Kinematic parameters and kept terms ranked by the chi-square drop each
+/// explains beyond the base, at the base-refitted model's whitened
+/// residual, and how many were tried.
 fn rank_suspects(
     layout: &ParamLayout,
     w: &Whitened,
     covariance: &DMatrix<f64>,
+    terms: &TermModel,
 ) -> (Vec<Suspect>, usize) {
     let base = base_indices(layout);
     let b = DMatrix::from_fn(w.jacobian.nrows(), base.len(), |r, c| {
         w.jacobian[(r, base[c])]
     });
     let residual = project_out(&b, &w.residual);
-    let mut suspects: Vec<Suspect> = (0..layout.len())
-        .filter(|&i| {
-            let p = &layout.params[i];
-            p.joint.is_some() && covariance[(i, i)] > 0.0
+    // The residual is measured minus predicted; the prediction moves by
+    // a·δ along the whitened column a, so δ = a·w / a·a.
+    let candidate = |name: String, kind: SuspectKind, column: DVector<f64>, sd: f64| {
+        let a = project_out(&b, &column);
+        let aa = a.dot(&a);
+        (aa > 0.0).then(|| {
+            let aw = a.dot(&residual);
+            let change = aw / aa;
+            Suspect {
+                name,
+                kind,
+                change,
+                change_sigmas: change / sd,
+                chi2_drop: aw * aw / aa,
+            }
         })
+    };
+    let parameters = (0..layout.len())
+        .filter(|&i| layout.params[i].joint.is_some() && covariance[(i, i)] > 0.0)
         .filter_map(|i| {
-            // The residual is measured minus predicted; the prediction
-            // moves by J δ, so δ = a·w / a·a along the column a.
-            let a = project_out(&b, &w.jacobian.column(i).into_owned());
-            let aa = a.dot(&a);
-            (aa > 0.0).then(|| {
-                let aw = a.dot(&residual);
-                let change = aw / aa;
-                Suspect {
-                    name: layout.params[i].name.clone(),
-                    kind: layout.params[i].kind,
-                    change,
-                    change_sigmas: change / covariance[(i, i)].sqrt(),
-                    chi2_drop: aw * aw / aa,
-                }
-            })
-        })
-        .collect();
+            let p = &layout.params[i];
+            let column = w.jacobian.column(i).into_owned();
+            candidate(
+                p.name.clone(),
+                SuspectKind::Parameter(p.kind),
+                column,
+                covariance[(i, i)].sqrt(),
+            )
+        });
+    let kept_terms = terms
+        .terms
+        .terms
+        .iter()
+        .zip(&terms.term_std_devs)
+        .enumerate()
+        .filter(|(_, (_, sd))| **sd > 0.0)
+        .filter_map(|(t, (term, sd))| {
+            let column = w.term_jacobian.column(t).into_owned();
+            candidate(term.name(), SuspectKind::Term(*term), column, *sd)
+        });
+    let mut suspects: Vec<Suspect> = parameters.chain(kept_terms).collect();
     let tried = suspects.len();
     suspects.sort_by(|x, y| y.chi2_drop.total_cmp(&x.chi2_drop));
     suspects.truncate(MAX_SUSPECTS);
@@ -318,7 +371,7 @@ pub fn recheck(input: &RecheckInput) -> Result<Recheck, RecheckError> {
     let at_base = whiten(input, &refitted, &deflected)?;
     let base_p_value = chi_square_p_value(at_base.residual.norm_squared(), dof - BASE_DOF)
         .ok_or(RecheckError::NotPositiveDefinite)?;
-    let (suspects, tried) = rank_suspects(&layout, &at_base, input.covariance);
+    let (suspects, tried) = rank_suspects(&layout, &at_base, input.covariance, input.model);
     // Nested models: does one kinematic parameter on top of the base
     // explain significantly more (a 1-dof chi-square drop, at the level
     // shared among the parameters tried, Bonferroni)?

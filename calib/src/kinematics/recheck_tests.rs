@@ -326,3 +326,82 @@ fn a_set_with_terms_is_checked_with_them() {
     unsure.term_std_devs = vec![0.0; n];
     assert_ne!(with(&unsure).verdict, Verdict::Pass);
 }
+
+/// A set whose gear term no longer holds (the set's `periodic_1.sin1` is
+/// 200 µrad off the robot's, with a tight σ): the re-check says drift and
+/// names that term first, with about that change. The terms'
+/// covariance stored as a matrix (no cross terms, σ² on the diagonal)
+/// gives the same statistic as the σ alone.
+#[test]
+fn a_changed_term_is_named_as_the_suspect() {
+    use crate::kinematics::presets;
+    use crate::kinematics::term_model::TermCovariance;
+    use crate::sim::tracker_campaign::{simulate_tracker, TrackerSpec};
+    const NOISE_MM: f64 = 0.01;
+    const TERM_SD: f64 = 1e-6;
+    const TERM_CHANGE_RAD: f64 = 2e-4;
+    let c = simulate_tracker(
+        &presets::ur10(),
+        &TrackerSpec {
+            poses: 12,
+            noise_mm: NOISE_MM,
+            seed: 12,
+            non_geometric: true,
+        },
+    );
+    let data: Vec<Measurement> = c
+        .measurements
+        .iter()
+        .map(|m| Measurement {
+            joints_rad: m.joints_rad.clone(),
+            observed: Observed::Position {
+                position_mm: m.observed.position_mm(),
+                covariance: Some(nalgebra::Matrix3::identity() * NOISE_MM.powi(2)),
+            },
+        })
+        .collect();
+    let layout = ParamLayout::new(&c.truth.robot, Instrument::Tracker);
+    let covariance = DMatrix::identity(layout.len(), layout.len()) * 1e-14;
+    let n = c.true_terms.terms.len();
+    let changed = c
+        .true_terms
+        .terms
+        .iter()
+        .position(|t| t.name() == "periodic_1.sin1")
+        .unwrap();
+    let mut set = TermModel {
+        model: c.truth.clone(),
+        terms: c.true_terms.clone(),
+        term_std_devs: vec![TERM_SD; n],
+        covariance: None,
+    };
+    set.terms.values[changed] += TERM_CHANGE_RAD;
+    let with = |model: &TermModel| {
+        recheck(&RecheckInput {
+            model,
+            instrument: Instrument::Tracker,
+            covariance: &covariance,
+            joint_sigma_rad: 0.0,
+            data: &data,
+        })
+        .unwrap()
+    };
+    let checked = with(&set);
+    assert_eq!(checked.verdict, Verdict::Drift, "{checked:?}");
+    let first = &checked.suspects[0];
+    assert_eq!(first.name, "periodic_1.sin1", "{checked:?}");
+    assert!(matches!(first.kind, SuspectKind::Term(_)));
+    assert!(
+        (first.change / -TERM_CHANGE_RAD - 1.0).abs() < 0.1,
+        "{first:?}"
+    );
+    let as_matrix = TermModel {
+        covariance: Some(TermCovariance {
+            cross: DMatrix::zeros(layout.len(), n),
+            terms: DMatrix::identity(n, n) * TERM_SD.powi(2),
+        }),
+        ..set.clone()
+    };
+    let same = with(&as_matrix);
+    assert!((same.chi2 - checked.chi2).abs() < 1e-9 * checked.chi2);
+}
