@@ -86,6 +86,20 @@ async fn sigma_ratio(app: &TestApp, serial: &str, version: i64, c: &Campaign) ->
     (sum / val.len() as f64).sqrt()
 }
 
+/// Mean over the session's poses of the served detection's residual rms
+/// (px), as the last job left them.
+async fn mean_residual_px(app: &TestApp, session: &str) -> f64 {
+    let list = app
+        .get_ok(&format!("/v1/sessions/{session}/poses?limit=1000"))
+        .await;
+    let poses = list["items"].as_array().unwrap();
+    let sum: f64 = poses
+        .iter()
+        .map(|p| p["detection"]["residual_rms_px"].as_f64().unwrap())
+        .sum();
+    sum / poses.len() as f64
+}
+
 async fn robot(app: &TestApp, serial: &str) {
     let r = app
         .put_json(
@@ -103,10 +117,21 @@ async fn a_camera_session_selects_terms_on_the_image_points() {
     let c = campaign(true);
     robot(&app, serial).await;
     let session = upload_session(&app, serial, &c, "front").await;
-    let (with_terms, set, report) =
-        calibrate(&app, serial, &session, json!({"non_geometric": true})).await;
     let (geometric, plain_set, _) =
         calibrate(&app, serial, &session, json!({"non_geometric": false})).await;
+    let residual_geo = mean_residual_px(&app, &session).await;
+    let (with_terms, set, report) =
+        calibrate(&app, serial, &session, json!({"non_geometric": true})).await;
+    // The served detections' residuals (at the recorded joints, through
+    // the last job's set) go through the kept terms.
+    let residual_terms = mean_residual_px(&app, &session).await;
+    eprintln!(
+        "mean pose residual rms: {residual_terms:.4} px with terms, {residual_geo:.4} px geometric"
+    );
+    assert!(
+        residual_terms < residual_geo,
+        "{residual_terms} vs {residual_geo}"
+    );
     assert!(plain_set["terms"].is_null());
     // Selected on the image points, and said so.
     let criterion = report["terms"]["criterion"].as_str().unwrap();
