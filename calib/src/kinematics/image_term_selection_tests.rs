@@ -2,81 +2,10 @@
 //! campaign whose true robot has the switch's terms, and one without.
 
 use super::*;
-use crate::kinematics::identify::{IdentifyMode, IdentifyOptions, JointNoise};
-use crate::kinematics::nongeometric::CandidateOptions;
-use crate::kinematics::params::{CalibratedModel, Instrument};
-use crate::kinematics::term_selection::identify_with_terms;
-use crate::kinematics::term_validate::validate_with_terms;
-use crate::sim::campaign::CampaignSpec;
-use crate::sim::experiment::prepare;
-use crate::sim::start_model::start_model;
-use crate::sim::tracker_campaign::typical_terms;
+use crate::sim::camera_terms::run_camera_terms;
 
-pub(super) struct Outcome {
-    pub selected: ImageTermSelection,
-    /// Validation mean error (mm, true camera positions) of the selection's
-    /// final model with its terms.
-    pub val_mm: f64,
-    /// The same of the geometric image-level refinement.
-    pub geometric_val_mm: f64,
-    /// The same of the pose-level selection (its model and kept terms).
-    pub pose_level_val_mm: f64,
-    pub truth: NonGeometric,
-}
-
-pub(super) fn run(seed: u64, switch: bool) -> Outcome {
-    let mut spec = CampaignSpec::standard("puma560", seed).unwrap();
-    spec.cal_poses = 80;
-    spec.non_geometric = switch;
-    let p = prepare(&spec).unwrap();
-    let options = IdentifyOptions {
-        mode: IdentifyMode::Weighted,
-        joint_noise: JointNoise::default(),
-    };
-    let start = start_model(&spec, &p.weighted).unwrap();
-    let candidates = CandidateOptions::for_robot(&start.robot);
-    let pose_level = identify_with_terms(
-        &start,
-        Instrument::Camera,
-        &p.weighted,
-        options,
-        &candidates,
-    )
-    .unwrap();
-    let noise = ImageNoise {
-        sigma_px: spec.pixel_sigma_px,
-        joint: JointNoise::Estimate,
-    };
-    let selected =
-        select_terms_on_images(&pose_level, &p.camera_step, &p.images, noise, false).unwrap();
-    let geometric = joint_refine(
-        &pose_level.geometric.model,
-        &p.camera_step,
-        &p.images,
-        &pose_level.geometric.identifiability.free,
-        noise,
-        false,
-    )
-    .unwrap();
-    let mm = |model: &CalibratedModel, terms: &NonGeometric| {
-        validate_with_terms(model, terms, &p.val)
-            .unwrap()
-            .0
-            .norm
-            .mean_mm
-    };
-    let truth_model = p.campaign.truth.model().unwrap();
-    Outcome {
-        val_mm: mm(&selected.refinement.model, &selected.selection.terms),
-        geometric_val_mm: mm(&geometric.model, &NonGeometric::none(&geometric.model)),
-        pose_level_val_mm: mm(&pose_level.model, &pose_level.terms),
-        truth: if switch {
-            typical_terms(&truth_model)
-        } else {
-            NonGeometric::none(&truth_model)
-        },
-        selected,
-    }
+fn run(seed: u64, switch: bool) -> crate::sim::camera_terms::CameraTermsOutcome {
+    run_camera_terms(seed, switch).unwrap()
 }
 
 /// Seeds of the campaigns with terms, and of those without (issue 19:

@@ -1,6 +1,8 @@
 //! Simulator: target images and whole campaigns with known truth.
 
 pub mod camera_step;
+/// Camera campaigns with and without non-geometric terms (issue 19).
+pub mod camera_terms;
 pub mod campaign;
 pub mod campaign_io;
 pub mod experiment;
