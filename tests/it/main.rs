@@ -17,6 +17,7 @@ pub(crate) mod e2e;
 pub(crate) mod e2e_points;
 pub(crate) mod export;
 pub(crate) mod filter;
+pub(crate) mod fixtures;
 pub(crate) mod flange_pose;
 pub(crate) mod fleet_browser;
 pub(crate) mod fleet_page;
