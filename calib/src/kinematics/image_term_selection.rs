@@ -40,7 +40,7 @@ use super::term_selection::{TermIdentification, FAMILY_FALSE_POSITIVE};
 use crate::camera::model::Intrinsics;
 
 /// How the image-level selection decides, for reports.
-pub const IMAGE_CRITERION: &str = "identifiable at pose level, then a Bonferroni-corrected Wald test (family-wise 1%) with backward elimination in the image-level joint refinement (geometry, hand–eye, intrinsics and terms together), then BIC of the image residuals against the geometric refinement";
+pub const IMAGE_CRITERION: &str = "identifiable at pose level, then a Bonferroni-corrected Wald test (family-wise 1%) with backward elimination in the image-level joint refinement (geometry, hand–eye, intrinsics and terms together), then BIC (χ² + k ln n, both fits weighted with the noise the refit with the terms estimated) against the geometric refinement";
 /// Refits of the survivors at most (each may drop one more term).
 const MAX_REFITS: usize = 4;
 

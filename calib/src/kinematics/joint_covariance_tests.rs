@@ -1,9 +1,9 @@
 use super::*;
 use crate::kinematics::identify::JointNoise;
 use crate::kinematics::image_pose::ImageNoise;
+use crate::kinematics::image_test_campaign::{image_campaign, ImageCampaign};
 use crate::kinematics::joint_refine::joint_refine;
-use crate::kinematics::params::{Instrument, ParamLayout};
-use crate::sim::campaign::{simulate_campaign, CampaignSpec};
+use crate::sim::campaign::CampaignSpec;
 
 /// The recomputed diagonal against the refinement's own standard
 /// deviations (different inversions of the same matrix).
@@ -14,23 +14,13 @@ fn the_full_covariance_reproduces_the_refinements_standard_deviations() {
     let mut spec = CampaignSpec::standard("puma560", 3).unwrap();
     spec.cal_poses = 20;
     spec.val_poses = 0;
-    let c = simulate_campaign(&spec).unwrap();
-    let truth = c.truth.model().unwrap();
-    let poses: Vec<ImagePose> = c
-        .poses
-        .iter()
-        .map(|p| ImagePose {
-            joints_rad: p.joints_rad.clone(),
-            observations: p.observations(&c.truth.board),
-        })
-        .collect();
-    let layout = ParamLayout::new(&truth.robot, Instrument::Camera);
-    let free: Vec<usize> = (0..layout.len())
-        .filter(|&i| {
-            !["dtheta_1", "d_1", "dtheta_6", "a_6", "d_6", "alpha_6"]
-                .contains(&layout.params[i].name.as_str())
-        })
-        .collect();
+    let ImageCampaign {
+        campaign: c,
+        truth,
+        poses,
+        layout,
+        free,
+    } = image_campaign(&spec);
     let mut start = truth.clone();
     start.robot.joints[2].a_mm += 0.5;
     for (hold_intrinsics, joint) in [

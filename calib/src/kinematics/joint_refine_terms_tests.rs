@@ -3,8 +3,9 @@
 
 use super::*;
 use crate::kinematics::image_fit::ImageTerms;
+use crate::kinematics::image_test_campaign::{image_campaign, ImageCampaign};
 use crate::kinematics::nongeometric::CandidateOptions;
-use crate::sim::campaign::{simulate_campaign, CampaignSpec};
+use crate::sim::campaign::CampaignSpec;
 use crate::solver::{finite_difference_jacobian, LeastSquaresProblem};
 
 #[test]
@@ -13,23 +14,13 @@ fn jacobian_with_terms_matches_finite_differences() {
     spec.cal_poses = 6;
     spec.val_poses = 0;
     spec.non_geometric = true;
-    let c = simulate_campaign(&spec).unwrap();
-    let truth = c.truth.model().unwrap();
-    let poses: Vec<ImagePose> = c
-        .poses
-        .iter()
-        .map(|p| ImagePose {
-            joints_rad: p.joints_rad.clone(),
-            observations: p.observations(&c.truth.board),
-        })
-        .collect();
-    let layout = ParamLayout::new(&truth.robot, Instrument::Camera);
-    let free: Vec<usize> = (0..layout.len())
-        .filter(|&i| {
-            !["dtheta_1", "d_1", "dtheta_6", "a_6", "d_6", "alpha_6"]
-                .contains(&layout.params[i].name.as_str())
-        })
-        .collect();
+    let ImageCampaign {
+        campaign: c,
+        truth,
+        poses,
+        layout,
+        free,
+    } = image_campaign(&spec);
     let mut terms =
         NonGeometric::candidates(&truth, &CandidateOptions::for_robot(&truth.robot)).unwrap();
     terms.values = (0..terms.terms.len())

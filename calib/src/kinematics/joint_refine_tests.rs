@@ -1,5 +1,6 @@
 use super::*;
-use crate::sim::campaign::{simulate_campaign, CampaignSpec};
+use crate::kinematics::image_test_campaign::{image_campaign, ImageCampaign};
+use crate::sim::campaign::CampaignSpec;
 use crate::solver::finite_difference_jacobian;
 use crate::solver::LeastSquaresProblem;
 
@@ -17,23 +18,13 @@ fn jacobian_matches_finite_differences_and_exact_points_are_fitted() {
     spec.val_poses = 0;
     spec.pixel_sigma_px = 0.0;
     spec.encoder_sigma_deg = 0.0;
-    let c = simulate_campaign(&spec).unwrap();
-    let truth = c.truth.model().unwrap();
-    let poses: Vec<ImagePose> = c
-        .poses
-        .iter()
-        .map(|p| ImagePose {
-            joints_rad: p.joints_rad.clone(),
-            observations: p.observations(&c.truth.board),
-        })
-        .collect();
-    let layout = ParamLayout::new(&truth.robot, Instrument::Camera);
-    let free: Vec<usize> = (0..layout.len())
-        .filter(|&i| {
-            !["dtheta_1", "d_1", "dtheta_6", "a_6", "d_6", "alpha_6"]
-                .contains(&layout.params[i].name.as_str())
-        })
-        .collect();
+    let ImageCampaign {
+        campaign: c,
+        truth,
+        poses,
+        layout,
+        free,
+    } = image_campaign(&spec);
     let fit = ImageFit {
         layout: &layout,
         reference: &truth,

@@ -20,6 +20,8 @@ mod ik_tests;
 mod image_fit;
 pub mod image_pose;
 pub mod image_term_selection;
+#[cfg(test)]
+mod image_test_campaign;
 pub mod initial;
 pub mod jacobian;
 pub mod joint_covariance;
