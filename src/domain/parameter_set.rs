@@ -172,7 +172,7 @@ impl ParameterSet {
     pub fn term_model(&self) -> Result<TermModel, String> {
         let model = self.model()?;
         match &self.terms {
-            Some(t) => t.term_model(model),
+            Some(t) => t.term_model(model, self.layout_instrument()),
             None => Ok(TermModel::geometric(model)),
         }
     }

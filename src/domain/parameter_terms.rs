@@ -158,11 +158,14 @@ impl TermsDoc {
         })
     }
 
-    /// `model` with these terms (bases on `model`'s chain). Their
-    /// covariance is stored by camera sets only, so it is read in the
-    /// camera layout.
-    pub fn term_model(&self, model: CalibratedModel) -> Result<TermModel, String> {
-        let layout = ParamLayout::new(&model.robot, Instrument::Camera);
+    /// `model` with these terms (bases on `model`'s chain); their
+    /// covariance read in the parameter layout of `instrument`.
+    pub fn term_model(
+        &self,
+        model: CalibratedModel,
+        instrument: Instrument,
+    ) -> Result<TermModel, String> {
+        let layout = ParamLayout::new(&model.robot, instrument);
         let dof = model.robot.dof();
         if let Some(bad) = self.terms.iter().find(|k| k.term.joint() >= dof) {
             return Err(format!("term {} names a joint the robot has not", bad.name));

@@ -72,7 +72,7 @@ impl Identified {
     /// `model` with the kept terms, as the stored set evaluates it.
     pub fn term_model(&self) -> Result<TermModel, String> {
         match &self.terms {
-            Some(t) => t.term_model(self.model.clone()),
+            Some(t) => t.term_model(self.model.clone(), self.identification.layout.instrument),
             None => Ok(TermModel::geometric(self.model.clone())),
         }
     }
@@ -209,8 +209,13 @@ pub fn identify_robot(
     let mut joint_noise_rad = None;
     if let Some(s) = &selection {
         // Pose level only (a tracker, or no joint refinement): geometry
-        // refitted jointly with the kept terms.
+        // refitted jointly with the kept terms, its covariance marginal
+        // over them.
         model = s.model.clone();
+        if let Some(c) = &s.geometric_covariance {
+            std_devs = c.diagonal().map(|v| v.max(0.0).sqrt());
+            covariance = c.clone();
+        }
     }
     if let (Some(step), true) = (camera, joint_refinement && kind == MeasurementKind::Pose) {
         let images: Vec<ImagePose> = cal
@@ -272,7 +277,7 @@ pub fn identify_robot(
         )
     });
     let evaluated = match &terms {
-        Some(t) => t.term_model(model.clone()),
+        Some(t) => t.term_model(model.clone(), instrument),
         None => Ok(TermModel::geometric(model.clone())),
     }
     .map_err(|e| numerical(Stage::Identify, e))?;

@@ -199,7 +199,7 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSet) -> Report {
         notes.push(if id.refined_intrinsics.is_some() {
             "Non-geometric terms kept (see terms): selected and refined with the geometry, hand–eye and intrinsics on the image points; the parameter σ are marginal over the terms."
         } else {
-            "Non-geometric terms kept (see terms): the geometry was refitted with them at pose level; the parameter σ are the geometric fit's."
+            "Non-geometric terms kept (see terms): the geometry was refitted with them at pose level; the parameter σ are marginal over the terms."
         }.to_string());
     }
     if !ident.weak.is_empty() {

@@ -154,7 +154,7 @@ pub fn select_terms_on_images(
         }
     };
     let gain = last.is_some() && bic_with_terms < bic_geometric;
-    let (refinement, kept, term_std_devs, term_covariance) = match last {
+    let (refinement, kept, term_std_devs, joint) = match last {
         Some(r) if gain => {
             let fitted = r.terms.clone().ok_or(IdentifyError::NoPoses)?;
             for (a, &c) in active.iter().enumerate() {
@@ -164,7 +164,8 @@ pub fn select_terms_on_images(
                     v.abs() / sd
                 ));
             }
-            (r, fitted.terms, fitted.std_devs, Some(fitted.covariance))
+            let (terms, std_devs) = (fitted.terms.clone(), fitted.std_devs.clone());
+            (r, terms, std_devs, Some(fitted))
         }
         other => {
             if let Some(r) = &other {
@@ -182,7 +183,8 @@ pub fn select_terms_on_images(
         model: refinement.model.clone(),
         terms: kept,
         term_std_devs,
-        term_covariance,
+        term_covariance: joint.as_ref().map(|j| j.covariance.clone()),
+        geometric_covariance: joint.map(|j| j.geometric_covariance),
         report: report.into_iter().flatten().collect(),
         z_threshold,
         bic_geometric,

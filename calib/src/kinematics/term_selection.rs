@@ -32,12 +32,15 @@ use super::identify::{identify, Identification, IdentifyError, IdentifyOptions};
 use super::measurement::Measurement;
 use super::nongeometric::{CandidateOptions, NonGeometric};
 use super::params::{CalibratedModel, Instrument, PARAMS_PER_JOINT};
+use super::refined_terms::RefinedTerms;
 use super::term_cv::{held_out_costs, interleaved_folds, region_folds, FOLDS};
 use super::term_elimination::{bonferroni_z, probe_like, stack, Elimination};
 use super::term_fit::TermFit;
 use super::term_report::line;
 pub use super::term_report::{TermReport, Verdict};
 use super::weights::PoseCovariances;
+use crate::covariance::covariance_from_jacobian;
+use crate::solver::LeastSquaresProblem;
 
 /// Sine of a candidate's angle to the span of the geometry and the earlier
 /// candidates below which it is not identifiable from the campaign.
@@ -63,9 +66,12 @@ pub struct TermIdentification {
     pub terms: NonGeometric,
     /// σ of each kept term's value, in `terms` order.
     pub term_std_devs: Vec<f64>,
-    /// The kept terms' covariance with the geometry, when the selection
-    /// ran on the image points (`None` at pose level).
+    /// The kept terms' covariance with the geometry (`None` when none is
+    /// kept).
     pub term_covariance: Option<super::term_model::TermCovariance>,
+    /// The geometry's layout-sized covariance marginal over the kept terms
+    /// (`None` when none is kept: the geometric fit's is it).
+    pub geometric_covariance: Option<DMatrix<f64>>,
     pub report: Vec<TermReport>,
     pub z_threshold: f64,
     pub bic_geometric: f64,
@@ -257,11 +263,28 @@ pub fn identify_with_terms(
         kept = kept.subset(&[]);
         term_std_devs.clear();
     }
+    // The kept terms' covariance with the geometry, and the geometry's
+    // marginal over them, from the final joint fit.
+    let joint = if kept.terms.is_empty() {
+        None
+    } else {
+        let jac = fit.jacobian(&final_x).ok_or(IdentifyError::NoPoses)?;
+        let dof = (jac.nrows() as f64 - fit.unknowns() as f64).max(1.0);
+        let cov = covariance_from_jacobian(&jac, final_cost / dof);
+        Some(RefinedTerms::from_head(
+            kept.clone(),
+            &cov,
+            geo.layout.len(),
+            &free,
+            free.len(),
+        ))
+    };
     Ok(TermIdentification {
         model,
         terms: kept,
         term_std_devs,
-        term_covariance: None,
+        term_covariance: joint.as_ref().map(|j| j.covariance.clone()),
+        geometric_covariance: joint.map(|j| j.geometric_covariance),
         report: report.into_iter().flatten().collect(),
         z_threshold,
         bic_geometric,
