@@ -143,7 +143,8 @@ pub async fn uncertainty_map(
     version: &str,
     request: UncertaintyMapRequest,
 ) -> ServiceResult<UncertaintyMapResponse> {
-    let (model, uncertainty) = model_and_uncertainty(store, serial, version, None).await?;
+    let (model, uncertainty) =
+        model_and_uncertainty(store, serial, version, request.session_id.as_deref()).await?;
     let uncertainty = uncertainty.ok_or_else(|| {
         ServiceError::Conflict(
             "this parameter set was stored without its covariance: calibrate again to predict uncertainties"

@@ -193,6 +193,11 @@ pub struct UncertaintyMapRequest {
     /// (the calibrated camera or tool point when absent).
     #[serde(default)]
     pub tool: Option<PoseDoc>,
+    /// A multi-session set's session (issue 18): the σ of the tool in that
+    /// session's board frame, with that board's own covariance (as
+    /// `forward`'s `session_id`).
+    #[serde(default)]
+    pub session_id: Option<String>,
 }
 
 /// One point of the map.

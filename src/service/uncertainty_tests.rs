@@ -28,6 +28,7 @@ fn request() -> UncertaintyMapRequest {
         rotation_deg: None,
         seed_joints_deg: None,
         tool: None,
+        session_id: None,
     }
 }
 

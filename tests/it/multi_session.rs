@@ -437,4 +437,24 @@ async fn sigma_is_the_sessions_own(app: &TestApp, version: i64, sessions: &[Stri
         differ > 0,
         "the same σ in both boards' frames: {camera_0:?}"
     );
+    // The uncertainty map in session 1's frame answers forward's σ there.
+    let map = app
+        .post_ok(
+            &format!("/v1/robots/{SERIAL}/parameter-sets/{version}/uncertainty-map"),
+            &json!({"joints_deg": joints, "session_id": sessions[1]}),
+        )
+        .await;
+    let mapped: Vec<f64> = map["points"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["position_std_mm"].as_f64().unwrap())
+        .collect();
+    assert_eq!(mapped.len(), camera_1.len());
+    for (m, f) in mapped.iter().zip(&camera_1) {
+        assert!(
+            (m - f).abs() <= 1e-9 * f.max(*m),
+            "map σ {m} vs forward's {f}"
+        );
+    }
 }
