@@ -29,8 +29,8 @@ pub(super) const REGION_HOMES_DEG: [[f64; 6]; 3] = [
 /// "Regions").
 pub(super) const COMPLIANCE_RAD_PER_M: f64 = 2e-4;
 /// Poses per region (the service's it test `multi_session` uses 24 + 12).
-pub(super) const CAL_POSES: usize = 30;
-pub(super) const VAL_POSES: usize = 20;
+const CAL_POSES: usize = 30;
+const VAL_POSES: usize = 20;
 
 /// What a campaign of the fixture is: the unmodelled compliance, the
 /// poses per region, and the non-geometric terms every fit refines (none:
@@ -177,9 +177,9 @@ fn zero_terms(model: &CalibratedModel, kinds: &[TermKind]) -> NonGeometric {
 
 /// A model as it is used: the geometry on a board and, if any, the
 /// non-geometric terms deflecting the joints before the chain.
-pub(super) struct Used<'a> {
-    pub(super) model: CalibratedModel,
-    pub(super) terms: Option<&'a NonGeometric>,
+struct Used<'a> {
+    model: CalibratedModel,
+    terms: Option<&'a NonGeometric>,
 }
 
 /// The terms a fit refined, if any.
@@ -202,7 +202,7 @@ fn deflect(poses: &[ImagePose], terms: Option<&NonGeometric>) -> Vec<ImagePose> 
 
 /// Mean 3-D camera position error (mm) of `used` at `region`'s validation
 /// poses against the simulator's true camera poses.
-pub(super) fn mean_error_mm(used: &Used, region: &Region) -> f64 {
+fn mean_error_mm(used: &Used, region: &Region) -> f64 {
     let mut val = truth_measurements(&region.campaign, PoseSet::Val);
     if let Some(t) = used.terms {
         for m in val.iter_mut() {
