@@ -9,6 +9,7 @@
 use super::identify_error::IdentifyError;
 use super::image_pose::{ImageNoise, ImagePose};
 use super::joint_refine::{refine_sessions, Extras, JointRefinement};
+use super::nongeometric::NonGeometric;
 use super::params::CalibratedModel;
 use crate::camera::model::Intrinsics;
 use crate::geometry::Pose;
@@ -46,6 +47,52 @@ pub fn joint_refine_regions(
     noise: ImageNoise,
     hold_intrinsics: bool,
 ) -> Result<JointRefinement, IdentifyError> {
+    refine_regions(
+        start,
+        intrinsics,
+        regions,
+        free,
+        None,
+        noise,
+        hold_intrinsics,
+    )
+}
+
+/// [`joint_refine_regions`] with non-geometric terms (issue 19) refined
+/// with the shared model, starting from their values in `terms`: an error
+/// the geometry cannot hold (a joint's compliance) otherwise leaks into the
+/// shared kinematics and depth scale, and the one model of several regions
+/// loses its advantage over a local one (docs/notes/session11-regions2.md).
+/// The result's `terms` holds them with their covariance.
+pub fn joint_refine_regions_with_terms(
+    start: &CalibratedModel,
+    intrinsics: &Intrinsics,
+    regions: &[RegionPoses],
+    free: &[usize],
+    terms: &NonGeometric,
+    noise: ImageNoise,
+    hold_intrinsics: bool,
+) -> Result<JointRefinement, IdentifyError> {
+    refine_regions(
+        start,
+        intrinsics,
+        regions,
+        free,
+        Some(terms),
+        noise,
+        hold_intrinsics,
+    )
+}
+
+fn refine_regions(
+    start: &CalibratedModel,
+    intrinsics: &Intrinsics,
+    regions: &[RegionPoses],
+    free: &[usize],
+    terms: Option<&NonGeometric>,
+    noise: ImageNoise,
+    hold_intrinsics: bool,
+) -> Result<JointRefinement, IdentifyError> {
     let first = regions.first().ok_or(IdentifyError::NoPoses)?;
     if let Some(region) = regions.iter().position(|r| r.poses.is_empty()) {
         return Err(IdentifyError::EmptyRegion { region });
@@ -63,7 +110,7 @@ pub fn joint_refine_regions(
     let sessions = Extras {
         extra_bases: &extra_bases,
         session_of: &session_of,
-        terms: None,
+        terms,
     };
     refine_sessions(
         &start,
@@ -77,5 +124,13 @@ pub fn joint_refine_regions(
 }
 
 #[cfg(test)]
+#[path = "regions_fixture.rs"]
+mod fixture;
+
+#[cfg(test)]
 #[path = "regions_tests.rs"]
 mod tests;
+
+#[cfg(test)]
+#[path = "regions_pairs_tests.rs"]
+mod pairs_tests;

@@ -25,6 +25,8 @@ pub mod stage_campaign;
 pub mod start_model;
 /// Laser-tracker campaigns with optional non-geometric errors (issue 19).
 pub mod tracker_campaign;
+/// The true robot of a camera campaign: perturbed kinematics, true joints.
+pub mod true_robot;
 /// Board placement and tilt of simulated campaigns (point views).
 pub mod view_layout;
 /// What a simulated camera campaign is made of.
