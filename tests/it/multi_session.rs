@@ -45,12 +45,16 @@ const WAIT: Duration = Duration::from_secs(600);
 const LIE_DEG: f64 = 3.0;
 const LIE_LABEL: &str = "lying-pose";
 
-/// The same robot, its board placed by each home pose.
+/// The same robot, its board placed by each home pose; each placement
+/// its own stream of stations and noise (calib's `pose_stream`: with one
+/// stream the placements redrew the same stations and pixel noise).
 fn campaigns() -> Vec<Campaign> {
     REGION_HOMES_DEG
         .iter()
-        .map(|home| {
+        .enumerate()
+        .map(|(i, home)| {
             let mut spec = CampaignSpec::standard("puma560", SEED).unwrap();
+            spec.pose_stream = i as u64 + 1;
             spec.home_joints_rad = home.iter().map(|d| d.to_radians()).collect();
             spec.cal_poses = CAL_POSES;
             spec.val_poses = VAL_POSES;
