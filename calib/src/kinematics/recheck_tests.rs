@@ -298,6 +298,19 @@ fn tracker_check_with_terms(
     (c, data)
 }
 
+/// The re-check of tracker `data` against `model` with `covariance`, no
+/// joint noise.
+fn tracker_recheck(model: &TermModel, covariance: &DMatrix<f64>, data: &[Measurement]) -> Recheck {
+    recheck(&RecheckInput {
+        model,
+        instrument: Instrument::Tracker,
+        covariance,
+        joint_sigma_rad: 0.0,
+        data,
+    })
+    .unwrap()
+}
+
 /// A tracker check of a robot with compliance and periodic joint errors
 /// (issue 19), against its true geometry: with its terms it passes; the
 /// geometry alone (the terms' few-hundredths of a mm ignored) does not;
@@ -308,16 +321,7 @@ fn a_set_with_terms_is_checked_with_them() {
     let (c, data) = tracker_check_with_terms(11);
     let layout = ParamLayout::new(&c.truth.robot, Instrument::Tracker);
     let covariance = DMatrix::zeros(layout.len(), layout.len());
-    let with = |model: &TermModel| {
-        recheck(&RecheckInput {
-            model,
-            instrument: Instrument::Tracker,
-            covariance: &covariance,
-            joint_sigma_rad: 0.0,
-            data: &data,
-        })
-        .unwrap()
-    };
+    let with = |model: &TermModel| tracker_recheck(model, &covariance, &data);
     let n = c.true_terms.terms.len();
     let terms = TermModel {
         model: c.truth.clone(),
@@ -366,16 +370,7 @@ fn a_changed_term_is_named_as_the_suspect() {
         covariance: None,
     };
     set.terms.values[changed] += TERM_CHANGE_RAD;
-    let with = |model: &TermModel| {
-        recheck(&RecheckInput {
-            model,
-            instrument: Instrument::Tracker,
-            covariance: &covariance,
-            joint_sigma_rad: 0.0,
-            data: &data,
-        })
-        .unwrap()
-    };
+    let with = |model: &TermModel| tracker_recheck(model, &covariance, &data);
     let checked = with(&set);
     assert_eq!(checked.verdict, Verdict::Drift, "{checked:?}");
     let first = &checked.suspects[0];
