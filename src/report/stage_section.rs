@@ -7,9 +7,7 @@ use std::fmt::Write;
 use super::format::mm;
 use super::measurement_accuracy::SequenceAccuracyReport;
 use super::model::Report;
-use super::stage_chart::stage_chart;
-use super::svg::{HALF_WIDTH, SMALL_CHART_HEIGHT};
-use super::svg_writer::standalone;
+use super::svg::stage_accuracy_svg;
 
 fn cells(v: [f64; 3]) -> String {
     v.iter()
@@ -86,15 +84,9 @@ pub fn measurement_accuracy(page: &mut String, report: &Report) {
     }
     page.push_str("</table>\n");
     stage_referenced_table(page, &m.sequences);
-    let chart = stage_chart(report, HALF_WIDTH, SMALL_CHART_HEIGHT);
     let _ = writeln!(
         page,
         "<figure>{}</figure>\n</section>",
-        standalone(
-            HALF_WIDTH,
-            SMALL_CHART_HEIGHT,
-            "Accuracy against distance",
-            &chart.body
-        )
+        stage_accuracy_svg(report)
     );
 }
