@@ -24,8 +24,9 @@ fn stage_referenced_table(page: &mut String, rows: &[SequenceAccuracyReport]) {
         "<p>Against the stage: each image's camera position less the stage's readings \
          fitted rigidly to its sequence. These figures hold each image's depth noise, which \
          the average-rotation method cannot see; neither sees an offset common to a whole \
-         sequence (that needs the board's pose on the stage); its σ, from the intrinsics' \
-         covariance, is the last three columns.</p>\n\
+         sequence (that needs the board's pose on the stage); its σ, propagated from the \
+         dots' errors through the intrinsics and each image's pose fit, is the last three \
+         columns.</p>\n\
          <table class=\"data\"><tr><th>sequence</th>\
          <th class=\"num\">mean x</th><th class=\"num\">y</th><th class=\"num\">z</th>\
          <th class=\"num\">median x</th><th class=\"num\">y</th><th class=\"num\">z</th>\
