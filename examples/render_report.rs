@@ -6,7 +6,8 @@
 //! `--tracker` renders the laser-tracker variant (no camera); `--poses N`
 //! the sample with N poses (half of them validation poses), to check the
 //! charts stay readable from a handful of poses to hundreds; `--regions`
-//! the sample as a multi-session set's, with three regions.
+//! the sample as a multi-session set's, with three regions; `--stage` as
+//! a stage set's, with three sequences (Fig. 5).
 
 use robocal::report::{render_html, render_svg, render_table, sample, Report};
 use std::error::Error;
@@ -18,6 +19,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         Some(flag) if flag == "--regions" => {
             robocal::report::sample_regions::sample_regions_report()
         }
+        Some(flag) if flag == "--stage" => robocal::report::sample_stage::sample_stage_report(),
         Some(flag) if flag == "--poses" => {
             let n: usize = std::env::args()
                 .nth(2)

@@ -44,8 +44,9 @@ pub struct SequenceAccuracyReport {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stage_referenced_mm: Option<AxisStatsReport>,
     /// σ per target axis (mm) of the offset common to every image of the
-    /// sequence, from the intrinsics' covariance: the part of the error
-    /// neither table sees. Absent in reports made before it existed.
+    /// sequence, propagated from the dots' errors through the intrinsics
+    /// and each image's pose fit: the part of the error neither table
+    /// sees. Absent in reports made before it existed.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub offset_sd_mm: Option<[f64; 3]>,
 }

@@ -22,6 +22,7 @@ mod regions_section;
 mod regions_table;
 pub mod sample;
 pub mod sample_regions;
+pub mod sample_stage;
 pub mod schema;
 mod stage_chart;
 mod stage_section;

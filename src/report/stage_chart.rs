@@ -15,6 +15,8 @@ const POINT_RADIUS: f64 = 3.5;
 const LINE_WIDTH: f64 = 1.5;
 /// The distance axis reaches this far beyond the sequences (mm).
 const DISTANCE_PAD_MM: f64 = 50.0;
+/// The chart's title, on the report sheet and the page alike.
+pub const STAGE_CHART_TITLE: &str = "3-D position accuracy against distance (paper Fig. 5)";
 
 /// One plotted statistic of a sequence (mm).
 type Statistic = fn(&SequenceAccuracyReport) -> f64;
@@ -24,14 +26,18 @@ fn rss(v: [f64; 3]) -> f64 {
     v.iter().map(|c| c * c).sum::<f64>().sqrt()
 }
 
+/// Whether the report is a stage set's, with sequences to draw.
+pub fn has_stage_sequences(report: &Report) -> bool {
+    report
+        .measurement_accuracy
+        .as_ref()
+        .is_some_and(|m| !m.sequences.is_empty())
+}
+
 /// The chart; "no data" when the report has no stage section.
 pub fn stage_chart(report: &Report, width: f64, height: f64) -> Svg {
     let mut svg = Svg::default();
-    svg.title(
-        TITLE_X,
-        TITLE_Y,
-        "3-D position accuracy against distance (paper Fig. 5)",
-    );
+    svg.title(TITLE_X, TITLE_Y, STAGE_CHART_TITLE);
     let series: [(&str, &str, Statistic); 3] = [
         ("mean", MEAN_COLOR, |s| rss(s.mean_mm)),
         ("median", MEDIAN_COLOR, |s| rss(s.median_mm)),
@@ -85,46 +91,5 @@ pub fn stage_chart(report: &Report, width: f64, height: f64) -> Svg {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::report::measurement_accuracy::{MeasurementAccuracyReport, TravelErrorReport};
-    use crate::report::sample::sample_report;
-
-    fn row(sequence: u32, distance_mm: f64, mean: f64) -> SequenceAccuracyReport {
-        SequenceAccuracyReport {
-            sequence,
-            distance_mm,
-            images: 25,
-            mean_mm: [mean; 3],
-            median_mm: [mean; 3],
-            std_mm: [mean / 2.0; 3],
-            max_mm: [2.0 * mean; 3],
-            max_3d_mm: 4.0 * mean,
-            travelled_distance_error_mm: TravelErrorReport { mean, max: mean },
-            stage_referenced_mm: None,
-            offset_sd_mm: None,
-        }
-    }
-
-    #[test]
-    fn every_sequence_is_a_point_of_each_series() {
-        let mut report = sample_report();
-        assert!(stage_chart(&report, 440.0, 310.0)
-            .body
-            .contains("no stage sequences"));
-        report.measurement_accuracy = Some(MeasurementAccuracyReport {
-            sequences: vec![
-                row(1, 700.0, 0.01),
-                row(2, 850.0, 0.02),
-                row(3, 1000.0, 0.03),
-            ],
-        });
-        let body = stage_chart(&report, 440.0, 310.0).body;
-        assert_eq!(
-            body.matches("<circle").count(),
-            3 * 3 + 3,
-            "points and legend dots"
-        );
-        assert_eq!(body.matches("<path").count(), 3);
-    }
-}
+#[path = "stage_chart_tests.rs"]
+mod tests;

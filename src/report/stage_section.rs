@@ -7,9 +7,7 @@ use std::fmt::Write;
 use super::format::mm;
 use super::measurement_accuracy::SequenceAccuracyReport;
 use super::model::Report;
-use super::stage_chart::stage_chart;
-use super::svg::{HALF_WIDTH, SMALL_CHART_HEIGHT};
-use super::svg_writer::standalone;
+use super::svg::stage_accuracy_svg;
 
 fn cells(v: [f64; 3]) -> String {
     v.iter()
@@ -26,8 +24,9 @@ fn stage_referenced_table(page: &mut String, rows: &[SequenceAccuracyReport]) {
         "<p>Against the stage: each image's camera position less the stage's readings \
          fitted rigidly to its sequence. These figures hold each image's depth noise, which \
          the average-rotation method cannot see; neither sees an offset common to a whole \
-         sequence (that needs the board's pose on the stage); its σ, from the intrinsics' \
-         covariance, is the last three columns.</p>\n\
+         sequence (that needs the board's pose on the stage); its σ, propagated from the \
+         dots' errors through the intrinsics and each image's pose fit, is the last three \
+         columns.</p>\n\
          <table class=\"data\"><tr><th>sequence</th>\
          <th class=\"num\">mean x</th><th class=\"num\">y</th><th class=\"num\">z</th>\
          <th class=\"num\">median x</th><th class=\"num\">y</th><th class=\"num\">z</th>\
@@ -86,15 +85,9 @@ pub fn measurement_accuracy(page: &mut String, report: &Report) {
     }
     page.push_str("</table>\n");
     stage_referenced_table(page, &m.sequences);
-    let chart = stage_chart(report, HALF_WIDTH, SMALL_CHART_HEIGHT);
     let _ = writeln!(
         page,
         "<figure>{}</figure>\n</section>",
-        standalone(
-            HALF_WIDTH,
-            SMALL_CHART_HEIGHT,
-            "Accuracy against distance",
-            &chart.body
-        )
+        stage_accuracy_svg(report)
     );
 }

@@ -1,6 +1,7 @@
 //! The report's charts as SVG (issue 6): 3-D error per validation pose,
 //! error histogram, per-axis errors, a multi-session set's errors per
-//! region and per volume (`regions_chart.rs`, issue 18), and the
+//! region and per volume (`regions_chart.rs`, issue 18), a stage set's
+//! error against distance (`stage_chart.rs`, paper Fig. 5), and the
 //! reprojection residual field (in `field.rs`). [`render_svg`] puts them on one self-contained sheet
 //! under a header; the HTML report embeds the charts one by one.
 
@@ -12,6 +13,7 @@ use super::plot::*;
 use super::pose_chart::pose_chart;
 pub use super::pose_chart::{pose_chart_height, POSE_CHART_HEIGHT};
 use super::regions_chart::{region_chart, volume_chart, REGION_CHART_TITLE, VOLUME_CHART_TITLE};
+use super::stage_chart::{has_stage_sequences, stage_chart, STAGE_CHART_TITLE};
 use super::uncertainty_chart::{uncertainty_chart, uncertainty_height};
 
 /// Width of the whole sheet and of full-width charts.
@@ -58,6 +60,15 @@ pub fn render_svg(report: &Report) -> String {
             HALF_WIDTH,
             y,
             &volume_chart(report, HALF_WIDTH, SMALL_CHART_HEIGHT),
+        );
+        y += SMALL_CHART_HEIGHT;
+    }
+    if has_stage_sequences(report) {
+        place(
+            &mut sheet,
+            0.0,
+            y,
+            &stage_chart(report, HALF_WIDTH, SMALL_CHART_HEIGHT),
         );
         y += SMALL_CHART_HEIGHT;
     }
@@ -128,6 +139,15 @@ pub fn volumes_svg(report: &Report) -> String {
         SMALL_CHART_HEIGHT,
         VOLUME_CHART_TITLE,
         &volume_chart(report, HALF_WIDTH, SMALL_CHART_HEIGHT).body,
+    )
+}
+/// The paper's Fig. 5 (error against distance) of a stage set.
+pub fn stage_accuracy_svg(report: &Report) -> String {
+    standalone(
+        HALF_WIDTH,
+        SMALL_CHART_HEIGHT,
+        STAGE_CHART_TITLE,
+        &stage_chart(report, HALF_WIDTH, SMALL_CHART_HEIGHT).body,
     )
 }
 pub fn residual_field_svg(report: &Report) -> String {

@@ -7,7 +7,7 @@
 //! observations without rendering.
 
 use nalgebra::{
-    Isometry3, Matrix3, Point2, Point3, Rotation3, Translation3, UnitQuaternion, Vector3,
+    Isometry3, Matrix3, Point2, Point3, Rotation3, Translation3, UnitQuaternion, Vector2, Vector3,
 };
 use rand::{rngs::StdRng, SeedableRng};
 use rand_distr::{Distribution, Normal};
@@ -25,11 +25,25 @@ use crate::vision::target::TargetSpec;
 /// The paper's stage grid (Fig. 3): 5x5 positions, 20 mm apart.
 pub const PAPER_GRID_SIDE: usize = 5;
 pub const PAPER_GRID_STEP_MM: f64 = 20.0;
+/// [`StageSpec::varied`]: azimuth turn per seed and between sequences,
+/// view-angle and distance steps (deg, mm), how many steps, and how far
+/// back from the paper's values the first step lies.
+const VARIED_AZIMUTH_STEP_DEG: f64 = 47.0;
+const VARIED_SEQUENCE_AZIMUTH_DEG: f64 = 13.0;
+const VARIED_ANGLE_STEP_DEG: f64 = 2.5;
+const VARIED_ANGLE_BACK_DEG: f64 = 3.0;
+const VARIED_DISTANCE_STEP_MM: f64 = 15.0;
+const VARIED_DISTANCE_BACK_MM: f64 = 30.0;
+const VARIED_DISTANCE_STRIDE: u64 = 7;
+const VARIED_STEPS: u64 = 4;
 /// Dots must stay this far inside the frame at every stage position (px):
 /// room for the blur and the detector's window.
 const FRAME_MARGIN_PX: f64 = 12.0;
 /// Seeds the dot noise of [`StageCampaign::point_views`] apart from the layout.
 const POINT_NOISE_SEED: u64 = 0x57a6e;
+/// Seeds the shared dot error of [`StageCampaign::point_views`] apart from
+/// the independent one (so campaigns without it keep their noise).
+const SHARED_NOISE_SEED: u64 = 0x5a4ed;
 
 /// One sequence: where the board is seen from at the stage's centre position.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -54,8 +68,14 @@ pub struct StageSpec {
     /// The stage's axes in the camera frame (`camera_to_stage` rotation):
     /// oblique, so stage moves change the depth too (paper Fig. 4).
     pub camera_to_stage_rotation: UnitQuaternion<f64>,
-    /// Dot-centre noise of [`StageCampaign::point_views`] (px).
+    /// Dot-centre noise of [`StageCampaign::point_views`] (px), drawn anew
+    /// for every image.
     pub pixel_sigma_px: f64,
+    /// Dot-centre error of [`StageCampaign::point_views`] (px) drawn once
+    /// per sequence and dot and shared by the sequence's images: what a
+    /// detector gets wrong alike on a dot that looks the same in every
+    /// image (`crate::stage::noise`).
+    pub shared_pixel_sigma_px: f64,
     pub seed: u64,
 }
 
@@ -67,6 +87,28 @@ impl StageSpec {
     /// 25 mm pitch.
     pub fn paper(seed: u64) -> Self {
         Self::paper_with_camera("irb2400", seed)
+    }
+
+    /// [`Self::paper`] with each sequence's azimuth (turned), view angle
+    /// (-3 to +4.5 deg) and distance (±30 mm) moved by `seed`: the rendered images'
+    /// systematic dot errors depend on how the dots look, so campaigns of
+    /// one layout differ only in their noise and repeat the same
+    /// systematic error (session 11: the principal point came out
+    /// (+0.05, -0.07) px on three seeds of one layout). An honesty check
+    /// over seeds needs the layout to vary.
+    pub fn varied(seed: u64) -> Self {
+        let mut spec = Self::paper(seed);
+        for (j, s) in spec.sequences.iter_mut().enumerate() {
+            let j = j as u64;
+            s.azimuth_deg +=
+                VARIED_AZIMUTH_STEP_DEG * seed as f64 + VARIED_SEQUENCE_AZIMUTH_DEG * j as f64;
+            s.view_angle_deg +=
+                VARIED_ANGLE_STEP_DEG * ((seed + j) % VARIED_STEPS) as f64 - VARIED_ANGLE_BACK_DEG;
+            s.distance_mm += VARIED_DISTANCE_STEP_MM
+                * ((VARIED_DISTANCE_STRIDE * seed + j) % (VARIED_STEPS + 1)) as f64
+                - VARIED_DISTANCE_BACK_MM;
+        }
+        spec
     }
 
     /// [`Self::paper`] with the camera of `rendered_camera(preset)`.
@@ -96,6 +138,7 @@ impl StageSpec {
             grid_step_mm: PAPER_GRID_STEP_MM,
             camera_to_stage_rotation: UnitQuaternion::from_euler_angles(0.35_f64, 0.25, 0.15),
             pixel_sigma_px: 0.05,
+            shared_pixel_sigma_px: 0.0,
             seed,
         }
     }
@@ -203,26 +246,29 @@ fn check_in_frame(spec: &StageSpec, target_to_camera: &Isometry3<f64>) -> Result
 
 impl StageCampaign {
     /// Every image's dots projected by the true camera plus Gaussian noise
-    /// (`pixel_sigma_px`): the calibration without rendering.
+    /// (`pixel_sigma_px` per image, `shared_pixel_sigma_px` per sequence):
+    /// the calibration without rendering.
     pub fn point_views(&self) -> Result<Vec<StageView>, SimError> {
         let mut rng = StdRng::seed_from_u64(self.spec.seed ^ POINT_NOISE_SEED);
         let noise = Normal::new(0.0, self.spec.pixel_sigma_px)
             .map_err(|e| SimError::Spec(e.to_string()))?;
         let points = dot_points(&self.spec.target);
+        let shared = self.shared_dot_errors(points.len())?;
         self.poses
             .iter()
             .map(|pose| {
                 let inv = pose.target_to_camera.inverse();
                 let dots = points
                     .iter()
-                    .map(|&(row, col, p)| {
+                    .zip(&shared[pose.sequence as usize - 1])
+                    .map(|(&(row, col, p), bias)| {
                         let uv =
                             self.spec.intrinsics.project(&(inv * p)).ok_or_else(|| {
                                 SimError::Spec("a dot is behind the camera".into())
                             })?;
                         let pixel = Point2::new(
-                            uv.x + noise.sample(&mut rng),
-                            uv.y + noise.sample(&mut rng),
+                            uv.x + bias.x + noise.sample(&mut rng),
+                            uv.y + bias.y + noise.sample(&mut rng),
                         );
                         Ok(DotObservation {
                             row,
@@ -235,6 +281,23 @@ impl StageCampaign {
                 Ok(self.view(pose, dots))
             })
             .collect()
+    }
+
+    /// Per sequence, every dot's shared error (px).
+    fn shared_dot_errors(&self, dots: usize) -> Result<Vec<Vec<Vector2<f64>>>, SimError> {
+        let mut rng = StdRng::seed_from_u64(self.spec.seed ^ SHARED_NOISE_SEED);
+        let shared = Normal::new(0.0, self.spec.shared_pixel_sigma_px)
+            .map_err(|e| SimError::Spec(e.to_string()))?;
+        Ok(self
+            .spec
+            .sequences
+            .iter()
+            .map(|_| {
+                (0..dots)
+                    .map(|_| Vector2::new(shared.sample(&mut rng), shared.sample(&mut rng)))
+                    .collect()
+            })
+            .collect())
     }
 
     fn view(&self, pose: &StagePose, dots: Vec<DotObservation>) -> StageView {
@@ -294,3 +357,7 @@ impl StageCampaign {
 #[cfg(test)]
 #[path = "stage_campaign_tests.rs"]
 mod tests;
+
+#[cfg(test)]
+#[path = "stage_offset_tests.rs"]
+mod offset_tests;

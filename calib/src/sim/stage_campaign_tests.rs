@@ -113,7 +113,7 @@ fn check_campaign(campaign: &StageCampaign, fit: &StageCalibration) {
                 ));
             }
         }
-        // The offset against its σ from the intrinsics' covariance.
+        // The offset against its stated σ (`crate::stage::offset`).
         let z: Vec<f64> = (0..3).map(|k| offset[k] / acc.offset_sd_mm[k]).collect();
         println!(
             "  common offset {:.4?} / predicted σ {:.4?} = {z:.2?}",

@@ -54,9 +54,9 @@ pub struct SequenceAccuracy {
     /// ([`stage_fit_errors`]): the per-axis table the stage itself vouches for.
     pub stage_referenced: AxisTable,
     /// σ of the offset common to every image of the sequence, per target
-    /// axis (mm), from the intrinsics' covariance ([`super::offset`]): the
-    /// part of the error neither table sees. Zero until the calibration
-    /// fills it in.
+    /// axis (mm), propagated from the dots' errors through the intrinsics
+    /// and each image's pose fit ([`super::offset`]): the part of the
+    /// error neither table sees. Zero until the calibration fills it in.
     pub offset_sd_mm: [f64; 3],
 }
 

@@ -8,12 +8,12 @@
 
 use std::collections::HashSet;
 
-use nalgebra::{DVector, Isometry3, Point2, Point3, Rotation3, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Point2, Point3, Rotation3, UnitQuaternion, Vector3};
 
 use super::assessment::{assess_sequence, average_rotation_errors, SequenceAccuracy};
 use super::bundle::{BundleView, SequenceFit, SequenceStart, StageBundle};
 use super::layout::{average_rotation, fit_stage_axes, group_sequences};
-use super::offset::sequence_offset_sd_mm;
+use super::offset::{sequence_offset_sd_mm, BundleSolution, OffsetView};
 use super::{StageError, StageView};
 use crate::camera::calibrate::{calibrate, CalibrationOptions, CameraCalibration};
 use crate::camera::model::{Intrinsics, IntrinsicsStdDev};
@@ -21,8 +21,9 @@ use crate::camera::observations::{ImageSize, ViewObservations};
 use crate::camera::pose::{estimate_pose, PoseEstimate};
 use crate::camera::refine::IntrinsicsBlock;
 use crate::camera::CameraError;
+use crate::covariance::covariance_from_jacobian;
 use crate::geometry::bounding_box;
-use crate::solver::{solve, LmOptions};
+use crate::solver::{solve, LeastSquaresProblem, LmOptions, SolverError};
 
 /// One image's result.
 #[derive(Debug, Clone, PartialEq)]
@@ -118,7 +119,14 @@ pub fn calibrate_stage(
     )?;
     let intrinsics = bundle.intrinsics(&report.x);
     let dots: usize = bundle_views.iter().map(|v| v.observations.len()).sum();
-    let covariance = report.covariance();
+    // The offsets' σ needs the Jacobian and (JᵀJ)⁺ themselves
+    // (`super::offset`); the covariance is the latter scaled.
+    let jacobian = match &report.jacobian {
+        Some(j) => j.clone(),
+        None => bundle.jacobian(&report.x).ok_or(SolverError::NonFinite)?,
+    };
+    let normal_inverse = covariance_from_jacobian(&jacobian, 1.0);
+    let covariance = &normal_inverse * report.residual_variance();
     let std_dev = (!block.is_empty()).then(|| {
         let n = block.len();
         let block_covariance = covariance.view((0, 0), (n, n)).into_owned();
@@ -154,20 +162,25 @@ pub fn calibrate_stage(
             assess_sequence(seq.sequence, &measured, &stage, &centre)
         })
         .collect::<Vec<SequenceAccuracy>>();
-    let sequence_views: Vec<Vec<usize>> = layout.iter().map(|s| s.views.clone()).collect();
-    let camera_positions = |x: &DVector<f64>| -> Result<Vec<Vector3<f64>>, StageError> {
-        let moved = bundle.intrinsics(x);
-        Ok(measure_views(views, &bundle_views, &sequences, &moved)?
-            .iter()
-            .map(|r| r.pose.target_to_camera.translation.vector)
-            .collect())
-    };
+    let offset_views: Vec<OffsetView> = bundle_views
+        .iter()
+        .zip(&results)
+        .map(|(bv, r)| OffsetView {
+            sequence: bv.sequence,
+            observations: &bv.observations,
+            target_to_camera: r.pose.target_to_camera,
+        })
+        .collect();
     let offsets = sequence_offset_sd_mm(
-        &report.x,
-        &covariance,
-        block.len(),
-        camera_positions,
-        &sequence_views,
+        &BundleSolution {
+            jacobian: &jacobian,
+            residuals: &report.residuals,
+            normal_inverse: &normal_inverse,
+            intrinsics: block.len(),
+        },
+        &intrinsics,
+        &offset_views,
+        layout.len(),
     )?;
     for (acc, sd) in accuracy.iter_mut().zip(offsets) {
         acc.offset_sd_mm = sd.into();

@@ -12,6 +12,7 @@ pub mod bundle;
 pub mod calibrate;
 pub mod error;
 pub mod layout;
+pub mod noise;
 pub mod offset;
 
 use nalgebra::Vector3;
