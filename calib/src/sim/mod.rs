@@ -5,6 +5,7 @@ pub mod camera_step;
 pub mod camera_terms;
 pub mod campaign;
 pub mod campaign_io;
+pub mod campaign_spec;
 pub mod experiment;
 pub mod experiment_error;
 pub mod oracle;

@@ -6,7 +6,7 @@
 use rand::rngs::StdRng;
 use rand_distr::{Distribution, Normal};
 
-use super::campaign::CampaignSpec;
+use super::campaign_spec::CampaignSpec;
 use super::tracker_campaign::typical_terms;
 use crate::geometry::Pose;
 use crate::kinematics::nongeometric::NonGeometric;
