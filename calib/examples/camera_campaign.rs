@@ -6,8 +6,9 @@
 use std::time::Instant;
 
 use robocal_calib::camera::{
-    calibrate, CalibrationMode, CalibrationOptions, CameraCalibration, ImageSize, Intrinsics,
+    calibrate, CalibrationMode, CalibrationOptions, CameraCalibration, ImageSize,
 };
+use robocal_calib::sim::campaign::CampaignSpec;
 use robocal_calib::sim::point_views::{
     simulate_views, SimulatedView, ViewCampaignSpec, ViewLayout, LAYOUT_ROLL_SPREAD_DEG,
 };
@@ -246,29 +247,16 @@ impl Overrides {
 /// `CampaignSpec::standard`: 12 mm lens, 3.45 um pixels, 0.1 px dot noise)
 /// in this example's point-view campaign, for board-size comparisons.
 fn rendered_campaign_camera(seed: u64) -> ViewCampaignSpec {
-    let intrinsics = Intrinsics {
-        fx: 3480.0,
-        fy: 3478.0,
-        cx: 1030.0,
-        cy: 760.0,
-        k1: -0.08,
-        k2: 0.05,
-        p1: 2e-4,
-        p2: -1e-4,
-        k3: 0.0,
-    };
+    let standard = CampaignSpec::standard("puma560", seed).expect("a preset");
     let size = ImageSize {
-        width: 2048,
-        height: 1536,
+        width: standard.image_size.0,
+        height: standard.image_size.1,
     };
     ViewCampaignSpec {
-        noise_px: RENDERED_CAMPAIGN_NOISE_PX,
-        ..ViewCampaignSpec::issue_campaign(intrinsics, size, seed)
+        noise_px: standard.pixel_sigma_px,
+        ..ViewCampaignSpec::issue_campaign(standard.intrinsics, size, seed)
     }
 }
-
-/// Dot noise of the rendered campaign (`CampaignSpec::standard`).
-const RENDERED_CAMPAIGN_NOISE_PX: f64 = 0.1;
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();

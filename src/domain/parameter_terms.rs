@@ -165,7 +165,6 @@ impl TermsDoc {
         model: CalibratedModel,
         instrument: Instrument,
     ) -> Result<TermModel, String> {
-        let layout = ParamLayout::new(&model.robot, instrument);
         let dof = model.robot.dof();
         if let Some(bad) = self.terms.iter().find(|k| k.term.joint() >= dof) {
             return Err(format!("term {} names a joint the robot has not", bad.name));
@@ -177,15 +176,21 @@ impl TermsDoc {
             terms: self.terms.iter().map(|k| k.term).collect(),
             values: self.terms.iter().map(|k| k.value).collect(),
         };
+        let covariance = self
+            .covariance
+            .as_ref()
+            .map(|c| {
+                c.covariance(
+                    &ParamLayout::new(&model.robot, instrument),
+                    self.terms.len(),
+                )
+            })
+            .transpose()?;
         Ok(TermModel {
             model,
             terms,
             term_std_devs: self.terms.iter().map(|k| k.std_dev).collect(),
-            covariance: self
-                .covariance
-                .as_ref()
-                .map(|c| c.covariance(&layout, self.terms.len()))
-                .transpose()?,
+            covariance,
         })
     }
 }

@@ -40,6 +40,14 @@ pub fn workspace_map(id: &Identified, poses: &[PoseInput]) -> Option<Uncertainty
         },
         ..evaluated.clone()
     };
+    // The terms' joint covariance with the geometry, factored once for
+    // every cell.
+    let joint = match &evaluated.covariance {
+        Some(c) => {
+            Some(TermCovarianceFactor::new(&id.identification.layout, &id.covariance, c).ok()?)
+        }
+        None => None,
+    };
     let joints: Vec<Vec<f64>> = id
         .cal
         .iter()
@@ -87,7 +95,9 @@ pub fn workspace_map(id: &Identified, poses: &[PoseInput]) -> Option<Uncertainty
             let Ok(solution) = flange_model.nearest_within_limits(&target, seed) else {
                 continue;
             };
-            if let Some(position_std_mm) = position_std_mm(&evaluated, id, &solution.joints_rad) {
+            if let Some(position_std_mm) =
+                position_std_mm(&evaluated, id, joint.as_ref(), &solution.joints_rad)
+            {
                 cells.push(UncertaintyCell {
                     x_mm: x,
                     y_mm: y,
@@ -113,13 +123,17 @@ pub fn workspace_map(id: &Identified, poses: &[PoseInput]) -> Option<Uncertainty
 
 /// The tool's position σ at commanded joints `q_rad`: the identified
 /// covariance at the deflected joints plus the kept terms' σ, through their
-/// joint covariance when the fit gave it (as `forward`'s σ), else taken as
-/// independent.
-fn position_std_mm(evaluated: &TermModel, id: &Identified, q_rad: &[f64]) -> Option<f64> {
+/// `joint` covariance when the fit gave it (as `forward`'s σ), else taken
+/// as independent.
+fn position_std_mm(
+    evaluated: &TermModel,
+    id: &Identified,
+    joint: Option<&TermCovarianceFactor>,
+    q_rad: &[f64],
+) -> Option<f64> {
     let layout = &id.identification.layout;
     let frame = PoseFrame::ToolInWorld;
-    if let Some(c) = &evaluated.covariance {
-        let joint = TermCovarianceFactor::new(layout, &id.covariance, c).ok()?;
+    if let Some(joint) = joint {
         return Some(joint.pose_std(evaluated, q_rad, frame).ok()?.position_mm);
     }
     let bent = evaluated.deflected(q_rad).ok()?;

@@ -116,7 +116,7 @@ async fn model_and_uncertainty(
     refuse_hand_eye(&record)?;
     let doc = in_session(typed(&record)?, session_id)?;
     let model = doc.term_model().map_err(|_| no_model())?;
-    let uncertainty = Uncertainty::of(&doc, &model.model)
+    let uncertainty = Uncertainty::of(&doc, &model)
         .transpose()
         .map_err(ServiceError::internal)?;
     Ok((model, uncertainty))

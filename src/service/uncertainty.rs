@@ -48,20 +48,17 @@ pub struct PredictedStd {
 }
 
 impl Uncertainty {
-    /// The stored covariance of `set` for `model` (its calibrated model);
-    /// `None` for sets stored without one.
-    pub fn of(set: &ParameterSet, model: &CalibratedModel) -> Option<Result<Self, String>> {
+    /// The stored covariance of `set` for `model` (its calibrated model
+    /// with its kept terms, whose covariance with the parameters joins it
+    /// when stored); `None` for sets stored without one.
+    pub fn of(set: &ParameterSet, model: &TermModel) -> Option<Result<Self, String>> {
         let covariance = match set.covariance_matrix()? {
             Ok(c) => c,
             Err(e) => return Some(Err(e)),
         };
-        let layout = ParamLayout::new(&model.robot, set.layout_instrument());
-        let terms = match set.term_model() {
-            Ok(t) => t.covariance,
-            Err(e) => return Some(Err(e)),
-        };
-        let with_terms = match terms {
-            Some(c) => match TermCovarianceFactor::new(&layout, &covariance, &c) {
+        let layout = ParamLayout::new(&model.model.robot, set.layout_instrument());
+        let with_terms = match &model.covariance {
+            Some(c) => match TermCovarianceFactor::new(&layout, &covariance, c) {
                 Ok(f) => Some(f),
                 Err(e) => return Some(Err(e.to_string())),
             },

@@ -67,7 +67,11 @@ pub fn select_terms_on_images(
 ) -> Result<ImageTermSelection, IdentifyError> {
     let geo = &pose_level.geometric;
     let free = &geo.identifiability.free;
-    let geometric = joint_refine(&geo.model, intrinsics, poses, free, noise, hold_intrinsics)?;
+    // The geometric refinement at its own noise: needed only when no term
+    // is kept (the result) or none survives (the BIC's baseline).
+    let refine_geometric =
+        || joint_refine(&geo.model, intrinsics, poses, free, noise, hold_intrinsics);
+    let mut geometric = None;
     // Report lines in the pose-level order; the candidates keep their line.
     let mut report: Vec<Option<TermReport>> = pose_level
         .report
@@ -149,7 +153,9 @@ pub fn select_terms_on_images(
             (whitened_cost(&plain, n), whitened_cost(r, n) + k * n.ln())
         }
         None => {
-            let cost = whitened_cost(&geometric, n);
+            let g = refine_geometric()?;
+            let cost = whitened_cost(&g, n);
+            geometric = Some(g);
             (cost, cost)
         }
     };
@@ -175,7 +181,11 @@ pub fn select_terms_on_images(
                         format!("BIC {bic_with_terms:.1} of the image residuals not below the geometric {bic_geometric:.1}"));
                 }
             }
-            (geometric, candidates.subset(&[]), Vec::new(), None)
+            let g = match geometric {
+                Some(g) => g,
+                None => refine_geometric()?,
+            };
+            (g, candidates.subset(&[]), Vec::new(), None)
         }
     };
     let selection = TermIdentification {
