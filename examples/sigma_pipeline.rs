@@ -57,7 +57,7 @@ fn main() -> Result<(), String> {
                 serde_json::from_value(set.parameters).map_err(|e| e.to_string())?;
             // The set with its kept terms (none unless the job selected some).
             let model = set.term_model()?;
-            let u = Uncertainty::of(&set, &model.model).ok_or("no covariance")??;
+            let u = Uncertainty::of(&set, &model).ok_or("no covariance")??;
             let truth = campaign.truth.model().map_err(|e| e.to_string())?;
             let (mut sp, mut sr, mut n) = (0.0, 0.0, 0.0);
             let (mut ep, mut gp) = (0.0, 0.0);
