@@ -34,6 +34,7 @@ fn main() {
                     noise_mm: NOISE_MM,
                     seed: 50_000 + seed,
                     non_geometric: switch,
+                    orientation_noise_rad: None,
                 },
             );
             let (cal, val) = c.measurements.split_at(POSES);

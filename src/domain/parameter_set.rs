@@ -14,6 +14,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{CovarianceDoc, TermsDoc};
 use crate::report::ParameterReport;
+use crate::schema::job::Measurement;
 use crate::schema::robot::{doc_to_model, KinematicsDoc};
 use crate::schema::session::Instrument;
 use crate::schema::PoseOut;
@@ -22,6 +23,12 @@ use crate::schema::PoseOut;
 #[serde(into = "StoredSet", try_from = "StoredSet")]
 pub struct ParameterSet {
     pub instrument: Instrument,
+    /// A tracker set's measurement (issue 19): `pose` when a 6-DoF probe's
+    /// orientation was fitted with its position, so `flange_to_tool` is the
+    /// probe's full frame and the parameters follow the camera's layout;
+    /// `position` (or absent, in sets stored before it was kept) for the
+    /// tool point only. Absent for camera sets.
+    pub measurement: Option<Measurement>,
     pub session_id: String,
     pub kinematics: KinematicsDoc,
     /// The board's (camera) or the tracker's frame in the robot base frame.
@@ -115,9 +122,12 @@ impl ParameterSet {
 
     /// The instrument whose parameter layout the numerics use for this set.
     pub fn layout_instrument(&self) -> robocal_calib::kinematics::Instrument {
-        match self.instrument {
-            Instrument::Tracker => robocal_calib::kinematics::Instrument::Tracker,
-            Instrument::Camera | Instrument::Stage => robocal_calib::kinematics::Instrument::Camera,
+        match (self.instrument, self.measurement) {
+            (Instrument::Tracker, Some(Measurement::Pose))
+            | (Instrument::Camera | Instrument::Stage, _) => {
+                robocal_calib::kinematics::Instrument::Camera
+            }
+            (Instrument::Tracker, _) => robocal_calib::kinematics::Instrument::Tracker,
         }
     }
 
@@ -183,6 +193,8 @@ impl ParameterSet {
 #[derive(Serialize, Deserialize)]
 struct StoredSet {
     instrument: Instrument,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    measurement: Option<Measurement>,
     session_id: String,
     kinematics: KinematicsDoc,
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -217,6 +229,7 @@ impl From<ParameterSet> for StoredSet {
         let (world, end) = (Some(set.world_to_base), Some(set.flange_to_tool));
         StoredSet {
             instrument: set.instrument,
+            measurement: set.measurement,
             session_id: set.session_id,
             kinematics: set.kinematics,
             target_to_base: if tracker { None } else { world.clone() },
@@ -243,6 +256,7 @@ impl TryFrom<StoredSet> for ParameterSet {
         let missing = |camera: &str, tracker: &str| format!("neither {camera} nor {tracker}");
         Ok(ParameterSet {
             instrument: s.instrument,
+            measurement: s.measurement,
             session_id: s.session_id,
             kinematics: s.kinematics,
             world_to_base: s.target_to_base.or(s.instrument_to_base).ok_or_else(|| {

@@ -10,7 +10,7 @@ use robocal_calib::kinematics::recheck::{
 use robocal_calib::kinematics::ParamLayout;
 
 use super::camera_stage::CameraStep;
-use super::identify_stage::measurement_of;
+use super::measuring::Measuring;
 use super::{Input, Output, PipelineError, Stage, Summary};
 use crate::domain::{CheckDoc, CheckSuspect, CheckVerdict};
 
@@ -51,7 +51,8 @@ pub fn run(
             ),
         )
     })?;
-    let (instrument, kind) = approved.measurement_for(camera.is_some(), "session")?;
+    let (instrument, measuring) =
+        Measuring::for_approved(approved, &input.session, &input.poses, "session")?;
     // A set with kept terms (issue 19) is checked with them.
     let model = approved.set.term_model().map_err(numerical)?;
     let covariance = approved
@@ -69,7 +70,7 @@ pub fn run(
         .map_err(numerical)?;
     within(Stage::Identify, "re-check against the approved set", 0.0);
     let data: Vec<_> = (0..input.poses.len())
-        .filter_map(|i| measurement_of(&input.poses[i], i, camera, None, kind))
+        .filter_map(|i| measuring.of(&input.poses[i], i, camera, None))
         .collect();
     let joint_sigma_rad = joint_sigma_rad(&approved.set);
     let found = recheck(&RecheckInput {

@@ -13,10 +13,11 @@
 //! terms (issue 19) is evaluated with them, held at their values (its
 //! frames re-fitted through them): the candidate's own figure
 //! (`Identified::after`) uses its terms, so both sides are judged as
-//! they would be served.
+//! they would be served. Two sets of one tracker, one fitted with a 6-DoF
+//! probe's orientation, are compared on the tool point's position.
 
 use robocal_calib::kinematics::identify::{
-    fit_parameters, frame_indices, validate, IdentifyMode, IdentifyOptions, JointNoise,
+    fit_parameters, frame_indices, validate, IdentifyMode, IdentifyOptions, JointNoise, Measurement,
 };
 use robocal_calib::kinematics::{CalibratedModel, Instrument, ParamLayout};
 
@@ -24,6 +25,7 @@ use super::identify_stage::Identified;
 use super::input::ApprovedSet;
 use crate::domain::{Release, ReleaseStatus};
 use crate::report::GateReport;
+use crate::schema::session::Instrument as SessionInstrument;
 
 /// What [`GateReport::compared_with`] says for the nominal model.
 const NOMINAL: &str = "nominal";
@@ -39,12 +41,25 @@ pub struct Gate {
 /// close to the truth whatever happened to the cell since).
 fn approved_mean_mm(
     approved: &ApprovedSet,
-    instrument: Instrument,
+    session: SessionInstrument,
     id: &Identified,
 ) -> Result<f64, String> {
-    if approved.set.layout_instrument() != instrument {
+    let instrument = id.identification.layout.instrument;
+    let (instrument, cal_data, val_data) = if approved.set.layout_instrument() == instrument {
+        (instrument, id.cal_data.clone(), id.val_data.clone())
+    } else if !session.has_camera() && !approved.set.instrument.has_camera() {
+        // One tracker, one of the two sets fitted with a 6-DoF probe's
+        // orientation: compared on the tool point, the figure both have.
+        let positions =
+            |data: &[Measurement]| data.iter().map(Measurement::position_only).collect();
+        (
+            Instrument::Tracker,
+            positions(&id.cal_data),
+            positions(&id.val_data),
+        )
+    } else {
         return Err("it was calibrated with another instrument".into());
-    }
+    };
     let held = approved.set.term_model()?;
     let model = held.model.clone();
     let (theirs, ours) = (model.robot.joints.len(), id.model.robot.joints.len());
@@ -67,7 +82,7 @@ fn approved_mean_mm(
     // With the terms held, a geometric fit of the deflected joints is the
     // fit through the terms (`TermModel::deflect_measurements`).
     let deflect = |data| held.deflect_measurements(data).map_err(|e| e.to_string());
-    let (cal_data, val_data) = (deflect(&id.cal_data)?, deflect(&id.val_data)?);
+    let (cal_data, val_data) = (deflect(&cal_data)?, deflect(&val_data)?);
     let (refit, _) = fit_parameters(&start, instrument, &cal_data, &which, options)
         .map_err(|e| e.to_string())?;
     let (stats, _) = validate(&refit, &val_data).map_err(|e| e.to_string())?;
@@ -81,7 +96,7 @@ fn approved_mean_mm(
 /// same camera, so its figures flatter it.
 pub fn decide(
     id: &Identified,
-    instrument: Instrument,
+    instrument: SessionInstrument,
     approved: Option<&ApprovedSet>,
     paper_camera: bool,
 ) -> Gate {

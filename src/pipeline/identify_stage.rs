@@ -1,16 +1,16 @@
 //! Stages "measure_poses" and "identify": the measured camera (or tracker)
-//! poses, the kinematic identification (method.md §5–6) and, for camera
+//! poses (`measuring`), the kinematic identification (method.md §5–6) and, for camera
 //! sessions, the joint refinement on the raw image points; then the
 //! before/after accuracy at the validation poses (method.md §7).
 
-use nalgebra::{Matrix3, Vector3};
-use robocal_calib::camera::{estimate_pose, Intrinsics};
+use nalgebra::Vector3;
+use robocal_calib::camera::Intrinsics;
 use robocal_calib::kinematics::identify::{
     holdout_split, identify, validate, Identification, IdentifyMode, IdentifyOptions, JointNoise,
-    Measurement, Observed,
+    Measurement,
 };
 use robocal_calib::kinematics::image_term_selection::select_terms_on_images;
-use robocal_calib::kinematics::initial::initial_world_to_base;
+use robocal_calib::kinematics::initial::{initial_frames_from_poses, initial_world_to_base};
 use robocal_calib::kinematics::joint_covariance::joint_refine_covariance;
 use robocal_calib::kinematics::joint_refine::{joint_refine, ImageNoise, ImagePose};
 use robocal_calib::kinematics::nongeometric::CandidateOptions;
@@ -21,14 +21,11 @@ use robocal_calib::kinematics::{CalibratedModel, Instrument, RobotModel};
 use robocal_calib::stats::AccuracyStats;
 
 use super::camera_stage::CameraStep;
+use super::measuring::Measuring;
 use super::{PipelineError, PoseInput, Stage};
 use crate::domain::TermsDoc;
 use crate::schema::job::{Measurement as MeasurementKind, Validation};
 use crate::schema::session::PoseSet;
-
-/// Assumed tracker position standard deviation when none is given (mm):
-/// a laser tracker's typical few-hundredths at robot range.
-const TRACKER_SIGMA_MM: f64 = 0.02;
 
 /// The identified model and the numbers the report needs.
 pub struct Identified {
@@ -103,50 +100,6 @@ pub(super) fn split(
     }
 }
 
-/// One pose's measurement: the camera pose from the camera step, or the
-/// tracker's position.
-pub(super) fn measurement_of(
-    pose: &PoseInput,
-    index: usize,
-    camera: Option<&CameraStep>,
-    intrinsics: Option<&Intrinsics>,
-    kind: MeasurementKind,
-) -> Option<Measurement> {
-    let joints_rad = pose.joints_deg.to_radians();
-    let observed = match camera {
-        Some(step) => {
-            let estimate = match intrinsics {
-                // Validation poses are re-measured with the final intrinsics.
-                Some(intr) => estimate_pose(intr, step.observations_of(index)?, None).ok()?,
-                None => *step.pose_estimate(index)?,
-            };
-            match kind {
-                MeasurementKind::Pose => Observed::Pose {
-                    world_to_tool: estimate.target_to_camera,
-                    covariance: Some(estimate.covariance_6x6),
-                },
-                MeasurementKind::Position => Observed::Position {
-                    position_mm: estimate.target_to_camera.translation.vector,
-                    covariance: Some(
-                        estimate
-                            .covariance_6x6
-                            .fixed_view::<3, 3>(0, 0)
-                            .into_owned(),
-                    ),
-                },
-            }
-        }
-        None => Observed::Position {
-            position_mm: Vector3::from(pose.measured_position_mm?),
-            covariance: Some(Matrix3::identity() * TRACKER_SIGMA_MM.powi(2)),
-        },
-    };
-    Some(Measurement {
-        joints_rad,
-        observed,
-    })
-}
-
 /// Identification, joint refinement and validation.
 #[allow(clippy::too_many_arguments)]
 pub fn identify_robot(
@@ -154,7 +107,7 @@ pub fn identify_robot(
     poses: &[PoseInput],
     camera: Option<&CameraStep>,
     flange_to_tool_guess: nalgebra::Isometry3<f64>,
-    kind: MeasurementKind,
+    measuring: Measuring,
     validation: Validation,
     joint_refinement: bool,
     hold_intrinsics: bool,
@@ -162,23 +115,26 @@ pub fn identify_robot(
     outliers: &[usize],
     candidates: Option<&CandidateOptions>,
 ) -> Result<Identified, PipelineError> {
-    let instrument = if camera.is_some() {
-        Instrument::Camera
-    } else {
-        Instrument::Tracker
-    };
+    let instrument = measuring.layout(camera.is_some());
     let (cal, val) = split(poses, usable, validation);
     let cal_data: Vec<Measurement> = cal
         .iter()
-        .filter_map(|&i| measurement_of(&poses[i], i, camera, None, kind))
+        .filter_map(|&i| measuring.of(&poses[i], i, camera, None))
         .collect();
     let mut start = CalibratedModel {
         robot: robot.clone(),
         world_to_base: nalgebra::Isometry3::identity(),
         flange_to_tool: flange_to_tool_guess,
     };
-    start.world_to_base =
-        initial_world_to_base(&start, &cal_data).map_err(|e| numerical(Stage::Identify, e))?;
+    if camera.is_none() && instrument == Instrument::Camera {
+        // A 6-DoF probe: its frame on the flange is found from the poses,
+        // whatever the bracket's rotation.
+        (start.world_to_base, start.flange_to_tool) = initial_frames_from_poses(&start, &cal_data)
+            .map_err(|e| numerical(Stage::Identify, e))?;
+    } else {
+        start.world_to_base =
+            initial_world_to_base(&start, &cal_data).map_err(|e| numerical(Stage::Identify, e))?;
+    }
     // The pose-level fit takes the measurement covariances as they are; the
     // joint noise is estimated where the data can separate it from the dot
     // noise: in the joint refinement on the image points (a paper-mode
@@ -217,7 +173,10 @@ pub fn identify_robot(
             covariance = c.clone();
         }
     }
-    if let (Some(step), true) = (camera, joint_refinement && kind == MeasurementKind::Pose) {
+    if let (Some(step), true) = (
+        camera,
+        joint_refinement && measuring.kind == MeasurementKind::Pose,
+    ) {
         let images: Vec<ImagePose> = cal
             .iter()
             .filter_map(|&i| {
@@ -288,7 +247,7 @@ pub fn identify_robot(
         .or_else(|| camera.map(|c| c.intrinsics()));
     let (mut val_index, mut val_data) = (Vec::new(), Vec::new());
     for &i in &val {
-        if let Some(m) = measurement_of(&poses[i], i, camera, final_intrinsics.as_ref(), kind) {
+        if let Some(m) = measuring.of(&poses[i], i, camera, final_intrinsics.as_ref()) {
             val_index.push(i);
             val_data.push(m);
         }
@@ -310,7 +269,7 @@ pub fn identify_robot(
         .collect();
     let mut outlier_errors = Vec::new();
     for &o in outliers {
-        let measured = measurement_of(&poses[o], o, camera, final_intrinsics.as_ref(), kind);
+        let measured = measuring.of(&poses[o], o, camera, final_intrinsics.as_ref());
         if let Some(m) = measured {
             let one = std::slice::from_ref(&m);
             if let (Ok((_, b)), Ok((_, a))) = (

@@ -5,13 +5,12 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use robocal_calib::camera::Intrinsics;
-use robocal_calib::kinematics::{Instrument, RobotModel};
+use robocal_calib::kinematics::RobotModel;
 
-use super::PipelineError;
 use crate::domain::{FlangePose, ImageDetection, JointsDeg, ParameterSet, StageReading};
 use crate::imaging::DecodeGate;
 use crate::report::regions::LocalModel;
-use crate::schema::job::{CalibrationOptions, Measurement as MeasurementKind};
+use crate::schema::job::CalibrationOptions;
 use crate::schema::robot::KinematicsDoc;
 use crate::schema::session::{ImagePointDoc, PoseSet, SessionBody};
 use crate::schema::PoseDoc;
@@ -70,33 +69,6 @@ pub struct ApprovedSet {
     /// The set's version.
     pub version: i64,
     pub set: ParameterSet,
-}
-
-impl ApprovedSet {
-    /// The instrument the set was calibrated with and the measurement its
-    /// poses give; refused, naming `field`, when this session measures with
-    /// another (`camera_session`: the session has a camera step).
-    pub fn measurement_for(
-        &self,
-        camera_session: bool,
-        field: &str,
-    ) -> Result<(Instrument, MeasurementKind), PipelineError> {
-        let instrument = self.set.layout_instrument();
-        if (instrument == Instrument::Camera) != camera_session {
-            return Err(PipelineError::invalid(
-                field,
-                format!(
-                    "the approved set {} was calibrated with another instrument than this session's",
-                    self.id
-                ),
-            ));
-        }
-        let kind = match instrument {
-            Instrument::Camera => MeasurementKind::Pose,
-            Instrument::Tracker => MeasurementKind::Position,
-        };
-        Ok((instrument, kind))
-    }
 }
 
 impl Input {

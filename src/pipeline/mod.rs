@@ -24,6 +24,7 @@ mod hand_eye_sigmas;
 mod identify_stage;
 mod input;
 mod measure;
+mod measuring;
 mod output;
 mod regions_job;
 mod regions_results;
@@ -151,13 +152,8 @@ fn run_stages(
         }
         None => (usable, Vec::new()),
     };
-    let kind = input
-        .options
-        .measurement
-        .unwrap_or(match input.session.instrument {
-            Instrument::Camera | Instrument::Stage => crate::schema::job::Measurement::Pose,
-            Instrument::Tracker => crate::schema::job::Measurement::Position,
-        });
+    let measuring =
+        measuring::Measuring::for_job(&input.session, input.options.measurement, &input.poses)?;
     let guess = flange_guess(input);
     // Paper mode keeps the paper's pipeline: its Tsai intrinsics are not
     // the joint refinement's camera model, so refining on the image points
@@ -189,7 +185,7 @@ fn run_stages(
             &input.poses,
             camera.as_ref(),
             guess,
-            kind,
+            measuring,
             input.options.validation,
             joint_refinement,
             intrinsics_held,
@@ -220,15 +216,8 @@ fn run_stages(
     let context = results::Context {
         serial: &input.serial,
         session_id: &input.session_id,
-        instrument: if camera.is_some() {
-            robocal_calib::kinematics::Instrument::Camera
-        } else {
-            robocal_calib::kinematics::Instrument::Tracker
-        },
-        measurement: match kind {
-            crate::schema::job::Measurement::Pose => "pose",
-            crate::schema::job::Measurement::Position => "position",
-        },
+        instrument: input.session.instrument,
+        measuring,
         poses: &input.poses,
         measured: measured.as_ref(),
         camera: camera.as_ref(),
@@ -253,7 +242,7 @@ fn run_stages(
                 .term_model()
                 .map_err(|e| PipelineError::numerical(Stage::Report, e))?,
             &set.camera.unwrap_or(step.intrinsics()),
-            kind == crate::schema::job::Measurement::Pose,
+            measuring.kind == crate::schema::job::Measurement::Pose,
         ),
         _ => Vec::new(),
     };

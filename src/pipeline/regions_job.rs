@@ -14,15 +14,15 @@ use robocal_calib::kinematics::initial::initial_world_to_base;
 use robocal_calib::kinematics::joint_covariance::session_covariances;
 use robocal_calib::kinematics::joint_refine::{ImageNoise, ImagePose, JointRefinement};
 use robocal_calib::kinematics::regions::{joint_refine_regions, session_of, RegionPoses};
-use robocal_calib::kinematics::{CalibratedModel, Instrument as ModelInstrument};
+use robocal_calib::kinematics::CalibratedModel;
 use robocal_calib::stats::AccuracyStats;
 
 use super::camera_stage::CameraStep;
-use super::identify_stage::{identify_robot, measurement_of, Identified};
+use super::identify_stage::{identify_robot, Identified};
 use super::measure::Measured;
+use super::measuring::Measuring;
 use super::screen_stage::{self, Outlier};
 use super::{camera_session, validate as validate_input, Input, PipelineError, Stage};
-use crate::schema::job::Measurement as MeasurementKind;
 use crate::schema::session::Instrument;
 use crate::store::PoseDetection;
 
@@ -173,7 +173,7 @@ fn fit_session(
             &input.poses,
             Some(&step),
             super::flange_guess(&input),
-            MeasurementKind::Pose,
+            Measuring::camera_pose(),
             input.options.validation,
             false,
             true,
@@ -289,13 +289,7 @@ fn validate_session(
     };
     let intrinsics = joint.refined.intrinsics;
     let measure = |i: usize| {
-        measurement_of(
-            &fit.input.poses[i],
-            i,
-            Some(&fit.step),
-            Some(&intrinsics),
-            MeasurementKind::Pose,
-        )
+        Measuring::camera_pose().of(&fit.input.poses[i], i, Some(&fit.step), Some(&intrinsics))
     };
     let (mut index, mut data): (Vec<usize>, Vec<Measurement>) = (Vec::new(), Vec::new());
     for &i in &fit.identified.val {
@@ -333,6 +327,3 @@ fn validate_session(
         outlier_errors,
     })
 }
-
-/// The instrument of a multi-session set (camera sessions only).
-pub(super) const INSTRUMENT: ModelInstrument = ModelInstrument::Camera;

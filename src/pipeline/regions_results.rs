@@ -8,7 +8,7 @@ use robocal_calib::kinematics::term_model::TermModel;
 use robocal_calib::stats::AccuracyStats;
 
 use super::identify_stage::Identified;
-use super::regions_job::{Fitted, JointFit, SessionValidation, INSTRUMENT};
+use super::regions_job::{Fitted, JointFit, SessionValidation};
 use super::screen_stage::Outlier;
 use super::{detections, gate, results, Input, Output, PipelineError, PoseInput};
 use crate::domain::{CovarianceDoc, SessionBoard};
@@ -106,8 +106,8 @@ pub(super) fn output(input: &Input, fitted: Fitted) -> Result<Output, PipelineEr
     let context = results::Context {
         serial: &input.serial,
         session_id: &input.session_id,
-        instrument: INSTRUMENT,
-        measurement: "pose",
+        instrument: crate::schema::session::Instrument::Camera,
+        measuring: super::measuring::Measuring::camera_pose(),
         poses: &poses,
         measured: Some(&first.measured),
         camera: Some(&first.step),
@@ -143,7 +143,12 @@ pub(super) fn output(input: &Input, fitted: Fitted) -> Result<Output, PipelineEr
     let (all_before, all_after) = (combined.before, combined.after);
     combined.before = validations[0].before;
     combined.after = validations[0].after;
-    let decision = gate::decide(&combined, INSTRUMENT, input.approved.as_ref(), false);
+    let decision = gate::decide(
+        &combined,
+        crate::schema::session::Instrument::Camera,
+        input.approved.as_ref(),
+        false,
+    );
     (combined.before, combined.after) = (all_before, all_after);
     report.gate = Some(decision.report);
     Ok(Output {

@@ -2,11 +2,12 @@
 //! evaluate) and the accuracy report (api.md "Results"), from the stages'
 //! outcomes.
 
-use robocal_calib::kinematics::{Instrument, ParamKind, ParamLayout};
+use robocal_calib::kinematics::{ParamKind, ParamLayout};
 
 use super::camera_stage::{camera_mode, camera_report, CameraStep};
 use super::identify_stage::Identified;
 use super::measure::Measured;
+use super::measuring::Measuring;
 use super::screen_stage::Outlier;
 use super::{PoseInput, Summary};
 use crate::domain::{CovarianceDoc, ParameterSet};
@@ -68,8 +69,11 @@ fn parameter_rows(id: &Identified) -> Vec<ParameterReport> {
 pub struct Context<'a> {
     pub serial: &'a str,
     pub session_id: &'a str,
-    pub instrument: Instrument,
-    pub measurement: &'a str,
+    /// The session's instrument (the set's frame names follow it).
+    pub instrument: SessionInstrument,
+    /// What each pose measured: a tracker's set records it (a 6-DoF
+    /// probe's identifies the tool's frame).
+    pub measuring: Measuring,
     pub poses: &'a [PoseInput],
     pub measured: Option<&'a Measured>,
     pub camera: Option<&'a CameraStep>,
@@ -81,11 +85,12 @@ pub struct Context<'a> {
 pub fn parameter_set(ctx: &Context, id: &Identified) -> ParameterSet {
     let rows = parameter_rows(id);
     ParameterSet {
-        instrument: if ctx.instrument == Instrument::Camera {
+        instrument: if ctx.instrument.has_camera() {
             SessionInstrument::Camera
         } else {
             SessionInstrument::Tracker
         },
+        measurement: (!ctx.instrument.has_camera()).then_some(ctx.measuring.kind),
         session_id: ctx.session_id.to_string(),
         kinematics: model_to_doc(&id.model.robot),
         world_to_base: PoseOut::new(&id.model.world_to_base),
@@ -221,7 +226,7 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSet) -> Report {
         session_id: ctx.session_id.to_string(),
         created_at: crate::domain::now_rfc3339(),
         instrument: set.instrument.as_str().to_string(),
-        measurement: ctx.measurement.to_string(),
+        measurement: ctx.measuring.kind.as_str().to_string(),
         camera,
         detection,
         before: id.before,

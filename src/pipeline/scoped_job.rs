@@ -15,13 +15,14 @@ use robocal_calib::kinematics::initial::initial_world_to_base;
 use robocal_calib::kinematics::{ParamKind, ParamLayout};
 
 use super::camera_stage::{camera_report, CameraStep};
-use super::identify_stage::{measurement_of, split};
+use super::identify_stage::split;
 use super::measure::Measured;
+use super::measuring::Measuring;
 use super::results::residual_field;
 use super::{Input, Output, PipelineError, Stage, Summary};
 use crate::domain::ParameterSet;
 use crate::report::{DetectionReport, IdentifiabilityReport, PoseReport, Report};
-use crate::schema::job::{CalibrationScope, Measurement as MeasurementKind};
+use crate::schema::job::CalibrationScope;
 use crate::schema::PoseOut;
 use crate::store::NewParameterSet;
 
@@ -61,7 +62,8 @@ pub fn run(
             ),
         )
     })?;
-    let (instrument, kind) = approved.measurement_for(camera.is_some(), "scope")?;
+    let (instrument, measuring) =
+        Measuring::for_approved(approved, &input.session, &input.poses, "scope")?;
     let terms = approved.set.term_model().map_err(numerical)?;
     let held = terms.model.clone();
     within(Stage::Identify, "re-fitting the scope's frame", 0.0);
@@ -72,7 +74,7 @@ pub fn run(
     let measure = |indices: &[usize]| -> (Vec<usize>, Vec<_>) {
         indices
             .iter()
-            .filter_map(|&i| Some((i, measurement_of(&input.poses[i], i, camera, None, kind)?)))
+            .filter_map(|&i| Some((i, measuring.of(&input.poses[i], i, camera, None)?)))
             .unzip()
     };
     // With the terms held, the geometric fit and validation of the
@@ -169,11 +171,7 @@ pub fn run(
         session_id: input.session_id.clone(),
         created_at: crate::domain::now_rfc3339(),
         instrument: set.instrument.as_str().to_string(),
-        measurement: match kind {
-            MeasurementKind::Pose => "pose",
-            MeasurementKind::Position => "position",
-        }
-        .into(),
+        measurement: measuring.kind.as_str().into(),
         camera: camera.map(|step| camera_report(step, &step.intrinsics(), None, &input.poses)),
         detection: measured.map(|m| DetectionReport {
             images: m.points.len(),

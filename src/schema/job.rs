@@ -13,6 +13,15 @@ pub enum Measurement {
     Position,
 }
 
+impl Measurement {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Measurement::Pose => "pose",
+            Measurement::Position => "position",
+        }
+    }
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum ValidationNamed {

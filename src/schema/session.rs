@@ -165,10 +165,28 @@ pub struct SessionBody {
     /// (issue 19). A finite mass from 0 to `MAX_PAYLOAD_KG`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub payload_kg: Option<f64>,
+    /// A tracker session's position standard deviation per axis (mm),
+    /// the weight of each measured position; default 0.02 mm (a laser
+    /// tracker at robot range).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tracker_sigma_mm: Option<f64>,
+    /// A tracker session's orientation standard deviation per axis (deg)
+    /// for poses with `measured_pose` (a 6-DoF probe, issue 19), the
+    /// weight of each measured orientation; default 0.01° (a T-Mac's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tracker_orientation_sigma_deg: Option<f64>,
 }
 
 /// Largest payload a session may state (kg): beyond any industrial arm's.
 pub const MAX_PAYLOAD_KG: f64 = 5_000.0;
+/// Largest tracker noise a session may state: beyond these a campaign
+/// measures nothing a robot's kinematics could be identified from.
+pub const MAX_TRACKER_SIGMA_MM: f64 = 10.0;
+pub const MAX_TRACKER_SIGMA_DEG: f64 = 10.0;
+/// How far a pose's `measured_pose` translation may lie from its
+/// `measured_position_mm` (mm): both are the one tool point, so they
+/// differ by rounding only.
+pub const MEASURED_POSE_AGREEMENT_MM: f64 = 1e-3;
 
 impl SessionBody {
     pub fn check(&self) -> Result<(), Vec<FieldError>> {
@@ -225,6 +243,27 @@ impl SessionBody {
                     "payload_kg",
                     format!("must be a finite mass from 0 to {MAX_PAYLOAD_KG} kg"),
                 );
+            }
+        }
+        for (field, sigma, max, unit) in [
+            (
+                "tracker_sigma_mm",
+                self.tracker_sigma_mm,
+                MAX_TRACKER_SIGMA_MM,
+                "mm",
+            ),
+            (
+                "tracker_orientation_sigma_deg",
+                self.tracker_orientation_sigma_deg,
+                MAX_TRACKER_SIGMA_DEG,
+                "deg",
+            ),
+        ] {
+            let Some(sigma) = sigma else { continue };
+            if self.instrument != Instrument::Tracker {
+                c.fail(field, "only a tracker session has a tracker's noise");
+            } else {
+                c.positive(field, sigma, max, unit);
             }
         }
         if let Some(id) = &self.camera_calibration_id {
@@ -349,6 +388,21 @@ impl PoseJsonBody {
                 }
                 if let Some(p) = &self.measured_pose {
                     p.check(&mut c, "measured_pose");
+                    let apart = self.measured_position_mm.map(|m| {
+                        m.iter()
+                            .zip(&p.translation_mm)
+                            .map(|(a, b)| (a - b).powi(2))
+                            .sum::<f64>()
+                            .sqrt()
+                    });
+                    if apart.is_some_and(|d| !(d <= MEASURED_POSE_AGREEMENT_MM)) {
+                        c.fail(
+                            "measured_pose.translation_mm",
+                            format!(
+                                "must equal measured_position_mm (within {MEASURED_POSE_AGREEMENT_MM} mm): both are the tool point"
+                            ),
+                        );
+                    }
                 }
             }
         }

@@ -35,6 +35,7 @@ pub(crate) mod openapi;
 pub(crate) mod ops;
 pub(crate) mod outliers;
 pub(crate) mod poses;
+pub(crate) mod probe_tracker;
 pub(crate) mod processes;
 pub(crate) mod raw_http;
 pub(crate) mod real_tracker;

@@ -27,6 +27,7 @@ fn campaign(seed: u64, switch: bool) -> TrackerCampaign {
             noise_mm: NOISE_MM,
             seed,
             non_geometric: switch,
+            orientation_noise_rad: None,
         },
     )
 }

@@ -53,6 +53,7 @@ fn campaign() -> TrackerCampaign {
             noise_mm: NOISE_MM,
             seed: 7,
             non_geometric: true,
+            orientation_noise_rad: None,
         },
     )
 }

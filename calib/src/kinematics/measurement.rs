@@ -43,3 +43,25 @@ pub struct Measurement {
     pub joints_rad: Vec<f64>,
     pub observed: Observed,
 }
+
+impl Measurement {
+    /// The same measurement as the tool point's position only: a full
+    /// pose's covariance reduced to its position block. Two sets of one
+    /// tracker, one fitted with a probe's orientation, compare on it.
+    pub fn position_only(&self) -> Measurement {
+        let observed = match &self.observed {
+            Observed::Pose {
+                world_to_tool,
+                covariance,
+            } => Observed::Position {
+                position_mm: world_to_tool.translation.vector,
+                covariance: covariance.map(|c| c.fixed_view::<3, 3>(0, 0).into_owned()),
+            },
+            position => position.clone(),
+        };
+        Measurement {
+            joints_rad: self.joints_rad.clone(),
+            observed,
+        }
+    }
+}

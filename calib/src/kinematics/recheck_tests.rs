@@ -282,6 +282,7 @@ fn tracker_check_with_terms(
             noise_mm: NOISE_MM,
             seed,
             non_geometric: true,
+            orientation_noise_rad: None,
         },
     );
     let data = c

@@ -10,6 +10,7 @@ fn truth() -> TermModel {
             noise_mm: 0.01,
             seed: 5,
             non_geometric: true,
+            orientation_noise_rad: None,
         },
     );
     let sds = vec![1e-6; c.true_terms.terms.len()];

@@ -16,6 +16,7 @@ fn model() -> TermModel {
             noise_mm: 0.0,
             seed: 3,
             non_geometric: true,
+            orientation_noise_rad: None,
         },
     );
     let n = c.true_terms.terms.len();

@@ -1,13 +1,14 @@
 //! Simulated laser-tracker campaigns (issue 19): a true robot with small
 //! geometric errors and, behind a switch, joint compliance under gravity
 //! and angle-periodic joint errors; measured tool positions with white
-//! noise. The truth is returned so tests can check what was recovered.
+//! noise, or (a 6-DoF probe) measured tool poses. The truth is returned so
+//! tests can check what was recovered.
 
-use nalgebra::Vector3;
+use nalgebra::{Matrix6, Translation3, UnitQuaternion, Vector3};
 use rand::{rngs::StdRng, Rng, SeedableRng};
 use rand_distr::{Distribution, Normal};
 
-use crate::geometry::Pose;
+use crate::geometry::{rotation_from_vector, Pose};
 use crate::kinematics::identify::{Measurement, Observed};
 use crate::kinematics::nongeometric::{NonGeometric, TermKind};
 use crate::kinematics::{CalibratedModel, RobotModel};
@@ -21,6 +22,10 @@ const JOINT_SPAN_RAD: f64 = 2.6;
 const STATION_MM: [f64; 3] = [2000.0, -500.0, 300.0];
 /// Tool point in the flange frame (a reflector about 100 mm out).
 const TOOL_MM: [f64; 3] = [10.0, -5.0, 100.0];
+/// A 6-DoF probe's frame on the flange (roll, pitch, yaw, rad): turned a
+/// quarter about the flange axis and slightly tilted, as a T-Mac bracket
+/// is, so a start at identity must find it (`initial_frames_from_poses`).
+pub const PROBE_ROTATION_RPY_RAD: [f64; 3] = [0.05, -0.03, std::f64::consts::FRAC_PI_2];
 
 /// True non-geometric terms of the switch: a shoulder and elbow softened by
 /// a 10 kg wrist-and-tool (c ≈ 2e-6 rad/(N·m)) and gear eccentricities of
@@ -53,6 +58,11 @@ pub struct TrackerSpec {
     pub seed: u64,
     /// The switch: add [`typical_terms`] to the true robot.
     pub non_geometric: bool,
+    /// A 6-DoF probe (issue 19): `Some(σ)` measures the tool's full pose,
+    /// its orientation with white noise of σ (rad) per axis, and mounts the
+    /// tool rotated by [`PROBE_ROTATION_RPY_RAD`] (unknown to the start);
+    /// `None`, the tool point's position only.
+    pub orientation_noise_rad: Option<f64>,
 }
 
 /// A simulated campaign with its truth.
@@ -77,7 +87,17 @@ pub fn simulate_tracker(nominal: &RobotModel, spec: &TrackerSpec) -> TrackerCamp
         j.theta_offset_rad += rng.random_range(-ANGLE_ERROR_RAD..ANGLE_ERROR_RAD);
     }
     let world_to_base = Pose::translation(STATION_MM[0], STATION_MM[1], STATION_MM[2]);
-    let tool = Pose::translation(TOOL_MM[0], TOOL_MM[1], TOOL_MM[2]);
+    let tool_point = Pose::translation(TOOL_MM[0], TOOL_MM[1], TOOL_MM[2]);
+    let tool = match spec.orientation_noise_rad {
+        Some(_) => {
+            let [r, p, y] = PROBE_ROTATION_RPY_RAD;
+            Pose::from_parts(
+                tool_point.translation,
+                UnitQuaternion::from_euler_angles(r, p, y),
+            )
+        }
+        None => tool_point,
+    };
     let truth = CalibratedModel {
         robot,
         world_to_base,
@@ -98,18 +118,40 @@ pub fn simulate_tracker(nominal: &RobotModel, spec: &TrackerSpec) -> TrackerCamp
             continue;
         };
         let e = Vector3::from_fn(|_, _| noise.sample(&mut rng));
-        measurements.push(Measurement {
-            joints_rad: q,
-            observed: Observed::Position {
+        let observed = match spec.orientation_noise_rad {
+            // The orientation error in `pose_error`'s outer (tracker) frame.
+            Some(sigma_rad) => {
+                let turn =
+                    Normal::new(0.0, sigma_rad.max(f64::MIN_POSITIVE)).expect("finite sigma");
+                let r = Vector3::from_fn(|_, _| turn.sample(&mut rng));
+                let mut covariance = Matrix6::zeros();
+                for k in 0..3 {
+                    covariance[(k, k)] = spec.noise_mm.powi(2);
+                    covariance[(k + 3, k + 3)] = sigma_rad.powi(2);
+                }
+                Observed::Pose {
+                    world_to_tool: Pose::from_parts(
+                        Translation3::from(p.translation.vector + e),
+                        rotation_from_vector(&r) * p.rotation,
+                    ),
+                    covariance: Some(covariance),
+                }
+            }
+            None => Observed::Position {
                 position_mm: p.translation.vector + e,
                 covariance: None,
             },
+        };
+        measurements.push(Measurement {
+            joints_rad: q,
+            observed,
         });
     }
+    // The start knows the tool point, not a probe's rotation.
     let start = CalibratedModel {
         robot: nominal.clone(),
         world_to_base,
-        flange_to_tool: tool,
+        flange_to_tool: tool_point,
     };
     TrackerCampaign {
         truth,
@@ -122,3 +164,7 @@ pub fn simulate_tracker(nominal: &RobotModel, spec: &TrackerSpec) -> TrackerCamp
 #[cfg(test)]
 #[path = "tracker_campaign_tests.rs"]
 mod tests;
+
+#[cfg(test)]
+#[path = "tracker_probe_tests.rs"]
+mod probe_tests;

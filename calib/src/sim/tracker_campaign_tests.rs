@@ -22,6 +22,7 @@ fn campaign(seed: u64, switch: bool, poses: usize) -> TrackerCampaign {
             noise_mm: NOISE_MM,
             seed,
             non_geometric: switch,
+            orientation_noise_rad: None,
         },
     )
 }
