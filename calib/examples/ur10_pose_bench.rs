@@ -10,8 +10,11 @@
 //! `cargo run --release -p robocal-calib --example ur10_pose_bench [every]`
 //! (`every`: fit on every n-th pose of Series B; default 1, all 1495).
 
-use nalgebra::{DVector, Matrix3, UnitQuaternion, Vector3};
-use robocal_calib::geometry::{orthonormalize, pose_error, Pose};
+#[path = "support/tmac_convention.rs"]
+mod tmac_convention;
+
+use nalgebra::{DVector, UnitQuaternion, Vector3};
+use robocal_calib::geometry::{pose_error, Pose};
 use robocal_calib::kinematics::identify::{
     fit_parameters, frame_indices, identify, Identification, IdentifyMode, Measurement, Observed,
 };
@@ -20,7 +23,6 @@ use robocal_calib::kinematics::nongeometric::{CandidateOptions, NonGeometric};
 use robocal_calib::kinematics::term_selection::{identify_with_terms, Verdict};
 use robocal_calib::kinematics::term_validate::refit_base_with_terms;
 use robocal_calib::kinematics::tracker_csv::{landgraf2021_rows, TrackerRow};
-use robocal_calib::kinematics::tracker_pose::rotation_from_intrinsic_xyz_deg;
 use robocal_calib::kinematics::{presets, CalibratedModel, Instrument, ParamLayout};
 
 const DATA: &str = concat!(
@@ -50,58 +52,36 @@ fn positions(rows: &[TrackerRow]) -> Vec<Measurement> {
     rows.iter().map(TrackerRow::measurement).collect()
 }
 
+/// Positions weighted like the full poses' position block: the file's
+/// standard deviations with the tracker floor (separates the effect of
+/// the per-row weights from that of the orientation).
+fn weighted_positions(rows: &[TrackerRow]) -> Vec<Measurement> {
+    poses(rows)
+        .into_iter()
+        .map(|m| match m.observed {
+            Observed::Pose {
+                world_to_tool,
+                covariance: Some(c),
+            } => Measurement {
+                observed: Observed::Position {
+                    position_mm: world_to_tool.translation.vector,
+                    covariance: Some(c.fixed_view::<3, 3>(0, 0).into_owned()),
+                },
+                ..m
+            },
+            _ => unreachable!("T-Mac poses carry a covariance"),
+        })
+        .collect()
+}
+
 fn poses(rows: &[TrackerRow]) -> Vec<Measurement> {
     rows.iter()
         .map(|r| r.pose_measurement().expect("T-Mac rows have orientation"))
         .collect()
 }
 
-/// The rotation of `data` replaced by `rotation(angles)`: the alternative
-/// conventions of the cross-check.
-fn with_rotation(
-    rows: &[TrackerRow],
-    rotation: impl Fn([f64; 3]) -> UnitQuaternion<f64>,
-) -> Vec<Measurement> {
-    let mut data = poses(rows);
-    for (m, r) in data.iter_mut().zip(rows) {
-        if let Observed::Pose { world_to_tool, .. } = &mut m.observed {
-            world_to_tool.rotation = rotation(r.orientation.expect("orientation").angles_deg);
-        }
-    }
-    data
-}
-
-/// Rotation mismatch (deg, rms and max) of `data` against `model`'s
-/// nominal kinematics with its position-fitted `world_to_base` and the best
-/// constant tool rotation (chordal mean): the convention cross-check.
-fn convention_mismatch_deg(model: &CalibratedModel, data: &[Measurement]) -> (f64, f64) {
-    let pred: Vec<Pose> = data
-        .iter()
-        .map(|m| model.world_to_base * model.robot.base_to_flange(&m.joints_rad).unwrap())
-        .collect();
-    let measured: Vec<UnitQuaternion<f64>> = data
-        .iter()
-        .map(|m| match &m.observed {
-            Observed::Pose { world_to_tool, .. } => world_to_tool.rotation,
-            Observed::Position { .. } => unreachable!("pose data"),
-        })
-        .collect();
-    let sum: Matrix3<f64> = pred
-        .iter()
-        .zip(&measured)
-        .map(|(p, m)| (p.rotation.inverse() * m).to_rotation_matrix().into_inner())
-        .sum();
-    let tool = UnitQuaternion::from_rotation_matrix(&orthonormalize(&sum));
-    let e: Vec<f64> = pred
-        .iter()
-        .zip(&measured)
-        .map(|(p, m)| (p.rotation * tool).angle_to(m).to_degrees())
-        .collect();
-    let rms = (e.iter().map(|x| x * x).sum::<f64>() / e.len() as f64).sqrt();
-    (rms, e.iter().cloned().fold(0.0, f64::max))
-}
-
 /// A calibrated model, its terms and the geometric σ.
+#[derive(Clone)]
 struct Fitted {
     label: String,
     /// Nominal kinematics, base and tool fitted (the identification's
@@ -157,6 +137,12 @@ fn fit(
         data.len(), id.residual_rms, id.identifiability.condition_number, id.iterations,
         t0.elapsed().as_secs_f64(), id.identifiability.fixed
     );
+    let tool = model.flange_to_tool;
+    println!(
+        "  {label}: flange_to_tool {:.3?} mm, rotation {:.3?} deg",
+        tool.translation.vector.as_slice(),
+        tool.rotation.scaled_axis().map(f64::to_degrees).as_slice()
+    );
     Fitted {
         label: label.into(),
         before: id.before.clone(),
@@ -166,21 +152,6 @@ fn fit(
         layout: id.layout,
         std_devs,
         fixed: id.identifiability.fixed,
-    }
-}
-
-impl Fitted {
-    fn clone_shallow(&self) -> Self {
-        Self {
-            label: self.label.clone(),
-            before: self.before.clone(),
-            instrument: self.instrument,
-            model: self.model.clone(),
-            terms: self.terms.clone(),
-            layout: self.layout.clone(),
-            std_devs: self.std_devs.clone(),
-            fixed: self.fixed.clone(),
-        }
     }
 }
 
@@ -354,37 +325,9 @@ fn main() {
         IdentifyMode::Weighted.into(),
     )
     .unwrap();
-    let rad = |a: [f64; 3]| a.map(f64::to_radians);
-    let q = |axis: Vector3<f64>, a: f64| {
-        UnitQuaternion::from_axis_angle(&nalgebra::Unit::new_normalize(axis), a)
-    };
-    let candidates: [(&str, Box<dyn Fn([f64; 3]) -> UnitQuaternion<f64>>); 4] = [
-        (
-            "Rx(rx)·Ry(ry)·Rz(rz), tool in tracker",
-            Box::new(rotation_from_intrinsic_xyz_deg),
-        ),
-        (
-            "its inverse (tracker in tool)",
-            Box::new(|a| rotation_from_intrinsic_xyz_deg(a).inverse()),
-        ),
-        (
-            "Rz(rz)·Ry(ry)·Rx(rx) (the contract's rpy)",
-            Box::new(move |a| {
-                let [x, y, z] = rad(a);
-                UnitQuaternion::from_euler_angles(x, y, z)
-            }),
-        ),
-        (
-            "Rx(rx)·Ry(ry)·Rx(rz) (next best in the hand-eye search)",
-            Box::new(move |a| {
-                let [x, y, z] = rad(a);
-                q(Vector3::x(), x) * q(Vector3::y(), y) * q(Vector3::x(), z)
-            }),
-        ),
-    ];
     println!("T-Mac convention against the nominal UR10, Series B (every {every}): rotation mismatch rms / max");
-    for (name, rot) in &candidates {
-        let (rms, max) = convention_mismatch_deg(&frames, &with_rotation(&b_rows, rot));
+    for (name, rot) in &tmac_convention::candidates() {
+        let (rms, max) = tmac_convention::mismatch_deg(&frames, &b_rows, rot);
         println!("  {name:58} {rms:.4} / {max:.4} deg");
     }
     let mut start_pose = start_pos.clone();
@@ -456,11 +399,22 @@ fn main() {
                 label: "nominal kinematics, frames fitted on B poses".into(),
                 model: b.before.clone(),
                 terms: None,
-                ..b.clone_shallow()
+                ..b.clone()
             };
             validate_all(&nominal, true, &val);
         }
         validate_all(&a, false, &val);
+        if !terms {
+            let a_w = fit(
+                "(a') position, per-row weights",
+                &start_pos,
+                Instrument::Tracker,
+                &weighted_positions(&b_rows),
+                false,
+            );
+            validate_all(&a_w, false, &val);
+            println!("  σ wrist, {}:\n    {}", a_w.label, wrist_sigmas(&a_w));
+        }
         if let Some(ar) = &a_rot {
             validate_all(ar, true, &val);
         }

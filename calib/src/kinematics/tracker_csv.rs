@@ -235,7 +235,8 @@ mod tests {
         };
         let rows = landgraf2021_rows(&format!("header\n{UR10_B_FIRST}\n")).unwrap();
         let r = &rows[0];
-        assert_eq!(r.joints_rad[0], -3.14159);
+        assert_eq!((r.joints_rad.len(), r.joints_rad[2]), (6, 0.0));
+        assert!((r.joints_rad[0] + std::f64::consts::PI).abs() < 1e-5);
         assert_eq!(
             r.position_mm,
             Vector3::new(383.76294, -3240.8734, 201.93157)
