@@ -45,6 +45,7 @@ pub mod term_selection;
 pub mod term_uncertainty;
 pub mod term_validate;
 pub mod tracker_csv;
+pub mod tracker_pose;
 pub mod uncertainty;
 pub mod weights;
 
