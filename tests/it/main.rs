@@ -38,6 +38,7 @@ pub(crate) mod poses;
 pub(crate) mod probe_tracker;
 pub(crate) mod processes;
 pub(crate) mod raw_http;
+pub(crate) mod real_probe;
 pub(crate) mod real_tracker;
 pub(crate) mod recheck_verdicts;
 pub(crate) mod regions;
