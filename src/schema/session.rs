@@ -395,7 +395,7 @@ impl PoseJsonBody {
                             .sum::<f64>()
                             .sqrt()
                     });
-                    if apart.is_some_and(|d| !(d <= MEASURED_POSE_AGREEMENT_MM)) {
+                    if apart.is_some_and(|d| d.is_nan() || d > MEASURED_POSE_AGREEMENT_MM) {
                         c.fail(
                             "measured_pose.translation_mm",
                             format!(

@@ -95,7 +95,7 @@ fn the_orientation_narrows_the_wrist_and_the_terms_are_still_recovered() {
         );
     }
     let without: std::collections::HashMap<_, _> = wrist_sigmas(&position).into_iter().collect();
-    let mut ratios: Vec<f64> = wrist_sigmas(&pose)
+    let ratios: Vec<f64> = wrist_sigmas(&pose)
         .into_iter()
         .filter_map(|(name, s)| {
             let r = s / without.get(&name)?;
