@@ -25,6 +25,8 @@ const VAL_POSES: usize = 40;
 const NOISE_MM: f64 = 0.01;
 /// A T-Mac's 0.01° (deg).
 const ORIENTATION_NOISE_DEG: f64 = 0.01;
+/// A quick re-check's poses.
+const CHECK_POSES: usize = 5;
 const JOB_WAIT: Duration = Duration::from_secs(600);
 /// Geometric mean over the wrist parameters of σ with the orientation
 /// over σ without: the calib test (`tracker_probe_tests`) measures 0.36 on
@@ -134,8 +136,14 @@ async fn a_probe_orientation_is_fitted_with_its_weight() {
     }
     let path = format!("/v1/sessions/{session}/calibrations");
     app.finished_job(&path, &json!({}), JOB_WAIT).await;
+    recheck_with_the_probe(&app, &c).await;
     app.finished_job(&path, &json!({"measurement": "position"}), JOB_WAIT)
         .await;
+    // The position-only set is gated against the probe's on the tool point.
+    let gate = &app
+        .get_ok("/v1/robots/UR10-P/parameter-sets/2/report")
+        .await["gate"];
+    assert_eq!(gate["compared_with"], "UR10-P/1", "{gate}");
     let with = app.get_ok("/v1/robots/UR10-P/parameter-sets/1").await;
     let without = app.get_ok("/v1/robots/UR10-P/parameter-sets/2").await;
     assert_eq!(with["measurement"], "pose", "{with}");
@@ -207,6 +215,50 @@ async fn a_probe_orientation_is_fitted_with_its_weight() {
     let floor_deg = 3f64.sqrt() * ORIENTATION_NOISE_DEG;
     eprintln!("forward orientation rms {turn_rms_deg:.4}° (floor {floor_deg:.4}°)");
     assert!(turn_rms_deg < 1.3 * floor_deg, "{turn_rms_deg}");
+}
+
+/// A 5-pose re-check of the probe's set (version 1, approved by the
+/// gate): with the probe's poses it passes; a check session of positions
+/// only cannot be judged against a full tool frame and fails naming the
+/// field.
+async fn recheck_with_the_probe(app: &TestApp, c: &TrackerCampaign) {
+    let gate = &app
+        .get_ok("/v1/robots/UR10-P/parameter-sets/1/report")
+        .await["gate"];
+    assert_eq!(gate["status"], "approved", "{gate}");
+    let fresh = &c.measurements[CAL_POSES..CAL_POSES + CHECK_POSES];
+    let check = |positions_only: bool| async move {
+        let session = app.new_session("UR10-P", &probe_session()).await;
+        for (k, m) in fresh.iter().enumerate() {
+            // A job's input wants both sets; a check reads every pose.
+            let set = if k < 3 { "cal" } else { "val" };
+            let mut body = pose_body(&m.joints_rad, &m.observed, set);
+            if positions_only {
+                body.as_object_mut().unwrap().remove("measured_pose");
+            }
+            let r = app
+                .post_json(&format!("/v1/sessions/{session}/poses"), &body)
+                .await;
+            assert_eq!(r.status(), 201);
+        }
+        let r = app
+            .post_json(&format!("/v1/sessions/{session}/checks"), &json!({}))
+            .await;
+        assert_eq!(r.status(), 202, "{}", r.text().await.unwrap());
+        let job = r.json::<Value>().await.unwrap()["job_id"]
+            .as_str()
+            .unwrap()
+            .to_string();
+        app.wait_job(&job, JOB_WAIT, crate::support::is_finished)
+            .await
+    };
+    let passed = check(false).await;
+    assert_eq!(passed["state"], "succeeded", "{passed}");
+    assert_eq!(passed["result"]["verdict"], "pass", "{passed}");
+    assert_eq!(passed["result"]["checked_version"], 1);
+    let refused = check(true).await;
+    assert_eq!(refused["state"], "failed", "{refused}");
+    assert!(refused.to_string().contains("measured_pose"), "{refused}");
 }
 
 #[tokio::test]

@@ -19,10 +19,15 @@ use serde_json::{json, Value};
 
 use crate::support::{spawn_app_with, TestApp};
 
-const SERIES_B: &str = concat!(
+const DATA: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
-    "/calib/tests/data/kinematic/ur10_landgraf2021/Series_B/measurements_joint_configurations.csv"
+    "/calib/tests/data/kinematic/ur10_landgraf2021"
 );
+const SERIES_B: &str = "Series_B/measurements_joint_configurations.csv";
+const SERIES_C_D: [&str; 2] = [
+    "Series_C/measurements_random_poses.csv",
+    "Series_D/measurements_iso_cubes.csv",
+];
 const STRIDE: usize = 10;
 const HOLDOUT: f64 = 0.3;
 /// The T-Mac's accuracy: 0.02 mm (half the tracker's MPE at 2–4 m) and
@@ -45,14 +50,14 @@ const DTHETA_5_RATIO_MAX: f64 = 0.1;
 const POSITION_RATIO_MAX: f64 = 1.05;
 const WAIT: Duration = Duration::from_secs(1200);
 
-/// Series B's every `STRIDE`-th pose as JSON bodies: joints, position and
-/// the probe's pose in the contract's form.
-fn pose_bodies() -> Vec<Value> {
-    let text = std::fs::read_to_string(SERIES_B).unwrap();
+/// A series' every `stride`-th pose as JSON bodies (set `set`): joints,
+/// position and the probe's pose in the contract's form.
+fn pose_bodies(file: &str, stride: usize, set: &str) -> Vec<Value> {
+    let text = std::fs::read_to_string(format!("{DATA}/{file}")).unwrap();
     landgraf2021_rows(&text)
         .unwrap()
         .into_iter()
-        .step_by(STRIDE)
+        .step_by(stride)
         .map(|row| {
             let orientation = row.orientation.expect("the T-Mac's angles");
             let probe = Pose::from_parts(
@@ -61,6 +66,7 @@ fn pose_bodies() -> Vec<Value> {
             );
             let form = PoseXyzRpy::from_pose(&probe);
             json!({
+                "set": set,
                 "joints_deg": row.joints_rad.iter().map(|q| q.to_degrees()).collect::<Vec<_>>(),
                 "measured_position_mm": form.translation_mm,
                 "measured_pose": {"translation_mm": form.translation_mm, "rotation_deg": form.rotation_deg},
@@ -84,20 +90,23 @@ async fn sigma(app: &TestApp, version: u32, name: &str) -> Option<f64> {
     (!p["fixed"].as_bool().unwrap()).then(|| p["std"].as_f64().unwrap())
 }
 
-#[tokio::test]
-async fn the_t_mac_orientation_finds_the_probe_and_pins_the_wrist() {
-    let app = spawn_app_with(|c| c.test_validate_only = false).await;
+/// A UR10 robot `serial`.
+async fn put_ur10(app: &TestApp, serial: &str) {
     let kinematics = robocal::schema::robot::model_to_doc(&presets::ur10());
     let r = app
         .put_json(
-            "/v1/robots/UR10-TMAC",
+            &format!("/v1/robots/{serial}"),
             &json!({"model": "UR10", "kinematics": kinematics}),
         )
         .await;
     assert_eq!(r.status(), 201);
+}
+
+/// A T-Mac session of robot `serial` holding `bodies`; its id.
+async fn probe_session(app: &TestApp, serial: &str, bodies: &[Value]) -> String {
     let session = app
         .new_session(
-            "UR10-TMAC",
+            serial,
             &json!({
                 "instrument": "tracker",
                 "flange_to_camera_guess": {"translation_mm": GUESS_MM, "rotation_deg": [0.0, 0.0, 0.0]},
@@ -106,12 +115,20 @@ async fn the_t_mac_orientation_finds_the_probe_and_pins_the_wrist() {
             }),
         )
         .await;
-    for body in pose_bodies() {
+    for body in bodies {
         let r = app
-            .post_json(&format!("/v1/sessions/{session}/poses"), &body)
+            .post_json(&format!("/v1/sessions/{session}/poses"), body)
             .await;
         assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
     }
+    session
+}
+
+#[tokio::test]
+async fn the_t_mac_orientation_finds_the_probe_and_pins_the_wrist() {
+    let app = spawn_app_with(|c| c.test_validate_only = false).await;
+    put_ur10(&app, "UR10-TMAC").await;
+    let session = probe_session(&app, "UR10-TMAC", &pose_bodies(SERIES_B, STRIDE, "cal")).await;
     // Geometry only, so the comparison is the orientation's alone (the
     // terms on this robot: docs/notes/session12-ur10pose.md).
     let path = format!("/v1/sessions/{session}/calibrations");
@@ -161,4 +178,63 @@ async fn the_t_mac_orientation_finds_the_probe_and_pins_the_wrist() {
     eprintln!("dtheta_5 σ: with the orientation {pose_sd:?}, position only {position_sd:?}");
     let pose_sd = pose_sd.expect("identified with the orientation");
     assert!(position_sd.is_none_or(|s| pose_sd < DTHETA_5_RATIO_MAX * s));
+}
+
+/// The UR10 protocol with the T-Mac's orientation (BENCHMARKS.md,
+/// session 12): all of Series B fitted with the orientation (`options`),
+/// approved, then C and D each a `scope: base` re-fit of the probe's set
+/// on all of the series with their orientations, validated on the same
+/// poses. `(label, mean mm)` per series and the kept terms.
+async fn ur10_probe_protocol(app: &TestApp, serial: &str, options: Value) -> Vec<(String, f64)> {
+    put_ur10(app, serial).await;
+    let both = |file: &str| [pose_bodies(file, 1, "cal"), pose_bodies(file, 1, "val")].concat();
+    let s = probe_session(app, serial, &both(SERIES_B)).await;
+    let path = |s: &str| format!("/v1/sessions/{s}/calibrations");
+    let fit = app.finished_job(&path(&s), &options, WAIT).await;
+    let mean = |job: &Value| job["result"]["summary"]["after_mean_mm"].as_f64().unwrap();
+    let mut out = vec![("B (in-sample)".to_string(), mean(&fit))];
+    let set = app
+        .get_ok(&format!("/v1/robots/{serial}/parameter-sets/1"))
+        .await;
+    assert_eq!(set["measurement"], "pose");
+    let kept: Vec<String> = set["terms"]["terms"]
+        .as_array()
+        .map(|t| {
+            t.iter()
+                .map(|t| t["name"].as_str().unwrap().to_string())
+                .collect()
+        })
+        .unwrap_or_default();
+    out.push((format!("kept {kept:?}"), f64::NAN));
+    let report = app
+        .get_ok(&format!("/v1/robots/{serial}/parameter-sets/1/report"))
+        .await;
+    if report["gate"]["status"] != "approved" {
+        let r = app
+            .post_json(
+                &format!("/v1/robots/{serial}/parameter-sets/1/approve"),
+                &json!({"reason": "the issue's protocol validates B's set on C and D"}),
+            )
+            .await;
+        assert!(r.status().is_success(), "{}", r.text().await.unwrap());
+    }
+    for file in SERIES_C_D {
+        let s = probe_session(app, serial, &both(file)).await;
+        let refit = app
+            .finished_job(&path(&s), &json!({"scope": "base"}), WAIT)
+            .await;
+        out.push((format!("{file} (base re-fitted)"), mean(&refit)));
+    }
+    out
+}
+
+/// `cargo test --test it -- --ignored real_probe::full_protocol --nocapture`
+#[tokio::test]
+#[ignore = "minutes in debug: the UR10 protocol with the T-Mac's orientation"]
+async fn full_protocol() {
+    let app = spawn_app_with(|c| c.test_validate_only = false).await;
+    let with = ur10_probe_protocol(&app, "UR10-TMAC-T", json!({})).await;
+    eprintln!("UR10 T-Mac, terms allowed (default): {with:?}");
+    let without = ur10_probe_protocol(&app, "UR10-TMAC-G", json!({"non_geometric": false})).await;
+    eprintln!("UR10 T-Mac, geometric: {without:?}");
 }
