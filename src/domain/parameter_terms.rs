@@ -8,8 +8,10 @@
 //! below a millimetre in a metre, so the deflections by under 0.1 %).
 
 use nalgebra::DMatrix;
+use robocal_calib::kinematics::identify::Measurement;
 use robocal_calib::kinematics::nongeometric::{NonGeometric, TermKind};
 use robocal_calib::kinematics::term_model::{TermCovariance, TermModel};
+use robocal_calib::kinematics::term_range::{identified_ranges, IdentifiedRange};
 use robocal_calib::kinematics::term_selection::TermIdentification;
 use robocal_calib::kinematics::{CalibratedModel, Instrument, ParamLayout};
 use serde::{Deserialize, Serialize};
@@ -46,6 +48,21 @@ pub struct TermsDoc {
     /// `forward`'s σ takes terms and parameters as independent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub covariance: Option<TermsCovarianceDoc>,
+    /// The span of each joint with a kept periodic term over the
+    /// calibration poses: outside it the term extrapolates, and `forward`
+    /// says so in the pose's `warnings` (calib's `term_range`). Absent in
+    /// sets stored before it was kept.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub joint_ranges_deg: Vec<TermJointRange>,
+}
+
+/// One joint's span over the calibration poses (deg).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+pub struct TermJointRange {
+    /// 1-based, as in the parameters' names.
+    pub joint: usize,
+    pub min_deg: f64,
+    pub max_deg: f64,
 }
 
 /// Covariances of the kept terms (camera sets: the terms were refined on
@@ -130,6 +147,7 @@ impl TermsDoc {
         selection: &TermIdentification,
         layout: &ParamLayout,
         free: &[usize],
+        calibration: &[Measurement],
     ) -> Option<Self> {
         if selection.terms.terms.is_empty() {
             return None;
@@ -155,6 +173,14 @@ impl TermsDoc {
                 .term_covariance
                 .as_ref()
                 .map(|c| TermsCovarianceDoc::of(c, layout, free)),
+            joint_ranges_deg: identified_ranges(t, calibration)
+                .iter()
+                .map(|r| TermJointRange {
+                    joint: r.joint + 1,
+                    min_deg: r.min_rad.to_degrees(),
+                    max_deg: r.max_rad.to_degrees(),
+                })
+                .collect(),
         })
     }
 
@@ -191,6 +217,16 @@ impl TermsDoc {
             terms,
             term_std_devs: self.terms.iter().map(|k| k.std_dev).collect(),
             covariance,
+            ranges: self
+                .joint_ranges_deg
+                .iter()
+                .filter(|r| (1..=dof).contains(&r.joint))
+                .map(|r| IdentifiedRange {
+                    joint: r.joint - 1,
+                    min_rad: r.min_deg.to_radians(),
+                    max_rad: r.max_deg.to_radians(),
+                })
+                .collect(),
         })
     }
 }

@@ -233,6 +233,7 @@ pub fn identify_robot(
             s,
             &identification.layout,
             &identification.identifiability.free,
+            &cal_data,
         )
     });
     let evaluated = match &terms {

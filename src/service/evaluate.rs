@@ -6,6 +6,7 @@
 
 use robocal_calib::geometry::Pose;
 use robocal_calib::kinematics::term_model::TermModel;
+use robocal_calib::kinematics::term_range::extrapolated;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
@@ -37,7 +38,10 @@ pub struct ForwardPose {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub tool_in_target: Option<PoseOut>,
     /// One message per joint outside its limits (the pose is still
-    /// computed: the controller would refuse it). Empty when all are within.
+    /// computed: the controller would refuse it), and per joint outside
+    /// the range its kept non-geometric terms were identified on (the set's
+    /// `terms.joint_ranges_deg`: they extrapolate there). Empty when all
+    /// are within.
     pub warnings: Vec<String>,
     /// Predicted 1σ of `tool_in_target` (or `camera_in_target` without a
     /// tool) from the set's parameter covariance, board transform included:
@@ -133,6 +137,15 @@ pub fn forward(
                 .limit_violations(&q)
                 .iter()
                 .map(ToString::to_string)
+                .chain(extrapolated(&model.ranges, &q).map(|r| {
+                    format!(
+                        "joint {} at {:.1}° lies outside {:.1}° to {:.1}°, where its kept terms were identified: they extrapolate here",
+                        r.joint + 1,
+                        q[r.joint].to_degrees(),
+                        r.min_rad.to_degrees(),
+                        r.max_rad.to_degrees()
+                    )
+                }))
                 .collect(),
             position_std_mm: None,
             rotation_std_deg: None,

@@ -73,17 +73,6 @@ fn pose_body(joints_rad: &[f64], observed: &Observed, set: &str) -> Value {
     })
 }
 
-async fn put_ur10(app: &TestApp, serial: &str) {
-    let kinematics = robocal::schema::robot::model_to_doc(&presets::ur10());
-    let r = app
-        .put_json(
-            &format!("/v1/robots/{serial}"),
-            &json!({"model": "UR10", "kinematics": kinematics}),
-        )
-        .await;
-    assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
-}
-
 fn probe_session() -> Value {
     json!({
         "instrument": "tracker",
@@ -121,7 +110,7 @@ async fn wrist_sigmas(app: &TestApp, serial: &str, version: u32) -> Vec<(String,
 #[tokio::test]
 async fn a_probe_orientation_is_fitted_with_its_weight() {
     let app = spawn_app_with(|c| c.test_validate_only = false).await;
-    put_ur10(&app, "UR10-P").await;
+    app.put_kinematics("UR10-P", "UR10", &presets::ur10()).await;
     let c = campaign();
     let session = app.new_session("UR10-P", &probe_session()).await;
     for (i, m) in c.measurements.iter().enumerate() {
@@ -264,7 +253,7 @@ async fn recheck_with_the_probe(app: &TestApp, c: &TrackerCampaign) {
 #[tokio::test]
 async fn probe_noise_and_orientations_are_checked() {
     let app = spawn_app_with(|c| c.test_validate_only = false).await;
-    put_ur10(&app, "UR10-Q").await;
+    app.put_kinematics("UR10-Q", "UR10", &presets::ur10()).await;
     for (field, bad) in [
         ("tracker_sigma_mm", json!(-0.1)),
         ("tracker_sigma_mm", json!(0.0)),

@@ -48,6 +48,8 @@ const DTHETA_5_RATIO_MAX: f64 = 0.1;
 /// Held-out position error with the orientation against without (ratio):
 /// the calib bench shows the orientation does not change it on this robot.
 const POSITION_RATIO_MAX: f64 = 1.05;
+/// Why the protocol approves B's set whatever its gate said.
+const PROTOCOL_REASON: &str = "the issue's protocol validates B's set on C and D";
 const WAIT: Duration = Duration::from_secs(1200);
 
 /// A series' every `stride`-th pose as JSON bodies (set `set`): joints,
@@ -90,18 +92,6 @@ async fn sigma(app: &TestApp, version: u32, name: &str) -> Option<f64> {
     (!p["fixed"].as_bool().unwrap()).then(|| p["std"].as_f64().unwrap())
 }
 
-/// A UR10 robot `serial`.
-async fn put_ur10(app: &TestApp, serial: &str) {
-    let kinematics = robocal::schema::robot::model_to_doc(&presets::ur10());
-    let r = app
-        .put_json(
-            &format!("/v1/robots/{serial}"),
-            &json!({"model": "UR10", "kinematics": kinematics}),
-        )
-        .await;
-    assert_eq!(r.status(), 201);
-}
-
 /// A T-Mac session of robot `serial` holding `bodies`; its id.
 async fn probe_session(app: &TestApp, serial: &str, bodies: &[Value]) -> String {
     let session = app
@@ -127,7 +117,8 @@ async fn probe_session(app: &TestApp, serial: &str, bodies: &[Value]) -> String 
 #[tokio::test]
 async fn the_t_mac_orientation_finds_the_probe_and_pins_the_wrist() {
     let app = spawn_app_with(|c| c.test_validate_only = false).await;
-    put_ur10(&app, "UR10-TMAC").await;
+    app.put_kinematics("UR10-TMAC", "UR10", &presets::ur10())
+        .await;
     let session = probe_session(&app, "UR10-TMAC", &pose_bodies(SERIES_B, STRIDE, "cal")).await;
     // Geometry only, so the comparison is the orientation's alone (the
     // terms on this robot: docs/notes/session12-ur10pose.md).
@@ -186,7 +177,7 @@ async fn the_t_mac_orientation_finds_the_probe_and_pins_the_wrist() {
 /// on all of the series with their orientations, validated on the same
 /// poses. `(label, mean mm)` per series and the kept terms.
 async fn ur10_probe_protocol(app: &TestApp, serial: &str, options: Value) -> Vec<(String, f64)> {
-    put_ur10(app, serial).await;
+    app.put_kinematics(serial, "UR10", &presets::ur10()).await;
     let both = |file: &str| [pose_bodies(file, 1, "cal"), pose_bodies(file, 1, "val")].concat();
     let s = probe_session(app, serial, &both(SERIES_B)).await;
     let path = |s: &str| format!("/v1/sessions/{s}/calibrations");
@@ -206,18 +197,8 @@ async fn ur10_probe_protocol(app: &TestApp, serial: &str, options: Value) -> Vec
         })
         .unwrap_or_default();
     out.push((format!("kept {kept:?}"), f64::NAN));
-    let report = app
-        .get_ok(&format!("/v1/robots/{serial}/parameter-sets/1/report"))
+    app.approve_unless_approved(serial, 1, PROTOCOL_REASON)
         .await;
-    if report["gate"]["status"] != "approved" {
-        let r = app
-            .post_json(
-                &format!("/v1/robots/{serial}/parameter-sets/1/approve"),
-                &json!({"reason": "the issue's protocol validates B's set on C and D"}),
-            )
-            .await;
-        assert!(r.status().is_success(), "{}", r.text().await.unwrap());
-    }
     for file in SERIES_C_D {
         let s = probe_session(app, serial, &both(file)).await;
         let refit = app

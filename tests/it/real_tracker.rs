@@ -16,7 +16,6 @@ use std::time::Duration;
 
 use robocal_calib::kinematics::presets;
 use robocal_calib::kinematics::tracker_csv::{jacobi2025_rows, landgraf2021_rows, TrackerRow};
-use robocal_calib::kinematics::RobotModel;
 use serde_json::{json, Value};
 
 use crate::support::{spawn_app_with, TestApp};
@@ -66,17 +65,6 @@ fn ur5(file: &str) -> Vec<Pose> {
 /// A Landgraf 2021 UR10 file.
 fn ur10(series: &str, file: &str) -> Vec<Pose> {
     poses(landgraf2021_rows(&read(&format!("ur10_landgraf2021/{series}/{file}"))).unwrap())
-}
-
-async fn put_robot(app: &TestApp, serial: &str, model: &str, robot: &RobotModel) {
-    let kinematics = robocal::schema::robot::model_to_doc(robot);
-    let r = app
-        .put_json(
-            &format!("/v1/robots/{serial}"),
-            &json!({"model": model, "kinematics": kinematics}),
-        )
-        .await;
-    assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
 }
 
 /// A tracker session of `cal` (set `cal`) and `val` (set `val`) poses.
@@ -143,7 +131,8 @@ async fn ur5_campaign(app: &TestApp, stride: usize) -> (f64, f64, Vec<String>) {
         .step_by(stride)
         .collect();
     let random = ur5("3D_UR5_uncalibrated_random_cleaned.csv");
-    put_robot(app, "UR5-JACOBI", "UR5", &presets::ur5()).await;
+    app.put_kinematics("UR5-JACOBI", "UR5", &presets::ur5())
+        .await;
     let s = session(app, "UR5-JACOBI", UR5_TOOL_MM, &grid, &random).await;
     let with = after_mm(&calibrate(app, &s, json!({})).await);
     let without = after_mm(&calibrate(app, &s, json!({"non_geometric": false})).await);
@@ -185,7 +174,7 @@ async fn ur5_tracker_campaign_calibrates_with_terms_allowed() {
 /// `scope: base` re-fit on all of the series through the approved set,
 /// validated on the same poses.
 async fn ur10_campaign(app: &TestApp, serial: &str, options: Value) -> Vec<(String, f64)> {
-    put_robot(app, serial, "UR10", &presets::ur10()).await;
+    app.put_kinematics(serial, "UR10", &presets::ur10()).await;
     let b = ur10("Series_B", "measurements_joint_configurations.csv");
     // The protocol: B fitted whole. Its poses are uploaded again
     // as validation poses (the job needs some; B's own figure is then
@@ -193,18 +182,12 @@ async fn ur10_campaign(app: &TestApp, serial: &str, options: Value) -> Vec<(Stri
     let s = session(app, serial, UR10_TOOL_MM, &b, &b).await;
     let fit = calibrate(app, &s, options).await;
     let mut out = vec![("B (in-sample)".to_string(), after_mm(&fit))];
-    let report = app
-        .get_ok(&format!("/v1/robots/{serial}/parameter-sets/1/report"))
-        .await;
-    if report["gate"]["status"] != "approved" {
-        let r = app
-            .post_json(
-                &format!("/v1/robots/{serial}/parameter-sets/1/approve"),
-                &json!({"reason": "the issue's protocol validates B's set on C and D"}),
-            )
-            .await;
-        assert!(r.status().is_success(), "{}", r.text().await.unwrap());
-    }
+    app.approve_unless_approved(
+        serial,
+        1,
+        "the issue's protocol validates B's set on C and D",
+    )
+    .await;
     for (series, file) in [
         ("Series_C", "measurements_random_poses.csv"),
         ("Series_D", "measurements_iso_cubes.csv"),

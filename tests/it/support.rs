@@ -208,6 +208,38 @@ impl TestApp {
         done
     }
 
+    /// Robot `serial` (`model`) with `robot`'s joint table, as a user
+    /// describes an arm of their own: 201.
+    pub async fn put_kinematics(
+        &self,
+        serial: &str,
+        model: &str,
+        robot: &robocal_calib::kinematics::RobotModel,
+    ) {
+        let kinematics = robocal::schema::robot::model_to_doc(robot);
+        let r = self
+            .put_json(
+                &format!("/v1/robots/{serial}"),
+                &json!({"model": model, "kinematics": kinematics}),
+            )
+            .await;
+        assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
+    }
+
+    /// Approves set `version` of `serial` unless the gate already did
+    /// (`reason`: why a person overrides it).
+    pub async fn approve_unless_approved(&self, serial: &str, version: u32, reason: &str) {
+        let set = format!("/v1/robots/{serial}/parameter-sets/{version}");
+        let report = self.get_ok(&format!("{set}/report")).await;
+        if report["gate"]["status"] == "approved" {
+            return;
+        }
+        let r = self
+            .post_json(&format!("{set}/approve"), &json!({"reason": reason}))
+            .await;
+        assert!(r.status().is_success(), "{}", r.text().await.unwrap());
+    }
+
     /// A session of robot `serial` (`body`: its fields) with one tracker
     /// pose per `(joints_deg, measured_position_mm, set)`; its id.
     pub async fn tracker_session(

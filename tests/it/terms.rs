@@ -38,14 +38,7 @@ fn deg(q: &[f64]) -> Vec<f64> {
 
 /// A UR10 robot `serial`, a tracker session with `c`'s poses; returns the session.
 async fn upload(app: &TestApp, serial: &str, c: &TrackerCampaign) -> String {
-    let kinematics = robocal::schema::robot::model_to_doc(&presets::ur10());
-    let r = app
-        .put_json(
-            &format!("/v1/robots/{serial}"),
-            &json!({"model": "UR10", "kinematics": kinematics}),
-        )
-        .await;
-    assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
+    app.put_kinematics(serial, "UR10", &presets::ur10()).await;
     let poses = c.measurements.iter().enumerate().map(|(i, m)| {
         let p = m.observed.position_mm();
         let set = if i < CAL_POSES { "cal" } else { "val" };
@@ -211,6 +204,35 @@ async fn terms_are_kept_used_and_exported_and_absent_terms_are_not_kept() {
         .await
         .unwrap();
     assert!(urdf.contains("URDF cannot hold"), "{urdf}");
+
+    // The kept periodic terms' joints carry their identified span, and
+    // `forward` says where a pose leaves it.
+    let ranges = set["terms"]["joint_ranges_deg"].as_array().unwrap();
+    let joint_1 = ranges
+        .iter()
+        .find(|r| r["joint"] == 1)
+        .expect("periodic_1 kept");
+    let (lo, hi) = (
+        joint_1["min_deg"].as_f64().unwrap(),
+        joint_1["max_deg"].as_f64().unwrap(),
+    );
+    assert!(lo < -140.0 && hi > 140.0 && hi < 150.0, "{joint_1}");
+    let inside = deg(&c.measurements[0].joints_rad);
+    let mut outside = inside.clone();
+    outside[0] = hi + 20.0;
+    let answer = app
+        .post_ok(
+            "/v1/robots/UR10-T/parameter-sets/1/forward",
+            &json!({"joints_deg": [inside, outside]}),
+        )
+        .await;
+    let warnings = |k: usize| answer["poses"][k]["warnings"].to_string();
+    assert!(!warnings(0).contains("extrapolate"), "{}", warnings(0));
+    assert!(
+        warnings(1).contains("joint 1") && warnings(1).contains("extrapolate"),
+        "{}",
+        warnings(1)
+    );
 
     // Without the switch: the selection runs and keeps nothing.
     let c = campaign(8, false);

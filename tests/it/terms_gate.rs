@@ -86,14 +86,7 @@ async fn run(app: &TestApp, path: &str, body: Value) -> Value {
 
 /// Robot `SERIAL` with set 1 calibrated (terms kept) on session A.
 async fn approved_terms_set(app: &TestApp, c: &TrackerCampaign) {
-    let kinematics = robocal::schema::robot::model_to_doc(&presets::ur10());
-    let r = app
-        .put_json(
-            &format!("/v1/robots/{SERIAL}"),
-            &json!({"model": "UR10", "kinematics": kinematics}),
-        )
-        .await;
-    assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
+    app.put_kinematics(SERIAL, "UR10", &presets::ur10()).await;
     let a = session(
         app,
         &c.measurements[..A_CAL + A_VAL],

@@ -40,6 +40,7 @@ mod term_cv;
 mod term_elimination;
 mod term_fit;
 pub mod term_model;
+pub mod term_range;
 pub mod term_report;
 pub mod term_selection;
 pub mod term_uncertainty;

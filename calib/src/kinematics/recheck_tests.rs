@@ -329,6 +329,7 @@ fn a_set_with_terms_is_checked_with_them() {
         terms: c.true_terms.clone(),
         term_std_devs: vec![0.0; n],
         covariance: None,
+        ranges: Vec::new(),
     };
     let checked = with(&terms);
     assert_eq!(checked.verdict, Verdict::Pass, "{checked:?}");
@@ -369,6 +370,7 @@ fn a_changed_term_is_named_as_the_suspect() {
         terms: c.true_terms.clone(),
         term_std_devs: vec![TERM_SD; n],
         covariance: None,
+        ranges: Vec::new(),
     };
     set.terms.values[changed] += TERM_CHANGE_RAD;
     let with = |model: &TermModel| tracker_recheck(model, &covariance, &data);

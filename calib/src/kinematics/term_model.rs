@@ -12,6 +12,7 @@ use super::measurement::Measurement;
 use super::model::KinematicsError;
 use super::nongeometric::NonGeometric;
 use super::params::{CalibratedModel, Instrument, ParamLayout, PARAMS_PER_JOINT};
+use super::term_range::IdentifiedRange;
 use crate::geometry::Pose;
 
 /// Largest joint change (rad) at which the commanded joints are converged.
@@ -30,6 +31,9 @@ pub struct TermModel {
     /// image-level refinement); `None`: terms and geometry taken as
     /// independent ([`Self::term_variance`]).
     pub covariance: Option<TermCovariance>,
+    /// Where the kept periodic terms were identified ([`super::term_range`]);
+    /// empty when unknown (sets stored before it was kept).
+    pub ranges: Vec<IdentifiedRange>,
 }
 
 /// The covariance of the term values with the geometry and among
@@ -57,6 +61,7 @@ impl TermModel {
             model,
             term_std_devs: Vec::new(),
             covariance: None,
+            ranges: Vec::new(),
         }
     }
 

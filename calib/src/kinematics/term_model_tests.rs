@@ -19,6 +19,7 @@ fn truth() -> TermModel {
         terms: c.true_terms,
         term_std_devs: sds,
         covariance: None,
+        ranges: Vec::new(),
     }
 }
 

@@ -25,6 +25,7 @@ fn model() -> TermModel {
         terms: c.true_terms,
         term_std_devs: vec![0.0; n],
         covariance: None,
+        ranges: Vec::new(),
     }
 }
 
