@@ -23,8 +23,9 @@ use crate::domain::{check_robot_pose, FlangePose, JointsDeg, RobotPose};
 use crate::pipeline::{self, Input, PoseImage, PoseInput};
 use crate::report::Report;
 use crate::schema::job::CalibrationOptions;
+use crate::schema::pose_body::DatasetPoseDoc;
 use crate::schema::robot::RobotBody;
-use crate::schema::session::{DatasetPoseDoc, SessionBody};
+use crate::schema::session::SessionBody;
 use crate::schema::Checker;
 
 /// Spreads per-pose noise seeds apart (the golden-ratio constant).

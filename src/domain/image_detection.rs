@@ -6,7 +6,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::schema::session::ImagePointDoc;
+use crate::schema::pose_body::ImagePointDoc;
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ImageDetection {

@@ -4,7 +4,7 @@
 use robocal_calib::vision::DecodedGrey;
 
 use crate::domain::{ImageDetection, Target};
-use crate::schema::session::ImagePointDoc;
+use crate::schema::pose_body::ImagePointDoc;
 
 /// Runs the board's detector on a decoded image. For dots it returns the
 /// raw ellipse centres: the camera stage corrects their perspective bias

@@ -11,8 +11,9 @@ use crate::domain::{FlangePose, ImageDetection, JointsDeg, ParameterSet, StageRe
 use crate::imaging::DecodeGate;
 use crate::report::regions::LocalModel;
 use crate::schema::job::CalibrationOptions;
+use crate::schema::pose_body::ImagePointDoc;
 use crate::schema::robot::KinematicsDoc;
-use crate::schema::session::{ImagePointDoc, PoseSet, SessionBody};
+use crate::schema::session::{PoseSet, SessionBody};
 use crate::schema::PoseDoc;
 
 /// Everything a job needs, loaded from the store by the worker.

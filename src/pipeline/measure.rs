@@ -17,7 +17,7 @@ use super::{ImageSource, PipelineError, PoseImage, PoseInput};
 use crate::domain::{ImageDetection, Target};
 use crate::imaging;
 use crate::report::{DetectionFailure, DetectionReport};
-use crate::schema::session::ImagePointDoc;
+use crate::schema::pose_body::ImagePointDoc;
 
 /// A pose's outcome: `None` for uploaded image points, else the detector's
 /// and whether it ran in this job.

@@ -11,7 +11,7 @@ use std::path::Path;
 
 use zip::ZipArchive;
 
-use crate::schema::session::DatasetPoseDoc;
+use crate::schema::pose_body::DatasetPoseDoc;
 use crate::schema::FieldError;
 
 pub const MANIFEST: &str = "poses.json";

@@ -10,7 +10,8 @@ use super::images::{ingest_image, ImageCheck};
 use crate::domain::{check_robot_pose, JointsDeg, PoseKind, StageReading};
 use crate::imaging::DecodeGate;
 use crate::schema::flange_pose::FlangePoseDoc;
-use crate::schema::session::{Instrument, PoseJsonBody, PoseSet, SessionBody};
+use crate::schema::pose_body::PoseJsonBody;
+use crate::schema::session::{Instrument, PoseSet, SessionBody};
 use crate::schema::Checker;
 use crate::store::{DynStore, NewPose, PoseRecord, SessionRecord, TrackerMeasurement};
 

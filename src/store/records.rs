@@ -15,7 +15,8 @@ use crate::domain::{
     ReleaseStatus,
 };
 use crate::schema::flange_pose::FlangePoseDoc;
-use crate::schema::session::{ImagePointDoc, SessionBody};
+use crate::schema::pose_body::ImagePointDoc;
+use crate::schema::session::SessionBody;
 use crate::schema::PoseDoc;
 
 /// What a laser tracker measured for one pose (the column `measured`): the

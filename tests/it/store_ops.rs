@@ -12,7 +12,8 @@ use robocal::domain::{
     new_id, now_rfc3339, now_unix_ms, IdempotencyClaim, IdempotencyScope, ImageMeta, JobState,
     JointsDeg, LeaseStatus, Scope, StoredResponse,
 };
-use robocal::schema::session::{ImagePointDoc, PoseSet, SessionBody};
+use robocal::schema::pose_body::ImagePointDoc;
+use robocal::schema::session::{PoseSet, SessionBody};
 use robocal::store::{self, DynStore, StoreError};
 use robocal::store::{JobOutcome, NewJob, NewParameterSet, NewPose, RobotRecord};
 

@@ -8,7 +8,8 @@ use utoipa::ToSchema;
 
 use crate::domain::ImageMeta;
 use crate::schema::flange_pose::FlangePoseDoc;
-use crate::schema::session::{ImagePointDoc, PoseSet};
+use crate::schema::pose_body::ImagePointDoc;
+use crate::schema::session::PoseSet;
 use crate::schema::PoseDoc;
 use crate::store::PoseRecord;
 

@@ -15,7 +15,8 @@ use super::upload::{read_field_capped, read_field_limited};
 use super::AppState;
 use crate::domain::label_from_file_name;
 use crate::schema::flange_pose::FlangePoseDoc;
-use crate::schema::session::{PoseJsonBody, PoseSet};
+use crate::schema::pose_body::PoseJsonBody;
+use crate::schema::session::PoseSet;
 use crate::service::intake::{ImagePose, PoseIntake};
 use crate::store::PoseRecord;
 
