@@ -184,6 +184,23 @@ impl TermsDoc {
         })
     }
 
+    /// The report's note on where the kept periodic terms hold: each
+    /// joint's span over the calibration poses (`None` without one).
+    pub fn range_note(&self) -> Option<String> {
+        if self.joint_ranges_deg.is_empty() {
+            return None;
+        }
+        let spans: Vec<String> = self
+            .joint_ranges_deg
+            .iter()
+            .map(|r| format!("joint {} {:.1}° to {:.1}°", r.joint, r.min_deg, r.max_deg))
+            .collect();
+        Some(format!(
+            "Kept periodic terms were identified over {}: outside these spans they extrapolate, and forward warns per pose. Cover the joints' working range to use them there.",
+            spans.join(", ")
+        ))
+    }
+
     /// `model` with these terms (bases on `model`'s chain); their
     /// covariance read in the parameter layout of `instrument`.
     pub fn term_model(

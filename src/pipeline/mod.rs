@@ -196,6 +196,7 @@ fn run_stages(
     };
     let (identified, outliers) = screen_stage::identify_confirmed(usable, outliers, identify)?;
     notes.extend(screen_stage::note(&input.poses, &outliers));
+    notes.extend(identified.terms.as_ref().and_then(|t| t.range_note()));
     if let Some(sigma) = identified.joint_noise_rad {
         notes.push(format!(
             "Joint noise (encoders, repeatability) estimated from the images: {:.1e} deg per joint; the parameter standard deviations include it.",

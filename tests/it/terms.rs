@@ -226,6 +226,11 @@ async fn terms_are_kept_used_and_exported_and_absent_terms_are_not_kept() {
             &json!({"joints_deg": [inside, outside]}),
         )
         .await;
+    let notes = app
+        .get_ok("/v1/robots/UR10-T/parameter-sets/1/report")
+        .await["notes"]
+        .to_string();
+    assert!(notes.contains("identified over joint 1"), "{notes}");
     let warnings = |k: usize| answer["poses"][k]["warnings"].to_string();
     assert!(!warnings(0).contains("extrapolate"), "{}", warnings(0));
     assert!(
