@@ -15,7 +15,7 @@ use robocal_calib::kinematics::term_model::TermModel;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
-use super::evaluate::{pose_of, target_poses};
+use super::evaluate::{pose_of, pose_warnings, target_poses};
 use super::target_stream::TargetError;
 use crate::domain::JointsDeg;
 use crate::schema::{Checker, FieldError, PoseDoc};
@@ -120,6 +120,9 @@ pub struct CompensatedTarget {
     pub start: SolverStart,
     /// The configuration of the joints, null for arms without a spherical wrist.
     pub configuration: Option<Configuration>,
+    /// The joints outside the span the set's kept terms were identified
+    /// on (they extrapolate there); empty when none.
+    pub warnings: Vec<String>,
 }
 
 /// Per target, in the order of `targets`; `null` where `errors` names the
@@ -134,6 +137,9 @@ pub struct CompensateResponse {
     /// Per target: the configuration of the joints, null for arms without
     /// a spherical wrist.
     pub configuration: Vec<Option<Configuration>>,
+    /// Per target: as [`CompensatedTarget::warnings`] (empty where `errors`
+    /// names the target).
+    pub warnings: Vec<Vec<String>>,
     /// Targets out of reach or beyond the joint limits, by index.
     pub errors: Vec<TargetError>,
 }
@@ -150,6 +156,7 @@ pub struct CompensateLine {
     pub residual_mm: Option<f64>,
     pub start: Option<SolverStart>,
     pub configuration: Option<Configuration>,
+    pub warnings: Option<Vec<String>>,
     /// Why this target has no joints (out of reach, beyond the limits).
     pub error: Option<String>,
 }
@@ -238,6 +245,7 @@ impl Compensation {
                 wrist: c.wrist,
             });
         Ok(CompensatedTarget {
+            warnings: pose_warnings(&self.model, &solution.joints_rad),
             joints_deg: JointsDeg::from_radians(&solution.joints_rad).into_vec(),
             residual_mm: solution.residual_mm,
             start: solution.start.into(),
@@ -258,6 +266,7 @@ pub fn compensate(
         residual_mm: Vec::with_capacity(plan.len()),
         start: Vec::with_capacity(plan.len()),
         configuration: Vec::with_capacity(plan.len()),
+        warnings: Vec::with_capacity(plan.len()),
         errors: Vec::new(),
     };
     for index in 0..plan.len() {
@@ -267,12 +276,14 @@ pub fn compensate(
                 answer.residual_mm.push(Some(t.residual_mm));
                 answer.start.push(Some(t.start));
                 answer.configuration.push(t.configuration);
+                answer.warnings.push(t.warnings);
             }
             Err(error) => {
                 answer.joints_deg.push(None);
                 answer.residual_mm.push(None);
                 answer.start.push(None);
                 answer.configuration.push(None);
+                answer.warnings.push(Vec::new());
                 answer.errors.push(TargetError {
                     index,
                     message: error,

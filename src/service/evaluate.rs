@@ -67,6 +67,27 @@ pub struct ForwardResponse {
     pub poses: Vec<ForwardPose>,
 }
 
+/// A pose's `warnings` at joints `q_rad`: each joint outside its limits,
+/// and each joint outside the span its kept non-geometric terms were
+/// identified on (calib's `term_range`: they extrapolate there).
+pub(crate) fn pose_warnings(model: &TermModel, q_rad: &[f64]) -> Vec<String> {
+    let limits = model.model.robot.limit_violations(q_rad);
+    let spans = extrapolated(&model.ranges, q_rad).map(|r| {
+        format!(
+            "joint {} at {:.1}° lies outside {:.1}° to {:.1}°, where its kept terms were identified: they extrapolate here",
+            r.joint + 1,
+            q_rad[r.joint].to_degrees(),
+            r.min_rad.to_degrees(),
+            r.max_rad.to_degrees()
+        )
+    });
+    limits
+        .iter()
+        .map(ToString::to_string)
+        .chain(spans)
+        .collect()
+}
+
 pub(crate) fn pose_of(doc: &PoseDoc, field: &str, c: &mut Checker) -> Option<Pose> {
     doc.check(c, field);
     let pose = match doc.matrix {
@@ -131,22 +152,7 @@ pub fn forward(
             flange_in_base: PoseOut::new(&flange),
             camera_in_target: PoseOut::new(&(world_flange * model.model.flange_to_tool)),
             tool_in_target: tool.map(|t| PoseOut::new(&(world_flange * t))),
-            warnings: model
-                .model
-                .robot
-                .limit_violations(&q)
-                .iter()
-                .map(ToString::to_string)
-                .chain(extrapolated(&model.ranges, &q).map(|r| {
-                    format!(
-                        "joint {} at {:.1}° lies outside {:.1}° to {:.1}°, where its kept terms were identified: they extrapolate here",
-                        r.joint + 1,
-                        q[r.joint].to_degrees(),
-                        r.min_rad.to_degrees(),
-                        r.max_rad.to_degrees()
-                    )
-                }))
-                .collect(),
+            warnings: pose_warnings(model, &q),
             position_std_mm: None,
             rotation_std_deg: None,
             flange_position_std_mm: None,

@@ -13,7 +13,7 @@ use robocal_calib::kinematics::RobotModel;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
-use super::evaluate::{pose_of, target_poses};
+use super::evaluate::{pose_of, pose_warnings, target_poses};
 use super::target_stream::TargetError;
 use crate::domain::JointsDeg;
 use crate::schema::{Checker, FieldError, PoseDoc, PoseOut};
@@ -47,6 +47,10 @@ pub struct FilterResponse {
     /// Where the calibrated model puts the tool when the nominal controller
     /// solves the filtered target from the seed, distance to the target (mm).
     pub residual_mm: Vec<Option<f64>>,
+    /// Per target: the real joints outside the span the set's kept terms
+    /// were identified on (they extrapolate there); empty when none or
+    /// where `errors` names the target.
+    pub warnings: Vec<Vec<String>>,
     pub errors: Vec<TargetError>,
 }
 
@@ -60,6 +64,8 @@ pub struct FilteredTarget {
     /// Where the calibrated model puts the tool when the nominal controller
     /// solves the filtered target from the seed, distance to the target (mm).
     pub residual_mm: f64,
+    /// As [`FilterResponse::warnings`] for this target.
+    pub warnings: Vec<String>,
 }
 
 /// One line of the `application/x-ndjson` answer (a schema only: the lines
@@ -73,6 +79,7 @@ pub struct FilterLine {
     pub nominal_target: Option<PoseOut>,
     pub joints_deg: Option<Vec<f64>>,
     pub residual_mm: Option<f64>,
+    pub warnings: Option<Vec<String>>,
     /// Why this target has no filtered pose (out of reach, beyond the limits).
     pub error: Option<String>,
 }
@@ -145,6 +152,7 @@ impl Filtering {
             nominal_target: PoseOut::new(&f.nominal_base_to_flange),
             joints_deg: JointsDeg::from_radians(&f.joints_rad).into_vec(),
             residual_mm: f.residual_mm,
+            warnings: pose_warnings(&self.model, &f.joints_rad),
         })
     }
 }
@@ -156,6 +164,7 @@ pub fn filter(plan: &Filtering) -> FilterResponse {
         nominal_targets: Vec::with_capacity(plan.len()),
         joints_deg: Vec::with_capacity(plan.len()),
         residual_mm: Vec::with_capacity(plan.len()),
+        warnings: Vec::with_capacity(plan.len()),
         errors: Vec::new(),
     };
     for index in 0..plan.len() {
@@ -164,11 +173,13 @@ pub fn filter(plan: &Filtering) -> FilterResponse {
                 answer.nominal_targets.push(Some(f.nominal_target));
                 answer.joints_deg.push(Some(f.joints_deg));
                 answer.residual_mm.push(Some(f.residual_mm));
+                answer.warnings.push(f.warnings);
             }
             Err(message) => {
                 answer.nominal_targets.push(None);
                 answer.joints_deg.push(None);
                 answer.residual_mm.push(None);
+                answer.warnings.push(Vec::new());
                 answer.errors.push(TargetError { index, message });
             }
         }

@@ -239,6 +239,29 @@ async fn terms_are_kept_used_and_exported_and_absent_terms_are_not_kept() {
         warnings(1)
     );
 
+    // `compensate` and `filter` say it of the joints they answer.
+    let target = &answer["poses"][1]["camera_in_target"];
+    for (kind, extra) in [
+        ("compensate", json!({})),
+        (
+            "filter",
+            json!({"tool": {"translation_mm": [0, 0, 0], "rotation_deg": [0, 0, 0]}}),
+        ),
+    ] {
+        let mut body = json!({"targets": [target], "seed_joints_deg": outside});
+        body.as_object_mut()
+            .unwrap()
+            .extend(extra.as_object().unwrap().clone());
+        let solved = app
+            .post_ok(&format!("/v1/robots/UR10-T/parameter-sets/1/{kind}"), &body)
+            .await;
+        let said = solved["warnings"][0].to_string();
+        assert!(
+            said.contains("joint 1") && said.contains("extrapolate"),
+            "{kind}: {solved}"
+        );
+    }
+
     // Without the switch: the selection runs and keeps nothing.
     let c = campaign(8, false);
     let session = upload(&app, "UR10-G", &c).await;
