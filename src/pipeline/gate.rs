@@ -16,6 +16,8 @@
 //! they would be served. Two sets of one tracker, one fitted with a 6-DoF
 //! probe's orientation, are compared on the tool point's position.
 
+use std::borrow::Cow;
+
 use robocal_calib::kinematics::identify::{
     fit_parameters, frame_indices, validate, IdentifyMode, IdentifyOptions, JointNoise, Measurement,
 };
@@ -45,21 +47,29 @@ fn approved_mean_mm(
     id: &Identified,
 ) -> Result<f64, String> {
     let instrument = id.identification.layout.instrument;
-    let (instrument, cal_data, val_data) = if approved.set.layout_instrument() == instrument {
-        (instrument, id.cal_data.clone(), id.val_data.clone())
-    } else if !session.has_camera() && !approved.set.instrument.has_camera() {
-        // One tracker, one of the two sets fitted with a 6-DoF probe's
-        // orientation: compared on the tool point, the figure both have.
-        let positions =
-            |data: &[Measurement]| data.iter().map(Measurement::position_only).collect();
-        (
-            Instrument::Tracker,
-            positions(&id.cal_data),
-            positions(&id.val_data),
-        )
-    } else {
-        return Err("it was calibrated with another instrument".into());
-    };
+    // The job's own measurements, borrowed; converted only when needed.
+    type Data<'a> = Cow<'a, [Measurement]>;
+    let (instrument, cal_data, val_data): (_, Data, Data) =
+        if approved.set.layout_instrument() == instrument {
+            (
+                instrument,
+                Cow::Borrowed(&id.cal_data),
+                Cow::Borrowed(&id.val_data),
+            )
+        } else if !session.has_camera() && !approved.set.instrument.has_camera() {
+            // One tracker, one of the two sets fitted with a 6-DoF probe's
+            // orientation: compared on the tool point, the figure both have.
+            let positions = |data: &[Measurement]| -> Data {
+                Cow::Owned(data.iter().map(Measurement::position_only).collect())
+            };
+            (
+                Instrument::Tracker,
+                positions(&id.cal_data),
+                positions(&id.val_data),
+            )
+        } else {
+            return Err("it was calibrated with another instrument".into());
+        };
     let held = approved.set.term_model()?;
     let model = held.model.clone();
     let (theirs, ours) = (model.robot.joints.len(), id.model.robot.joints.len());

@@ -30,16 +30,27 @@ pub struct TrackerNoise {
     pub orientation_sigma_rad: f64,
 }
 
+impl Default for TrackerNoise {
+    fn default() -> Self {
+        TrackerNoise {
+            position_sigma_mm: TRACKER_SIGMA_MM,
+            orientation_sigma_rad: PROBE_ORIENTATION_SIGMA_DEG.to_radians(),
+        }
+    }
+}
+
 impl TrackerNoise {
     /// The session's (`tracker_sigma_mm`, `tracker_orientation_sigma_deg`),
     /// else the defaults.
     pub fn of(session: &SessionBody) -> TrackerNoise {
+        let default = TrackerNoise::default();
         TrackerNoise {
-            position_sigma_mm: session.tracker_sigma_mm.unwrap_or(TRACKER_SIGMA_MM),
+            position_sigma_mm: session
+                .tracker_sigma_mm
+                .unwrap_or(default.position_sigma_mm),
             orientation_sigma_rad: session
                 .tracker_orientation_sigma_deg
-                .unwrap_or(PROBE_ORIENTATION_SIGMA_DEG)
-                .to_radians(),
+                .map_or(default.orientation_sigma_rad, f64::to_radians),
         }
     }
 
@@ -96,12 +107,13 @@ impl Measuring {
         let kind = if session.instrument.has_camera() {
             requested.unwrap_or(MeasurementKind::Pose)
         } else {
+            let oriented = every_pose_has_orientation(poses);
             match requested {
-                Some(MeasurementKind::Pose) if !every_pose_has_orientation(poses) => {
+                Some(MeasurementKind::Pose) if !oriented => {
                     return Err(missing_orientation(poses, "measurement is \"pose\""))
                 }
                 Some(k) => k,
-                None if every_pose_has_orientation(poses) => MeasurementKind::Pose,
+                None if oriented => MeasurementKind::Pose,
                 None => MeasurementKind::Position,
             }
         };
@@ -112,7 +124,7 @@ impl Measuring {
     pub fn camera_pose() -> Measuring {
         Measuring {
             kind: MeasurementKind::Pose,
-            tracker: TrackerNoise::of(&SessionBody::default()),
+            tracker: TrackerNoise::default(),
         }
     }
 

@@ -56,7 +56,7 @@ fn deg(q: &[f64]) -> Vec<f64> {
 }
 
 /// A pose's JSON body: the position and the probe's full pose.
-fn pose_body(joints_rad: &[f64], observed: &Observed, set: &str) -> Value {
+pub(crate) fn pose_body(joints_rad: &[f64], observed: &Observed, set: &str) -> Value {
     let Observed::Pose { world_to_tool, .. } = observed else {
         panic!("a probe campaign measures poses")
     };

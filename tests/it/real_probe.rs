@@ -11,12 +11,12 @@
 
 use std::time::Duration;
 
-use robocal_calib::geometry::{pose_error, pose_from_matrix_rows, Pose, PoseXyzRpy};
+use robocal_calib::geometry::{pose_error, pose_from_matrix_rows};
 use robocal_calib::kinematics::presets;
 use robocal_calib::kinematics::tracker_csv::landgraf2021_rows;
-use robocal_calib::kinematics::tracker_pose::rotation_from_intrinsic_xyz_deg;
 use serde_json::{json, Value};
 
+use crate::probe_tracker::pose_body;
 use crate::support::{spawn_app_with, TestApp};
 
 const DATA: &str = concat!(
@@ -53,7 +53,8 @@ const PROTOCOL_REASON: &str = "the issue's protocol validates B's set on C and D
 const WAIT: Duration = Duration::from_secs(1200);
 
 /// A series' every `stride`-th pose as JSON bodies (set `set`): joints,
-/// position and the probe's pose in the contract's form.
+/// position and the probe's pose in the contract's form (with its exact
+/// matrix).
 fn pose_bodies(file: &str, stride: usize, set: &str) -> Vec<Value> {
     let text = std::fs::read_to_string(format!("{DATA}/{file}")).unwrap();
     landgraf2021_rows(&text)
@@ -61,18 +62,10 @@ fn pose_bodies(file: &str, stride: usize, set: &str) -> Vec<Value> {
         .into_iter()
         .step_by(stride)
         .map(|row| {
-            let orientation = row.orientation.expect("the T-Mac's angles");
-            let probe = Pose::from_parts(
-                row.position_mm.into(),
-                rotation_from_intrinsic_xyz_deg(orientation.angles_deg),
-            );
-            let form = PoseXyzRpy::from_pose(&probe);
-            json!({
-                "set": set,
-                "joints_deg": row.joints_rad.iter().map(|q| q.to_degrees()).collect::<Vec<_>>(),
-                "measured_position_mm": form.translation_mm,
-                "measured_pose": {"translation_mm": form.translation_mm, "rotation_deg": form.rotation_deg},
-            })
+            // The probe's pose in the tracker frame (calib's reading of the
+            // T-Mac's angles), sent as the contract's pose.
+            let m = row.pose_measurement().expect("the T-Mac's angles");
+            pose_body(&m.joints_rad, &m.observed, set)
         })
         .collect()
 }

@@ -15,7 +15,7 @@ use super::nongeometric::{NonGeometric, TermKind};
 /// How far a joint may lie outside a term's identified range before it is
 /// called an extrapolation (rad): one degree, below which a harmonic of
 /// the second order changes by a few percent of its amplitude.
-pub const RANGE_MARGIN_RAD: f64 = 0.0175;
+pub const RANGE_MARGIN_RAD: f64 = std::f64::consts::PI / 180.0;
 
 /// The span of one joint's angle (rad) over the calibration poses.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
