@@ -15,6 +15,7 @@
 
 pub mod candidates;
 pub mod error;
+pub mod extension;
 pub mod information;
 pub mod path;
 pub mod planner;
@@ -24,5 +25,6 @@ pub mod select;
 pub mod station;
 
 pub use error::{FilterCount, PlanError};
+pub use extension::ExistingCampaign;
 pub use planner::{plan_campaign, CampaignPlan, PlannedPose};
 pub use request::{KeepOutBox, PlanCriterion, PlanPurpose, PlanRequest};

@@ -5,13 +5,14 @@ use rand::{rngs::StdRng, seq::SliceRandom, SeedableRng};
 
 use super::candidates::{anchor_joints, binding_constraint, generate, limited_model};
 use super::error::{FilterCount, PlanError};
+use super::extension::{existing_factors, predict_existing, ExistingCampaign};
 use super::information::{pose_factor, Columns};
 use super::path::{order_path, path_length};
 use super::predict::{position_weight, predict, Prediction};
 use super::request::{
     PlanCriterion, PlanPurpose, PlanRequest, QUICK_CHECK_MAX_POSES, QUICK_CHECK_MIN_POSES,
 };
-use super::select::{select, Criterion};
+use super::select::{select_after, Criterion};
 
 /// Random feasible poses the validation error is predicted over.
 pub const PREDICTION_POSES: usize = 200;
@@ -40,7 +41,12 @@ pub struct PlannedPose {
 pub struct CampaignPlan {
     /// In path order.
     pub poses: Vec<PlannedPose>,
+    /// Of the campaign shot as planned: with an extension, the existing
+    /// poses and the planned ones together.
     pub prediction: Prediction,
+    /// An extension's existing campaign alone (`None` for a plan from
+    /// scratch): the gain of the planned poses is the difference.
+    pub existing: Option<ExistingCampaign>,
     /// Survivors of every candidate filter.
     pub filters: Vec<FilterCount>,
     /// Where the path starts (the request's start, or the anchor pose).
@@ -89,21 +95,25 @@ fn check(request: &PlanRequest) -> Result<(), PlanError> {
                 ),
             ))
         }
-        PlanPurpose::Calibration if request.poses < QUICK_CHECK_MIN_POSES => Err(invalid(
+        // An extension adds to poses that determine most parameters already.
+        PlanPurpose::Calibration if request.existing_joints_rad.is_empty() && request.poses < QUICK_CHECK_MIN_POSES => Err(invalid(
             "poses",
             format!("at least {QUICK_CHECK_MIN_POSES} poses"),
         )),
+        _ if request.poses == 0 => Err(invalid("poses", "at least 1 pose")),
         _ => Ok(()),
     }
 }
 
-/// Plan the campaign `request` asks for.
+/// Plan the campaign `request` asks for (an extension of the existing
+/// poses when it names some: [`super::extension`]).
 pub fn plan_campaign(request: &PlanRequest) -> Result<CampaignPlan, PlanError> {
     check(request)?;
     let model = limited_model(request)?;
     let set = generate(request)?;
     let wanted = request.poses + request.validation_poses;
     let columns = Columns::of(request, &model)?;
+    let existing = existing_factors(request, &model, &columns)?;
     let mut feasible = Vec::new();
     let mut factors = Vec::new();
     for c in &set.candidates {
@@ -132,7 +142,13 @@ pub fn plan_campaign(request: &PlanRequest) -> Result<CampaignPlan, PlanError> {
         .criterion
         .unwrap_or(PlanCriterion::for_purpose(request.purpose));
     let chosen = match criterion {
-        PlanCriterion::D => select(&factors, columns.len(), request.poses, Criterion::D),
+        PlanCriterion::D => select_after(
+            &existing,
+            &factors,
+            columns.len(),
+            request.poses,
+            Criterion::D,
+        ),
         PlanCriterion::I => {
             let weighed: Vec<Vec<f64>> = shuffled
                 .iter()
@@ -142,7 +158,8 @@ pub fn plan_campaign(request: &PlanRequest) -> Result<CampaignPlan, PlanError> {
                 .collect();
             let weighed = if weighed.is_empty() { &probe } else { &weighed };
             let weight = position_weight(&model, &columns, weighed)?;
-            select(
+            select_after(
+                &existing,
                 &factors,
                 columns.len(),
                 request.poses,
@@ -157,8 +174,15 @@ pub fn plan_campaign(request: &PlanRequest) -> Result<CampaignPlan, PlanError> {
         .take(request.validation_poses)
         .copied()
         .collect();
-    let chosen_factors: Vec<_> = chosen.iter().map(|&k| &factors[k]).collect();
-    let prediction = predict(&model, &columns, &chosen_factors, &probe)?;
+    let campaign_factors: Vec<_> = existing
+        .iter()
+        .chain(chosen.iter().map(|&k| &factors[k]))
+        .collect();
+    let prediction = predict(&model, &columns, &campaign_factors, &probe)?;
+    let existing = match existing.is_empty() {
+        true => None,
+        false => Some(predict_existing(&model, &columns, &existing, &probe)?),
+    };
     let start = anchor_joints(request, &model)?;
     let planned: Vec<(usize, PlannedSet)> = chosen
         .iter()
@@ -177,6 +201,7 @@ pub fn plan_campaign(request: &PlanRequest) -> Result<CampaignPlan, PlanError> {
             })
             .collect(),
         prediction,
+        existing,
         filters: set.filters,
         start_joints_rad: start,
         path_length_rad,

@@ -116,6 +116,11 @@ pub struct PlanRequest {
     /// Seeds candidate generation and the validation poses: one request
     /// always gives the same plan.
     pub seed: u64,
+    /// Joints of the calibration poses a campaign already has (an
+    /// extension, issue 30): their information seeds the selection, only
+    /// the new poses are planned, and the plan predicts the campaign with
+    /// and without them. Empty: a plan from scratch.
+    pub existing_joints_rad: Vec<Vec<f64>>,
 }
 
 impl PlanRequest {
@@ -154,6 +159,7 @@ impl PlanRequest {
             image_margin_px: DEFAULT_IMAGE_MARGIN_PX,
             min_singular_mm: DEFAULT_MIN_SINGULAR_MM,
             seed: 0x91a4,
+            existing_joints_rad: Vec::new(),
         }
     }
 

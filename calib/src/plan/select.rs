@@ -161,7 +161,26 @@ pub fn select(
     count: usize,
     criterion: Criterion,
 ) -> Vec<usize> {
+    select_after(&[], factors, parameters, count, criterion)
+}
+
+/// [`select`] after the poses a campaign already has (factors
+/// `existing`): their information is in `P` from the start, so the
+/// choice favours what they leave undetermined, and the exchange only
+/// swaps the new poses (the existing ones are shot already).
+pub fn select_after(
+    existing: &[DMatrix<f64>],
+    factors: &[DMatrix<f64>],
+    parameters: usize,
+    count: usize,
+    criterion: Criterion,
+) -> Vec<usize> {
     let mut p = DMatrix::<f64>::identity(parameters, parameters);
+    for g in existing {
+        if let Some(step) = Woodbury::new(&p, g, Sign::Add, Criterion::D) {
+            p = step.apply(&p);
+        }
+    }
     let mut taken = vec![false; factors.len()];
     let mut chosen = lazy_greedy(&mut p, factors, &mut taken, count);
     // The exchange for the plan's own criterion only: an I plan starts its
@@ -276,6 +295,32 @@ mod tests {
             }
             assert!(logdet(&factors, &idx[..6], p) <= best + 1e-9);
         }
+    }
+
+    /// Seeded by existing poses, the greedy choice is the greedy choice
+    /// on the existing information: the first pick maximises `ln det(I +
+    /// E + G^T G)`, which differs from the unseeded pick here (the existing
+    /// poses already carry the directions it favoured).
+    #[test]
+    fn existing_poses_seed_the_selection() {
+        let mut rng = StdRng::seed_from_u64(11);
+        let p = 6;
+        let factors: Vec<DMatrix<f64>> = (0..40)
+            .map(|_| DMatrix::from_fn(2, p, |_, _| rng.random_range(-1.0..1.0)))
+            .collect();
+        let plain = d_optimal(&factors, p, 1)[0];
+        // Existing poses that carry exactly the plain pick's directions, strongly.
+        let existing = vec![&factors[plain] * 30.0];
+        let seeded = select_after(&existing, &factors, p, 1, Criterion::D)[0];
+        assert_ne!(seeded, plain);
+        let with = |k: usize| {
+            let mut m = DMatrix::<f64>::identity(p, p);
+            m += existing[0].transpose() * &existing[0];
+            m += factors[k].transpose() * &factors[k];
+            m.determinant().ln()
+        };
+        let best = (0..factors.len()).map(with).fold(f64::MIN, f64::max);
+        assert!((with(seeded) - best).abs() < 1e-9);
     }
 
     /// The I exchange never raises the weighted variance it minimises, and
