@@ -227,6 +227,7 @@ pub fn run_local_with(
         serial: serial.to_string(),
         session_id: "local".into(),
         robot: crate::schema::robot::doc_to_model(&kinematics),
+        prior: Default::default(),
         kinematics,
         session: file.session,
         poses,

@@ -38,6 +38,7 @@ pub fn run(
         "no earlier set (a hand–eye calibration)".into(),
         f64::INFINITY,
         Vec::new(),
+        false,
     );
     out.report.gate = Some(gate.report);
     within(Stage::Report, "done", 1.0);

@@ -31,6 +31,8 @@ use crate::schema::session::Instrument as SessionInstrument;
 
 /// What [`GateReport::compared_with`] says for the nominal model.
 const NOMINAL: &str = "nominal";
+/// The model-selection rung that keeps the nominal kinematics.
+const HAND_EYE_RUNG: &str = "hand_eye";
 
 /// The gate's decision and what the report shows of it.
 pub struct Gate {
@@ -118,7 +120,36 @@ pub fn decide(
                 .to_string(),
         );
     }
-    let compared = match approved.map(|a| (a, approved_mean_mm(a, instrument, id))) {
+    // Held-out configurations judge the approved set as they judged this
+    // one: its kinematics held, board, hand–eye and camera re-fitted per
+    // fold (docs/method.md §7).
+    let approved_mean = |a: &ApprovedSet| match &id.held_out {
+        Some(held_out) => a
+            .set
+            .term_model()
+            .and_then(|held| held_out.mean_mm_of(&held.model.robot)),
+        None => approved_mean_mm(a, instrument, id),
+    };
+    if let Some(m) = &id.model_selection {
+        let rms = |rung: &str| {
+            m.rungs
+                .iter()
+                .find(|r| r.rung == rung)
+                .and_then(|r| r.heldout_rms_px)
+        };
+        if let (Some(kept), Some(nominal)) = (rms(&m.chosen), rms(HAND_EYE_RUNG)) {
+            if kept > nominal {
+                blockers.push(format!(
+                    "hard warning: predicts held-out configurations worse than the nominal kinematics ({kept:.3} px against {nominal:.3} px)"
+                ));
+            }
+        }
+    }
+    let nominal_kept = id
+        .model_selection
+        .as_ref()
+        .is_some_and(|m| m.chosen == HAND_EYE_RUNG);
+    let compared = match approved.map(|a| (a, approved_mean(a))) {
         Some((a, Ok(m))) => Some((a.id.clone(), m)),
         Some((a, Err(why))) => {
             blockers.push(format!(
@@ -130,21 +161,36 @@ pub fn decide(
         None => None,
     };
     let (compared_with, compared_mean) = compared.unwrap_or_else(|| (NOMINAL.to_string(), nominal));
-    outcome(mean, nominal, compared_with, compared_mean, blockers)
+    outcome(
+        mean,
+        nominal,
+        compared_with,
+        compared_mean,
+        blockers,
+        nominal_kept,
+    )
 }
 
 /// The decision from the figures: approved only when the set is better
 /// than `compared_with` and than nominal, and nothing in `blockers` (hard
 /// warnings, a comparison that could not be made) holds it back.
+/// `nominal_kept`: the model selection kept the nominal kinematics (only
+/// board, hand–eye and camera identified); a first such set equal to the
+/// nominal model is what the campaign supports, and is approved.
 pub fn outcome(
     mean_mm: f64,
     nominal_mm: f64,
     compared_with: String,
     compared_mean_mm: f64,
     mut blockers: Vec<String>,
+    nominal_kept: bool,
 ) -> Gate {
     // NaN-safe: anything not shown better is worse.
-    let worse = mean_mm.partial_cmp(&compared_mean_mm) != Some(std::cmp::Ordering::Less);
+    let first_nominal = nominal_kept
+        && compared_with == NOMINAL
+        && mean_mm.partial_cmp(&compared_mean_mm) != Some(std::cmp::Ordering::Greater);
+    let worse =
+        !first_nominal && mean_mm.partial_cmp(&compared_mean_mm) != Some(std::cmp::Ordering::Less);
     let worse_than_nominal =
         mean_mm.partial_cmp(&nominal_mm) == Some(std::cmp::Ordering::Greater) || mean_mm.is_nan();
     if worse_than_nominal && compared_with != NOMINAL {
@@ -160,7 +206,9 @@ pub fn outcome(
     } else {
         format!("{mean_mm:.3} mm mean 3-D error; {compared_with}")
     };
-    let mut reason = if approved {
+    let mut reason = if approved && first_nominal {
+        format!("approved by the gate: the kinematics stay nominal, no identified model predicted held-out configurations better; board, hand–eye and camera identified ({comparison})")
+    } else if approved {
         format!("approved by the gate: better than before ({comparison})")
     } else if worse {
         format!("held as a candidate: not better than before ({comparison})")
@@ -198,7 +246,7 @@ mod tests {
     /// The case: a paper-mode set worse than nominal (11.36 → 11.75 mm).
     #[test]
     fn a_set_worse_than_nominal_is_a_candidate() {
-        let gate = outcome(11.75, 11.36, NOMINAL.into(), 11.36, Vec::new());
+        let gate = outcome(11.75, 11.36, NOMINAL.into(), 11.36, Vec::new(), false);
         assert_eq!(gate.release.status, ReleaseStatus::Candidate);
         assert!(gate.report.worse);
         assert!(gate.release.reason.unwrap().contains("11.360"));
@@ -206,20 +254,36 @@ mod tests {
 
     #[test]
     fn better_than_the_approved_set_but_worse_than_nominal_is_a_candidate() {
-        let gate = outcome(2.0, 1.5, "R/1".into(), 3.0, Vec::new());
+        let gate = outcome(2.0, 1.5, "R/1".into(), 3.0, Vec::new(), false);
         assert_eq!(gate.release.status, ReleaseStatus::Candidate);
         assert!(gate.release.reason.unwrap().contains("hard warning"));
     }
 
     #[test]
     fn better_than_before_is_approved_and_nan_never_is() {
-        let gate = outcome(0.1, 5.0, "R/1".into(), 0.2, Vec::new());
+        let gate = outcome(0.1, 5.0, "R/1".into(), 0.2, Vec::new(), false);
         assert_eq!(gate.release.status, ReleaseStatus::Approved);
         assert!(!gate.report.worse);
-        let gate = outcome(f64::NAN, 5.0, NOMINAL.into(), 5.0, Vec::new());
+        let gate = outcome(f64::NAN, 5.0, NOMINAL.into(), 5.0, Vec::new(), false);
         assert_eq!(gate.release.status, ReleaseStatus::Candidate);
         // A hard warning (a paper-mode camera) holds back even a better set.
-        let gate = outcome(0.1, 5.0, NOMINAL.into(), 5.0, vec!["paper".into()]);
+        let gate = outcome(0.1, 5.0, NOMINAL.into(), 5.0, vec!["paper".into()], false);
+        assert_eq!(gate.release.status, ReleaseStatus::Candidate);
+    }
+
+    /// Identification did not pay: the nominal kinematics kept, equal to
+    /// the nominal model, is approved as a first set; never over an
+    /// approved set it does not beat, never with a blocker.
+    #[test]
+    fn a_first_set_that_keeps_the_nominal_kinematics_is_approved() {
+        let gate = outcome(1.2, 1.2, NOMINAL.into(), 1.2, Vec::new(), true);
+        assert_eq!(gate.release.status, ReleaseStatus::Approved);
+        assert!(gate.release.reason.unwrap().contains("stay nominal"));
+        let gate = outcome(1.2, 1.2, NOMINAL.into(), 1.2, Vec::new(), false);
+        assert_eq!(gate.release.status, ReleaseStatus::Candidate);
+        let gate = outcome(1.2, 1.2, "R/1".into(), 1.2, Vec::new(), true);
+        assert_eq!(gate.release.status, ReleaseStatus::Candidate);
+        let gate = outcome(1.2, 1.2, NOMINAL.into(), 1.2, vec!["x".into()], true);
         assert_eq!(gate.release.status, ReleaseStatus::Candidate);
     }
 }

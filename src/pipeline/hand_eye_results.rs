@@ -335,6 +335,7 @@ fn report(
         uncertainty_map: None,
         terms: None,
         gate: None,
+        model_selection: None,
         measurement_accuracy: None,
         regions: Vec::new(),
     }

@@ -22,10 +22,13 @@ use robocal_calib::stats::AccuracyStats;
 
 use super::camera_stage::CameraStep;
 use super::measuring::Measuring;
+use super::model_selection::{select, HeldOut, SelectionInput};
 use super::{PipelineError, PoseInput, Stage};
 use crate::domain::TermsDoc;
+use crate::report::model_selection::ModelSelectionReport;
 use crate::schema::job::{Measurement as MeasurementKind, Validation};
 use crate::schema::session::PoseSet;
+use robocal_calib::kinematics::prior::KinematicPrior;
 
 /// The identified model and the numbers the report needs.
 pub struct Identified {
@@ -63,6 +66,12 @@ pub struct Identified {
     pub selection: Option<TermIdentification>,
     /// The kept terms as the set stores them (`None`: none kept).
     pub terms: Option<TermsDoc>,
+    /// How much of the kinematics the campaign carried (camera jobs with a
+    /// joint refinement and enough configurations).
+    pub model_selection: Option<ModelSelectionReport>,
+    /// The held-out comparison, when the headline figures are held-out
+    /// predictions: the gate judges the approved set the same way.
+    pub held_out: Option<HeldOut>,
 }
 
 impl Identified {
@@ -114,6 +123,7 @@ pub fn identify_robot(
     usable: &[usize],
     outliers: &[usize],
     candidates: Option<&CandidateOptions>,
+    prior: KinematicPrior,
 ) -> Result<Identified, PipelineError> {
     let instrument = measuring.layout(camera.is_some());
     let (cal, val) = split(poses, usable, validation);
@@ -163,6 +173,10 @@ pub fn identify_robot(
     let mut covariance = identification.covariance.clone();
     let mut refined_intrinsics = None;
     let mut joint_noise_rad = None;
+    let mut identification = identification;
+    let mut model_selection = None;
+    let mut held_out = None;
+    let mut heldout_errors = None;
     if let Some(s) = &selection {
         // Pose level only (a tracker, or no joint refinement): geometry
         // refitted jointly with the kept terms, its covariance marginal
@@ -213,10 +227,53 @@ pub fn identify_robot(
             )
             .map_err(|e| numerical(Stage::Identify, e))?,
         };
+        let mut joint = joint;
+        let mut free = free.clone();
+        if selection.is_none() {
+            // How much of the kinematics the campaign carries, judged on
+            // configurations held out (docs/method.md §6).
+            let chosen = select(&SelectionInput {
+                poses,
+                camera: step,
+                measuring,
+                cal: &cal,
+                val: &val,
+                nominal: robot,
+                full: &joint,
+                campaign_free: &free,
+                prior,
+                hold_intrinsics,
+            })
+            .map_err(|e| numerical(Stage::Identify, e))?;
+            if let Some(mut chosen) = chosen {
+                if let Some((refit, kept)) = chosen.refit.take() {
+                    joint = refit;
+                    free = kept;
+                    let ident = &mut identification.identifiability;
+                    ident.fixed = (0..identification.layout.len())
+                        .filter(|i| !free.contains(i))
+                        .map(|i| identification.layout.params[i].name.clone())
+                        .collect();
+                    ident.free = free.clone();
+                }
+                let ident = &identification.identifiability;
+                chosen.report.undetermined = ident
+                    .weak
+                    .iter()
+                    .chain(&ident.poorly_determined)
+                    .cloned()
+                    .collect();
+                heldout_errors = chosen.heldout_errors.take();
+                if heldout_errors.is_some() {
+                    held_out = Some(chosen.held_out);
+                }
+                model_selection = Some(chosen.report);
+            }
+        }
         covariance = match &joint.terms {
             // Marginal over the terms: read from the refinement itself.
             Some(t) => t.geometric_covariance.clone(),
-            None => joint_refine_covariance(&joint, &images, free, hold_intrinsics)
+            None => joint_refine_covariance(&joint, &images, &free, hold_intrinsics)
                 .map_err(|e| numerical(Stage::Identify, e))?,
         };
         model = joint.model.clone();
@@ -259,15 +316,27 @@ pub fn identify_robot(
             "no validation pose could be measured: upload poses with set \"val\" or use {\"validation\":{\"holdout_fraction\":0.3}}",
         ));
     }
-    let (before, before_errors) =
+    let (mut before, before_errors) =
         validate(&identification.before, &val_data).map_err(|e| numerical(Stage::Identify, e))?;
-    let (after, after_errors) = validate_with_terms(&evaluated.model, &evaluated.terms, &val_data)
-        .map_err(|e| numerical(Stage::Identify, e))?;
-    let val_errors = val_index
+    let (mut after, after_errors) =
+        validate_with_terms(&evaluated.model, &evaluated.terms, &val_data)
+            .map_err(|e| numerical(Stage::Identify, e))?;
+    let mut val_errors: Vec<(usize, Vector3<f64>, Vector3<f64>)> = val_index
         .iter()
         .zip(before_errors.iter().zip(&after_errors))
         .map(|(&i, (b, a))| (i, *b, *a))
         .collect();
+    if let Some(errors) = heldout_errors.filter(|e| !e.is_empty()) {
+        // The validation poses repeat calibration configurations: the
+        // headline is the held-out configurations' prediction, nominal
+        // kinematics against the kept model (docs/method.md §7).
+        let pick = |f: fn(&(usize, Vector3<f64>, Vector3<f64>)) -> Vector3<f64>| {
+            errors.iter().map(f).collect::<Vec<_>>()
+        };
+        before = AccuracyStats::from_errors(&pick(|e| e.1));
+        after = AccuracyStats::from_errors(&pick(|e| e.2));
+        val_errors = errors;
+    }
     let mut outlier_errors = Vec::new();
     for &o in outliers {
         let measured = measuring.of(&poses[o], o, camera, final_intrinsics.as_ref());
@@ -298,5 +367,7 @@ pub fn identify_robot(
         val_data,
         selection,
         terms,
+        model_selection,
+        held_out,
     })
 }

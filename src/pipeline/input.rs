@@ -5,6 +5,7 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use robocal_calib::camera::Intrinsics;
+use robocal_calib::kinematics::prior::KinematicPrior;
 use robocal_calib::kinematics::RobotModel;
 
 use crate::domain::{FlangePose, ImageDetection, JointsDeg, ParameterSet, StageReading};
@@ -23,6 +24,9 @@ pub struct Input {
     pub session_id: String,
     /// The robot's nominal model, as the numerics take it (radians).
     pub robot: RobotModel,
+    /// The prior on its kinematic deviations from nominal (the robot
+    /// document's `prior`, else manufacturing tolerances).
+    pub prior: KinematicPrior,
     /// The same joint table as stored and served (degrees, conventions explicit).
     pub kinematics: KinematicsDoc,
     pub session: SessionBody,

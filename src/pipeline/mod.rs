@@ -25,6 +25,7 @@ mod identify_stage;
 mod input;
 mod measure;
 mod measuring;
+mod model_selection;
 mod output;
 mod regions_job;
 mod regions_results;
@@ -192,6 +193,7 @@ fn run_stages(
             usable,
             &outliers.iter().map(|o| o.pose).collect::<Vec<_>>(),
             candidates.as_ref(),
+            input.prior,
         )
     };
     let (identified, outliers) = screen_stage::identify_confirmed(usable, outliers, identify)?;

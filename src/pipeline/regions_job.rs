@@ -180,6 +180,7 @@ fn fit_session(
             usable,
             &outliers.iter().map(|o| o.pose).collect::<Vec<_>>(),
             None,
+            robocal_calib::kinematics::prior::KinematicPrior::default(),
         )
     };
     let (identified, outliers) = screen_stage::identify_confirmed(usable, outliers, identify)?;

@@ -145,6 +145,7 @@ pub fn run(
         approved.id.clone(),
         before.norm.mean_mm,
         Vec::new(),
+        false,
     );
     let per_pose = val_index
         .iter()
@@ -199,6 +200,7 @@ pub fn run(
         uncertainty_map: None,
         terms: None,
         gate: Some(gate.report),
+        model_selection: None,
         measurement_accuracy: None,
         regions: Vec::new(),
     };

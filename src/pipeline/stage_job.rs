@@ -59,6 +59,7 @@ pub fn run(
         "no earlier set (a stage calibration of the camera)".into(),
         f64::INFINITY,
         Vec::new(),
+        false,
     );
     let mut report = out.report;
     report.gate = Some(gate.report);

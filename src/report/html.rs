@@ -96,6 +96,9 @@ pub fn render_html(report: &Report) -> String {
     camera(&mut page, report);
     parameters(&mut page, report);
     identifiability(&mut page, report);
+    if let Some(m) = &report.model_selection {
+        super::model_selection::html(&mut page, m);
+    }
     notes_and_signoff(&mut page, report);
     per_pose(&mut page, report);
     let _ = write!(

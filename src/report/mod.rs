@@ -14,6 +14,7 @@ mod html;
 mod html_sections;
 pub mod measurement_accuracy;
 pub mod model;
+pub mod model_selection;
 mod plot;
 mod pose_chart;
 pub mod regions;

@@ -229,6 +229,11 @@ pub struct Report {
     /// The selection of non-geometric terms (absent when it did not run).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub terms: Option<super::terms::TermsReport>,
+    /// How much of the kinematics the campaign carried: the ladder of
+    /// models judged on held-out arm configurations (absent when it did
+    /// not run: too few configurations, terms selected, paper mode).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub model_selection: Option<super::model_selection::ModelSelectionReport>,
     /// A multi-session set (issue 18): each session's (region's)
     /// validation accuracy, before and after, on its own validation poses.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]

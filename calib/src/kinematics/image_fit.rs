@@ -22,6 +22,7 @@ use super::image_pose::{ImageNoise, ImagePose};
 use super::jacobian::tool_pose_jacobian;
 use super::nongeometric::NonGeometric;
 use super::params::{CalibratedModel, ParamKind, ParamLayout};
+use super::prior::PriorRows;
 use super::projection::{apply_intrinsics, project_with_jacobians, INTRINSIC_NAMES};
 use crate::arrow::ArrowMatrix;
 use crate::camera::model::Intrinsics;
@@ -46,6 +47,10 @@ pub(super) struct ImageFit<'a> {
     pub(super) session_of: &'a [usize],
     /// Non-geometric terms fitted with the geometry (`None`: geometry only).
     pub(super) terms: Option<ImageTerms<'a>>,
+    /// Priors on the free layout values (`None`: maximum likelihood), one
+    /// pseudo-observation each after every other residual (method.md §6
+    /// "Priors", [`super::prior`]).
+    pub(super) prior: Option<&'a PriorRows>,
 }
 
 /// The terms an image-level fit refines: their starting values (`x` adds
@@ -319,7 +324,19 @@ impl ImageFit<'_> {
                     + prior.rows(k * nj, nj) / self.noise.joint_sigma_rad();
             }
         }
+        if let Some(p) = self.prior {
+            let head = a.head_mut();
+            for k in 0..p.len().min(self.free.len()) {
+                head[(k, k)] += p.weight[k] * p.weight[k];
+                g[k] += p.weight[k] * p.residual(k, x[k]);
+            }
+        }
         Some((a, g))
+    }
+
+    /// Rows of the kinematic prior's pseudo-observations (0 without one).
+    pub(super) fn prior_rows(&self) -> usize {
+        self.prior.map_or(0, |p| p.len().min(self.free.len()))
     }
 
     /// The prior residuals `e / sigma_q` of every joint correction.
@@ -336,7 +353,7 @@ impl LeastSquaresProblem for ImageFit<'_> {
         let (model, cam) = self.unpack(x);
         let bases = self.session_bases(x, &model);
         let prior = self.prior(x);
-        let mut r = DVector::zeros(self.image_rows() + prior.len());
+        let mut r = DVector::zeros(self.image_rows() + prior.len() + self.prior_rows());
         let mut row = 0;
         for (k, pose) in self.poses.iter().enumerate() {
             let inv = self
@@ -352,6 +369,12 @@ impl LeastSquaresProblem for ImageFit<'_> {
             }
         }
         r.rows_mut(row, prior.len()).copy_from(&prior);
+        row += prior.len();
+        if let Some(p) = self.prior {
+            for k in 0..self.prior_rows() {
+                r[row + k] = p.residual(k, x[k]);
+            }
+        }
         Some(r)
     }
 
@@ -362,7 +385,10 @@ impl LeastSquaresProblem for ImageFit<'_> {
         let (model, cam) = self.unpack(x);
         let bases = self.session_bases(x, &model);
         let (nf, nj, ni) = (self.nk(), self.joints(), self.ni());
-        let mut jac = DMatrix::zeros(self.image_rows() + self.poses.len() * nj, self.params());
+        let mut jac = DMatrix::zeros(
+            self.image_rows() + self.poses.len() * nj + self.prior_rows(),
+            self.params(),
+        );
         let mut row = 0;
         for k in 0..self.poses.len() {
             let mut dots = Vec::new();
@@ -383,6 +409,12 @@ impl LeastSquaresProblem for ImageFit<'_> {
         }
         for i in 0..self.poses.len() * nj {
             jac[(row + i, nf + ni + i)] = 1.0 / self.noise.joint_sigma_rad();
+        }
+        row += self.poses.len() * nj;
+        if let Some(p) = self.prior {
+            for k in 0..self.prior_rows() {
+                jac[(row + k, k)] = p.weight[k];
+            }
         }
         Some(jac)
     }

@@ -170,6 +170,10 @@ pub fn session_covariances(
         }
         reduced += block;
     }
+    // The kinematic prior's information (a MAP fit): the posterior.
+    for (k, w) in refined.prior_weights.iter().enumerate().take(nf_layout) {
+        reduced[(k, k)] += w * w;
+    }
     let dof = rows.saturating_sub(head).max(1) as f64;
     let head_cov = covariance_from_normal(&reduced, cost / dof);
     Ok((0..sessions)

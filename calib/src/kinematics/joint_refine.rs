@@ -29,6 +29,7 @@ use super::image_fit::{ImageFit, ImageTerms};
 pub use super::image_pose::{ImageNoise, ImagePose};
 use super::nongeometric::NonGeometric;
 use super::params::{CalibratedModel, Instrument, ParamLayout};
+use super::prior::PriorRows;
 use super::refined_terms::RefinedTerms;
 use crate::camera::model::Intrinsics;
 use crate::geometry::Pose;
@@ -56,6 +57,9 @@ pub struct JointRefinement {
     /// The non-geometric terms refined with the geometry, with their
     /// covariance ([`joint_refine_with_terms`]); `None` for geometry only.
     pub terms: Option<RefinedTerms>,
+    /// Weight `1/σ` of the kinematic prior per free parameter (empty: no
+    /// prior, a maximum-likelihood fit): the covariance is the posterior.
+    pub prior_weights: Vec<f64>,
     pub iterations: usize,
     pub termination: Termination,
 }
@@ -128,14 +132,43 @@ pub fn joint_refine_with_terms(
     )
 }
 
+/// [`joint_refine`] as a maximum a posteriori fit (method.md §6
+/// "Priors"): every free kinematic parameter is held towards nominal by
+/// `prior` ([`PriorRows::new`] for `free` around `start`). A parameter the
+/// images cannot determine then keeps σ near its prior.
+pub fn joint_refine_with_prior(
+    start: &CalibratedModel,
+    intrinsics: &Intrinsics,
+    poses: &[ImagePose],
+    free: &[usize],
+    prior: &PriorRows,
+    noise: ImageNoise,
+    hold_intrinsics: bool,
+) -> Result<JointRefinement, IdentifyError> {
+    refine_sessions(
+        start,
+        intrinsics,
+        poses,
+        free,
+        noise,
+        hold_intrinsics,
+        Extras {
+            prior: Some(prior),
+            ..Extras::default()
+        },
+    )
+}
+
 /// What a refinement fits beyond one board and the geometry (see
 /// [`super::image_fit`]): the reference `target_to_base` of sessions 1..
-/// and the session of every pose; the non-geometric terms.
+/// and the session of every pose; the non-geometric terms; the kinematic
+/// prior.
 #[derive(Debug, Clone, Copy, Default)]
 pub(super) struct Extras<'a> {
     pub(super) extra_bases: &'a [Pose],
     pub(super) session_of: &'a [usize],
     pub(super) terms: Option<&'a NonGeometric>,
+    pub(super) prior: Option<&'a PriorRows>,
 }
 
 /// [`joint_refine`] over several sessions: `start.world_to_base` is
@@ -192,6 +225,7 @@ pub(super) fn refine_sessions(
         extra_bases: sessions.extra_bases,
         session_of: sessions.session_of,
         terms,
+        prior: sessions.prior,
     }
     .head();
     let mut x0: Option<DVector<f64>> = None;
@@ -215,6 +249,7 @@ pub(super) fn refine_sessions(
             extra_bases: sessions.extra_bases,
             session_of: sessions.session_of,
             terms,
+            prior: sessions.prior,
         };
         let n = problem.params();
         let x_start = match x0.take() {
@@ -383,6 +418,7 @@ impl Solution {
             joint_sigma_rad: problem.noise.joint_sigma_rad(),
             joint_corrections_rad,
             terms,
+            prior_weights: problem.prior.map(|p| p.weight.clone()).unwrap_or_default(),
             session_target_to_base: self.bases,
             iterations: report.iterations,
             termination: report.termination,

@@ -47,6 +47,7 @@ fn jacobian_with_terms_matches_finite_differences() {
             terms: &terms,
             bases: &bases,
         }),
+        prior: None,
     };
     assert_eq!(fit.nk(), free.len() + terms.terms.len());
     let x = DVector::from_fn(fit.params(), |i, _| 1e-5 * ((i % 5) as f64 - 2.0));

@@ -1,5 +1,6 @@
 use super::*;
 use crate::kinematics::image_test_campaign::{image_campaign, ImageCampaign};
+use crate::kinematics::prior::{KinematicPrior, PriorRows};
 use crate::sim::campaign::CampaignSpec;
 use crate::solver::finite_difference_jacobian;
 use crate::solver::LeastSquaresProblem;
@@ -39,6 +40,7 @@ fn jacobian_matches_finite_differences_and_exact_points_are_fitted() {
         extra_bases: &[],
         session_of: &[],
         terms: None,
+        prior: None,
     };
     let x = DVector::from_fn(
         fit.params(),
@@ -52,12 +54,24 @@ fn jacobian_matches_finite_differences_and_exact_points_are_fitted() {
         (&analytic - &fd).amax()
     );
     // The assembled normal equations are J^T J and J^T r, with and without
-    // the intrinsics among the unknowns.
-    for hold_intrinsics in [false, true] {
+    // the intrinsics among the unknowns, with and without a kinematic prior
+    // (centred off the reference, so that its residuals are not zero).
+    let mut off = truth.clone();
+    off.robot.joints[1].a_mm += 0.7;
+    off.robot.joints[2].theta_offset_rad += 1e-3;
+    let prior = PriorRows::new(&KinematicPrior::default(), &layout, &free, &truth, &off);
+    assert!(prior.weight.iter().any(|&w| w > 0.0));
+    for (hold_intrinsics, prior) in [(false, None), (true, None), (false, Some(&prior))] {
         let fit = ImageFit {
             hold_intrinsics,
+            prior,
             ..fit
         };
+        if prior.is_some() {
+            let analytic = fit.jacobian(&x).unwrap();
+            let fd = finite_difference_jacobian(|x| fit.residuals(x), &x).unwrap();
+            assert!((&analytic - &fd).amax() < 1e-4 * fd.amax());
+        }
         let x = DVector::from_fn(fit.params(), |i, _| 1e-4 * ((i % 3) as f64 - 1.0));
         let j = fit.jacobian(&x).unwrap();
         let r = fit.residuals(&x).unwrap();

@@ -1,5 +1,6 @@
 //! Robot kinematic model, identification and compensation (method.md §5–8).
 
+pub mod config_groups;
 pub mod filter;
 pub mod identifiability;
 pub mod identify;
@@ -28,10 +29,12 @@ pub mod joint_covariance;
 pub mod joint_refine;
 pub mod measurement;
 pub mod model;
+pub mod model_ladder;
 pub mod nongeometric;
 pub mod params;
 mod pose_fit;
 pub mod presets;
+pub mod prior;
 pub mod projection;
 pub mod recheck;
 pub mod refined_terms;

@@ -111,6 +111,7 @@ fn refine_regions(
         extra_bases: &extra_bases,
         session_of: &session_of,
         terms,
+        prior: None,
     };
     refine_sessions(
         &start,

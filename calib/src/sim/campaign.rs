@@ -17,6 +17,7 @@ use super::true_robot::gauss;
 pub use super::true_robot::{compliance, perturb_robot, true_joints, true_terms};
 use crate::geometry::{pose_to_matrix_rows, Pose};
 use crate::kinematics::ik::inverse_kinematics;
+use crate::kinematics::nongeometric::NonGeometric;
 use crate::kinematics::{CalibratedModel, RobotModel};
 
 /// Attempts per accepted station before the campaign is declared impossible.
@@ -118,22 +119,32 @@ fn station(spec: &CampaignSpec, rng: &mut StdRng) -> Pose {
     )
 }
 
-/// Simulate a campaign (see the module doc).
-pub fn simulate_campaign(spec: &CampaignSpec) -> Result<Campaign, SimError> {
+/// A campaign's fixed parts: the true robot, its frames and terms, the
+/// nominal model the stations are reached through.
+pub(super) struct Setup {
+    pub(super) robot: RobotModel,
+    pub(super) nominal_model: CalibratedModel,
+    pub(super) true_model: CalibratedModel,
+    pub(super) terms: NonGeometric,
+    pub(super) pixel: Normal<f64>,
+}
+
+/// The true robot, hand–eye and board of `spec`, drawn from `rng` (which
+/// then continues with the stations).
+pub(super) fn setup(spec: &CampaignSpec, rng: &mut StdRng) -> Result<Setup, SimError> {
     let dof = spec.nominal.dof();
     if spec.home_joints_rad.len() != dof || spec.cal_poses + spec.val_poses == 0 {
         return Err(SimError::Spec("home joints or pose counts".into()));
     }
-    let mut rng = StdRng::seed_from_u64(spec.seed);
-    let robot = perturb_robot(&spec.nominal, spec, &mut rng);
-    let he = [0, 1, 2].map(|_| gauss(&mut rng, spec.hand_eye_sigma_mm));
-    let hr = [0, 1, 2].map(|_| gauss(&mut rng, spec.hand_eye_sigma_deg).to_radians());
+    let robot = perturb_robot(&spec.nominal, spec, rng);
+    let he = [0, 1, 2].map(|_| gauss(rng, spec.hand_eye_sigma_mm));
+    let hr = [0, 1, 2].map(|_| gauss(rng, spec.hand_eye_sigma_deg).to_radians());
     let flange_to_camera = crate::geometry::perturb_left(
         &spec.flange_to_camera_guess,
         &nalgebra::Vector6::new(he[0], he[1], he[2], hr[0], hr[1], hr[2]),
     );
     if spec.pose_stream != 0 {
-        rng = StdRng::seed_from_u64(spec.seed ^ spec.pose_stream.wrapping_mul(POSE_STREAM_STRIDE));
+        *rng = StdRng::seed_from_u64(spec.seed ^ spec.pose_stream.wrapping_mul(POSE_STREAM_STRIDE));
     }
     // Board: centred on the nominal home camera's axis at mid distance,
     // target z along the camera z (method.md §1: z points into the board).
@@ -157,10 +168,74 @@ pub fn simulate_campaign(spec: &CampaignSpec) -> Result<Campaign, SimError> {
         flange_to_tool: flange_to_camera,
     };
     let terms = true_terms(spec, &true_model);
-    let wanted = spec.cal_poses + spec.val_poses;
-    let mut poses = Vec::with_capacity(wanted);
     let pixel = Normal::new(0.0, spec.pixel_sigma_px.max(f64::MIN_POSITIVE))
         .map_err(|e| SimError::Spec(e.to_string()))?;
+    Ok(Setup {
+        robot,
+        nominal_model,
+        true_model,
+        terms,
+        pixel,
+    })
+}
+
+/// The pose the robot takes when commanded to `joints` (recorded as
+/// such): encoder noise, the true joints, the image of the board; `None`
+/// when the board is not wholly in view.
+pub(super) fn pose_at(
+    spec: &CampaignSpec,
+    setup: &Setup,
+    joints: Vec<f64>,
+    set: PoseSet,
+    rng: &mut StdRng,
+) -> Option<SimPose> {
+    let noisy: Vec<f64> = joints
+        .iter()
+        .map(|q| q + gauss(rng, spec.encoder_sigma_deg.to_radians()))
+        .collect();
+    let true_joints = true_joints(spec, &setup.robot, &setup.terms, &noisy);
+    let target_to_camera = setup.true_model.world_to_tool(&true_joints).ok()?;
+    let ideal_px = image_of_board(spec, &target_to_camera)?;
+    let observed_px = ideal_px
+        .iter()
+        .map(|p| {
+            if spec.pixel_sigma_px > 0.0 {
+                Point2::new(p.x + setup.pixel.sample(rng), p.y + setup.pixel.sample(rng))
+            } else {
+                *p
+            }
+        })
+        .collect();
+    Some(SimPose {
+        joints_rad: joints,
+        true_joints_rad: true_joints,
+        target_to_camera,
+        set,
+        ideal_px,
+        observed_px,
+    })
+}
+
+/// A random station reached through the nominal inverse kinematics: its
+/// joints, or `None` when the nominal arm cannot reach it.
+pub(super) fn station_joints(
+    spec: &CampaignSpec,
+    setup: &Setup,
+    rng: &mut StdRng,
+) -> Option<Vec<f64>> {
+    let desired = station(spec, rng);
+    let seeds = vec![spec.home_joints_rad.clone()];
+    inverse_kinematics(&setup.nominal_model, &desired, &seeds)
+        .ok()
+        .map(|s| s.joints_rad)
+}
+
+/// Simulate a campaign (see the module doc).
+pub fn simulate_campaign(spec: &CampaignSpec) -> Result<Campaign, SimError> {
+    let mut rng = StdRng::seed_from_u64(spec.seed);
+    let setup = setup(spec, &mut rng)?;
+    let wanted = spec.cal_poses + spec.val_poses;
+    let mut poses = Vec::with_capacity(wanted);
     let mut attempts = 0;
     while poses.len() < wanted {
         attempts += 1;
@@ -170,49 +245,32 @@ pub fn simulate_campaign(spec: &CampaignSpec) -> Result<Campaign, SimError> {
                 wanted,
             });
         }
-        let desired = station(spec, &mut rng);
-        let seeds = vec![spec.home_joints_rad.clone()];
-        let Ok(sol) = inverse_kinematics(&nominal_model, &desired, &seeds) else {
+        let Some(joints) = station_joints(spec, &setup, &mut rng) else {
             continue;
         };
-        let joints = sol.joints_rad;
-        let noisy: Vec<f64> = joints
-            .iter()
-            .map(|q| q + gauss(&mut rng, spec.encoder_sigma_deg.to_radians()))
-            .collect();
-        let true_joints = true_joints(spec, &robot, &terms, &noisy);
-        let Ok(target_to_camera) = true_model.world_to_tool(&true_joints) else {
-            continue;
-        };
-        let Some(ideal_px) = image_of_board(spec, &target_to_camera) else {
-            continue;
-        };
-        let observed_px = ideal_px
-            .iter()
-            .map(|p| {
-                if spec.pixel_sigma_px > 0.0 {
-                    Point2::new(p.x + pixel.sample(&mut rng), p.y + pixel.sample(&mut rng))
-                } else {
-                    *p
-                }
-            })
-            .collect();
         let set = if poses.len() < spec.cal_poses {
             PoseSet::Cal
         } else {
             PoseSet::Val
         };
-        poses.push(SimPose {
-            joints_rad: joints,
-            true_joints_rad: true_joints,
-            target_to_camera,
-            set,
-            ideal_px,
-            observed_px,
-        });
+        if let Some(pose) = pose_at(spec, &setup, joints, set, &mut rng) {
+            poses.push(pose);
+        }
     }
-    let truth = campaign_truth(spec, &robot, &target_to_base, &flange_to_camera);
-    Ok(Campaign { truth, poses })
+    Ok(setup.into_campaign(spec, poses))
+}
+
+impl Setup {
+    /// The campaign of `poses` with this set-up's truth.
+    pub(super) fn into_campaign(self, spec: &CampaignSpec, poses: Vec<SimPose>) -> Campaign {
+        let truth = campaign_truth(
+            spec,
+            &self.robot,
+            &self.true_model.world_to_base,
+            &self.true_model.flange_to_tool,
+        );
+        Campaign { truth, poses }
+    }
 }
 
 /// The campaign-level truth (the per-pose parts are filled by

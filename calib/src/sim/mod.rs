@@ -8,6 +8,8 @@ pub mod campaign_io;
 pub mod campaign_spec;
 pub mod experiment;
 pub mod experiment_error;
+/// Campaigns shot in configuration groups (weakly excited links).
+pub mod grouped_campaign;
 pub mod oracle;
 /// Planned campaigns: plan requests, images at planned joints, a job on them (issue 16).
 pub mod planned;
