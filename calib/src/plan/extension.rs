@@ -22,7 +22,9 @@ pub enum ExistingCampaign {
     /// Its poses do not determine every parameter (a job would fix some at
     /// their start values): no validation error can be predicted, these
     /// parameters are the least determined.
-    Undetermined { parameters: Vec<String> },
+    Undetermined {
+        parameters: Vec<String>,
+    },
 }
 
 impl ExistingCampaign {

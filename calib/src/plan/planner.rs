@@ -96,10 +96,14 @@ fn check(request: &PlanRequest) -> Result<(), PlanError> {
             ))
         }
         // An extension adds to poses that determine most parameters already.
-        PlanPurpose::Calibration if request.existing_joints_rad.is_empty() && request.poses < QUICK_CHECK_MIN_POSES => Err(invalid(
-            "poses",
-            format!("at least {QUICK_CHECK_MIN_POSES} poses"),
-        )),
+        PlanPurpose::Calibration
+            if request.existing_joints_rad.is_empty() && request.poses < QUICK_CHECK_MIN_POSES =>
+        {
+            Err(invalid(
+                "poses",
+                format!("at least {QUICK_CHECK_MIN_POSES} poses"),
+            ))
+        }
         _ if request.poses == 0 => Err(invalid("poses", "at least 1 pose")),
         _ => Ok(()),
     }
