@@ -61,14 +61,32 @@ pub struct PlanSummary {
 pub struct Predicted {
     pub validation_error_mean_mm: Option<f64>,
     pub condition_number: Option<f64>,
+    /// An extension's session alone (`extend_session`).
+    pub existing: Option<Existing>,
+}
+
+/// What the extended session is predicted to achieve alone.
+#[derive(Debug, Default, Deserialize)]
+pub struct Existing {
+    pub poses: Option<usize>,
+    pub validation_error_mean_mm: Option<f64>,
+    pub gain_mm: Option<f64>,
 }
 
 /// One line about the plan for the terminal.
 pub fn summary(plan: &PlanSummary) -> String {
     let text = |v: &Option<String>| v.clone().unwrap_or_else(|| "?".into());
     let p = &plan.predicted;
+    let extension = p.existing.as_ref().map_or(String::new(), |e| {
+        format!(
+            "; the session's {} poses alone {:.4} mm, gain {:.4} mm",
+            e.poses.unwrap_or(0),
+            e.validation_error_mean_mm.unwrap_or(f64::NAN),
+            e.gain_mm.unwrap_or(f64::NAN)
+        )
+    });
     format!(
-        "plan {} for {}: {} poses ({}), predicted validation error {:.4} mm, condition number {:.1}, path {:.0} deg, model {}",
+        "plan {} for {}: {} poses ({}), predicted validation error {:.4} mm, condition number {:.1}, path {:.0} deg, model {}{extension}",
         text(&plan.id),
         text(&plan.serial),
         plan.poses.len(),

@@ -49,9 +49,12 @@ pub enum PlanPurposeDoc {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CampaignPlanBody {
-    /// The board, as in a session.
-    pub target: TargetDoc,
-    /// The camera, as in a session (or give `camera_calibration_id`).
+    /// The board, as in a session (with `extend_session`: default the
+    /// session's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub target: Option<TargetDoc>,
+    /// The camera, as in a session (or give `camera_calibration_id`; with
+    /// `extend_session`: default the session's).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub camera: Option<CameraDoc>,
     /// A parameter set `"{serial}/{version}"` (or `"/latest"`) whose camera
@@ -88,14 +91,26 @@ pub struct CampaignPlanBody {
     pub sigma_px: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub purpose: Option<PlanPurposeDoc>,
+    /// A camera session of this robot whose campaign the plan extends:
+    /// its `cal` poses' joints seed the selection, only the poses to add
+    /// are returned (`poses` of them), and `predicted` says what the
+    /// session's campaign achieves alone and with them. The purpose is then
+    /// a calibration unless stated.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub extend_session: Option<String>,
 }
 
 impl CampaignPlanBody {
     /// Field checks that need no robot (the rest are the planner's).
     pub fn check(&self) -> Result<(), Vec<FieldError>> {
         let mut c = Checker::default();
-        if let Err(errors) = crate::domain::Target::from_doc(&self.target) {
-            c.errors.extend(errors);
+        match &self.target {
+            Some(target) => {
+                if let Err(errors) = crate::domain::Target::from_doc(target) {
+                    c.errors.extend(errors);
+                }
+            }
+            None => c.fail("target", "required (or extend a session that has one)"),
         }
         if self.camera.is_none() && self.camera_calibration_id.is_none() {
             c.fail("camera", "give camera or camera_calibration_id");
@@ -181,6 +196,31 @@ pub struct PredictedDoc {
     /// `"default"` (0.1 px). Absent only in plans stored before it existed.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sigma_px_source: Option<String>,
+    /// An extension's (`extend_session`) existing campaign alone: what
+    /// it is predicted to achieve without the planned poses.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub existing: Option<ExistingPredictedDoc>,
+}
+
+/// What the session a plan extends is predicted to achieve alone; the
+/// plan's `validation_error_mean_mm` is the campaign with the planned
+/// poses added.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+pub struct ExistingPredictedDoc {
+    /// The session's `cal` poses with joints that seeded the plan.
+    pub poses: usize,
+    /// Mean 3-D camera position error (mm) at the same validation poses;
+    /// absent when the session's poses do not determine every parameter.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub validation_error_mean_mm: Option<f64>,
+    /// The predicted gain of shooting the planned poses: this error minus
+    /// the extended campaign's (mm); absent with the error.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gain_mm: Option<f64>,
+    /// The least determined parameters when the session's poses leave
+    /// some undetermined (the planned poses are chosen to determine them).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub undetermined: Vec<String>,
 }
 
 /// How many candidate poses survived one filter.
@@ -208,5 +248,9 @@ pub struct CampaignPlanOut {
     /// `"nominal"` or the parameter set `"{serial}/{version}"` whose
     /// kinematics the plan used.
     pub model: String,
+    /// The session the plan extends (the request's `extend_session`): the
+    /// poses are the ones to add to it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub extend_session: Option<String>,
     pub created_at: String,
 }

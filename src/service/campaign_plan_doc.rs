@@ -5,13 +5,15 @@
 use std::collections::BTreeMap;
 
 use robocal_calib::plan::planner::PlannedSet;
-use robocal_calib::plan::{CampaignPlan, PlanError, PlanPurpose};
+use robocal_calib::plan::extension::EXISTING_FIELD;
+use robocal_calib::plan::{CampaignPlan, ExistingCampaign, PlanError, PlanPurpose};
 
+use super::campaign_plan_extension::FIELD as EXTEND_FIELD;
 use super::campaign_plan_noise::DotNoise;
 use super::error::ServiceError;
 use crate::domain::now_rfc3339;
 use crate::schema::campaign_plan::{
-    CampaignPlanOut, FilterCountDoc, PlanPurposeDoc, PlannedPoseDoc, PredictedDoc,
+    CampaignPlanOut, ExistingPredictedDoc, FilterCountDoc, PlanPurposeDoc, PlannedPoseDoc, PredictedDoc,
 };
 use crate::schema::session::PoseSet;
 use crate::schema::FieldError;
@@ -27,6 +29,10 @@ fn round_deg(rad: f64) -> f64 {
 /// whose first field is the binding constraint, then every filter's survivors.
 pub fn plan_error(e: PlanError) -> ServiceError {
     match e {
+        // The existing poses are the extended session's.
+        PlanError::Invalid { field, message } if field == EXISTING_FIELD => {
+            ServiceError::invalid(EXTEND_FIELD, message)
+        }
         PlanError::Invalid { field, message } => ServiceError::invalid(field, message),
         PlanError::Infeasible {
             constraint,
@@ -99,6 +105,7 @@ pub fn plan_doc(
             condition_number: plan.prediction.condition_number,
             sigma_px: noise.sigma_px,
             sigma_px_source: Some(noise.source.clone()),
+            existing: plan.existing.as_ref().map(|e| existing_doc(plan, e)),
         },
         purpose: match plan.purpose {
             PlanPurpose::Calibration => PlanPurposeDoc::Calibration,
@@ -119,6 +126,21 @@ pub fn plan_doc(
             })
             .collect(),
         model: model_name,
+        extend_session: None,
         created_at: now_rfc3339(),
+    }
+}
+
+/// An extension's existing campaign alone, with the planned poses' gain.
+fn existing_doc(plan: &CampaignPlan, existing: &ExistingCampaign) -> ExistingPredictedDoc {
+    let before = existing.validation_error_mean_mm();
+    ExistingPredictedDoc {
+        poses: plan.existing_poses,
+        validation_error_mean_mm: before,
+        gain_mm: before.map(|b| b - plan.prediction.validation_error_mean_mm),
+        undetermined: match existing {
+            ExistingCampaign::Predicted(_) => Vec::new(),
+            ExistingCampaign::Undetermined { parameters } => parameters.clone(),
+        },
     }
 }

@@ -124,7 +124,11 @@ pub fn plan_request(
     hold_intrinsics: bool,
     sigma_px: f64,
 ) -> ServiceResult<PlanRequest> {
-    let target = Target::from_doc(&body.target)?;
+    let target = Target::from_doc(
+        body.target
+            .as_ref()
+            .ok_or_else(|| ServiceError::invalid("target", "required"))?,
+    )?;
     let dof = model.robot.dof();
     let mut c = Checker::default();
     if let Some(limits) = &body.joint_limits_deg {
@@ -177,6 +181,8 @@ pub fn plan_request(
     match body.purpose {
         Some(PlanPurposeDoc::Calibration) => r.purpose = PlanPurpose::Calibration,
         Some(PlanPurposeDoc::QuickCheck) => r.purpose = PlanPurpose::QuickCheck,
+        // An extension adds to a calibration campaign whatever its size.
+        None if body.extend_session.is_some() => r.purpose = PlanPurpose::Calibration,
         None => {}
     }
     Ok(r)

@@ -3,12 +3,14 @@
 //! (`campaign_plan_inputs`, with the dot noise of `campaign_plan_noise`),
 //! the plan is computed on a blocking thread and stored
 //! (`campaign_plan_doc`); the stored plan is served as JSON or as a cell
-//! program.
+//! program. A plan may extend a session's campaign
+//! (`campaign_plan_extension`, issue 30).
 
 use robocal_calib::kinematics::{CalibratedModel, Instrument, ParamLayout};
 use robocal_calib::plan::plan_campaign;
 
 use super::campaign_plan_doc::{plan_doc, plan_error};
+use super::campaign_plan_extension::{existing_joints_rad, fill_from_session, session_to_extend};
 use super::campaign_plan_inputs::{camera_of, plan_request, planning_robot};
 use super::campaign_plan_noise::dot_noise;
 use super::error::{ServiceError, ServiceResult};
@@ -25,10 +27,21 @@ use crate::store::{CampaignPlanRecord, DynStore};
 pub async fn create_plan(
     store: &DynStore,
     serial: &str,
-    body: CampaignPlanBody,
+    mut body: CampaignPlanBody,
 ) -> ServiceResult<CampaignPlanOut> {
-    body.check()?;
     let (robot, model_name) = planning_robot(store, serial).await?;
+    let extended = match &body.extend_session {
+        Some(id) => Some(session_to_extend(store, serial, id).await?),
+        None => None,
+    };
+    if let Some(session) = &extended {
+        fill_from_session(&mut body, session);
+    }
+    body.check()?;
+    let existing = match &extended {
+        Some(session) => existing_joints_rad(store, session).await?,
+        None => Vec::new(),
+    };
     let mut c = Checker::default();
     let target_to_base = pose_of(&body.target_to_base_guess, "target_to_base_guess", &mut c);
     let flange_to_camera = pose_of(
@@ -47,7 +60,8 @@ pub async fn create_plan(
         world_to_base,
         flange_to_tool,
     };
-    let request = plan_request(&body, model, intrinsics, size, hold, noise.sigma_px)?;
+    let mut request = plan_request(&body, model, intrinsics, size, hold, noise.sigma_px)?;
+    request.existing_joints_rad = existing;
     let layout = ParamLayout::new(&request.model.robot, Instrument::Camera);
     let plan = tokio::task::spawn_blocking(move || plan_campaign(&request))
         .await
@@ -55,7 +69,8 @@ pub async fn create_plan(
         .map_err(plan_error)?;
     let is_angle = |name: &str| layout.index_of(name).is_some_and(|i| layout.is_angle(i));
     let id = uuid::Uuid::now_v7().to_string();
-    let out = plan_doc(id, serial, model_name, &plan, &noise, &is_angle);
+    let mut out = plan_doc(id, serial, model_name, &plan, &noise, &is_angle);
+    out.extend_session = body.extend_session.clone();
     let record = CampaignPlanRecord {
         id: out.id.clone(),
         serial: serial.to_string(),

@@ -7,6 +7,7 @@
 
 pub mod camera_reuse;
 pub mod campaign_plan_doc;
+pub mod campaign_plan_extension;
 pub mod campaign_plan_inputs;
 pub mod campaign_plan_noise;
 pub mod campaign_plans;

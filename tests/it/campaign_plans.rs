@@ -304,3 +304,113 @@ async fn plan_predicts_with_the_dot_noise_of_the_robots_earlier_job() {
     assert_eq!(stated["sigma_px_source"], "request");
     assert_eq!(stated["sigma_px"], 0.05);
 }
+
+/// A camera session of robot `serial` on the plan body's board and camera,
+/// with one pose per joints (deg) in `cal` and `val`; its id.
+async fn session_with_joints(
+    app: &TestApp,
+    serial: &str,
+    cal: &[Vec<f64>],
+    val: &[Vec<f64>],
+) -> String {
+    let b = body(CAL_POSES, 0);
+    let session = json!({"instrument": "camera", "target": b["target"], "camera": b["camera"]});
+    let id = app.new_session(serial, &session).await;
+    let poses = cal.iter().map(|q| (q, "cal")).chain(val.iter().map(|q| (q, "val")));
+    for (q, set) in poses {
+        let pose = json!({"joints_deg": q, "set": set,
+            "image_points": [{"row": 0, "col": 0, "x": 10.5, "y": 12.25}]});
+        let r = app
+            .post_json(&format!("/v1/sessions/{id}/poses"), &pose)
+            .await;
+        assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
+    }
+    id
+}
+
+/// `POST url` with `b`: 201, the plan.
+async fn created(app: &TestApp, url: &str, b: &Value) -> Value {
+    let r = app.post_json(url, b).await;
+    assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
+    r.json().await.unwrap()
+}
+
+fn joints_of(plan: &Value) -> Vec<Vec<f64>> {
+    plan["poses"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| serde_json::from_value(p["joints_deg"].clone()).unwrap())
+        .collect()
+}
+
+/// Issue 30, "tell the user what to shoot next": a plan extending a
+/// session returns only the poses to add (its board and camera taken from
+/// the session), with the session's campaign predicted alone and the gain;
+/// a session that is missing, another robot's, or without cal poses with
+/// joints is a 422 naming `extend_session`.
+#[tokio::test]
+async fn plan_extends_a_session_with_the_predicted_gain() {
+    const ADDED: usize = 6;
+    let app = spawn_app().await;
+    robot(&app, "PLAN-4").await;
+    robot(&app, "PLAN-5").await;
+    let url = "/v1/robots/PLAN-4/campaign-plans";
+    let first = created(&app, url, &body(CAL_POSES, VAL_POSES)).await;
+    let shot = joints_of(&first);
+    let session = session_with_joints(&app, "PLAN-4", &shot[..CAL_POSES], &shot[CAL_POSES..]).await;
+
+    let mut extend = body(ADDED, 0);
+    let fields = extend.as_object_mut().unwrap();
+    fields.remove("target");
+    fields.remove("camera");
+    fields.insert("extend_session".into(), json!(session));
+    let plan = created(&app, url, &extend).await;
+    assert_eq!(plan["extend_session"], session.as_str());
+    // Only the poses to add, all for calibration (6 poses would be a quick
+    // check on their own), none of them already shot.
+    let added = joints_of(&plan);
+    assert_eq!(added.len(), ADDED);
+    assert!(plan["poses"].as_array().unwrap().iter().all(|p| p["set"] == "cal"));
+    assert_eq!(plan["purpose"], "calibration");
+    for q in &added {
+        assert!(shot.iter().all(|s| s
+            .iter()
+            .zip(q)
+            .any(|(a, b)| (a - b).abs() > ROUND_TRIP_DEG)));
+    }
+    let predicted = &plan["predicted"];
+    let existing = &predicted["existing"];
+    assert_eq!(existing["poses"], CAL_POSES, "{predicted}");
+    let before = existing["validation_error_mean_mm"].as_f64().unwrap();
+    let after = predicted["validation_error_mean_mm"].as_f64().unwrap();
+    let gain = existing["gain_mm"].as_f64().unwrap();
+    assert!(after < before, "{before} -> {after}");
+    assert!((gain - (before - after)).abs() < 1e-12, "{gain}");
+    // The same campaign's plan on its own predicts the existing figure's
+    // order (other validation draws: only roughly).
+    let alone = first["predicted"]["validation_error_mean_mm"].as_f64().unwrap();
+    assert!(before < 2.0 * alone && alone < 2.0 * before, "{before} vs {alone}");
+    // A plain plan says nothing of an existing campaign.
+    assert!(first["predicted"].get("existing").is_none());
+    assert!(first.get("extend_session").is_none());
+
+    let other = session_with_joints(&app, "PLAN-5", &shot[..CAL_POSES], &[]).await;
+    let only_val = session_with_joints(&app, "PLAN-4", &[], &shot[CAL_POSES..]).await;
+    let tracker = app
+        .new_session("PLAN-4", &json!({"instrument": "tracker"}))
+        .await;
+    for id in [
+        "00000000-0000-0000-0000-000000000000".to_string(),
+        other,
+        only_val,
+        tracker,
+    ] {
+        let mut b = extend.clone();
+        b["extend_session"] = json!(id);
+        let r = app.post_json(url, &b).await;
+        assert_eq!(r.status(), 422, "{id}");
+        let p: Value = r.json().await.unwrap();
+        assert_eq!(p["errors"][0]["field"], "extend_session", "{p}");
+    }
+}

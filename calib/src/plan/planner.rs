@@ -47,6 +47,9 @@ pub struct CampaignPlan {
     /// An extension's existing campaign alone (`None` for a plan from
     /// scratch): the gain of the planned poses is the difference.
     pub existing: Option<ExistingCampaign>,
+    /// Existing poses whose information seeded the plan (those that see
+    /// the board by the planning model).
+    pub existing_poses: usize,
     /// Survivors of every candidate filter.
     pub filters: Vec<FilterCount>,
     /// Where the path starts (the request's start, or the anchor pose).
@@ -183,6 +186,7 @@ pub fn plan_campaign(request: &PlanRequest) -> Result<CampaignPlan, PlanError> {
         .chain(chosen.iter().map(|&k| &factors[k]))
         .collect();
     let prediction = predict(&model, &columns, &campaign_factors, &probe)?;
+    let existing_poses = existing.len();
     let existing = match existing.is_empty() {
         true => None,
         false => Some(predict_existing(&model, &columns, &existing, &probe)?),
@@ -206,6 +210,7 @@ pub fn plan_campaign(request: &PlanRequest) -> Result<CampaignPlan, PlanError> {
             .collect(),
         prediction,
         existing,
+        existing_poses,
         filters: set.filters,
         start_joints_rad: start,
         path_length_rad,
