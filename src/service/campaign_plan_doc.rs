@@ -4,8 +4,8 @@
 
 use std::collections::BTreeMap;
 
-use robocal_calib::plan::planner::PlannedSet;
 use robocal_calib::plan::extension::EXISTING_FIELD;
+use robocal_calib::plan::planner::PlannedSet;
 use robocal_calib::plan::{CampaignPlan, ExistingCampaign, PlanError, PlanPurpose};
 
 use super::campaign_plan_extension::FIELD as EXTEND_FIELD;
@@ -13,7 +13,8 @@ use super::campaign_plan_noise::DotNoise;
 use super::error::ServiceError;
 use crate::domain::now_rfc3339;
 use crate::schema::campaign_plan::{
-    CampaignPlanOut, ExistingPredictedDoc, FilterCountDoc, PlanPurposeDoc, PlannedPoseDoc, PredictedDoc,
+    CampaignPlanOut, ExistingPredictedDoc, FilterCountDoc, PlanPurposeDoc, PlannedPoseDoc,
+    PredictedDoc,
 };
 use crate::schema::session::PoseSet;
 use crate::schema::FieldError;

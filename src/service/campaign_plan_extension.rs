@@ -70,7 +70,13 @@ pub async fn existing_joints_rad(
             page.items
                 .iter()
                 .filter(|p| p.set == PoseSet::Cal && !p.joints_deg.is_empty())
-                .map(|p| p.joints_deg.as_deg().iter().map(|d| d.to_radians()).collect()),
+                .map(|p| {
+                    p.joints_deg
+                        .as_deg()
+                        .iter()
+                        .map(|d| d.to_radians())
+                        .collect()
+                }),
         );
         match page.next_cursor {
             Some(c) => cursor = Some(c),

@@ -316,7 +316,10 @@ async fn session_with_joints(
     let b = body(CAL_POSES, 0);
     let session = json!({"instrument": "camera", "target": b["target"], "camera": b["camera"]});
     let id = app.new_session(serial, &session).await;
-    let poses = cal.iter().map(|q| (q, "cal")).chain(val.iter().map(|q| (q, "val")));
+    let poses = cal
+        .iter()
+        .map(|q| (q, "cal"))
+        .chain(val.iter().map(|q| (q, "val")));
     for (q, set) in poses {
         let pose = json!({"joints_deg": q, "set": set,
             "image_points": [{"row": 0, "col": 0, "x": 10.5, "y": 12.25}]});
@@ -371,13 +374,16 @@ async fn plan_extends_a_session_with_the_predicted_gain() {
     // check on their own), none of them already shot.
     let added = joints_of(&plan);
     assert_eq!(added.len(), ADDED);
-    assert!(plan["poses"].as_array().unwrap().iter().all(|p| p["set"] == "cal"));
+    assert!(plan["poses"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|p| p["set"] == "cal"));
     assert_eq!(plan["purpose"], "calibration");
     for q in &added {
-        assert!(shot.iter().all(|s| s
+        assert!(shot
             .iter()
-            .zip(q)
-            .any(|(a, b)| (a - b).abs() > ROUND_TRIP_DEG)));
+            .all(|s| s.iter().zip(q).any(|(a, b)| (a - b).abs() > ROUND_TRIP_DEG)));
     }
     let predicted = &plan["predicted"];
     let existing = &predicted["existing"];
@@ -389,8 +395,13 @@ async fn plan_extends_a_session_with_the_predicted_gain() {
     assert!((gain - (before - after)).abs() < 1e-12, "{gain}");
     // The same campaign's plan on its own predicts the existing figure's
     // order (other validation draws: only roughly).
-    let alone = first["predicted"]["validation_error_mean_mm"].as_f64().unwrap();
-    assert!(before < 2.0 * alone && alone < 2.0 * before, "{before} vs {alone}");
+    let alone = first["predicted"]["validation_error_mean_mm"]
+        .as_f64()
+        .unwrap();
+    assert!(
+        before < 2.0 * alone && alone < 2.0 * before,
+        "{before} vs {alone}"
+    );
     // A plain plan says nothing of an existing campaign.
     assert!(first["predicted"].get("existing").is_none());
     assert!(first.get("extend_session").is_none());

@@ -187,9 +187,10 @@ pub fn plan_campaign(request: &PlanRequest) -> Result<CampaignPlan, PlanError> {
         .collect();
     let prediction = predict(&model, &columns, &campaign_factors, &probe)?;
     let existing_poses = existing.len();
-    let existing = match existing.is_empty() {
-        true => None,
-        false => Some(predict_existing(&model, &columns, &existing, &probe)?),
+    let existing = if existing.is_empty() {
+        None
+    } else {
+        Some(predict_existing(&model, &columns, &existing, &probe)?)
     };
     let start = anchor_joints(request, &model)?;
     let planned: Vec<(usize, PlannedSet)> = chosen
