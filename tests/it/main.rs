@@ -29,6 +29,7 @@ pub(crate) mod idempotency;
 pub(crate) mod job_events;
 pub(crate) mod job_list;
 pub(crate) mod jobs;
+pub(crate) mod model_selection;
 pub(crate) mod multi_session;
 pub(crate) mod ndjson;
 pub(crate) mod openapi;
