@@ -1,7 +1,7 @@
 #!/bin/bash
 # Detection time of robocal and OpenCV's CharucoDetector on the same ChArUco
 # PNGs, run after each other N times, so each ratio is taken at one machine
-# load (issue 14's time per image; BENCHMARKS.md "Session 10 — targets").
+# load (issue 14's time per image; BENCHMARKS.md "Detection").
 # Usage: bench/charuco_interleaved.sh DIR [KIND] [N]
 # DIR: the output of `charuco_bench --views 20 --out DIR`.
 set -euo pipefail

@@ -1,7 +1,7 @@
 #!/bin/bash
 # Detection time of robocal and OpenCV on the same chessboard PNGs, run
 # after each other N times, so each ratio is taken at one machine load
-# (issue 14's time per image; BENCHMARKS.md "Session 8 — targets").
+# (issue 14's time per image; BENCHMARKS.md "Detection").
 # Usage: bench/chessboard_interleaved.sh DIR [KIND] [N]
 # DIR: the output of `chessboard_bench --views 20 --out DIR`.
 set -euo pipefail
