@@ -7,7 +7,7 @@
 set -euo pipefail
 DIR=$1; K=${2:-fronto}; N=${3:-5}
 B=${CARGO_TARGET_DIR:-target}/release/examples/charuco_bench
-PY=${PYTHON:-/tmp/bench-venv/bin/python}
+PY=${PYTHON:-python3}
 HERE=$(dirname "$0")
 echo "$K, $(uptime)"
 for i in $(seq 1 "$N"); do

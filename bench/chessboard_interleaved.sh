@@ -7,7 +7,7 @@
 set -euo pipefail
 DIR=$1; K=${2:-uneven}; N=${3:-5}
 B=${CARGO_TARGET_DIR:-target}/release/examples/chessboard_bench
-PY=${PYTHON:-/tmp/bench-venv/bin/python}
+PY=${PYTHON:-python3}
 HERE=$(dirname "$0")
 for i in $(seq 1 "$N"); do
   r=$("$B" --views 20 --from "$DIR" --kind "$K" | grep boards | sed -E 's/.* ([0-9.]+) ms.*/\1/')

@@ -181,6 +181,6 @@ fn main() {
     }
     std::fs::write(format!("{out}/truth.csv"), csv).expect("write truth");
     println!(
-        "images + truth.csv in {out}; OpenCV: /tmp/bench-venv/bin/python bench/chessboard_opencv.py {out}"
+        "images + truth.csv in {out}; OpenCV: python3 bench/chessboard_opencv.py {out}"
     );
 }
