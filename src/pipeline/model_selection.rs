@@ -1,6 +1,6 @@
 //! Part of stage "identify" for camera jobs: how much of the kinematics
 //! the campaign can carry, chosen by how each model predicts arm
-//! configurations it was not fitted to (docs/method.md §6 "Model selection
+//! configurations it was not fitted to (docs/method.md §6.8 "Model selection
 //! by held-out groups", calib's `model_ladder`).
 //!
 //! The poses are grouped by configuration. When the validation poses repeat

@@ -1,4 +1,4 @@
-//! The REST contract's request documents (`../shared/docs/api.md`) as typed
+//! The REST contract's request documents (`docs/api.md`) as typed
 //! values, and their validation. Shared by the HTTP layer (parsing) and the
 //! job workers (reading stored documents back); no I/O here.
 
