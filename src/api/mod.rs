@@ -29,6 +29,7 @@ pub mod auth;
 pub mod body_idle;
 pub mod campaign_plans;
 pub mod contract;
+pub mod controller_query;
 pub mod error;
 pub mod export;
 pub mod extract;

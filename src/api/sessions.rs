@@ -55,6 +55,9 @@ pub struct SessionSpecOut {
     pub volume: Option<String>,
     /// Payload at the tool during the campaign (kg).
     pub payload_kg: Option<f64>,
+    /// The controller the session was measured on (issue 34): the one it
+    /// was created with, else the robot's then.
+    pub controller: Option<crate::domain::ControllerIdentity>,
 }
 
 #[derive(Debug, Serialize, ToSchema)]
@@ -94,6 +97,9 @@ async fn create_session(
     ApiJson(mut body): ApiJson<SessionBody>,
 ) -> ApiResult<(StatusCode, Json<SessionOut>)> {
     body.check()?;
+    if body.controller.is_none() {
+        body.controller = crate::service::intake::robot_controller(&state.store, &serial).await?;
+    }
     if let Some(id) = &body.camera_calibration_id {
         body.camera_calibration_id =
             Some(camera_reuse::resolve_for_session(&state.store, &body, id).await?);

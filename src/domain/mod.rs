@@ -5,6 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 mod check;
+mod controller;
 
 mod events;
 mod flange_pose;
@@ -22,7 +23,11 @@ mod stage_reading;
 mod target;
 mod target_symmetry;
 
-pub use check::{CheckDoc, CheckSuspect, CheckVerdict};
+pub use check::{controller_change, CheckDoc, CheckSuspect, CheckVerdict, ControllerChangeSeen};
+pub use controller::{
+    check_expected as check_controller, expectation as controller_expectation, ControllerChange,
+    ControllerIdentity, ControllerMismatch,
+};
 
 pub use events::DomainEvent;
 pub use flange_pose::{check_robot_pose, FlangePose, PoseKind, RobotPose};

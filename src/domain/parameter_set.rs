@@ -12,7 +12,7 @@ use robocal_calib::kinematics::term_model::TermModel;
 use robocal_calib::kinematics::{CalibratedModel, ParamLayout};
 use serde::{Deserialize, Serialize};
 
-use super::{CovarianceDoc, TermsDoc};
+use super::{ControllerIdentity, CovarianceDoc, TermsDoc};
 use crate::report::ParameterReport;
 use crate::schema::job::Measurement;
 use crate::schema::robot::{doc_to_model, KinematicsDoc};
@@ -61,6 +61,9 @@ pub struct ParameterSet {
     /// 18): each session's board in the base frame, the first session's
     /// equal to `world_to_base`. Empty for a one-session set.
     pub session_target_to_base: Vec<SessionBoard>,
+    /// The controller the set's session was measured on (issue 34),
+    /// inherited from the session; absent when none was recorded.
+    pub controller: Option<ControllerIdentity>,
 }
 
 /// One session's board placement in a multi-session set.
@@ -221,6 +224,8 @@ struct StoredSet {
     terms: Option<TermsDoc>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     session_target_to_base: Vec<SessionBoard>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    controller: Option<ControllerIdentity>,
 }
 
 impl From<ParameterSet> for StoredSet {
@@ -245,6 +250,7 @@ impl From<ParameterSet> for StoredSet {
             joint_noise_deg: set.joint_noise_deg,
             terms: set.terms,
             session_target_to_base: set.session_target_to_base,
+            controller: set.controller,
         }
     }
 }
@@ -274,6 +280,7 @@ impl TryFrom<StoredSet> for ParameterSet {
             joint_noise_deg: s.joint_noise_deg,
             terms: s.terms,
             session_target_to_base: s.session_target_to_base,
+            controller: s.controller,
         })
     }
 }

@@ -151,6 +151,7 @@ async fn refuse(mut stream: TcpStream, max_connections: usize) {
              (server option --max-connections); retry later"
         ),
         errors: vec![],
+        controller: None,
     };
     let body = serde_json::to_vec(&problem).unwrap_or_default();
     let head = format!(

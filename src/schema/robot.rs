@@ -7,6 +7,7 @@ use robocal_calib::kinematics::model::choose_conventions;
 use robocal_calib::kinematics::{presets, Convention as CoreConvention, Joint, RobotModel};
 
 use super::{Checker, FieldError, MAX_ANGLE_DEG, MAX_LENGTH_MM};
+use crate::domain::ControllerIdentity;
 
 /// Most joints a robot may have.
 pub const MAX_JOINTS: usize = 12;
@@ -94,6 +95,11 @@ pub struct RobotBody {
     pub kinematics: Option<KinematicsDoc>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub preset: Option<Preset>,
+    /// The controller the robot runs on (issue 34). Sessions record it,
+    /// sets inherit it; a change is recorded in the robot's history. A
+    /// replacement without it removes it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub controller: Option<ControllerIdentity>,
 }
 
 /// A serial as the domain type accepts it ([`crate::domain::Serial`]).
@@ -125,6 +131,9 @@ impl RobotBody {
         };
         if let Some(doc) = &doc {
             doc.check(&mut c);
+        }
+        if let Some(controller) = &self.controller {
+            controller.check("controller", &mut c);
         }
         c.finish()?;
         Ok(doc

@@ -173,6 +173,11 @@ pub struct SessionBody {
     /// weight of each measured orientation; default 0.01° (a T-Mac's).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tracker_orientation_sigma_deg: Option<f64>,
+    /// The controller the campaign is measured on (issue 34); absent: the
+    /// robot's `controller` when the session is created. The session's
+    /// sets inherit it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub controller: Option<crate::domain::ControllerIdentity>,
 }
 
 /// Largest payload a session may state (kg): beyond any industrial arm's.
@@ -185,6 +190,9 @@ pub const MAX_TRACKER_SIGMA_DEG: f64 = 10.0;
 impl SessionBody {
     pub fn check(&self) -> Result<(), Vec<FieldError>> {
         let mut c = Checker::default();
+        if let Some(controller) = &self.controller {
+            controller.check("controller", &mut c);
+        }
         if self.instrument.has_camera() {
             match &self.target {
                 None => c.fail("target", "required for a camera or stage session"),

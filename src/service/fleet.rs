@@ -8,7 +8,7 @@ use serde::Deserialize;
 
 use super::error::{ServiceError, ServiceResult};
 use super::results;
-use crate::domain::{JobState, Serial};
+use crate::domain::{ControllerIdentity, JobState, Serial};
 use crate::report::{AccuracySummary, Report};
 use crate::store::{DynStore, JobFilter, JobRecord, ParameterSetRecord};
 
@@ -40,7 +40,7 @@ pub struct Accuracy {
 }
 
 /// The latest re-check of a robot and what it found (`pass`, `drift`,
-/// `base_moved`).
+/// `base_moved`, `controller_changed`).
 #[derive(Debug, Clone)]
 pub struct CheckSummary {
     pub verdict: String,
@@ -65,6 +65,8 @@ pub struct JobBrief {
 pub struct RobotSummary {
     pub serial: String,
     pub model: String,
+    /// The robot's controller identity (issue 34); `None`: none given.
+    pub controller: Option<ControllerIdentity>,
     /// What `latest` serves; `None` before the first calibration.
     pub current: Option<SetSummary>,
     /// `None`: never checked.
@@ -174,6 +176,7 @@ pub async fn fleet(store: &DynStore) -> ServiceResult<Vec<RobotSummary>> {
                 .collect(),
             serial: robot.serial,
             model: robot.model,
+            controller: robot.controller,
         });
     }
     Ok(rows)
@@ -214,6 +217,7 @@ pub async fn robot(store: &DynStore, serial: &str) -> ServiceResult<RobotDetail>
             jobs_in_progress: active_jobs(store, Some(&serial)).await?,
             serial: robot.serial,
             model: robot.model,
+            controller: robot.controller,
         },
         versions,
         recent_jobs,

@@ -50,6 +50,19 @@ pub async fn find_session(store: &DynStore, id: &str) -> ServiceResult<SessionRe
         .ok_or_else(|| ServiceError::not_found("session", id))
 }
 
+/// The controller identity robot `serial` records (issue 34): what a new
+/// session records unless it names its own. 404 when there is no robot.
+pub async fn robot_controller(
+    store: &DynStore,
+    serial: &str,
+) -> ServiceResult<Option<crate::domain::ControllerIdentity>> {
+    let robot = store
+        .get_robot(serial)
+        .await?
+        .ok_or_else(|| ServiceError::not_found("robot", serial))?;
+    Ok(robot.controller)
+}
+
 /// Number of joints of the robot `serial` (0 for a joint table that is not a list).
 pub async fn robot_joint_count(store: &DynStore, serial: &str) -> ServiceResult<usize> {
     let robot = store

@@ -62,6 +62,17 @@ pub trait RobotStore: Send + Sync {
     /// images no other pose names. A robot created later under the same
     /// serial starts empty. `false` if absent.
     async fn delete_robot(&self, serial: &str) -> StoreResult<bool>;
+    /// Sets the robot's controller identity (`None`: removes it) and, when
+    /// that changes it, records the change in its history, in one
+    /// transaction; `true` when it changed. `NotFound("robot")` when absent.
+    async fn set_robot_controller(
+        &self,
+        serial: &str,
+        controller: Option<&ControllerIdentity>,
+        at: &str,
+    ) -> StoreResult<bool>;
+    /// The robot's controller changes, oldest first.
+    async fn list_controller_changes(&self, serial: &str) -> StoreResult<Vec<ControllerChange>>;
 }
 
 #[async_trait]

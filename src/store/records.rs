@@ -9,11 +9,11 @@
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
-use crate::domain::StageReading;
 use crate::domain::{
     CheckDoc, ImageDetection, ImageMeta, JobState, JointsDeg, MeasuredPose, PoseSet, Release,
     ReleaseStatus,
 };
+use crate::domain::{ControllerIdentity, StageReading};
 use crate::schema::flange_pose::FlangePoseDoc;
 use crate::schema::pose_body::ImagePointDoc;
 use crate::schema::session::SessionBody;
@@ -37,6 +37,9 @@ pub struct RobotRecord {
     pub model: String,
     pub preset: Option<String>,
     pub kinematics: Value,
+    /// The controller identity (issue 34); written by
+    /// `RobotStore::set_robot_controller`, never by `put_robot`.
+    pub controller: Option<ControllerIdentity>,
     pub created_at: String,
     pub updated_at: String,
 }

@@ -13,6 +13,8 @@ pub(crate) mod charuco_campaign;
 pub(crate) mod circle_boards;
 pub(crate) mod cli;
 pub(crate) mod compensate;
+pub(crate) mod controller_exports;
+pub(crate) mod controller_identity;
 pub(crate) mod docs;
 pub(crate) mod e2e;
 pub(crate) mod e2e_points;

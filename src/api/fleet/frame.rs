@@ -29,7 +29,7 @@ a { color: var(--accent); }
 .card dt { color: var(--muted); }
 .card dd { margin: 0; overflow-wrap: anywhere; }
 .verdict { font-weight: 600; }
-.verdict.pass { color: var(--ok); } .verdict.drift { color: var(--bad); } .verdict.base_moved { color: var(--warn); }
+.verdict.pass { color: var(--ok); } .verdict.drift { color: var(--bad); } .verdict.base_moved { color: var(--warn); } .verdict.controller_changed { color: var(--bad); }
 .state-running { color: var(--accent); font-weight: 600; } .state-failed { color: var(--bad); }
 .state-succeeded { color: var(--ok); }
 .scroll { overflow-x: auto; background: #fff; border: 1px solid var(--rule); border-radius: 8px; }

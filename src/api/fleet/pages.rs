@@ -80,6 +80,14 @@ fn state_list(r: &RobotSummary, now_ms: i64) -> String {
             .join("<br>")
     };
     let _ = writeln!(dl, "<dt>Model</dt><dd>{}</dd>", escape_xml(&r.model));
+    let controller = match &r.controller {
+        Some(c) => escape_xml(&c.describe()),
+        None => "<span class=\"muted\">not given</span>".into(),
+    };
+    let _ = writeln!(
+        dl,
+        "<dt>Controller</dt><dd class=\"controller\">{controller}</dd>"
+    );
     let _ = writeln!(dl, "<dt>Parameter set</dt><dd class=\"set\">{set}</dd>");
     let _ = writeln!(
         dl,
@@ -230,6 +238,7 @@ mod tests {
         RobotSummary {
             serial: serial.into(),
             model: "UR<5>".into(),
+            controller: None,
             current: Some(SetSummary {
                 version: 3,
                 created_at: "2026-11-20T10:00:00.000Z".into(),

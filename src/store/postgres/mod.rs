@@ -93,6 +93,11 @@ const MIGRATIONS: &[Embedded] = &[
         "stage reading",
         include_str!("../../../migrations/postgres/0012_stage_reading.sql"),
     ),
+    (
+        30,
+        "controller identity",
+        include_str!("../../../migrations/postgres/0030_controller_identity.sql"),
+    ),
 ];
 
 /// Connections per replica. Each worker holds at most one while it claims or

@@ -79,6 +79,11 @@ const MIGRATIONS: &[Embedded] = &[
         "stage reading",
         include_str!("../../../migrations/sqlite/0012_stage_reading.sql"),
     ),
+    (
+        30,
+        "controller identity",
+        include_str!("../../../migrations/sqlite/0030_controller_identity.sql"),
+    ),
 ];
 
 /// How long a statement waits for a competing writer before giving up.
