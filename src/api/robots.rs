@@ -3,6 +3,7 @@
 use axum::extract::State;
 use axum::http::StatusCode;
 use axum::Json;
+use robocal_calib::kinematics::prior::KinematicPrior;
 use serde::Serialize;
 use utoipa::ToSchema;
 use utoipa_axum::router::OpenApiRouter;
@@ -12,7 +13,7 @@ use super::error::{ApiError, ApiResult, Problem};
 use super::extract::{ApiJson, Paging, SerialPath};
 use super::AppState;
 use crate::domain::{now_rfc3339, ControllerIdentity};
-use crate::schema::robot::{KinematicsDoc, Preset, RobotBody};
+use crate::schema::robot::{KinematicsDoc, Preset, PriorDoc, RobotBody};
 use crate::store::RobotRecord;
 
 pub fn router() -> OpenApiRouter<AppState> {
@@ -32,6 +33,10 @@ pub struct RobotOut {
     /// The controller identity; absent when none was given.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub controller: Option<ControllerIdentity>,
+    /// The prior on the kinematic deviations; absent: manufacturing
+    /// tolerances (docs/method.md §6.7).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub prior: Option<PriorDoc>,
     pub created_at: String,
     pub updated_at: String,
 }
@@ -54,6 +59,7 @@ impl TryFrom<RobotRecord> for RobotOut {
             serial: r.serial,
             model: r.model,
             controller: r.controller,
+            prior: r.prior.map(PriorDoc::from),
             created_at: r.created_at,
             updated_at: r.updated_at,
         })
@@ -82,6 +88,7 @@ async fn put_robot(
         preset: body.preset.map(|p| p.as_str().to_string()),
         kinematics: serde_json::to_value(&kinematics).map_err(ApiError::internal)?,
         controller: None,
+        prior: body.prior.map(KinematicPrior::from),
         created_at: now.clone(),
         updated_at: now.clone(),
     };

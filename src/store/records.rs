@@ -6,6 +6,7 @@
 //! parameter set and its report, a job's per-pose detection): the code that
 //! reads them types them once, where it reads them.
 
+use robocal_calib::kinematics::prior::KinematicPrior;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
@@ -40,6 +41,9 @@ pub struct RobotRecord {
     /// The controller identity (issue 34); written by
     /// `RobotStore::set_robot_controller`, never by `put_robot`.
     pub controller: Option<ControllerIdentity>,
+    /// The prior on the kinematic deviations (docs/method.md §6.7);
+    /// `None`: manufacturing tolerances.
+    pub prior: Option<KinematicPrior>,
     pub created_at: String,
     pub updated_at: String,
 }

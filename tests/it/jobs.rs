@@ -208,6 +208,7 @@ async fn queue_reclaims_expired_leases_until_max_attempts() {
         preset: None,
         kinematics: json!({"joints": []}),
         controller: None,
+        prior: None,
         created_at: "t".into(),
         updated_at: "t".into(),
     };

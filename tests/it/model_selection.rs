@@ -137,7 +137,10 @@ async fn validation_that_repeats_configurations_is_replaced_by_held_out_groups()
     assert_eq!(report["before"]["n"], 24);
     let after = report["after"]["mean_mm"].as_f64().unwrap();
     let gate = &report["gate"];
-    assert!((gate["mean_mm"].as_f64().unwrap() - after).abs() < 1e-9, "{gate}");
+    assert!(
+        (gate["mean_mm"].as_f64().unwrap() - after).abs() < 1e-9,
+        "{gate}"
+    );
     let kept = m["rungs"]
         .as_array()
         .unwrap()

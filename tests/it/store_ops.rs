@@ -26,6 +26,7 @@ fn robot(serial: &str) -> RobotRecord {
         preset: None,
         kinematics: json!({"joints": []}),
         controller: None,
+        prior: None,
         created_at: now_rfc3339(),
         updated_at: now_rfc3339(),
     }

@@ -401,6 +401,7 @@ async fn notify_wakes_other_replicas_without_polling() {
         preset: None,
         kinematics: json!({}),
         controller: None,
+        prior: None,
         created_at: "t".into(),
         updated_at: "t".into(),
     })

@@ -210,7 +210,11 @@ fn well_excited_campaigns_lose_nothing() {
         let joints: Vec<Vec<f64>> = c.cal.iter().map(|p| p.joints_rad.clone()).collect();
         c.groups = configuration_groups(&joints, &[]);
         let ladder = climb(&input(&c, &prior, &[]), &Rung::ALL).unwrap();
-        let fit = |rung| fit_rung(rung, &input(&c, &prior, &[]), &c.cal, noise()).unwrap().0;
+        let fit = |rung| {
+            fit_rung(rung, &input(&c, &prior, &[]), &c.cal, noise())
+                .unwrap()
+                .0
+        };
         let chosen = validation_mm(&c, &fit(ladder.chosen));
         let full = validation_mm(&c, &fit(Rung::Full));
         eprintln!(

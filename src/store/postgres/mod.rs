@@ -27,7 +27,7 @@ use tokio::sync::{watch, Notify};
 
 use super::backend::Backend;
 use super::migrations::{migrator, Embedded};
-use super::repo::UPSERT_ROBOT;
+use super::repo::{prior_text, UPSERT_ROBOT};
 use super::statement::{run_statements, Driver};
 use super::{StoreError, StoreResult};
 use crate::store::RobotRecord;
@@ -186,6 +186,7 @@ impl Backend for PgStore {
             .bind(r.kinematics.to_string())
             .bind(&r.created_at)
             .bind(&r.updated_at)
+            .bind(prior_text(r)?)
             .fetch_one(&self.pool)
             .await?;
         Ok(inserted)

@@ -8,18 +8,28 @@ use crate::store::statement::query;
 use crate::store::RobotRecord;
 use crate::store::{RobotStore, SessionStore, StoreError, StoreResult};
 
-const COLUMNS: &str = "serial, model, preset, kinematics, controller, created_at, updated_at";
+const COLUMNS: &str =
+    "serial, model, preset, kinematics, controller, prior, created_at, updated_at";
 
-/// Create-or-replace of a robot (`$1`..`$6` in column order; the
+/// Create-or-replace of a robot (`$1`..`$7` in the insert's order; the
 /// controller identity is left as it was: `set_robot_controller` writes it
 /// with its history); each backend's
 /// [`Backend::upsert_robot`] runs it and tells a creation from a replacement.
 pub const UPSERT_ROBOT: &str =
-    "INSERT INTO robots (serial, model, preset, kinematics, created_at, updated_at)
-     VALUES ($1, $2, $3, $4, $5, $6)
+    "INSERT INTO robots (serial, model, preset, kinematics, created_at, updated_at, prior)
+     VALUES ($1, $2, $3, $4, $5, $6, $7)
      ON CONFLICT (serial) DO UPDATE SET model = excluded.model,
        preset = excluded.preset, kinematics = excluded.kinematics,
-       updated_at = excluded.updated_at";
+       updated_at = excluded.updated_at, prior = excluded.prior";
+
+/// The robot's prior as its column stores it (JSON text, NULL for none).
+pub fn prior_text(r: &RobotRecord) -> StoreResult<Option<String>> {
+    r.prior
+        .as_ref()
+        .map(serde_json::to_string)
+        .transpose()
+        .map_err(|e| StoreError::Backend(format!("robot prior: {e}")))
+}
 
 #[async_trait]
 impl<B: Backend> RobotStore for B {

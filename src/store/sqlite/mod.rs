@@ -16,7 +16,7 @@ use sqlx::{Sqlite, Transaction};
 
 use super::backend::Backend;
 use super::migrations::{migrator, Embedded};
-use super::repo::UPSERT_ROBOT;
+use super::repo::{prior_text, UPSERT_ROBOT};
 use super::statement::query;
 use super::statement::{run_statements, Driver};
 use super::{StoreError, StoreResult};
@@ -183,6 +183,7 @@ impl Backend for SqliteStore {
             .bind(r.kinematics.to_string())
             .bind(&r.created_at)
             .bind(&r.updated_at)
+            .bind(prior_text(r)?)
             .execute(&mut tx)
             .await?;
         tx.commit().await?;
