@@ -98,6 +98,11 @@ const MIGRATIONS: &[Embedded] = &[
         "controller identity",
         include_str!("../../../migrations/postgres/0030_controller_identity.sql"),
     ),
+    (
+        40,
+        "robot prior",
+        include_str!("../../../migrations/postgres/0040_robot_prior.sql"),
+    ),
 ];
 
 /// Connections per replica. Each worker holds at most one while it claims or

@@ -84,6 +84,11 @@ const MIGRATIONS: &[Embedded] = &[
         "controller identity",
         include_str!("../../../migrations/sqlite/0030_controller_identity.sql"),
     ),
+    (
+        40,
+        "robot prior",
+        include_str!("../../../migrations/sqlite/0040_robot_prior.sql"),
+    ),
 ];
 
 /// How long a statement waits for a competing writer before giving up.
