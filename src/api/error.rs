@@ -24,7 +24,7 @@ pub struct ApiError {
     pub errors: Vec<FieldError>,
     pub retry_after_secs: Option<u64>,
     /// A controller mismatch's two identities (409, issue 34).
-    pub controller: Option<ControllerMismatch>,
+    pub controller: Option<Box<ControllerMismatch>>,
 }
 
 /// The problem document, as served.
@@ -213,7 +213,7 @@ impl From<ServiceError> for ApiError {
             ServiceError::ControllerMismatch { what, mismatch } => {
                 let message = mismatch.message(what);
                 ApiError {
-                    controller: Some(*mismatch),
+                    controller: Some(mismatch),
                     ..ApiError::conflict(format!("controller: {message}"))
                         .with_field("controller", message)
                 }
@@ -243,7 +243,7 @@ impl IntoResponse for ApiError {
             status: self.status.as_u16(),
             detail: self.detail,
             errors: self.errors,
-            controller: self.controller,
+            controller: self.controller.map(|m| *m),
         };
         let body = serde_json::to_vec(&problem).unwrap_or_default();
         let mut response = (self.status, body).into_response();

@@ -134,12 +134,12 @@ impl ControllerMismatch {
 pub fn check_expected(
     expected: Option<&ControllerIdentity>,
     recorded: Option<&ControllerIdentity>,
-) -> Result<(), ControllerMismatch> {
+) -> Result<(), Box<ControllerMismatch>> {
     match expected {
-        Some(e) if !e.matches(recorded) => Err(ControllerMismatch {
+        Some(e) if !e.matches(recorded) => Err(Box::new(ControllerMismatch {
             expected: e.clone(),
             recorded: recorded.cloned(),
-        }),
+        })),
         _ => Ok(()),
     }
 }

@@ -71,11 +71,8 @@ impl ServiceError {
 
 impl ServiceError {
     /// `check_controller`'s refusal of a call on `what` (`the parameter set`).
-    pub fn controller(what: &'static str) -> impl FnOnce(ControllerMismatch) -> ServiceError {
-        move |m| ServiceError::ControllerMismatch {
-            what,
-            mismatch: Box::new(m),
-        }
+    pub fn controller(what: &'static str) -> impl FnOnce(Box<ControllerMismatch>) -> ServiceError {
+        move |mismatch| ServiceError::ControllerMismatch { what, mismatch }
     }
 }
 

@@ -10,8 +10,8 @@ use std::time::Duration;
 
 use serde_json::{json, Value};
 
-use crate::controller_exports::{calibrate, merge, ur5_rows, ur5_session, ur5_session_body};
 use crate::support::{spawn_app_with, TestApp};
+use crate::ur5_tracker_set::{calibrate, merge, ur5_rows, ur5_session, ur5_session_body};
 
 const SERIAL: &str = "UR5-ID";
 /// Poses of the re-check session (the first of the UR5's random poses).

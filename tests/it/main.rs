@@ -63,5 +63,6 @@ pub(crate) mod timeouts;
 pub(crate) mod tls;
 pub(crate) mod tokens;
 pub(crate) mod uncertainty;
+pub(crate) mod ur5_tracker_set;
 pub(crate) mod webhook_slow;
 pub(crate) mod webhooks;
