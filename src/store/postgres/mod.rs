@@ -93,6 +93,11 @@ const MIGRATIONS: &[Embedded] = &[
         "stage reading",
         include_str!("../../../migrations/postgres/0012_stage_reading.sql"),
     ),
+    (
+        32,
+        "idempotency wrote",
+        include_str!("../../../migrations/postgres/0032_idempotency_wrote.sql"),
+    ),
 ];
 
 /// Connections per replica. Each worker holds at most one while it claims or
@@ -159,7 +164,7 @@ impl Backend for PgStore {
         &self.pool
     }
 
-    async fn begin_write(&self) -> StoreResult<Transaction<'static, Postgres>> {
+    async fn open_write(&self) -> StoreResult<Transaction<'static, Postgres>> {
         Ok(self.pool.begin().await?)
     }
 

@@ -79,6 +79,11 @@ const MIGRATIONS: &[Embedded] = &[
         "stage reading",
         include_str!("../../../migrations/sqlite/0012_stage_reading.sql"),
     ),
+    (
+        32,
+        "idempotency wrote",
+        include_str!("../../../migrations/sqlite/0032_idempotency_wrote.sql"),
+    ),
 ];
 
 /// How long a statement waits for a competing writer before giving up.
@@ -161,7 +166,7 @@ impl Backend for SqliteStore {
 
     /// `BEGIN IMMEDIATE`: takes the write lock up front, so two writers that
     /// read before they write never deadlock on a lock upgrade.
-    async fn begin_write(&self) -> StoreResult<Transaction<'static, Sqlite>> {
+    async fn open_write(&self) -> StoreResult<Transaction<'static, Sqlite>> {
         Ok(self.pool.begin_with("BEGIN IMMEDIATE").await?)
     }
 
