@@ -137,6 +137,11 @@ pub struct ServeConfig {
     #[arg(long, env = "ROBOCAL_WEBHOOK_ALLOW_NETWORKS", value_delimiter = ',')]
     pub webhook_allow_networks: Vec<crate::outbox::address_guard::Network>,
 
+    /// The service's public URL (`https://robocal.plant.example`): signed
+    /// report links are built on it instead of on the request's `Host`.
+    #[arg(long, env = "ROBOCAL_PUBLIC_BASE_URL")]
+    pub public_base_url: Option<String>,
+
     /// Log format.
     #[arg(long, env = "ROBOCAL_LOG_FORMAT", value_enum, default_value = "text")]
     pub log_format: LogFormat,
@@ -240,6 +245,13 @@ impl ServeConfig {
         }
         if self.tls_cert.is_some() != self.tls_key.is_some() {
             return Err("--tls-cert and --tls-key go together".into());
+        }
+        if let Some(base) = &self.public_base_url {
+            let ok = reqwest::Url::parse(base)
+                .is_ok_and(|u| matches!(u.scheme(), "http" | "https") && u.host().is_some());
+            if !ok {
+                return Err(format!("--public-base-url {base:?} is not an http(s) URL"));
+            }
         }
         if self.workers == Some(0) {
             return Err("--workers must be at least 1".into());
