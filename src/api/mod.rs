@@ -30,6 +30,7 @@ pub mod body_idle;
 pub mod campaign_plans;
 pub mod contract;
 pub mod controller_query;
+pub mod cross_site;
 pub mod error;
 pub mod export;
 pub mod extract;
@@ -38,7 +39,9 @@ pub mod fleet;
 pub mod idempotency;
 pub mod job_events;
 pub mod jobs;
+pub mod lane;
 pub mod ndjson;
+pub mod nul_guard;
 pub mod ops;
 pub mod poses;
 pub mod problem_fallback;
@@ -48,6 +51,7 @@ pub mod results;
 pub mod robots;
 pub mod sessions;
 pub mod targets;
+pub mod token_watch;
 pub mod tokens;
 pub mod upload;
 pub mod webhooks;
@@ -68,6 +72,8 @@ pub struct AppState {
     pub workers_alive: Arc<AtomicUsize>,
     /// Bounds concurrent image decodes (uploads and jobs share it).
     pub decode_gate: Arc<crate::imaging::DecodeGate>,
+    /// The tokens as last read, so open streams end on revocation.
+    pub tokens: token_watch::Tokens,
 }
 
 #[derive(OpenApi)]
@@ -142,7 +148,13 @@ pub fn app(state: AppState) -> Router {
             state.clone(),
             body_idle::layer,
         ))
+        // Inside auth: the reserved lane serves authenticated requests.
+        .layer(middleware::from_fn(lane::layer))
         .layer(middleware::from_fn_with_state(state.clone(), auth::layer))
+        // Before auth: ids and cursors with NUL never reach the database.
+        .layer(middleware::from_fn(nul_guard::layer))
+        // Before auth: a cross-site write is refused whoever it claims to be.
+        .layer(middleware::from_fn(cross_site::layer))
         .layer(middleware::from_fn_with_state(state.clone(), observe))
         .layer(middleware::from_fn(problem_fallback::layer))
         // Uploads stream with their own limits; JSON bodies are limited by the extractors.

@@ -132,7 +132,7 @@ async fn spool_to_file(state: &AppState, req: Request) -> ApiResult<tempfile::Na
     }
     let dir = state.config.upload_dir();
     let temp = tempfile::Builder::new()
-        .prefix(crate::housekeeping::SPOOL_PREFIX)
+        .prefix(&crate::housekeeping::spool_prefix())
         .tempfile_in(&dir)
         .map_err(|e| ApiError::internal(format!("temp file in {}: {e}", dir.display())))?;
     let std_file = temp.reopen().map_err(ApiError::internal)?;

@@ -135,7 +135,7 @@ impl Scope {
     }
 }
 
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct TokenRecord {
     pub id: String,
     pub name: String,
@@ -187,6 +187,9 @@ pub enum IdempotencyClaim {
     InFlight,
     /// The key belongs to a request with another method or path.
     OtherRequest { method: String, path: String },
+    /// The key's request wrote (the write committed) but its process died
+    /// before storing the answer: it must not run again.
+    Lost,
     /// Done before: replay `response` if this request has the same
     /// `fingerprint` (`None`: stored without one, replayed for any body).
     Done {

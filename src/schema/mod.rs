@@ -9,6 +9,7 @@ pub mod campaign_plan;
 pub mod flange_pose;
 mod frame_pose;
 pub mod job;
+pub mod nul;
 pub mod pose_body;
 pub mod robot;
 pub mod session;

@@ -33,5 +33,6 @@ pub mod staged_images;
 pub mod target_stream;
 pub mod uncertainty;
 pub mod webhooks;
+pub mod zip_names;
 
 pub use error::{ServiceError, ServiceResult};

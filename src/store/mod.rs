@@ -26,6 +26,7 @@ pub use repo::CHECK_KIND;
 mod rows;
 pub mod sqlite;
 mod statement;
+pub mod write_guard;
 
 #[derive(Debug, thiserror::Error)]
 pub enum StoreError {
@@ -250,6 +251,10 @@ pub trait AuthStore: Send + Sync {
     /// Marks the token revoked (its row stays); `None` when no token has
     /// this id. Revoking a revoked token keeps the first revocation.
     async fn revoke_token(&self, id: &str) -> StoreResult<Option<TokenRecord>>;
+    /// [`revoke_token`](Self::revoke_token) over the API: refused
+    /// ([`StoreError::Conflict`]) when it would leave no usable admin
+    /// token, so the service cannot lock its administrators out.
+    async fn revoke_token_keeping_an_admin(&self, id: &str) -> StoreResult<Option<TokenRecord>>;
     /// Records a use at `now_ms` unless one was recorded after
     /// `now_ms - min_interval_ms` (so a busy token costs one write a minute).
     async fn touch_token(&self, id: &str, now_ms: i64, min_interval_ms: i64) -> StoreResult<()>;

@@ -69,7 +69,7 @@ pub fn page(title: &str, body: &str, logout: bool) -> String {
 
 /// The login form (`POST /login` with a token of any scope); `error`
 /// says why the last attempt was refused.
-pub fn login_page(error: Option<&str>) -> String {
+pub fn login_page(error: Option<&str>, nonce: &str) -> String {
     let mut body = String::from("<div class=\"login card\">\n<h1>Sign in</h1>\n");
     if let Some(e) = error {
         let _ = writeln!(body, "<p class=\"error\">{}</p>", escape_xml(e));
@@ -77,8 +77,15 @@ pub fn login_page(error: Option<&str>) -> String {
     body.push_str(
         "<form method=\"post\" action=\"/login\">\n\
          <label for=\"token\">API token (read scope is enough)</label>\n\
-         <input id=\"token\" name=\"token\" type=\"password\" autocomplete=\"current-password\" required>\n\
-         <button type=\"submit\">Sign in</button>\n</form>\n\
+         <input id=\"token\" name=\"token\" type=\"password\" autocomplete=\"current-password\" required>\n",
+    );
+    let _ = writeln!(
+        body,
+        "<input type=\"hidden\" name=\"nonce\" value=\"{}\">",
+        escape_xml(nonce)
+    );
+    body.push_str(
+        "<button type=\"submit\">Sign in</button>\n</form>\n\
          <p class=\"muted\">The token is checked once; the browser then keeps a session cookie, \
          never the token.</p>\n</div>",
     );
@@ -163,7 +170,7 @@ mod tests {
 
     #[test]
     fn pages_are_self_contained_and_fit_a_phone() {
-        for html in [login_page(Some("<bad>")), message_page("x", "y", true)] {
+        for html in [login_page(Some("<bad>"), "n"), message_page("x", "y", true)] {
             assert!(html.contains("name=\"viewport\""));
             assert!(
                 !html.contains("http://") && !html.contains("https://"),

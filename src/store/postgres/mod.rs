@@ -99,6 +99,11 @@ const MIGRATIONS: &[Embedded] = &[
         include_str!("../../../migrations/postgres/0030_controller_identity.sql"),
     ),
     (
+        32,
+        "idempotency wrote",
+        include_str!("../../../migrations/postgres/0032_idempotency_wrote.sql"),
+    ),
+    (
         40,
         "robot prior",
         include_str!("../../../migrations/postgres/0040_robot_prior.sql"),
@@ -169,7 +174,7 @@ impl Backend for PgStore {
         &self.pool
     }
 
-    async fn begin_write(&self) -> StoreResult<Transaction<'static, Postgres>> {
+    async fn open_write(&self) -> StoreResult<Transaction<'static, Postgres>> {
         Ok(self.pool.begin().await?)
     }
 

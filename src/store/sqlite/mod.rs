@@ -85,6 +85,11 @@ const MIGRATIONS: &[Embedded] = &[
         include_str!("../../../migrations/sqlite/0030_controller_identity.sql"),
     ),
     (
+        32,
+        "idempotency wrote",
+        include_str!("../../../migrations/sqlite/0032_idempotency_wrote.sql"),
+    ),
+    (
         40,
         "robot prior",
         include_str!("../../../migrations/sqlite/0040_robot_prior.sql"),
@@ -171,7 +176,7 @@ impl Backend for SqliteStore {
 
     /// `BEGIN IMMEDIATE`: takes the write lock up front, so two writers that
     /// read before they write never deadlock on a lock upgrade.
-    async fn begin_write(&self) -> StoreResult<Transaction<'static, Sqlite>> {
+    async fn open_write(&self) -> StoreResult<Transaction<'static, Sqlite>> {
         Ok(self.pool.begin_with("BEGIN IMMEDIATE").await?)
     }
 
