@@ -335,6 +335,7 @@ fn report(
         uncertainty_map: None,
         terms: None,
         gate: None,
+        release: Default::default(),
         measurement_accuracy: None,
         regions: Vec::new(),
     }

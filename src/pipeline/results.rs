@@ -251,6 +251,7 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSet) -> Report {
         notes,
         uncertainty_map: super::uncertainty_map::workspace_map(id, ctx.poses),
         gate: None,
+        release: Default::default(),
         measurement_accuracy: None,
         regions: Vec::new(),
         terms: id

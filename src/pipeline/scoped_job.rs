@@ -199,6 +199,7 @@ pub fn run(
         uncertainty_map: None,
         terms: None,
         gate: Some(gate.report),
+        release: Default::default(),
         measurement_accuracy: None,
         regions: Vec::new(),
     };

@@ -128,6 +128,7 @@ pub fn stage_output(
         notes,
         uncertainty_map: None,
         gate: None,
+        release: Default::default(),
         terms: None,
         regions: Vec::new(),
         measurement_accuracy: Some(MeasurementAccuracyReport {

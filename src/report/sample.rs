@@ -124,6 +124,7 @@ pub fn sample_report_sized(calibration: usize, validation: usize) -> Report {
         uncertainty_map: Some(super::uncertainty_chart::sample_map()),
         terms: None,
         gate: None,
+        release: Default::default(),
         measurement_accuracy: None,
         regions: Vec::new(),
     }

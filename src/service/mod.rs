@@ -27,6 +27,7 @@ pub mod release;
 pub mod job_events;
 pub mod multi_session;
 pub mod report_camera;
+pub mod report_view;
 pub mod results;
 pub mod stage_layout;
 pub mod staged_images;

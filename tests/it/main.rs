@@ -43,6 +43,7 @@ pub(crate) mod real_tracker;
 pub(crate) mod recheck_verdicts;
 pub(crate) mod regions;
 pub(crate) mod release_gate;
+pub(crate) mod release_reports;
 pub(crate) mod report_links;
 pub(crate) mod restart;
 pub(crate) mod robots;
