@@ -12,6 +12,7 @@ pub(crate) mod campaign_plans;
 pub(crate) mod charuco_campaign;
 pub(crate) mod circle_boards;
 pub(crate) mod cli;
+pub(crate) mod cli_release;
 pub(crate) mod compensate;
 pub(crate) mod e2e;
 pub(crate) mod e2e_points;
