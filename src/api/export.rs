@@ -25,8 +25,8 @@ pub struct ExportQuery {
     /// camera|tool, the board or tracker a fixed child of base_link),
     /// `dh-json` (the identified table with 1σ per parameter and why held
     /// parameters were held) or `csv` (the joint table, units in the column
-    /// names).
-    pub format: String,
+    /// names). Required: a request without it is a 422 naming `format`.
+    pub format: Option<String>,
 }
 
 /// The parameter set in a form a controller or an off-line programming tool reads.
@@ -44,7 +44,10 @@ async fn export_parameter_set(
     Path((_serial, version)): Path<(String, String)>,
     Query(query): Query<ExportQuery>,
 ) -> ApiResult<Response> {
-    let out = export(&state.store, &serial, &version, &query.format).await?;
+    // A missing format is answered as an unknown one: 422 naming `format`
+    // and listing the accepted ones.
+    let format = query.format.as_deref().unwrap_or_default();
+    let out = export(&state.store, &serial, &version, format).await?;
     let disposition = format!("attachment; filename=\"{}\"", out.file_name);
     Ok((
         [
