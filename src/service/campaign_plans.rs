@@ -129,7 +129,7 @@ fn add_guess_hints(
             let off = (board.translation.vector - set.world_to_base.translation.vector).norm();
             (off > GUESS_OFF_MM).then(|| {
                 format!(
-                    "the guess is {off:.0} mm from where the robot's latest set {} puts the board:                      translation_mm {:?}, rotation_deg {:?}; omit target_to_base_guess to use it",
+                    "the guess is {off:.0} mm from where the robot's latest set {} puts the board: translation_mm {:?}, rotation_deg {:?}; omit target_to_base_guess to use it",
                     planning.model_name,
                     round(from_set.translation_mm),
                     round(from_set.rotation_deg)
@@ -137,7 +137,7 @@ fn add_guess_hints(
             })
         }
         (Some(_), None) => Some(format!(
-            "the board at translation_mm {:?}, rotation_deg {:?} (the base in the board's terms) may be              out of the robot's reach: check the guess, or calibrate once and omit it",
+            "this guess (translation_mm {:?}, rotation_deg {:?}) may put the board out of the robot's reach: check it, or calibrate once and omit it",
             round(at.translation_mm),
             round(at.rotation_deg)
         )),
