@@ -30,6 +30,12 @@ struct Accepted {
 pub struct DatasetStored {
     #[serde(default)]
     pub poses_created: u64,
+    /// Dots found per image at upload.
+    #[serde(default)]
+    pub detected_points: Vec<u64>,
+    /// What the server warns of (e.g. no image shows the session's target).
+    #[serde(default)]
+    pub warnings: Vec<String>,
 }
 
 /// The media type of a streamed answer: one JSON document per line.

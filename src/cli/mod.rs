@@ -111,7 +111,14 @@ pub async fn upload(
         let archive = zip_campaign(campaign).map_err(ClientError::Local)?;
         client.upload_dataset(&id, archive.path()).await?
     };
-    eprintln!("uploaded {} poses to session {id}", answer.poses_created);
+    let found = answer.detected_points.iter().filter(|n| **n > 0).count();
+    eprintln!(
+        "uploaded {} poses to session {id} ({found} images with the target found)",
+        answer.poses_created
+    );
+    for warning in &answer.warnings {
+        eprintln!("warning: {warning}");
+    }
     Ok(id)
 }
 

@@ -14,6 +14,7 @@ pub mod checks;
 pub mod compensate;
 pub mod dataset;
 pub mod dataset_intake;
+pub mod dataset_warning;
 pub mod error;
 pub mod evaluate;
 pub mod events;

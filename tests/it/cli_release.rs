@@ -1,7 +1,8 @@
 //! The release workflow through the real binary: list robots and
 //! sessions, approve and reject with a reason, the jobs table's kind and
 //! error columns and filters, webhooks, deleting a robot; a 401 says how
-//! to give a token.
+//! to give a token; an upload whose images do not show the session's
+//! target says so at once.
 
 use std::process::Output;
 
@@ -130,4 +131,32 @@ async fn approve_reject_list_webhooks_and_delete_without_curl() {
         "{err}"
     );
     app.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn an_upload_whose_images_show_another_board_warns_at_once() {
+    let app = spawn_app().await;
+    let dir = tempfile::tempdir().unwrap();
+    robocal::cli::campaign::simulate("irb2400", dir.path(), 3, 1, 5).unwrap();
+    // The session says 7x9; the images show the simulator's 9x9 board.
+    let path = dir.path().join("campaign.json");
+    let mut campaign: Value =
+        serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    campaign["session"]["target"]["rows"] = serde_json::json!(7);
+    std::fs::write(&path, campaign.to_string()).unwrap();
+    let out = robocal(
+        &app,
+        &["upload", "--serial", "WARN-1", dir.path().to_str().unwrap()],
+    )
+    .await;
+    ok(&out);
+    let err = text(&out.stderr);
+    assert!(
+        err.contains("uploaded 4 poses") && err.contains("(0 images with the target found)"),
+        "{err}"
+    );
+    assert!(
+        err.contains("warning: 0 of 4 images show the session's target; 4 say: "),
+        "{err}"
+    );
 }
