@@ -104,12 +104,33 @@ pub async fn upload(
             eprintln!("robot {serial} created");
         }
     }
-    let id = client.create_session(serial, &file.session).await?;
-    let answer = if zipped {
-        client.upload_dataset(&id, campaign).await?
-    } else {
-        let archive = zip_campaign(campaign).map_err(ClientError::Local)?;
-        client.upload_dataset(&id, archive.path()).await?
+    let sent = async {
+        let id = client.create_session(serial, &file.session).await?;
+        let answer = if zipped {
+            client.upload_dataset(&id, campaign).await?
+        } else {
+            let archive = zip_campaign(campaign).map_err(ClientError::Local)?;
+            client.upload_dataset(&id, archive.path()).await?
+        };
+        Ok::<_, ClientError>((id, answer))
+    }
+    .await;
+    let (id, answer) = match sent {
+        Ok(sent) => sent,
+        // A robot this upload created goes again with its empty session:
+        // a failed upload leaves nothing behind.
+        Err(e) if !exists => {
+            let path = format!("/v1/robots/{serial}");
+            if client
+                .call(reqwest::Method::DELETE, &path, None)
+                .await
+                .is_ok()
+            {
+                eprintln!("robot {serial} removed again: the upload failed");
+            }
+            return Err(e);
+        }
+        Err(e) => return Err(e),
     };
     let found = answer.detected_points.iter().filter(|n| **n > 0).count();
     eprintln!(

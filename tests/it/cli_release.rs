@@ -160,3 +160,35 @@ async fn an_upload_whose_images_show_another_board_warns_at_once() {
         "{err}"
     );
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_failed_upload_names_the_file_and_leaves_no_robot_behind() {
+    let app = spawn_app().await;
+    let dir = tempfile::tempdir().unwrap();
+    robocal::cli::campaign::simulate("irb2400", dir.path(), 3, 1, 5).unwrap();
+    let entries: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("poses.json")).unwrap())
+            .unwrap();
+    let name = entries[2]["image"].as_str().unwrap().to_string();
+    let image = dir.path().join(&name);
+    let bytes = std::fs::read(&image).unwrap();
+    std::fs::write(&image, &bytes[..bytes.len() / 2]).unwrap();
+    let out = robocal(
+        &app,
+        &[
+            "upload",
+            "--serial",
+            "DEBRIS-1",
+            dir.path().to_str().unwrap(),
+        ],
+    )
+    .await;
+    assert!(!out.status.success());
+    let err = text(&out.stderr);
+    assert!(
+        err.contains(&format!("{name}: ")),
+        "the file is named: {err}"
+    );
+    assert!(err.contains("robot DEBRIS-1 removed again"), "{err}");
+    assert_eq!(app.get("/v1/robots/DEBRIS-1").await.status(), 404);
+}
