@@ -113,7 +113,17 @@ pub async fn start(mut config: ServeConfig) -> Result<RunningServer, StartError>
     );
     // Open event streams end when their token is revoked or expires.
     let (tokens, token_watch) = api::token_watch::spawn(store.clone(), shutdown_rx.clone());
-    tracing::info!(%addr, backend = store.backend(), workers = config.worker_count(), job_events = listening, "robocal listening");
+    // How a worker learns of a job another process queued: PostgreSQL's
+    // notifications, else its own poll (SQLite is one process).
+    let job_wakeups = if listening {
+        "notify (PostgreSQL LISTEN/NOTIFY; polling as the fallback)".to_string()
+    } else {
+        format!(
+            "polling every {} ms (no cross-process notifications)",
+            config.poll_ms
+        )
+    };
+    tracing::info!(%addr, backend = store.backend(), workers = config.worker_count(), job_wakeups = %job_wakeups, "robocal listening");
     let scheme = if config.tls_enabled() {
         "https"
     } else {

@@ -80,7 +80,7 @@ pub struct AppState {
 #[openapi(
     info(
         title = "robocal",
-        description = "Robot calibration service: one flange camera, a dot-grid board, identified kinematics over REST. Errors are application/problem+json (RFC 9457).",
+        description = "Robot calibration service: kinematic calibration of industrial robots from a flange camera (dot grid, chessboard, ChArUco or circle boards), a camera on a linear stage or a laser tracker; identified parameters, reports, compensation and exports over REST. Errors are application/problem+json (RFC 9457).",
     ),
     modifiers(&BearerAuth),
     security(("bearer" = []))

@@ -19,7 +19,7 @@ use crate::domain::{controller_expectation, ReleaseStatus};
 use crate::report::schema::IntrinsicsSchema;
 use crate::report::{render_html, render_svg, Report};
 use crate::schema::PoseOut;
-use crate::service::{compensate, evaluate, filter, release, results, uncertainty};
+use crate::service::{compensate, evaluate, filter, release, report_view, results, uncertainty};
 use crate::store::ParameterSetRecord;
 
 pub fn router() -> OpenApiRouter<AppState> {
@@ -103,7 +103,7 @@ pub struct ParameterSetFields {
     /// `parameters` (what `forward`'s predicted σ propagate). Absent for
     /// sets stored before it was kept.
     pub covariance: Option<crate::domain::CovarianceDoc>,
-    /// The non-geometric terms kept by the selection (issue 19), each with
+    /// The non-geometric terms kept by the selection, each with
     /// its value, σ and unit; `forward`, `compensate`, `filter` and the
     /// predicted σ include them. Absent when none was kept.
     pub terms: Option<crate::domain::TermsDoc>,
@@ -229,28 +229,12 @@ async fn get_report(
     Ok(Json(report))
 }
 
-/// The stored report with the parameter set's identity filled in (the
-/// pipeline cannot know its version number or date).
 async fn report_json(state: &AppState, serial: &str, version: &str) -> ApiResult<Value> {
-    let set = find(state, serial, version).await?;
-    let mut report = state
-        .store
-        .get_report(serial, set.version)
-        .await?
-        .ok_or_else(|| ApiError::not_found("report", &format!("{serial}/{version}")))?;
-    if let Some(obj) = report.as_object_mut() {
-        obj.insert("serial".into(), Value::from(set.serial));
-        obj.insert("version".into(), Value::from(set.version));
-        obj.insert("job_id".into(), Value::from(set.job_id.unwrap_or_default()));
-        obj.insert("created_at".into(), Value::from(set.created_at));
-        obj.insert("status".into(), Value::from(set.status.as_str()));
-    }
-    Ok(report)
+    Ok(report_view::report_json(&state.store, serial, version).await?)
 }
 
 async fn typed_report(state: &AppState, serial: &str, version: &str) -> ApiResult<Report> {
-    serde_json::from_value(report_json(state, serial, version).await?)
-        .map_err(|_| ApiError::conflict("this parameter set has no accuracy report to draw"))
+    Ok(report_view::typed_report(&state.store, serial, version).await?)
 }
 
 /// The report drawn as one SVG sheet.

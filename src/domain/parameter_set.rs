@@ -23,7 +23,7 @@ use crate::schema::PoseOut;
 #[serde(into = "StoredSet", try_from = "StoredSet")]
 pub struct ParameterSet {
     pub instrument: Instrument,
-    /// A tracker set's measurement (issue 19): `pose` when a 6-DoF probe's
+    /// A tracker set's measurement: `pose` when a 6-DoF probe's
     /// orientation was fitted with its position, so `flange_to_tool` is the
     /// probe's full frame and the parameters follow the camera's layout;
     /// `position` (or absent, in sets stored before it was kept) for the
@@ -54,7 +54,7 @@ pub struct ParameterSet {
     /// when the refinement did not run and from sets stored before it was
     /// kept.
     pub joint_noise_deg: Option<f64>,
-    /// The non-geometric terms kept by the selection (issue 19); absent
+    /// The non-geometric terms kept by the selection; absent
     /// when none was kept and in sets stored before terms were selected.
     pub terms: Option<TermsDoc>,
     /// A set calibrated over several sessions (board placements, issue
@@ -135,7 +135,7 @@ impl ParameterSet {
     }
 
     /// The set seen from session `session_id`'s board: `world_to_base` is
-    /// that session's `target_to_base` (issue 18). `None` when the set
+    /// that session's `target_to_base`. `None` when the set
     /// knows no such session (a one-session set knows its own).
     pub fn in_session(&self, session_id: &str) -> Option<ParameterSet> {
         let (board, covariance) = match self

@@ -256,6 +256,7 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSet) -> Report {
         uncertainty_map: super::uncertainty_map::workspace_map(id, ctx.poses),
         gate: None,
         model_selection: id.model_selection.clone(),
+        release: Default::default(),
         measurement_accuracy: None,
         regions: Vec::new(),
         terms: id

@@ -203,6 +203,7 @@ pub fn run(
         terms: None,
         gate: Some(gate.report),
         model_selection: None,
+        release: Default::default(),
         measurement_accuracy: None,
         regions: Vec::new(),
     };

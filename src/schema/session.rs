@@ -24,7 +24,7 @@ pub enum Instrument {
     #[default]
     Camera,
     Tracker,
-    /// A camera on a linear stage (issue 18, paper section 4): poses are
+    /// A camera on a linear stage (paper section 4): poses are
     /// images with the stage's reading, and the job calibrates and assesses
     /// the camera itself (no robot is identified).
     Stage,
@@ -57,7 +57,7 @@ impl Instrument {
     }
 }
 
-/// What board the camera sees (issue 14): robocal's dot grid (`kind`
+/// What board the camera sees: robocal's dot grid (`kind`
 /// `"dots"`, the default, may be omitted), a ChArUco board, a chessboard
 /// or OpenCV's asymmetric circle grid.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
@@ -159,8 +159,8 @@ pub struct SessionBody {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub volume: Option<String>,
     /// Payload at the tool during the campaign (kg), when known: the
-    /// compliance terms then get a candidate driven by its gravity torque
-    /// (issue 19). A finite mass from 0 to `MAX_PAYLOAD_KG`.
+    /// compliance terms then get a candidate driven by its gravity torque.
+    /// A finite mass from 0 to `MAX_PAYLOAD_KG`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub payload_kg: Option<f64>,
     /// A tracker session's position standard deviation per axis (mm),
@@ -169,7 +169,7 @@ pub struct SessionBody {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tracker_sigma_mm: Option<f64>,
     /// A tracker session's orientation standard deviation per axis (deg)
-    /// for poses with `measured_pose` (a 6-DoF probe, issue 19), the
+    /// for poses with `measured_pose` (a 6-DoF probe), the
     /// weight of each measured orientation; default 0.01° (a T-Mac's).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tracker_orientation_sigma_deg: Option<f64>,

@@ -36,7 +36,7 @@ pub struct CompensateRequest {
     pub tool: Option<PoseDoc>,
     #[serde(default)]
     pub seed_joints_deg: Option<Seeds>,
-    /// A multi-session set (issue 18): work in this session's board frame
+    /// A multi-session set: work in this session's board frame
     /// (its `target_to_base`); absent: the set's own `target_to_base`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub session_id: Option<String>,

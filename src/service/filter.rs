@@ -31,7 +31,7 @@ pub struct FilterRequest {
     /// configuration in the program. Mid-range joints when absent.
     #[serde(default)]
     pub seed_joints_deg: Option<Vec<f64>>,
-    /// A multi-session set (issue 18): work in this session's board frame
+    /// A multi-session set: work in this session's board frame
     /// (its `target_to_base`); absent: the set's own `target_to_base`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub session_id: Option<String>,

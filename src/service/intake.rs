@@ -36,7 +36,7 @@ pub struct ImagePose {
     pub image: Vec<u8>,
     /// The image's file name, as a label.
     pub label: Option<String>,
-    /// A stage session's parts (issue 18): the stage's reading and the
+    /// A stage session's parts: the stage's reading and the
     /// sequence, as sent (checked by [`StageReading::check`]).
     pub stage_position_mm: Option<[f64; 3]>,
     pub sequence: Option<u32>,

@@ -91,7 +91,7 @@ async fn model(
         .map_err(|_| no_model())
 }
 
-/// The set in session `session_id`'s board frame (issue 18); 422 naming
+/// The set in session `session_id`'s board frame; 422 naming
 /// `session_id` when the set knows no such session.
 fn in_session(set: ParameterSet, session_id: Option<&str>) -> ServiceResult<ParameterSet> {
     let Some(id) = session_id else {

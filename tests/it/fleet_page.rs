@@ -259,3 +259,58 @@ async fn anonymous_pages_refuse_a_rebound_host() {
         .unwrap();
     assert_eq!(r.status(), 421);
 }
+
+/// Robot `serial` whose only job failed (one calibration pose); its id.
+pub async fn robot_with_failed_job(app: &TestApp, serial: &str) -> String {
+    let session = app.robot_and_session(serial).await;
+    app.add_point_poses(&session, 1, 0).await;
+    let r = app
+        .post_json(&format!("/v1/sessions/{session}/calibrations"), &json!({}))
+        .await;
+    assert_eq!(r.status(), 202);
+    let job = r.json::<serde_json::Value>().await.unwrap()["job_id"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    let done = app
+        .wait_job(&job, std::time::Duration::from_secs(60), is_finished)
+        .await;
+    assert_eq!(done["state"], "failed", "{done}");
+    job
+}
+
+#[tokio::test]
+async fn a_robot_whose_job_failed_says_why_with_the_whole_job_id() {
+    let app = spawn_app().await;
+    let job = robot_with_failed_job(&app, "FP-F").await;
+    app.robot_and_session("FP-U").await;
+    let page = app.get("/").await.text().await.unwrap();
+    let card = page
+        .split("id=\"robot-FP-F\"")
+        .nth(1)
+        .and_then(|c| c.split("</section>").next())
+        .unwrap();
+    assert!(page.contains("class=\"card robot failed\" id=\"robot-FP-F\""));
+    assert!(card.contains("calibration failed</span>: "), "{card}");
+    assert!(card.contains("calibration poses"), "the reason: {card}");
+    assert!(
+        card.contains(&format!("href=\"/robots/FP-F#job-{job}\">job {job}</a>")),
+        "{card}"
+    );
+    assert!(
+        page.contains("class=\"card robot\" id=\"robot-FP-U\""),
+        "an untouched robot is not failed"
+    );
+
+    let robot = app.get("/robots/FP-F").await.text().await.unwrap();
+    let row = robot
+        .split(&format!("<tr id=\"job-{job}\">"))
+        .nth(1)
+        .and_then(|r| r.split("</tr>").next())
+        .unwrap_or_else(|| panic!("a row for the whole id: {robot}"));
+    assert!(
+        row.contains(&format!("<td class=\"id\">{job}</td>")),
+        "{row}"
+    );
+    assert!(row.contains("calibration poses"), "{row}");
+}

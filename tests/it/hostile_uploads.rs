@@ -221,7 +221,21 @@ async fn hostile_uploads_get_4xx_and_server_keeps_serving() {
             field: None,
         },
     ];
+    let corrupt = good_png[..good_png.len() - 30].to_vec();
+    let corrupt_zip = zip_post(zip_bytes(&[("poses.json", manifest), ("a.png", &corrupt)]));
     run_cases(&app, cases).await;
+    // A corrupt image in an archive is named by its file, not only its index.
+    let r = corrupt_zip.send().await.unwrap();
+    assert_eq!(r.status(), 422);
+    let p: Value = r.json().await.unwrap();
+    assert_eq!(p["errors"][0]["field"], "poses.json[0].image", "{p}");
+    assert!(
+        p["errors"][0]["message"]
+            .as_str()
+            .unwrap()
+            .starts_with("a.png: "),
+        "{p}"
+    );
     let session: Value = app
         .get(&format!("/v1/sessions/{s}"))
         .await

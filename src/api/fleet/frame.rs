@@ -32,6 +32,10 @@ a { color: var(--accent); }
 .verdict.pass { color: var(--ok); } .verdict.drift { color: var(--bad); } .verdict.base_moved { color: var(--warn); } .verdict.controller_changed { color: var(--bad); }
 .state-running { color: var(--accent); font-weight: 600; } .state-failed { color: var(--bad); }
 .state-succeeded { color: var(--ok); }
+.release-approved { color: var(--ok); } .release-candidate { color: var(--warn); font-weight: 600; }
+.release-rejected { color: var(--bad); font-weight: 600; }
+.card.failed { border-color: var(--bad); border-width: 2px; } .stale { color: var(--warn); }
+td.error { white-space: normal; min-width: 16rem; }
 .scroll { overflow-x: auto; background: #fff; border: 1px solid var(--rule); border-radius: 8px; }
 table { border-collapse: collapse; width: 100%; }
 th, td { text-align: left; padding: 6px 10px; border-bottom: 1px solid var(--rule); white-space: nowrap; }
