@@ -330,9 +330,7 @@ pub fn identify_robot(
         // The validation poses repeat calibration configurations: the
         // headline is the held-out configurations' prediction, nominal
         // kinematics against the kept model (docs/method.md §7).
-        let pick = |f: fn(&PoseErrors) -> Vector3<f64>| {
-            errors.iter().map(f).collect::<Vec<_>>()
-        };
+        let pick = |f: fn(&PoseErrors) -> Vector3<f64>| errors.iter().map(f).collect::<Vec<_>>();
         before = AccuracyStats::from_errors(&pick(|e| e.1));
         after = AccuracyStats::from_errors(&pick(|e| e.2));
         val_errors = errors;

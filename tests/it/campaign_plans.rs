@@ -342,6 +342,7 @@ async fn calibrated_camera_set(app: &TestApp, serial: &str) {
         joint_noise_deg: None,
         terms: None,
         session_target_to_base: Vec::new(),
+        controller: None,
     };
     let store = store::connect(&app.database_url).await.unwrap();
     store
