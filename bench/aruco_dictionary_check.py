@@ -5,7 +5,7 @@ embedded copy (issue 14): the marker image OpenCV draws
 
 Usage:
   cargo run -p robocal-calib --example aruco_dictionary_dump > /tmp/aruco_dump.txt
-  /tmp/bench-venv/bin/python bench/aruco_dictionary_check.py /tmp/aruco_dump.txt
+  python3 bench/aruco_dictionary_check.py /tmp/aruco_dump.txt
 """
 import sys
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Which joint file belongs to the Aubo i10 group-1 photos (issue 14).
 
-Usage: /tmp/bench-venv/bin/python bench/aubo_group1_joints.py [calib/tests/data/aubo_i10_hkclr]
+Usage: python3 bench/aubo_group1_joints.py [calib/tests/data/aubo_i10_hkclr]
 Fits hand-eye X and board-in-base Y by least squares (board corners mapped to the base by F X T)
 on groups 2-6 only, with the authors' DH and intrinsics and cv2.solvePnP on OpenCV's corners
 (derived_opencv5/), then prints how far each photo's board lands from the groups 2-6 consensus,

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """OpenCV reference corners for the Aubo i10 chessboard photos (issue 14).
 
-Usage: /tmp/bench-venv/bin/python bench/aubo_opencv_corners.py
+Usage: python3 bench/aubo_opencv_corners.py
 Runs findChessboardCorners (11x8) + cornerSubPix((11,11), EPS+COUNT 30/0.001),
 as the authors' scripts do, on calib/tests/data/aubo_i10_hkclr/images, writes
 derived_opencv5/corners_findChessboardCorners.csv (group/file, OpenCV corner

@@ -1,13 +1,13 @@
 #!/bin/bash
 # Detection time of robocal and OpenCV's CharucoDetector on the same ChArUco
 # PNGs, run after each other N times, so each ratio is taken at one machine
-# load (issue 14's time per image; BENCHMARKS.md "Session 10 — targets").
+# load (issue 14's time per image; BENCHMARKS.md "Detection").
 # Usage: bench/charuco_interleaved.sh DIR [KIND] [N]
 # DIR: the output of `charuco_bench --views 20 --out DIR`.
 set -euo pipefail
 DIR=$1; K=${2:-fronto}; N=${3:-5}
 B=${CARGO_TARGET_DIR:-target}/release/examples/charuco_bench
-PY=${PYTHON:-/tmp/bench-venv/bin/python}
+PY=${PYTHON:-python3}
 HERE=$(dirname "$0")
 echo "$K, $(uptime)"
 for i in $(seq 1 "$N"); do

@@ -3,7 +3,7 @@
 legacy one) as a JSON fixture plus a few small board renderings, for the
 robocal-calib layout tests (issue 14).
 
-Usage: /tmp/bench-venv/bin/python bench/charuco_layout_fixture.py calib/tests/data/charuco
+Usage: python3 bench/charuco_layout_fixture.py calib/tests/data/charuco
 
 Writes layouts.json: per board, the marker ids, their four object corners
 (OpenCV's order: top-left, top-right, bottom-right, bottom-left) and the

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """OpenCV peer for the robocal ChArUco benchmark (issue 14).
 
-Usage: /tmp/bench-venv/bin/python bench/charuco_opencv.py DIR [KIND]
+Usage: python3 bench/charuco_opencv.py DIR [KIND]
 DIR holds the PNGs and truth.csv written by
 `cargo run --release -p robocal-calib --example charuco_bench`.
 Runs cv2.aruco.CharucoDetector (default parameters, which refine the corners

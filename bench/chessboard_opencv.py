@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """OpenCV peer for the robocal chessboard benchmark (issue 14).
 
-Usage: /tmp/bench-venv/bin/python bench/chessboard_opencv.py DIR [KIND]
+Usage: python3 bench/chessboard_opencv.py DIR [KIND]
 (KIND: one of fronto, steep, blurred, uneven; all when absent)
 DIR holds the PNGs and truth.csv written by
 `cargo run --release -p robocal-calib --example chessboard_bench`.

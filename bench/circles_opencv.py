@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """OpenCV peer for the robocal circle-grid benchmark (issue 14).
 
-Usage: /tmp/bench-venv/bin/python bench/circles_opencv.py DIR
+Usage: python3 bench/circles_opencv.py DIR
 DIR holds asymmetric_4x11/ and symmetric_9x7/, each with PNGs and truth.csv
 (image,row,col,x,y,visible) written by
 `cargo run --release -p robocal-calib --example circles_bench`.

@@ -2,7 +2,7 @@
 """Writes every OpenCV predefined ArUco dictionary to a compact binary file
 that robocal-calib embeds with include_bytes! (issue 14).
 
-Usage: /tmp/bench-venv/bin/python bench/gen_aruco_dictionaries.py \
+Usage: python3 bench/gen_aruco_dictionaries.py \
            calib/src/vision/aruco/dictionaries.bin
 
 Format (little-endian):

@@ -51,6 +51,12 @@ pub struct ServeConfig {
     #[arg(long, env = "ROBOCAL_MAX_IMAGE_BYTES", default_value_t = 64 * MIB)]
     pub max_image_bytes: u64,
 
+    /// Largest session camera, pixels (width × height): an image is
+    /// checked against its session's camera before it is decoded, so this
+    /// bounds what one decode may allocate.
+    #[arg(long, env = "ROBOCAL_MAX_CAMERA_PIXELS", default_value_t = 50_000_000)]
+    pub max_camera_pixels: u64,
+
     /// Largest accepted dataset archive, bytes (compressed upload and unpacked total).
     #[arg(long, env = "ROBOCAL_MAX_ARCHIVE_BYTES", default_value_t = 2048 * MIB)]
     pub max_archive_bytes: u64,
@@ -69,9 +75,42 @@ pub struct ServeConfig {
     #[arg(long, env = "ROBOCAL_BODY_IDLE_TIMEOUT_SECS", default_value_t = 30)]
     pub body_idle_timeout_secs: u64,
 
-    /// Connections served at once; one more is answered 503 and closed.
-    #[arg(long, env = "ROBOCAL_MAX_CONNECTIONS", default_value_t = 256)]
+    /// Average bytes per second a request body must reach once it has
+    /// waited `--body-idle-timeout-secs` for the client (time the handler
+    /// spends working does not count); a slower body is answered 408.
+    #[arg(long, env = "ROBOCAL_MIN_BODY_BYTES_PER_SEC", default_value_t = 1024)]
+    pub min_body_bytes_per_sec: u64,
+
+    /// Connections served at once. When all are open, a new one displaces
+    /// the oldest idle one (keep-alive or still sending its head); when all
+    /// are in requests, it takes the reserved lane, else it gets 503.
+    #[arg(long, env = "ROBOCAL_MAX_CONNECTIONS", default_value_t = 1024)]
     pub max_connections: usize,
+
+    /// Connections beyond `--max-connections` kept for `/healthz`, `/readyz`
+    /// and authenticated requests (others on them are answered 503).
+    #[arg(long, env = "ROBOCAL_RESERVED_CONNECTIONS", default_value_t = 32)]
+    pub reserved_connections: usize,
+
+    /// Connections one client address may hold (event streams included).
+    #[arg(
+        long,
+        env = "ROBOCAL_MAX_CONNECTIONS_PER_ADDRESS",
+        default_value_t = 64
+    )]
+    pub max_connections_per_address: usize,
+
+    /// Open event streams (`/v1/jobs/{id}/events`), counted apart from `--max-connections`.
+    #[arg(long, env = "ROBOCAL_MAX_EVENT_STREAMS", default_value_t = 512)]
+    pub max_event_streams: usize,
+
+    /// Open event streams per client address.
+    #[arg(
+        long,
+        env = "ROBOCAL_MAX_EVENT_STREAMS_PER_ADDRESS",
+        default_value_t = 32
+    )]
+    pub max_event_streams_per_address: usize,
 
     /// Directory for streamed uploads being checked (default: the system temp dir).
     #[arg(long, env = "ROBOCAL_UPLOAD_DIR")]
@@ -90,6 +129,18 @@ pub struct ServeConfig {
     /// counts as failed (and is retried later).
     #[arg(long, env = "ROBOCAL_WEBHOOK_TIMEOUT_SECS", default_value_t = 10)]
     pub webhook_timeout_secs: u64,
+
+    /// Internal address ranges webhooks may be delivered to (comma-separated
+    /// `address/prefix`, e.g. `10.0.0.0/8,127.0.0.1`). Loopback, private and
+    /// shared ranges are refused without it; link-local (cloud metadata)
+    /// addresses and this service itself are always refused.
+    #[arg(long, env = "ROBOCAL_WEBHOOK_ALLOW_NETWORKS", value_delimiter = ',')]
+    pub webhook_allow_networks: Vec<crate::outbox::address_guard::Network>,
+
+    /// The service's public URL (`https://robocal.plant.example`): signed
+    /// report links are built on it instead of on the request's `Host`.
+    #[arg(long, env = "ROBOCAL_PUBLIC_BASE_URL")]
+    pub public_base_url: Option<String>,
 
     /// Log format.
     #[arg(long, env = "ROBOCAL_LOG_FORMAT", value_enum, default_value = "text")]
@@ -122,6 +173,11 @@ pub struct ServeConfig {
     /// the fleet tests can check versions and exactly-once completion.
     #[arg(long, env = "ROBOCAL_TEST_PARAMETER_SETS", hide = true)]
     pub test_parameter_sets: bool,
+
+    /// Test hook: the process aborts (as under kill -9) once a request under
+    /// an `Idempotency-Key` has been handled, before its answer is stored.
+    #[arg(long, env = "ROBOCAL_TEST_CRASH_BEFORE_IDEMPOTENT_ANSWER", hide = true)]
+    pub test_crash_before_idempotent_answer: bool,
 
     /// Test hook: calibration jobs stop after the input-validation stage, so
     /// queue, lease and restart tests run on tiny synthetic sessions; the
@@ -162,9 +218,23 @@ impl ServeConfig {
                 "max_json_bytes",
                 self.max_json_bytes.min(i64::MAX as u64) as i64,
             ),
+            (
+                "max_camera_pixels",
+                self.max_camera_pixels.min(i64::MAX as u64) as i64,
+            ),
             ("header_timeout_secs", self.header_timeout_secs as i64),
             ("body_idle_timeout_secs", self.body_idle_timeout_secs as i64),
             ("max_connections", self.max_connections as i64),
+            ("min_body_bytes_per_sec", self.min_body_bytes_per_sec as i64),
+            (
+                "max_connections_per_address",
+                self.max_connections_per_address as i64,
+            ),
+            ("max_event_streams", self.max_event_streams as i64),
+            (
+                "max_event_streams_per_address",
+                self.max_event_streams_per_address as i64,
+            ),
             ("webhook_retry_base_ms", self.webhook_retry_base_ms as i64),
             ("webhook_timeout_secs", self.webhook_timeout_secs as i64),
         ];
@@ -175,6 +245,13 @@ impl ServeConfig {
         }
         if self.tls_cert.is_some() != self.tls_key.is_some() {
             return Err("--tls-cert and --tls-key go together".into());
+        }
+        if let Some(base) = &self.public_base_url {
+            let ok = reqwest::Url::parse(base)
+                .is_ok_and(|u| matches!(u.scheme(), "http" | "https") && u.host().is_some());
+            if !ok {
+                return Err(format!("--public-base-url {base:?} is not an http(s) URL"));
+            }
         }
         if self.workers == Some(0) {
             return Err("--workers must be at least 1".into());
@@ -203,12 +280,31 @@ impl ServeConfig {
         }
     }
 
+    /// Where webhooks may be delivered.
+    pub fn address_guard(&self) -> crate::outbox::address_guard::AddressGuard {
+        crate::outbox::address_guard::AddressGuard {
+            bind: self.bind,
+            allow: self.webhook_allow_networks.clone(),
+        }
+    }
+
     pub fn header_timeout(&self) -> Duration {
         Duration::from_secs(self.header_timeout_secs)
     }
 
     pub fn body_idle_timeout(&self) -> Duration {
         Duration::from_secs(self.body_idle_timeout_secs)
+    }
+
+    /// What the listener's connection table enforces.
+    pub fn connection_limits(&self) -> crate::listen::registry::ConnLimits {
+        crate::listen::registry::ConnLimits {
+            max_connections: self.max_connections,
+            reserved_connections: self.reserved_connections,
+            max_per_address: self.max_connections_per_address,
+            max_streams: self.max_event_streams,
+            max_streams_per_address: self.max_event_streams_per_address,
+        }
     }
 
     pub fn upload_dir(&self) -> PathBuf {

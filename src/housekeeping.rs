@@ -1,5 +1,6 @@
 //! Storage that would otherwise only grow: spool files of archive uploads
-//! that a killed process left behind, and images no pose names any more
+//! that a killed process left behind (at start-up at once: a spool file
+//! names its process), and images no pose names any more
 //! (refused uploads, deleted robots, uploads cut off between storing an
 //! image and its pose). Run once at start and then periodically.
 //!
@@ -27,19 +28,40 @@ pub const BLOB_GRACE: Duration = Duration::from_secs(60 * 60);
 /// Time between sweeps after the one at start.
 pub const SWEEP_INTERVAL: Duration = Duration::from_secs(60 * 60);
 
-/// Removes robocal's spool files in `dir` not modified for `stale`;
-/// returns how many. Other files, and directories, are never touched.
+/// The spool file prefix of this process: [`SPOOL_PREFIX`], its process
+/// id, `-`; so a sweep knows a file of a process that is gone at once.
+pub fn spool_prefix() -> String {
+    format!("{SPOOL_PREFIX}{}-", std::process::id())
+}
+
+/// Whether the process that spooled file `name` may still be running:
+/// false only when its id is known and no such process exists (`/proc`).
+fn spooler_may_run(name: &str) -> bool {
+    let pid = name
+        .strip_prefix(SPOOL_PREFIX)
+        .and_then(|rest| rest.split('-').next())
+        .and_then(|pid| pid.parse::<u32>().ok());
+    let proc_dir = Path::new("/proc");
+    match pid {
+        Some(pid) if proc_dir.join("self").exists() => proc_dir.join(pid.to_string()).exists(),
+        _ => true,
+    }
+}
+
+/// Removes robocal's spool files in `dir` whose process is gone, or not
+/// modified for `stale`; returns how many. Other files, and directories,
+/// are never touched.
 pub fn clean_spool(dir: &Path, stale: Duration) -> std::io::Result<usize> {
     let now = SystemTime::now();
     let mut removed = 0;
     for entry in std::fs::read_dir(dir)? {
         let entry = entry?;
-        let own = entry
-            .file_name()
-            .to_str()
-            .is_some_and(|n| n.starts_with(SPOOL_PREFIX));
+        let name = entry.file_name();
+        let Some(name) = name.to_str().filter(|n| n.starts_with(SPOOL_PREFIX)) else {
+            continue;
+        };
         let Ok(meta) = entry.metadata() else { continue };
-        if !own || !meta.is_file() {
+        if !meta.is_file() {
             continue;
         }
         let age = meta
@@ -47,7 +69,8 @@ pub fn clean_spool(dir: &Path, stale: Duration) -> std::io::Result<usize> {
             .ok()
             .and_then(|m| now.duration_since(m).ok())
             .unwrap_or_default();
-        if age >= stale && std::fs::remove_file(entry.path()).is_ok() {
+        let orphan = !spooler_may_run(name);
+        if (orphan || age >= stale) && std::fs::remove_file(entry.path()).is_ok() {
             removed += 1;
         }
     }
@@ -106,21 +129,26 @@ mod tests {
         };
         write("robocal-upload-killed", old);
         write("robocal-upload-running", SystemTime::now());
+        // A fresh file of a process that is gone (killed mid-upload) goes at
+        // once; one of a live process stays.
+        write("robocal-upload-4294967295-gone", SystemTime::now());
+        let own = format!("{}x", spool_prefix());
+        write(&own, SystemTime::now());
         write("someone-elses.tmp", old);
         std::fs::create_dir(dir.path().join("robocal-upload-dir")).unwrap();
-        assert_eq!(clean_spool(dir.path(), SPOOL_STALE).unwrap(), 1);
+        assert_eq!(clean_spool(dir.path(), SPOOL_STALE).unwrap(), 2);
         let mut left: Vec<String> = std::fs::read_dir(dir.path())
             .unwrap()
             .map(|e| e.unwrap().file_name().into_string().unwrap())
             .collect();
         left.sort();
-        assert_eq!(
-            left,
-            [
-                "robocal-upload-dir",
-                "robocal-upload-running",
-                "someone-elses.tmp"
-            ]
-        );
+        let mut expected = vec![
+            "robocal-upload-dir".to_string(),
+            "robocal-upload-running".to_string(),
+            "someone-elses.tmp".to_string(),
+            own,
+        ];
+        expected.sort();
+        assert_eq!(left, expected);
     }
 }

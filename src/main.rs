@@ -94,8 +94,13 @@ async fn main() -> ExitCode {
                 .map_err(|e| e.to_string()),
             Err(e) => Err(e),
         },
-        Command::Jobs { limit, server } => match server.client() {
-            Ok(client) => robocal::cli::jobs(&client, limit)
+        Command::Release(command) => robocal::cli::release::run(command).await,
+        Command::Jobs {
+            limit,
+            filters,
+            server,
+        } => match server.client() {
+            Ok(client) => robocal::cli::jobs(&client, limit, &filters)
                 .await
                 .map(|table| print!("{table}"))
                 .map_err(|e| e.to_string()),

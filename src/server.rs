@@ -108,9 +108,22 @@ pub async fn start(mut config: ServeConfig) -> Result<RunningServer, StartError>
     let deliveries = crate::outbox::delivery::spawn(
         store.clone(),
         config.delivery_policy(),
+        config.address_guard(),
         shutdown_rx.clone(),
     );
-    tracing::info!(%addr, backend = store.backend(), workers = config.worker_count(), job_events = listening, "robocal listening");
+    // Open event streams end when their token is revoked or expires.
+    let (tokens, token_watch) = api::token_watch::spawn(store.clone(), shutdown_rx.clone());
+    // How a worker learns of a job another process queued: PostgreSQL's
+    // notifications, else its own poll (SQLite is one process).
+    let job_wakeups = if listening {
+        "notify (PostgreSQL LISTEN/NOTIFY; polling as the fallback)".to_string()
+    } else {
+        format!(
+            "polling every {} ms (no cross-process notifications)",
+            config.poll_ms
+        )
+    };
+    tracing::info!(%addr, backend = store.backend(), workers = config.worker_count(), job_wakeups = %job_wakeups, "robocal listening");
     let scheme = if config.tls_enabled() {
         "https"
     } else {
@@ -124,10 +137,11 @@ pub async fn start(mut config: ServeConfig) -> Result<RunningServer, StartError>
         wake,
         workers_alive: pool.alive.clone(),
         decode_gate,
+        tokens,
     };
     let limits = listen::Limits {
         header_timeout: state.config.header_timeout(),
-        max_connections: state.config.max_connections,
+        connections: state.config.connection_limits(),
     };
     let app = api::app(state);
     let handle = tokio::spawn(async move {
@@ -135,6 +149,7 @@ pub async fn start(mut config: ServeConfig) -> Result<RunningServer, StartError>
         pool.join().await;
         let _ = housekeeping.await;
         let _ = deliveries.await;
+        let _ = token_watch.await;
         tracing::info!("robocal stopped");
     });
     Ok(RunningServer {

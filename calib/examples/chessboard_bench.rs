@@ -180,7 +180,5 @@ fn main() {
         return;
     }
     std::fs::write(format!("{out}/truth.csv"), csv).expect("write truth");
-    println!(
-        "images + truth.csv in {out}; OpenCV: /tmp/bench-venv/bin/python bench/chessboard_opencv.py {out}"
-    );
+    println!("images + truth.csv in {out}; OpenCV: python3 bench/chessboard_opencv.py {out}");
 }

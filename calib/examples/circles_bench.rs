@@ -231,5 +231,5 @@ fn main() {
         }
         std::fs::write(format!("{dir}/truth.csv"), csv).expect("write truth");
     }
-    println!("images + truth.csv in {out}/<board>; OpenCV: /tmp/bench-venv/bin/python bench/circles_opencv.py {out}");
+    println!("images + truth.csv in {out}/<board>; OpenCV: python3 bench/circles_opencv.py {out}");
 }

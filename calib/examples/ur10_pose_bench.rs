@@ -5,7 +5,7 @@
 //! non-geometric terms; validated on Series C and D with `world_to_base`
 //! re-fitted on each (a different tracker station), and the σ of the wrist
 //! parameters. Also checks the T-Mac's Euler convention against the
-//! nominal kinematics (docs/notes/session12-ur10pose.md).
+//! nominal kinematics (docs/decisions/0030-tmac-euler-convention.md).
 //!
 //! `cargo run --release -p robocal-calib --example ur10_pose_bench [every]`
 //! (`every`: fit on every n-th pose of Series B; default 1, all 1495).

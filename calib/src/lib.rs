@@ -1,4 +1,4 @@
-//! Pure, synchronous numerics of robocal (see `../shared/docs/method.md`).
+//! Pure, synchronous numerics of robocal (see `docs/method.md` at the repository root).
 //!
 //! This crate never imports HTTP, database or job code: plain functions on
 //! plain types; degenerate input returns an error, never a panic. Frames are

@@ -20,8 +20,8 @@ use robocal_calib::sim::planned::{calibrate_images, expected_error, plan_request
 const CELLS: u64 = 3;
 /// Noise draws shot per cell. One draw's validation error scatters by
 /// about half its mean, with a heavy tail (DH table + 5 MP, 10 draws per
-/// cell: 0.009–0.078 mm around a mean of 0.024; BENCHMARKS.md, "Session 8
-/// — plan"): over 3 x 6 draws the mean's scatter is ~13 %, a third of the
+/// cell: 0.009–0.078 mm around a mean of 0.024; BENCHMARKS.md, "Campaign
+/// planner"): over 3 x 6 draws the mean's scatter is ~13 %, a third of the
 /// issue's 0.67x–1.5x band (with 3 x 3 draws the DH cell measured 1.51x
 /// by chance; 10 draws per cell give 0.97x).
 const DRAWS: u64 = 6;

@@ -31,7 +31,7 @@ const WRIST: [&str; 6] = ["dtheta_4", "d_4", "alpha_4", "dtheta_5", "d_5", "alph
 /// must stay under. The probe's stated 0.01° per angle is 0.017° as a 3-D
 /// rms, but the robot's unmodelled error is larger: the fit's own residual
 /// here is 0.050° in-sample and 0.061° held out (0.075–0.11° on Series C
-/// and D, BENCHMARKS.md "Session 12"), so "the level of the probe" is not
+/// and D, BENCHMARKS.md "Non-geometric terms"), so "the level of the probe" is not
 /// reached on this robot. 0.08° (5× the probe) passes the calibrated
 /// model and fails the nominal kinematics with fitted frames (0.114°) or
 /// a wrong Euler convention (≥ 2.6°).

@@ -1,5 +1,7 @@
-//! The body-idle timeout (`--body-idle-timeout-secs`): a request body that
-//! sends nothing for that long while its handler waits for it fails the
+//! The body timeouts: a request body that sends nothing for
+//! `--body-idle-timeout-secs` while its handler waits for it, or that has
+//! not averaged `--min-body-bytes-per-sec` once it has been waited for that
+//! long (a body trickled a byte at a time restarts no timer), fails the
 //! handler's read, and the request is answered 408 (problem+json,
 //! `Connection: close`) whatever the handler made of the failed read. Only
 //! time spent waiting for the client counts, never the handler's own work
@@ -7,7 +9,7 @@
 
 use std::future::Future;
 use std::pin::Pin;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicU8, Ordering};
 use std::sync::Arc;
 use std::task::{Context, Poll};
 use std::time::Duration;
@@ -25,7 +27,8 @@ use super::AppState;
 
 pub async fn layer(State(state): State<AppState>, req: Request, next: Next) -> Response {
     let idle = state.config.body_idle_timeout();
-    let timed_out = Arc::new(AtomicBool::new(false));
+    let min_rate = state.config.min_body_bytes_per_sec;
+    let timed_out = Arc::new(AtomicU8::new(IN_TIME));
     let req = req.map(|body| {
         if body.is_end_stream() {
             body
@@ -33,39 +36,61 @@ pub async fn layer(State(state): State<AppState>, req: Request, next: Next) -> R
             Body::new(IdleBody {
                 inner: body,
                 idle,
+                min_rate,
                 sleep: Box::pin(tokio::time::sleep(idle)),
-                waiting: false,
+                waiting_since: None,
+                waited: Duration::ZERO,
+                received: 0,
                 timed_out: timed_out.clone(),
             })
         }
     });
     let response = next.run(req).await;
-    if !timed_out.load(Ordering::Relaxed) {
-        return response;
-    }
-    let mut response = ApiError::new(
-        StatusCode::REQUEST_TIMEOUT,
-        "body-timeout",
-        format!(
+    let detail = match timed_out.load(Ordering::Relaxed) {
+        IDLE => format!(
             "the request body sent nothing for {} s (server option --body-idle-timeout-secs)",
             idle.as_secs()
         ),
-    )
-    .into_response();
+        TOO_SLOW => format!(
+            "the request body arrived slower than {min_rate} bytes/s after {} s \
+             (server options --min-body-bytes-per-sec, --body-idle-timeout-secs)",
+            idle.as_secs()
+        ),
+        _ => return response,
+    };
+    let mut response =
+        ApiError::new(StatusCode::REQUEST_TIMEOUT, "body-timeout", detail).into_response();
     response
         .headers_mut()
         .insert(header::CONNECTION, HeaderValue::from_static("close"));
     response
 }
 
-/// A body whose reads fail once the client has been silent for `idle`.
+/// How a body ended, shared with the layer.
+const IN_TIME: u8 = 0;
+const IDLE: u8 = 1;
+const TOO_SLOW: u8 = 2;
+
+/// A body whose reads fail once the client has been silent for `idle`, or
+/// slower than `min_rate` on average after waiting `idle` in all.
 struct IdleBody {
     inner: Body,
     idle: Duration,
+    min_rate: u64,
     sleep: Pin<Box<Sleep>>,
-    /// The handler is waiting for the client (the timer runs).
-    waiting: bool,
-    timed_out: Arc<AtomicBool>,
+    /// The handler has been waiting for the client since then (the timer runs).
+    waiting_since: Option<Instant>,
+    /// Time spent waiting for the client before `waiting_since`.
+    waited: Duration,
+    received: u64,
+    timed_out: Arc<AtomicU8>,
+}
+
+impl IdleBody {
+    /// Total waiting time at which `received` bytes fall under the minimum rate.
+    fn rate_limit(&self) -> Duration {
+        self.idle + Duration::from_secs_f64(self.received as f64 / self.min_rate as f64)
+    }
 }
 
 impl HttpBody for IdleBody {
@@ -78,18 +103,34 @@ impl HttpBody for IdleBody {
     ) -> Poll<Option<Result<Frame<Bytes>, axum::Error>>> {
         let this = &mut *self;
         if let Poll::Ready(frame) = Pin::new(&mut this.inner).poll_frame(cx) {
-            this.waiting = false;
+            if let Some(since) = this.waiting_since.take() {
+                this.waited += since.elapsed();
+            }
+            if let Some(Ok(data)) = frame.as_ref().map(|f| f.as_ref().map(Frame::data_ref)) {
+                this.received += data.map_or(0, |d| d.len() as u64);
+            }
             return Poll::Ready(frame);
         }
-        if !this.waiting {
-            this.waiting = true;
-            this.sleep.as_mut().reset(Instant::now() + this.idle);
-        }
+        let since = match this.waiting_since {
+            Some(since) => since,
+            None => {
+                let now = Instant::now();
+                this.waiting_since = Some(now);
+                // Whichever comes first: silence, or falling under the rate.
+                let slow_at = now + this.rate_limit().saturating_sub(this.waited);
+                this.sleep.as_mut().reset((now + this.idle).min(slow_at));
+                now
+            }
+        };
         if this.sleep.as_mut().poll(cx).is_ready() {
-            this.timed_out.store(true, Ordering::Relaxed);
+            let silent = since.elapsed() >= this.idle;
+            let kind = if silent { IDLE } else { TOO_SLOW };
+            this.timed_out.store(kind, Ordering::Relaxed);
             return Poll::Ready(Some(Err(axum::Error::new(format!(
-                "no body data for {} s",
-                this.idle.as_secs()
+                "the request body was {} (limit {} s, {} bytes/s)",
+                if silent { "silent" } else { "too slow" },
+                this.idle.as_secs(),
+                this.min_rate
             )))));
         }
         Poll::Pending

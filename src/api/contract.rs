@@ -57,6 +57,17 @@ const INVALID: Failure = Failure {
     description: "A field or parameter is invalid: `errors` names each one with the reason",
 };
 
+const BODY_TIMEOUT: Failure = Failure {
+    status: "408",
+    description: "The body went silent, or arrived slower than the server's minimum rate (`--body-idle-timeout-secs`, `--min-body-bytes-per-sec`)",
+};
+const BUSY: Failure = Failure {
+    status: "503",
+    description: "Every connection is in a request and this one is reserved for health checks and authenticated requests, or the client holds its maximum of connections or event streams: retry after `Retry-After` seconds",
+};
+/// Probes always pass the reserved lane.
+const PROBE_PATHS: [&str; 2] = ["/healthz", "/readyz"];
+
 /// Descriptions of answers a route documents without one.
 fn default_description(status: &str) -> &'static str {
     match status {
@@ -66,7 +77,6 @@ fn default_description(status: &str) -> &'static str {
         "204" => "No content",
         "409" => "Conflicts with the resource's current state",
         "429" => "Too many requests: retry after `Retry-After` seconds",
-        "503" => "Not ready",
         other => [
             &UNAUTHORIZED,
             &FORBIDDEN,
@@ -75,6 +85,8 @@ fn default_description(status: &str) -> &'static str {
             &TOO_LARGE,
             &UNSUPPORTED,
             &INVALID,
+            &BODY_TIMEOUT,
+            &BUSY,
         ]
         .into_iter()
         .find(|f| f.status == other)
@@ -111,8 +123,17 @@ fn failures_of(method: &str, path: &str, operation: &Operation) -> Vec<&'static 
     if has(ParameterIn::Path) && method != "put" {
         out.push(&NOT_FOUND);
     }
+    if !PROBE_PATHS.contains(&path) {
+        out.push(&BUSY);
+    }
     if operation.request_body.is_some() {
-        out.extend([&MALFORMED, &TOO_LARGE, &UNSUPPORTED, &INVALID]);
+        out.extend([
+            &MALFORMED,
+            &TOO_LARGE,
+            &UNSUPPORTED,
+            &INVALID,
+            &BODY_TIMEOUT,
+        ]);
     } else {
         if has(ParameterIn::Query) {
             out.push(&BAD_QUERY);

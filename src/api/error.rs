@@ -8,6 +8,7 @@ use axum::response::{IntoResponse, Response};
 use serde::Serialize;
 use utoipa::ToSchema;
 
+use crate::domain::ControllerMismatch;
 use crate::schema::FieldError;
 use crate::service::ServiceError;
 use crate::store::StoreError;
@@ -22,6 +23,8 @@ pub struct ApiError {
     pub detail: String,
     pub errors: Vec<FieldError>,
     pub retry_after_secs: Option<u64>,
+    /// A controller mismatch's two identities (409, issue 34).
+    pub controller: Option<Box<ControllerMismatch>>,
 }
 
 /// The problem document, as served.
@@ -34,6 +37,10 @@ pub struct Problem {
     pub detail: String,
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub errors: Vec<FieldError>,
+    /// On a controller mismatch (409): the identity the request expected
+    /// and the one recorded.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub controller: Option<ControllerMismatch>,
 }
 
 impl ApiError {
@@ -44,6 +51,7 @@ impl ApiError {
             detail: detail.into(),
             errors: vec![],
             retry_after_secs: None,
+            controller: None,
         }
     }
 
@@ -202,6 +210,14 @@ impl From<ServiceError> for ApiError {
             ServiceError::ConflictField { field, message } => {
                 ApiError::conflict(format!("{field}: {message}")).with_field(field, message)
             }
+            ServiceError::ControllerMismatch { what, mismatch } => {
+                let message = mismatch.message(what);
+                ApiError {
+                    controller: Some(mismatch),
+                    ..ApiError::conflict(format!("controller: {message}"))
+                        .with_field("controller", message)
+                }
+            }
             ServiceError::Store(e) => e.into(),
             ServiceError::Internal(cause) => ApiError::internal(cause),
         }
@@ -227,6 +243,7 @@ impl IntoResponse for ApiError {
             status: self.status.as_u16(),
             detail: self.detail,
             errors: self.errors,
+            controller: self.controller.map(|m| *m),
         };
         let body = serde_json::to_vec(&problem).unwrap_or_default();
         let mut response = (self.status, body).into_response();

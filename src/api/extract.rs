@@ -113,8 +113,12 @@ pub fn content_length(headers: &axum::http::HeaderMap) -> Option<u64> {
         .and_then(|v| v.parse().ok())
 }
 
-/// Parses JSON; syntax errors are 400, type/shape errors 422 naming the field.
+/// Parses JSON; syntax errors are 400, type/shape errors and strings with
+/// a NUL character 422 naming the field.
 pub fn parse_json<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
+    if let Some(field) = crate::schema::nul::json_nul_field(bytes) {
+        return Err(super::nul_guard::nul_error(field));
+    }
     let de = &mut serde_json::Deserializer::from_slice(bytes);
     serde_path_to_error::deserialize(de).map_err(|err| {
         let path = err.path().to_string();

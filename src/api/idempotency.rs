@@ -6,7 +6,10 @@
 //! request is still running answers 409; the running request holds the key
 //! under a lease it renews, so a key whose process died frees itself.
 //! Responses that a retry may improve on (5xx, 429) are not stored, nor
-//! responses to requests whose body was not read to its end.
+//! responses to requests whose body was not read to its end. Every writing
+//! transaction of a keyed request marks its key in that transaction
+//! (`store::write_guard`): a key whose server died after the write
+//! committed is answered 409 `idempotent-request-done`, never run again.
 
 use std::future::Future;
 use std::time::Duration;
@@ -22,6 +25,7 @@ use super::error::ApiError;
 use super::fingerprint::{digest_body, BodyRead, BodyTap, DigestError, Fingerprinter};
 use super::AppState;
 use crate::domain::{new_id, now_unix_ms, IdempotencyClaim, IdempotencyScope, StoredResponse};
+use crate::store::write_guard;
 
 pub const HEADER: &str = "idempotency-key";
 const MAX_KEY_LEN: usize = 255;
@@ -92,6 +96,13 @@ pub async fn layer(State(state): State<AppState>, req: Request, next: Next) -> R
             lease.as_secs()
         ))
         .into_response(),
+        Ok(IdempotencyClaim::Lost) => ApiError::new(
+            StatusCode::CONFLICT,
+            "idempotent-request-done",
+            "the request with this Idempotency-Key was carried out, but its server stopped \
+             before storing the answer; it is not run again: read the resource to see the result",
+        )
+        .into_response(),
         Ok(IdempotencyClaim::OtherRequest { method, path }) => {
             reused(format!("it was used for {method} {path}")).into_response()
         }
@@ -120,7 +131,13 @@ pub async fn layer(State(state): State<AppState>, req: Request, next: Next) -> R
         Ok(IdempotencyClaim::Fresh) => {
             let tap = BodyTap::new(body, fingerprint);
             let req = Request::from_parts(parts, tap.body());
-            let response = run_holding_lease(&state, &scope, lease, next.run(req)).await;
+            // Every writing transaction of the request marks the key (crash safety).
+            let run = write_guard::guarded(scope.clone(), next.run(req));
+            let response = run_holding_lease(&state, &scope, lease, run).await;
+            if state.config.test_crash_before_idempotent_answer {
+                tracing::warn!("test hook: aborting before the idempotent answer is stored");
+                std::process::abort();
+            }
             let read = tap.finish(MAX_DRAIN_BYTES, MAX_DRAIN_WAIT).await;
             record(&state, &scope, read, response).await
         }

@@ -131,7 +131,7 @@ async fn start_calibration(
     Ok(JobAccepted::response(job))
 }
 
-/// Queue one calibration over several sessions of the robot (issue 18):
+/// Queue one calibration over several sessions of the robot:
 /// each session one board placement (region); one kinematic model and
 /// hand–eye, one `target_to_base` per session, shared intrinsics. One
 /// session is that session's own calibration.

@@ -29,6 +29,8 @@ pub mod auth;
 pub mod body_idle;
 pub mod campaign_plans;
 pub mod contract;
+pub mod controller_query;
+pub mod cross_site;
 pub mod error;
 pub mod export;
 pub mod extract;
@@ -37,7 +39,9 @@ pub mod fleet;
 pub mod idempotency;
 pub mod job_events;
 pub mod jobs;
+pub mod lane;
 pub mod ndjson;
+pub mod nul_guard;
 pub mod ops;
 pub mod poses;
 pub mod problem_fallback;
@@ -47,6 +51,7 @@ pub mod results;
 pub mod robots;
 pub mod sessions;
 pub mod targets;
+pub mod token_watch;
 pub mod tokens;
 pub mod upload;
 pub mod webhooks;
@@ -67,13 +72,15 @@ pub struct AppState {
     pub workers_alive: Arc<AtomicUsize>,
     /// Bounds concurrent image decodes (uploads and jobs share it).
     pub decode_gate: Arc<crate::imaging::DecodeGate>,
+    /// The tokens as last read, so open streams end on revocation.
+    pub tokens: token_watch::Tokens,
 }
 
 #[derive(OpenApi)]
 #[openapi(
     info(
         title = "robocal",
-        description = "Robot calibration service: one flange camera, a dot-grid board, identified kinematics over REST. Errors are application/problem+json (RFC 9457).",
+        description = "Robot calibration service: kinematic calibration of industrial robots from a flange camera (dot grid, chessboard, ChArUco or circle boards), a camera on a linear stage or a laser tracker; identified parameters, reports, compensation and exports over REST. Errors are application/problem+json (RFC 9457).",
     ),
     modifiers(&BearerAuth),
     security(("bearer" = []))
@@ -141,7 +148,13 @@ pub fn app(state: AppState) -> Router {
             state.clone(),
             body_idle::layer,
         ))
+        // Inside auth: the reserved lane serves authenticated requests.
+        .layer(middleware::from_fn(lane::layer))
         .layer(middleware::from_fn_with_state(state.clone(), auth::layer))
+        // Before auth: ids and cursors with NUL never reach the database.
+        .layer(middleware::from_fn(nul_guard::layer))
+        // Before auth: a cross-site write is refused whoever it claims to be.
+        .layer(middleware::from_fn(cross_site::layer))
         .layer(middleware::from_fn_with_state(state.clone(), observe))
         .layer(middleware::from_fn(problem_fallback::layer))
         // Uploads stream with their own limits; JSON bodies are limited by the extractors.

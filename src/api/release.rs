@@ -2,7 +2,7 @@
 //! parameter set, a robot's history, and quick re-checks of a session
 //! against the robot's latest approved set.
 
-use axum::extract::{Path, State};
+use axum::extract::{Path, Query, State};
 use axum::response::Response;
 use axum::{Extension, Json};
 use serde::Deserialize;
@@ -11,13 +11,14 @@ use utoipa_axum::router::OpenApiRouter;
 use utoipa_axum::routes;
 
 use super::auth::Principal;
+use super::controller_query::ControllerQuery;
 use super::error::{ApiResult, Problem};
 use super::extract::{OptionalJson, SerialPath};
 use super::jobs::JobAccepted;
 use super::results::ParameterSetOut;
 use super::sessions::find_session;
 use super::AppState;
-use crate::domain::{ReleaseStatus, ANONYMOUS_ACTOR};
+use crate::domain::{controller_expectation, ControllerIdentity, ReleaseStatus, ANONYMOUS_ACTOR};
 use crate::service::{checks, release};
 
 pub fn router() -> OpenApiRouter<AppState> {
@@ -134,29 +135,40 @@ async fn history(
     Ok(Json(release::history(&state.store, &serial).await?))
 }
 
-/// An empty body: a re-check has no options.
+/// A re-check's options: only the controller the caller expects.
 #[derive(Debug, Clone, Default, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
-pub struct CheckBody {}
+pub struct CheckBody {
+    /// The controller the caller expects the approved set to be made on
+    /// (issue 34): 409 naming `controller` when it records another.
+    #[serde(default)]
+    pub expect_controller: Option<ControllerIdentity>,
+}
 
 /// Queue a quick re-check of the session (5–10 poses, camera or tracker)
 /// against the robot's latest approved set. The job's `result` holds
-/// `verdict` (`pass`, `drift`, `base_moved`), `mean_mm`,
+/// `verdict` (`pass`, `drift`, `base_moved`, or `controller_changed` when
+/// the session was measured on another controller than the set's), `mean_mm`,
 /// `expected_mean_mm`, `p_value` and `suspects` (see `CheckDoc`).
 #[utoipa::path(post, path = "/v1/sessions/{id}/checks", tag = "jobs",
-    params(("id" = String, Path, description = "Session id")),
-    request_body(content = Option<CheckBody>, content_type = "application/json", description = "Optional: `{}`"),
+    params(("id" = String, Path, description = "Session id"), ControllerQuery),
+    request_body(content = Option<CheckBody>, content_type = "application/json", description = "Optional: `{}` or `{\"expect_controller\": {…}}`"),
     responses((status = 202, description = "The check is queued; `Location` is its job (result: `CheckDoc`)", body = JobAccepted, headers(("Location" = String, description = "/v1/jobs/{job_id}"))),
               (status = 404, body = Problem, content_type = "application/problem+json"),
-              (status = 409, description = "The robot has no approved parameter set to check against (`errors` names `serial`)", body = Problem, content_type = "application/problem+json"),
+              (status = 409, description = "The robot has no approved parameter set to check against (`errors` names `serial`), or the set was made on another controller than `expect_controller` / `controller_serial` (`errors` names `controller`, the problem's `controller` both identities)", body = Problem, content_type = "application/problem+json"),
               (status = 429, description = "The queue is full (`--max-queued`): retry after `Retry-After` seconds", body = Problem, content_type = "application/problem+json")))]
 async fn start_check(
     State(state): State<AppState>,
     Path(id): Path<String>,
-    OptionalJson(_body): OptionalJson<CheckBody>,
+    Query(query): Query<ControllerQuery>,
+    OptionalJson(body): OptionalJson<CheckBody>,
 ) -> ApiResult<Response> {
+    let expect = controller_expectation(
+        body.expect_controller.as_ref(),
+        query.controller_serial.as_deref(),
+    )?;
     let session = find_session(&state, &id).await?;
-    let job = checks::start_check(&state.store, &state.policy, &session).await?;
+    let job = checks::start_check(&state.store, &state.policy, &session, expect.as_ref()).await?;
     state.wake.notify_one();
     Ok(JobAccepted::response(job))
 }

@@ -5,10 +5,13 @@
 //!
 //! The link is `…/parameter-sets/{n}/report.html?expires=UNIX&sig=HMAC`,
 //! where the HMAC-SHA256 covers the report's path (version resolved, never
-//! `latest`) and the expiry, under a key kept in the database
+//! `latest`), the set's identity (its creation time: a robot deleted and
+//! created again under the serial has new sets, which an old link does not
+//! open) and the expiry, under a key kept in the database
 //! (`server_secrets`), so every replica of a fleet accepts it. A link stays
 //! valid until it expires, also if the token that asked for it is revoked:
-//! keep expiries short.
+//! keep expiries short. Link URLs start with `--public-base-url` when it
+//! is set (else with the request's `Host`).
 
 use axum::extract::{Path, State};
 use axum::http::{header, HeaderMap, Method, StatusCode, Uri};
@@ -86,22 +89,38 @@ fn query_param<'a>(uri: &'a Uri, name: &str) -> Option<&'a str> {
 }
 
 /// The signature of a link to the report under `set_path`
-/// (`/v1/robots/{serial}/parameter-sets/{n}`) expiring at `expires_unix`.
-pub fn sign(secret: &str, set_path: &str, expires_unix: i64) -> String {
-    let mac = mac_of(secret, set_path, expires_unix)
+/// (`/v1/robots/{serial}/parameter-sets/{n}`) of the set created at
+/// `set_created_at`, expiring at `expires_unix`.
+pub fn sign(secret: &str, set_path: &str, set_created_at: &str, expires_unix: i64) -> String {
+    let mac = mac_of(secret, set_path, set_created_at, expires_unix)
         .finalize()
         .into_bytes();
     base64::engine::general_purpose::URL_SAFE_NO_PAD.encode(mac)
 }
 
-fn mac_of(secret: &str, set_path: &str, expires_unix: i64) -> HmacSha256 {
+fn mac_of(secret: &str, set_path: &str, set_created_at: &str, expires_unix: i64) -> HmacSha256 {
     let mut mac =
         HmacSha256::new_from_slice(secret.as_bytes()).expect("HMAC takes keys of any length");
     mac.update(b"robocal report link\n");
     mac.update(set_path.as_bytes());
     mac.update(b"\n");
+    mac.update(set_created_at.as_bytes());
+    mac.update(b"\n");
     mac.update(expires_unix.to_string().as_bytes());
     mac
+}
+
+/// When the set under `set_path` was created (its identity), if it exists.
+async fn set_created_at(state: &AppState, set_path: &str) -> ApiResult<Option<String>> {
+    let parsed = set_path
+        .strip_prefix("/v1/robots/")
+        .and_then(|rest| rest.split_once("/parameter-sets/"))
+        .and_then(|(serial, v)| v.parse::<i64>().ok().map(|v| (serial, v)));
+    let Some((serial, version)) = parsed else {
+        return Ok(None);
+    };
+    let set = state.store.get_parameter_set(serial, Some(version)).await?;
+    Ok(set.map(|s| s.created_at))
 }
 
 /// The fleet's signing key (created by the first replica that needs one).
@@ -135,7 +154,10 @@ pub async fn verify(state: &AppState, method: &Method, uri: &Uri) -> ApiResult<(
         })
         .ok_or_else(|| refuse("`sig` is not a signature"))?;
     let secret = signing_secret(state).await?;
-    mac_of(&secret, set_path, expires)
+    let created_at = set_created_at(state, set_path)
+        .await?
+        .ok_or_else(|| refuse("the parameter set it names no longer exists"))?;
+    mac_of(&secret, set_path, &created_at, expires)
         .verify_slice(&sig)
         .map_err(|_| refuse("the signature does not match this report and expiry"))?;
     let now_unix = crate::domain::now_unix_ms() / 1000;
@@ -179,7 +201,12 @@ async fn create_report_link(
     // Serials are A-Z a-z 0-9 - _ . (check_serial): nothing to escape.
     let set_path = format!("/v1/robots/{}/parameter-sets/{}", set.serial, set.version);
     let expires = crate::domain::now_unix_ms() / 1000 + body.expires_in_minutes * 60;
-    let sig = sign(&signing_secret(&state).await?, &set_path, expires);
+    let sig = sign(
+        &signing_secret(&state).await?,
+        &set_path,
+        &set.created_at,
+        expires,
+    );
     let base = public_base(&state, &headers);
     let link = |variant: &str| {
         format!("{base}{set_path}{variant}?{EXPIRES_PARAM}={expires}&{SIG_PARAM}={sig}")
@@ -195,8 +222,12 @@ async fn create_report_link(
     ))
 }
 
-/// `scheme://host` as the caller reached this server (its `Host`), else the bind.
+/// `--public-base-url` when set; else `scheme://host` as the caller
+/// reached this server (its `Host`), else the bind.
 fn public_base(state: &AppState, headers: &HeaderMap) -> String {
+    if let Some(base) = &state.config.public_base_url {
+        return base.trim_end_matches('/').to_string();
+    }
     let scheme = if state.config.tls_enabled() {
         "https"
     } else {
@@ -215,12 +246,18 @@ mod tests {
     use super::*;
 
     #[test]
-    fn signature_binds_path_and_expiry() {
-        let s = sign("k", "/v1/robots/A/parameter-sets/1", 100);
-        assert_eq!(s, sign("k", "/v1/robots/A/parameter-sets/1", 100));
-        assert_ne!(s, sign("k", "/v1/robots/A/parameter-sets/2", 100));
-        assert_ne!(s, sign("k", "/v1/robots/A/parameter-sets/1", 101));
-        assert_ne!(s, sign("other", "/v1/robots/A/parameter-sets/1", 100));
+    fn signature_binds_path_set_and_expiry() {
+        let (p1, t) = ("/v1/robots/A/parameter-sets/1", "2026-01-01T00:00:00.000Z");
+        let s = sign("k", p1, t, 100);
+        assert_eq!(s, sign("k", p1, t, 100));
+        assert_ne!(s, sign("k", "/v1/robots/A/parameter-sets/2", t, 100));
+        assert_ne!(
+            s,
+            sign("k", p1, "2026-01-02T00:00:00.000Z", 100),
+            "a re-created set"
+        );
+        assert_ne!(s, sign("k", p1, t, 101));
+        assert_ne!(s, sign("other", p1, t, 100));
     }
 
     #[test]

@@ -11,14 +11,15 @@ use utoipa_axum::routes;
 use axum::http::{header, HeaderMap};
 use axum::response::{Html, IntoResponse, Response};
 
+use super::controller_query::ControllerQuery;
 use super::error::{ApiError, ApiResult, Problem};
 use super::extract::{ApiJson, Paging, SerialPath};
 use super::{ndjson, AppState};
-use crate::domain::ReleaseStatus;
+use crate::domain::{controller_expectation, ReleaseStatus};
 use crate::report::schema::IntrinsicsSchema;
 use crate::report::{render_html, render_svg, Report};
 use crate::schema::PoseOut;
-use crate::service::{compensate, evaluate, filter, release, results, uncertainty};
+use crate::service::{compensate, evaluate, filter, release, report_view, results, uncertainty};
 use crate::store::ParameterSetRecord;
 
 pub fn router() -> OpenApiRouter<AppState> {
@@ -102,10 +103,13 @@ pub struct ParameterSetFields {
     /// `parameters` (what `forward`'s predicted σ propagate). Absent for
     /// sets stored before it was kept.
     pub covariance: Option<crate::domain::CovarianceDoc>,
-    /// The non-geometric terms kept by the selection (issue 19), each with
+    /// The non-geometric terms kept by the selection, each with
     /// its value, σ and unit; `forward`, `compensate`, `filter` and the
     /// predicted σ include them. Absent when none was kept.
     pub terms: Option<crate::domain::TermsDoc>,
+    /// The controller the set's session was measured on (issue 34);
+    /// absent when none was recorded.
+    pub controller: Option<crate::domain::ControllerIdentity>,
 }
 
 #[derive(Debug, Serialize, ToSchema)]
@@ -225,28 +229,12 @@ async fn get_report(
     Ok(Json(report))
 }
 
-/// The stored report with the parameter set's identity filled in (the
-/// pipeline cannot know its version number or date).
 async fn report_json(state: &AppState, serial: &str, version: &str) -> ApiResult<Value> {
-    let set = find(state, serial, version).await?;
-    let mut report = state
-        .store
-        .get_report(serial, set.version)
-        .await?
-        .ok_or_else(|| ApiError::not_found("report", &format!("{serial}/{version}")))?;
-    if let Some(obj) = report.as_object_mut() {
-        obj.insert("serial".into(), Value::from(set.serial));
-        obj.insert("version".into(), Value::from(set.version));
-        obj.insert("job_id".into(), Value::from(set.job_id.unwrap_or_default()));
-        obj.insert("created_at".into(), Value::from(set.created_at));
-        obj.insert("status".into(), Value::from(set.status.as_str()));
-    }
-    Ok(report)
+    Ok(report_view::report_json(&state.store, serial, version).await?)
 }
 
 async fn typed_report(state: &AppState, serial: &str, version: &str) -> ApiResult<Report> {
-    serde_json::from_value(report_json(state, serial, version).await?)
-        .map_err(|_| ApiError::conflict("this parameter set has no accuracy report to draw"))
+    Ok(report_view::typed_report(&state.store, serial, version).await?)
 }
 
 /// The report drawn as one SVG sheet.
@@ -308,19 +296,25 @@ async fn forward(
 /// still a 422.
 #[utoipa::path(post, path = "/v1/robots/{serial}/parameter-sets/{version}/filter", tag = "results",
     params(("serial" = String, Path, description = "Robot serial number"),
-           ("version" = String, Path, pattern = r"^(latest|[1-9][0-9]{0,17})$", description = "Version number (1, 2, ...) or `latest`")),
+           ("version" = String, Path, pattern = r"^(latest|[1-9][0-9]{0,17})$", description = "Version number (1, 2, ...) or `latest`"),
+           ControllerQuery),
     request_body = filter::FilterRequest,
     responses((status = 200, description = "Per target, the flange pose for the nominal controller, the joints the robot takes and the replayed residual; unreachable targets in `errors` with their index (streamed: one `FilterLine` per line, an `error` inline)",
                content((filter::FilterResponse = "application/json"), (filter::FilterLine = "application/x-ndjson"))),
               (status = 422, body = Problem, content_type = "application/problem+json"),
-              (status = 409, description = "The parameter set holds no calibrated model", body = Problem, content_type = "application/problem+json")))]
+              (status = 409, description = "The parameter set holds no calibrated model, or was made on another controller than `expect_controller` / `controller_serial` (`controller` names both identities)", body = Problem, content_type = "application/problem+json")))]
 async fn filter_targets(
     State(state): State<AppState>,
     SerialPath(serial): SerialPath,
     Path((_serial, version)): Path<(String, String)>,
+    Query(query): Query<ControllerQuery>,
     headers: HeaderMap,
-    ApiJson(body): ApiJson<filter::FilterRequest>,
+    ApiJson(mut body): ApiJson<filter::FilterRequest>,
 ) -> ApiResult<Response> {
+    body.expect_controller = controller_expectation(
+        body.expect_controller.as_ref(),
+        query.controller_serial.as_deref(),
+    )?;
     if ndjson::wanted(&headers) {
         let lines = results::filter_stream(&state.store, &serial, &version, body).await?;
         return Ok(ndjson::response(lines));
@@ -334,19 +328,25 @@ async fn filter_targets(
 /// per target (as `filter`).
 #[utoipa::path(post, path = "/v1/robots/{serial}/parameter-sets/{version}/compensate", tag = "results",
     params(("serial" = String, Path, description = "Robot serial number"),
-           ("version" = String, Path, pattern = r"^(latest|[1-9][0-9]{0,17})$", description = "Version number (1, 2, ...) or `latest`")),
+           ("version" = String, Path, pattern = r"^(latest|[1-9][0-9]{0,17})$", description = "Version number (1, 2, ...) or `latest`"),
+           ControllerQuery),
     request_body = compensate::CompensateRequest,
     responses((status = 200, description = "Per target, the joints and the model's remaining distance to the target; targets out of reach or beyond the joint limits in `errors` with their index (streamed: one `CompensateLine` per line, an `error` inline)",
                content((compensate::CompensateResponse = "application/json"), (compensate::CompensateLine = "application/x-ndjson"))),
               (status = 422, body = Problem, content_type = "application/problem+json"),
-              (status = 409, description = "The parameter set holds no calibrated model", body = Problem, content_type = "application/problem+json")))]
+              (status = 409, description = "The parameter set holds no calibrated model, or was made on another controller than `expect_controller` / `controller_serial` (`controller` names both identities)", body = Problem, content_type = "application/problem+json")))]
 async fn compensate(
     State(state): State<AppState>,
     SerialPath(serial): SerialPath,
     Path((_serial, version)): Path<(String, String)>,
+    Query(query): Query<ControllerQuery>,
     headers: HeaderMap,
-    ApiJson(body): ApiJson<compensate::CompensateRequest>,
+    ApiJson(mut body): ApiJson<compensate::CompensateRequest>,
 ) -> ApiResult<Response> {
+    body.expect_controller = controller_expectation(
+        body.expect_controller.as_ref(),
+        query.controller_serial.as_deref(),
+    )?;
     if ndjson::wanted(&headers) {
         let lines = results::compensate_stream(&state.store, &serial, &version, body).await?;
         return Ok(ndjson::response(lines));

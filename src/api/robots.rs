@@ -3,6 +3,7 @@
 use axum::extract::State;
 use axum::http::StatusCode;
 use axum::Json;
+use robocal_calib::kinematics::prior::KinematicPrior;
 use serde::Serialize;
 use utoipa::ToSchema;
 use utoipa_axum::router::OpenApiRouter;
@@ -11,8 +12,8 @@ use utoipa_axum::routes;
 use super::error::{ApiError, ApiResult, Problem};
 use super::extract::{ApiJson, Paging, SerialPath};
 use super::AppState;
-use crate::domain::now_rfc3339;
-use crate::schema::robot::{KinematicsDoc, Preset, RobotBody};
+use crate::domain::{now_rfc3339, ControllerIdentity};
+use crate::schema::robot::{KinematicsDoc, Preset, PriorDoc, RobotBody};
 use crate::store::RobotRecord;
 
 pub fn router() -> OpenApiRouter<AppState> {
@@ -29,6 +30,13 @@ pub struct RobotOut {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub preset: Option<Preset>,
     pub kinematics: KinematicsDoc,
+    /// The controller identity; absent when none was given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub controller: Option<ControllerIdentity>,
+    /// The prior on the kinematic deviations; absent: manufacturing
+    /// tolerances (docs/method.md §6.7).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub prior: Option<PriorDoc>,
     pub created_at: String,
     pub updated_at: String,
 }
@@ -50,6 +58,8 @@ impl TryFrom<RobotRecord> for RobotOut {
                 .and_then(|p| serde_json::from_value(serde_json::json!(p)).ok()),
             serial: r.serial,
             model: r.model,
+            controller: r.controller,
+            prior: r.prior.map(PriorDoc::from),
             created_at: r.created_at,
             updated_at: r.updated_at,
         })
@@ -77,10 +87,16 @@ async fn put_robot(
         model: body.model.trim().to_string(),
         preset: body.preset.map(|p| p.as_str().to_string()),
         kinematics: serde_json::to_value(&kinematics).map_err(ApiError::internal)?,
+        controller: None,
+        prior: body.prior.map(KinematicPrior::from),
         created_at: now.clone(),
-        updated_at: now,
+        updated_at: now.clone(),
     };
     let created = state.store.put_robot(&record).await?;
+    state
+        .store
+        .set_robot_controller(&serial, body.controller.as_ref(), &now)
+        .await?;
     let stored = state
         .store
         .get_robot(&serial)

@@ -55,6 +55,9 @@ pub struct SessionSpecOut {
     pub volume: Option<String>,
     /// Payload at the tool during the campaign (kg).
     pub payload_kg: Option<f64>,
+    /// The controller the session was measured on (issue 34): the one it
+    /// was created with, else the robot's then.
+    pub controller: Option<crate::domain::ControllerIdentity>,
 }
 
 #[derive(Debug, Serialize, ToSchema)]
@@ -94,6 +97,10 @@ async fn create_session(
     ApiJson(mut body): ApiJson<SessionBody>,
 ) -> ApiResult<(StatusCode, Json<SessionOut>)> {
     body.check()?;
+    check_camera_pixels(&body, state.config.max_camera_pixels)?;
+    if body.controller.is_none() {
+        body.controller = crate::service::intake::robot_controller(&state.store, &serial).await?;
+    }
     if let Some(id) = &body.camera_calibration_id {
         body.camera_calibration_id =
             Some(camera_reuse::resolve_for_session(&state.store, &body, id).await?);
@@ -107,6 +114,26 @@ async fn create_session(
             e => e.into(),
         })?;
     Ok((StatusCode::CREATED, Json(session.try_into()?)))
+}
+
+/// A session camera over the server's pixel ceiling is refused: every
+/// image of the session is decoded at that size.
+fn check_camera_pixels(body: &SessionBody, max_pixels: u64) -> Result<(), ApiError> {
+    let Some(camera) = &body.camera else {
+        return Ok(());
+    };
+    let pixels = camera.width as u64 * camera.height as u64;
+    if pixels > max_pixels {
+        return Err(ApiError::invalid(
+            "camera",
+            format!(
+                "{}x{} is {pixels} pixels; this server accepts at most {max_pixels} \
+                 (server option --max-camera-pixels)",
+                camera.width, camera.height
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// A robot's sessions, oldest first.

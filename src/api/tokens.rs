@@ -200,12 +200,13 @@ async fn list_tokens(State(state): State<AppState>) -> ApiResult<Json<TokenList>
         (status = 204, description = "Revoked (also when it was revoked already)"),
         (status = 401, body = Problem, content_type = "application/problem+json", description = "No valid token"),
         (status = 403, body = Problem, content_type = "application/problem+json", description = "The token is not `admin`"),
-        (status = 404, body = Problem, content_type = "application/problem+json", description = "No token has this id")))]
+        (status = 404, body = Problem, content_type = "application/problem+json", description = "No token has this id"),
+        (status = 409, body = Problem, content_type = "application/problem+json", description = "It is the last usable admin token (create another first)")))]
 async fn revoke_token(
     State(state): State<AppState>,
     Path(id): Path<String>,
 ) -> ApiResult<StatusCode> {
-    match state.store.revoke_token(&id).await? {
+    match state.store.revoke_token_keeping_an_admin(&id).await? {
         Some(_) => Ok(StatusCode::NO_CONTENT),
         None => Err(ApiError::not_found("token", &id)),
     }

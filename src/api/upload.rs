@@ -18,6 +18,7 @@ use super::error::{ApiError, ApiResult, Problem};
 use super::extract::content_length;
 use super::AppState;
 use crate::service::dataset::DatasetLimits;
+use crate::service::dataset_warning::detection_warning;
 use crate::service::intake::PoseIntake;
 
 pub fn router() -> OpenApiRouter<AppState> {
@@ -32,6 +33,9 @@ pub struct DatasetOut {
     /// Dots the detector found on each image at upload, in `pose_ids` order
     /// (0 where the board was not found; the pose's `detection_error` says why).
     pub detected_points: Vec<usize>,
+    /// What the upload warns of although it stored every pose, e.g. "0 of
+    /// 32 images show the session's target; 32 say: …" (the job would fail).
+    pub warnings: Vec<String>,
 }
 
 /// Reads a multipart field, refusing more than `limit` bytes.
@@ -115,6 +119,7 @@ async fn upload_dataset(
         Json(DatasetOut {
             session_id,
             poses_created: stored.len(),
+            warnings: detection_warning(&stored).into_iter().collect(),
             detected_points: stored
                 .iter()
                 .map(|p| p.image_detection.as_ref().map_or(0, |d| d.points.len()))
@@ -132,7 +137,7 @@ async fn spool_to_file(state: &AppState, req: Request) -> ApiResult<tempfile::Na
     }
     let dir = state.config.upload_dir();
     let temp = tempfile::Builder::new()
-        .prefix(crate::housekeeping::SPOOL_PREFIX)
+        .prefix(&crate::housekeeping::spool_prefix())
         .tempfile_in(&dir)
         .map_err(|e| ApiError::internal(format!("temp file in {}: {e}", dir.display())))?;
     let std_file = temp.reopen().map_err(ApiError::internal)?;

@@ -44,6 +44,7 @@ async fn create_webhook(
             .and_then(|h| h.to_str().ok())
             .map(str::to_string),
         tls: state.config.tls_enabled(),
+        guard: state.config.address_guard(),
     };
     let created = webhooks::create(&state.store, body, &me).await?;
     Ok((StatusCode::CREATED, Json(created)))

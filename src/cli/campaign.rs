@@ -177,8 +177,14 @@ pub fn calibrate_local(dir: &Path, serial: &str) -> Result<Report, String> {
     let set = run_local(dir, serial)?
         .parameter_set
         .ok_or("the pipeline produced no parameter set")?;
-    serde_json::from_value(set.report).map_err(|e| e.to_string())
+    let mut report: Report = serde_json::from_value(set.report).map_err(|e| e.to_string())?;
+    // No server: no job, no stored version; say so instead of printing blanks.
+    report.job_id = LOCAL_JOB.into();
+    Ok(report)
 }
+
+/// What a report calibrated without a server names as its job.
+pub const LOCAL_JOB: &str = "none (calibrate-local, no server)";
 
 /// The pipeline's output on a campaign directory, without a server.
 pub fn run_local(dir: &Path, serial: &str) -> Result<pipeline::Output, String> {

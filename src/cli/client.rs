@@ -30,6 +30,12 @@ struct Accepted {
 pub struct DatasetStored {
     #[serde(default)]
     pub poses_created: u64,
+    /// Dots found per image at upload.
+    #[serde(default)]
+    pub detected_points: Vec<u64>,
+    /// What the server warns of (e.g. no image shows the session's target).
+    #[serde(default)]
+    pub warnings: Vec<String>,
 }
 
 /// The media type of a streamed answer: one JSON document per line.
@@ -277,18 +283,36 @@ impl Client {
             .await
     }
 
-    /// One page of `GET /v1/jobs` (newest first), read as `T`.
+    /// One page of `GET /v1/jobs` (newest first), read as `T`; `filters`
+    /// are its query filters (`serial`, `state`, `kind`).
     pub async fn jobs<T: DeserializeOwned>(
         &self,
         limit: u32,
         cursor: Option<&str>,
+        filters: &[(&str, String)],
     ) -> Result<T, ClientError> {
         let mut query = vec![("limit", limit.to_string())];
         if let Some(cursor) = cursor {
             query.push(("cursor", cursor.to_string()));
         }
+        query.extend(filters.iter().map(|(k, v)| (*k, v.clone())));
         self.send(self.request(reqwest::Method::GET, "/v1/jobs").query(&query))
             .await
+    }
+
+    /// Any JSON request of the contract (`body` sent as JSON when given):
+    /// the answer's text, or its problem+json as an error.
+    pub async fn call(
+        &self,
+        method: reqwest::Method,
+        path: &str,
+        body: Option<&serde_json::Value>,
+    ) -> Result<String, ClientError> {
+        let mut builder = self.request(method, path);
+        if let Some(body) = body {
+            builder = builder.json(body);
+        }
+        self.send_text(builder).await
     }
 
     /// A parameter set exported (`urdf`, `dh-json`, `csv`): the raw bytes.

@@ -4,6 +4,12 @@
 
 use serde::Deserialize;
 
+/// HTTP 401: no valid token was presented.
+const UNAUTHORIZED: u16 = 401;
+/// What a refused CLI request needs: the server wants a token.
+pub const TOKEN_HINT: &str =
+    "the server needs a token: pass --token TOKEN or set ROBOCAL_TOKEN (robocal token create prints one)";
+
 #[derive(Debug, thiserror::Error)]
 pub enum ClientError {
     #[error("cannot reach the server: {}", with_causes(.0))]
@@ -50,10 +56,17 @@ impl ClientError {
     /// alone).
     pub fn of_problem(status: u16, body: &str) -> ClientError {
         let problem: Problem = serde_json::from_str(body).unwrap_or_default();
+        let mut detail = problem.detail;
+        if status == UNAUTHORIZED {
+            if !detail.is_empty() {
+                detail.push_str("; ");
+            }
+            detail.push_str(TOKEN_HINT);
+        }
         ClientError::Problem {
             status,
             title: problem.title,
-            detail: problem.detail,
+            detail,
             fields: problem
                 .errors
                 .into_iter()
@@ -86,4 +99,25 @@ struct ProblemField {
     field: Option<String>,
     #[serde(default)]
     message: Option<String>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_401_says_how_to_give_a_token() {
+        let e = ClientError::of_problem(
+            401,
+            r#"{"title": "Unauthorized", "detail": "missing bearer token"}"#,
+        );
+        let text = e.to_string();
+        assert!(
+            text.contains("missing bearer token; the server needs a token: pass --token"),
+            "{text}"
+        );
+        assert!(text.contains("ROBOCAL_TOKEN"), "{text}");
+        let other = ClientError::of_problem(404, r#"{"title": "Not Found"}"#).to_string();
+        assert!(!other.contains("--token"), "{other}");
+    }
 }

@@ -87,11 +87,14 @@ pub enum Command {
         #[command(flatten)]
         server: ServerArgs,
     },
-    /// List jobs, newest first.
+    /// List jobs, newest first: id, kind, state, robot, session, and why
+    /// a job failed.
     Jobs {
         /// How many jobs to show (1 to 1000).
         #[arg(long, default_value_t = 20, value_parser = clap::value_parser!(u32).range(1..=1000))]
         limit: u32,
+        #[command(flatten)]
+        filters: super::JobFilters,
         #[command(flatten)]
         server: ServerArgs,
     },
@@ -157,6 +160,8 @@ pub enum Command {
         #[command(flatten)]
         server: ServerArgs,
     },
+    #[command(flatten)]
+    Release(ReleaseCommand),
     /// Run the whole pipeline on a campaign directory without a server.
     CalibrateLocal {
         /// Campaign directory (as written by `robocal simulate`: campaign.json,
@@ -227,6 +232,96 @@ pub enum TokenCommand {
     },
 }
 
+/// The release workflow's commands (run by `super::release`).
+#[derive(Subcommand)]
+pub enum ReleaseCommand {
+    /// Approve a parameter set (it becomes `latest` when it is the newest
+    /// approved one), recorded with who and why.
+    Approve(Decision),
+    /// Reject a parameter set (never served as `latest`), recorded with who and why.
+    Reject(Decision),
+    /// Quick re-check of a session (5 to 10 poses) against the robot's
+    /// latest approved set; prints the job id, or with --wait its verdict
+    /// (pass, drift, base_moved).
+    Recheck {
+        /// The session to judge (its robot's latest approved set is the reference).
+        #[arg(long)]
+        session: String,
+        /// Wait for the verdict.
+        #[arg(long)]
+        wait: bool,
+        #[command(flatten)]
+        server: ServerArgs,
+    },
+    /// List the robots: serial, model, preset, last change.
+    Robots {
+        #[command(flatten)]
+        server: ServerArgs,
+    },
+    /// List a robot's measurement sessions: id, instrument, poses, creation.
+    Sessions {
+        /// Robot serial number.
+        #[arg(long)]
+        serial: String,
+        #[command(flatten)]
+        server: ServerArgs,
+    },
+    /// Delete a robot with its sessions, parameter sets and jobs.
+    DeleteRobot {
+        /// Robot serial number.
+        #[arg(long)]
+        serial: String,
+        #[command(flatten)]
+        server: ServerArgs,
+    },
+    /// Webhook subscriptions: list, create (prints the signing secret once), delete.
+    #[command(subcommand)]
+    Webhooks(WebhookCommand),
+}
+
+#[derive(clap::Args)]
+pub struct Decision {
+    /// Robot serial number.
+    #[arg(long)]
+    pub serial: String,
+    /// The version decided on (a number: a decision names one set).
+    #[arg(long)]
+    pub version: i64,
+    /// Why (recorded with the decision and shown in every report).
+    #[arg(long)]
+    pub reason: Option<String>,
+    #[command(flatten)]
+    pub server: ServerArgs,
+}
+
+#[derive(Subcommand)]
+pub enum WebhookCommand {
+    /// Every subscription: id, URL, events.
+    List {
+        #[command(flatten)]
+        server: ServerArgs,
+    },
+    /// Subscribe HOOK_URL to events (repeat --event: job.finished,
+    /// check.finished, set.approved); prints the id and the signing secret.
+    Create {
+        /// Where deliveries are POSTed (http or https).
+        #[arg(value_name = "HOOK_URL")]
+        hook_url: String,
+        /// An event to deliver (repeat for several).
+        #[arg(long = "event", required = true)]
+        events: Vec<String>,
+        #[command(flatten)]
+        server: ServerArgs,
+    },
+    /// Remove a subscription.
+    Delete {
+        /// The subscription's id (from `webhooks list`).
+        id: String,
+        #[command(flatten)]
+        server: ServerArgs,
+    },
+}
+
 #[cfg(test)]
 mod tests {
     use clap::CommandFactory;
@@ -247,5 +342,12 @@ mod tests {
             }
         }
         check(&super::Cli::command(), "robocal");
+    }
+
+    /// Clap's own consistency checks (unique names, valid defaults) over
+    /// every subcommand: a clash would only show when that command runs.
+    #[test]
+    fn the_grammar_is_consistent() {
+        super::Cli::command().debug_assert();
     }
 }

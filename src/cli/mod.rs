@@ -9,7 +9,11 @@ pub mod command;
 pub mod evaluate;
 pub mod evaluate_docs;
 pub mod filter;
+mod job_summary;
+mod jobs;
+pub use jobs::{jobs, JobFilters};
 pub mod plan;
+pub mod release;
 
 use std::io::{IsTerminal, Write};
 use std::path::Path;
@@ -102,14 +106,42 @@ pub async fn upload(
             eprintln!("robot {serial} created");
         }
     }
-    let id = client.create_session(serial, &file.session).await?;
-    let answer = if zipped {
-        client.upload_dataset(&id, campaign).await?
-    } else {
-        let archive = zip_campaign(campaign).map_err(ClientError::Local)?;
-        client.upload_dataset(&id, archive.path()).await?
+    let sent = async {
+        let id = client.create_session(serial, &file.session).await?;
+        let answer = if zipped {
+            client.upload_dataset(&id, campaign).await?
+        } else {
+            let archive = zip_campaign(campaign).map_err(ClientError::Local)?;
+            client.upload_dataset(&id, archive.path()).await?
+        };
+        Ok::<_, ClientError>((id, answer))
+    }
+    .await;
+    let (id, answer) = match sent {
+        Ok(sent) => sent,
+        // A robot this upload created goes again with its empty session:
+        // a failed upload leaves nothing behind.
+        Err(e) if !exists => {
+            let path = format!("/v1/robots/{serial}");
+            if client
+                .call(reqwest::Method::DELETE, &path, None)
+                .await
+                .is_ok()
+            {
+                eprintln!("robot {serial} removed again: the upload failed");
+            }
+            return Err(e);
+        }
+        Err(e) => return Err(e),
     };
-    eprintln!("uploaded {} poses to session {id}", answer.poses_created);
+    let found = answer.detected_points.iter().filter(|n| **n > 0).count();
+    eprintln!(
+        "uploaded {} poses to session {id} ({found} images with the target found)",
+        answer.poses_created
+    );
+    for warning in &answer.warnings {
+        eprintln!("warning: {warning}");
+    }
     Ok(id)
 }
 
@@ -190,7 +222,9 @@ impl std::fmt::Display for Calibration {
                     serde_json::to_string(&Started { job_id }).map_err(|_| std::fmt::Error)?;
                 f.write_str(&text)
             }
-            Calibration::Succeeded { job, .. } => f.write_str(job.trim_end()),
+            Calibration::Succeeded { job_id, job } => {
+                f.write_str(&job_summary::summary_of(job_id, job))
+            }
         }
     }
 }
@@ -273,51 +307,6 @@ pub async fn calibrate(
 /// The request body of a calibration with the server's default options.
 #[derive(Serialize)]
 struct NoOptions {}
-
-/// The fields of `GET /v1/jobs` that `robocal jobs` shows.
-#[derive(Debug, Default, Deserialize)]
-struct JobPage {
-    #[serde(default)]
-    items: Vec<JobLine>,
-}
-
-#[derive(Debug, Default, Deserialize)]
-struct JobLine {
-    id: Option<String>,
-    state: Option<String>,
-    #[serde(default)]
-    progress: f64,
-    serial: Option<String>,
-    session_id: Option<String>,
-    created_at: Option<String>,
-}
-
-/// `robocal jobs`: the newest `limit` jobs as a table, newest first.
-pub async fn jobs(client: &Client, limit: u32) -> Result<String, ClientError> {
-    let page: JobPage = client.jobs(limit, None).await?;
-    Ok(jobs_table(&page.items))
-}
-
-/// One line per job: id, state, progress, serial, session, creation time.
-fn jobs_table(items: &[JobLine]) -> String {
-    let text = |v: &Option<String>| v.as_deref().unwrap_or("-").to_string();
-    let mut out = format!(
-        "{:<36}  {:<9}  {:>4}  {:<16}  {:<36}  {}\n",
-        "JOB", "STATE", "DONE", "SERIAL", "SESSION", "CREATED"
-    );
-    for job in items {
-        out.push_str(&format!(
-            "{:<36}  {:<9}  {:>3.0}%  {:<16}  {:<36}  {}\n",
-            text(&job.id),
-            text(&job.state),
-            job.progress * 100.0,
-            text(&job.serial),
-            text(&job.session_id),
-            text(&job.created_at),
-        ));
-    }
-    out
-}
 
 /// Writes a command's bytes to `out`, or to standard output.
 pub fn write_output(out: Option<&std::path::Path>, bytes: &[u8]) -> Result<(), String> {

@@ -5,7 +5,9 @@
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
-/// `pass`, `drift` or `base_moved`.
+use super::ControllerIdentity;
+
+/// `pass`, `drift`, `base_moved` or `controller_changed`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum CheckVerdict {
@@ -16,6 +18,11 @@ pub enum CheckVerdict {
     Drift,
     /// Re-fitting the board's (or tracker's) transform alone explains them.
     BaseMoved,
+    /// The check's session was measured on another controller than the
+    /// set records (issue 34): whatever the residuals, the set is not the
+    /// controller's any more (swapped, re-mastered, its calibration
+    /// reloaded). The test's figures are still given.
+    ControllerChanged,
 }
 
 impl CheckVerdict {
@@ -25,6 +32,7 @@ impl CheckVerdict {
             CheckVerdict::Pass => "pass",
             CheckVerdict::Drift => "drift",
             CheckVerdict::BaseMoved => "base_moved",
+            CheckVerdict::ControllerChanged => "controller_changed",
         }
     }
 }
@@ -79,4 +87,33 @@ pub struct CheckDoc {
     /// Poses measured.
     pub poses: usize,
     pub suspects: Vec<CheckSuspect>,
+    /// With `controller_changed`: the controller the set records and the
+    /// one the check's session was measured on.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub controller_change: Option<ControllerChangeSeen>,
+}
+
+/// The two controller identities behind a `controller_changed` verdict.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+pub struct ControllerChangeSeen {
+    /// What the checked set records.
+    pub set: ControllerIdentity,
+    /// What the check's session records (the robot's when it was created).
+    pub session: ControllerIdentity,
+}
+
+/// The change a check sees, when both the set and the check's session
+/// record a controller and they differ; a side that records none is not
+/// taken as a change (nothing is known about it).
+pub fn controller_change(
+    set: Option<&ControllerIdentity>,
+    session: Option<&ControllerIdentity>,
+) -> Option<ControllerChangeSeen> {
+    match (set, session) {
+        (Some(a), Some(b)) if a != b => Some(ControllerChangeSeen {
+            set: a.clone(),
+            session: b.clone(),
+        }),
+        _ => None,
+    }
 }

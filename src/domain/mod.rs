@@ -5,6 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 mod check;
+mod controller;
 
 mod events;
 mod flange_pose;
@@ -22,7 +23,11 @@ mod stage_reading;
 mod target;
 mod target_symmetry;
 
-pub use check::{CheckDoc, CheckSuspect, CheckVerdict};
+pub use check::{controller_change, CheckDoc, CheckSuspect, CheckVerdict, ControllerChangeSeen};
+pub use controller::{
+    check_expected as check_controller, expectation as controller_expectation, ControllerChange,
+    ControllerIdentity, ControllerMismatch,
+};
 
 pub use events::DomainEvent;
 pub use flange_pose::{check_robot_pose, FlangePose, PoseKind, RobotPose};
@@ -130,7 +135,7 @@ impl Scope {
     }
 }
 
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct TokenRecord {
     pub id: String,
     pub name: String,
@@ -182,6 +187,9 @@ pub enum IdempotencyClaim {
     InFlight,
     /// The key belongs to a request with another method or path.
     OtherRequest { method: String, path: String },
+    /// The key's request wrote (the write committed) but its process died
+    /// before storing the answer: it must not run again.
+    Lost,
     /// Done before: replay `response` if this request has the same
     /// `fingerprint` (`None`: stored without one, replayed for any body).
     Done {

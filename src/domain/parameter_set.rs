@@ -12,7 +12,7 @@ use robocal_calib::kinematics::term_model::TermModel;
 use robocal_calib::kinematics::{CalibratedModel, ParamLayout};
 use serde::{Deserialize, Serialize};
 
-use super::{CovarianceDoc, TermsDoc};
+use super::{ControllerIdentity, CovarianceDoc, TermsDoc};
 use crate::report::ParameterReport;
 use crate::schema::job::Measurement;
 use crate::schema::robot::{doc_to_model, KinematicsDoc};
@@ -23,7 +23,7 @@ use crate::schema::PoseOut;
 #[serde(into = "StoredSet", try_from = "StoredSet")]
 pub struct ParameterSet {
     pub instrument: Instrument,
-    /// A tracker set's measurement (issue 19): `pose` when a 6-DoF probe's
+    /// A tracker set's measurement: `pose` when a 6-DoF probe's
     /// orientation was fitted with its position, so `flange_to_tool` is the
     /// probe's full frame and the parameters follow the camera's layout;
     /// `position` (or absent, in sets stored before it was kept) for the
@@ -54,13 +54,16 @@ pub struct ParameterSet {
     /// when the refinement did not run and from sets stored before it was
     /// kept.
     pub joint_noise_deg: Option<f64>,
-    /// The non-geometric terms kept by the selection (issue 19); absent
+    /// The non-geometric terms kept by the selection; absent
     /// when none was kept and in sets stored before terms were selected.
     pub terms: Option<TermsDoc>,
     /// A set calibrated over several sessions (board placements, issue
     /// 18): each session's board in the base frame, the first session's
     /// equal to `world_to_base`. Empty for a one-session set.
     pub session_target_to_base: Vec<SessionBoard>,
+    /// The controller the set's session was measured on (issue 34),
+    /// inherited from the session; absent when none was recorded.
+    pub controller: Option<ControllerIdentity>,
 }
 
 /// One session's board placement in a multi-session set.
@@ -132,7 +135,7 @@ impl ParameterSet {
     }
 
     /// The set seen from session `session_id`'s board: `world_to_base` is
-    /// that session's `target_to_base` (issue 18). `None` when the set
+    /// that session's `target_to_base`. `None` when the set
     /// knows no such session (a one-session set knows its own).
     pub fn in_session(&self, session_id: &str) -> Option<ParameterSet> {
         let (board, covariance) = match self
@@ -221,6 +224,8 @@ struct StoredSet {
     terms: Option<TermsDoc>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     session_target_to_base: Vec<SessionBoard>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    controller: Option<ControllerIdentity>,
 }
 
 impl From<ParameterSet> for StoredSet {
@@ -245,6 +250,7 @@ impl From<ParameterSet> for StoredSet {
             joint_noise_deg: set.joint_noise_deg,
             terms: set.terms,
             session_target_to_base: set.session_target_to_base,
+            controller: set.controller,
         }
     }
 }
@@ -274,6 +280,7 @@ impl TryFrom<StoredSet> for ParameterSet {
             joint_noise_deg: s.joint_noise_deg,
             terms: s.terms,
             session_target_to_base: s.session_target_to_base,
+            controller: s.controller,
         })
     }
 }

@@ -1,5 +1,6 @@
 //! A campaign plan as a program a cell runs (issue 16): it moves through
-//! the planned poses in order and waits at each for the image. URScript
+//! the planned poses in order and pauses at each a fixed time ([`EDIT_NOTE`]:
+//! the cell replaces the pause with its capture handshake). URScript
 //! `movej` (radians), ABB RAPID `MoveAbsJ` to a `jointtarget` (degrees),
 //! KUKA KRL `PTP` to an `AXIS` (degrees), and the CSV a cell script reads.
 //! The joints are the session's joints (`joints_deg` as the controller
@@ -73,6 +74,12 @@ impl ProgramFormat {
     }
 }
 
+/// What a cell must edit before running a program: the pause at each pose
+/// is a fixed time, not a handshake with the camera.
+pub const EDIT_NOTE: &str = "EDIT BEFORE RUNNING: at each pose this program only pauses a fixed time; \
+     replace each pause with your cell's capture handshake (trigger the camera, wait for its done signal, \
+     record the joints) or lengthen it to cover your capture";
+
 fn header(plan: &CampaignPlanOut) -> String {
     format!(
         "robocal campaign plan {} for {}: {} poses, predicted validation error {:.4} mm",
@@ -104,7 +111,11 @@ pub fn write_csv(plan: &CampaignPlanOut) -> String {
 
 /// A URScript program: `movej` in radians, then `sleep` for the image.
 pub fn write_urscript(plan: &CampaignPlanOut) -> String {
-    let mut out = format!("def robocal_campaign():\n  # {}\n", header(plan));
+    let mut out = format!(
+        "def robocal_campaign():\n  # {}\n  # {}\n",
+        header(plan),
+        EDIT_NOTE
+    );
     for (i, p) in plan.poses.iter().enumerate() {
         let q = list(
             p.joints_deg
@@ -134,7 +145,11 @@ fn axes(joints_deg: &[f64]) -> Vec<String> {
 
 /// An ABB RAPID module: a `jointtarget` per pose, `MoveAbsJ` and `WaitTime`.
 pub fn write_rapid(plan: &CampaignPlanOut) -> String {
-    let mut out = format!("MODULE RobocalCampaign\n  ! {}\n", header(plan));
+    let mut out = format!(
+        "MODULE RobocalCampaign\n  ! {}\n  ! {}\n",
+        header(plan),
+        EDIT_NOTE
+    );
     for (i, p) in plan.poses.iter().enumerate() {
         out += &format!(
             "  CONST jointtarget pose{} := [[{}],[9E9,9E9,9E9,9E9,9E9,9E9]];\n",
@@ -156,7 +171,11 @@ pub fn write_rapid(plan: &CampaignPlanOut) -> String {
 
 /// A KUKA KRL program: `PTP` to an `AXIS` aggregate, `WAIT SEC`.
 pub fn write_krl(plan: &CampaignPlanOut) -> String {
-    let mut out = format!("DEF {KRL_PROGRAM}()\n  ; {}\n", header(plan));
+    let mut out = format!(
+        "DEF {KRL_PROGRAM}()\n  ; {}\n  ; {}\n",
+        header(plan),
+        EDIT_NOTE
+    );
     for (i, p) in plan.poses.iter().enumerate() {
         let a = axes(&p.joints_deg)
             .iter()

@@ -92,7 +92,7 @@ pub async fn load_input(
         session_id: session.id.clone(),
         serial: session.serial,
         robot: crate::schema::robot::doc_to_model(&kinematics),
-        prior: Default::default(),
+        prior: robot.prior.unwrap_or_default(),
         kinematics,
         session: spec,
         poses,

@@ -1,26 +1,31 @@
 //! The HTTP/1.1 listener, in place of `axum::serve` (which offers no
 //! settings): a header-read timeout (`--header-timeout-secs`, also the
-//! keep-alive idle limit), a bounded request head, a connection cap
-//! (`--max-connections`; one more is answered 503 and closed), hyper's own
-//! parse-error answers as problem+json ([`problem_io`]), and a graceful
-//! shutdown that lets requests in flight finish.
+//! keep-alive idle limit), a bounded request head, the connection table
+//! ([`registry`]: a cap that displaces idle connections, a reserved lane,
+//! per-address limits, event streams counted apart; a connection refused
+//! is answered 503 and closed), hyper's own parse-error answers as
+//! problem+json ([`problem_io`]), and a graceful shutdown that lets
+//! requests in flight finish.
 
 use std::sync::Arc;
 use std::time::Duration;
 
 use axum::Router;
 use hyper_util::rt::{TokioIo, TokioTimer};
-use hyper_util::service::TowerToHyperService;
 use tokio::io::{AsyncRead, AsyncReadExt, AsyncWrite, AsyncWriteExt};
 use tokio::net::{TcpListener, TcpStream};
-use tokio::sync::{watch, Semaphore};
+use tokio::sync::watch;
 
 use crate::api::error::{Problem, PROBLEM_JSON};
 
 pub mod problem_io;
+pub mod registry;
 pub mod tls;
+pub mod tracked;
 
 use problem_io::ProblemIo;
+use registry::{ConnLimits, ConnRef, Refusal, Registry};
+use tracked::Tracked;
 
 /// Largest request head (request line and headers), bytes; over it the
 /// answer is 431. Above hyper's fixed 65534-byte limit of the request
@@ -38,7 +43,7 @@ const REFUSAL_RETRY_AFTER_SECS: u64 = 1;
 #[derive(Debug, Clone, Copy)]
 pub struct Limits {
     pub header_timeout: Duration,
-    pub max_connections: usize,
+    pub connections: ConnLimits,
 }
 
 /// Serves `app` until `shutdown` turns true, then stops accepting, lets the
@@ -51,11 +56,11 @@ pub async fn serve(
     mut shutdown: watch::Receiver<bool>,
 ) {
     let acceptor = tls.map(tokio_rustls::TlsAcceptor::from);
-    let permits = Arc::new(Semaphore::new(limits.max_connections));
+    let registry = Registry::new(limits.connections);
     // Every connection task holds a receiver; `closed()` waits for them all.
     let (open_tx, open_rx) = watch::channel(());
     loop {
-        let (stream, _peer) = tokio::select! {
+        let (stream, peer) = tokio::select! {
             accepted = listener.accept() => match accepted {
                 Ok(pair) => pair,
                 Err(e) => {
@@ -66,32 +71,35 @@ pub async fn serve(
             },
             _ = stopped(&mut shutdown) => break,
         };
-        let Ok(permit) = permits.clone().try_acquire_owned() else {
-            // Over TLS a plain-text 503 would be noise to the client: close.
-            if acceptor.is_none() {
-                tokio::spawn(refuse(stream, limits.max_connections));
+        let conn = match registry.admit(peer.ip()) {
+            Ok(conn) => conn,
+            Err(refusal) => {
+                // Over TLS a plain-text 503 would be noise to the client: close.
+                if acceptor.is_none() {
+                    tokio::spawn(refuse(stream, refusal, limits.connections));
+                }
+                continue;
             }
-            continue;
         };
-        let service = TowerToHyperService::new(app.clone());
+        let service = Tracked::new(app.clone(), conn.clone());
         let stop = shutdown.clone();
         let open = open_rx.clone();
         let acceptor = acceptor.clone();
         tokio::spawn(async move {
             match acceptor {
-                None => serve_connection(stream, service, limits, stop).await,
+                None => serve_connection(stream, service, &conn, limits, stop).await,
                 Some(acceptor) => {
                     // The handshake counts against the header timeout: a
                     // client that stalls in it is dropped like a slow head.
                     match tokio::time::timeout(limits.header_timeout, acceptor.accept(stream)).await
                     {
-                        Ok(Ok(tls)) => serve_connection(tls, service, limits, stop).await,
+                        Ok(Ok(tls)) => serve_connection(tls, service, &conn, limits, stop).await,
                         Ok(Err(e)) => tracing::debug!(error = %e, "TLS handshake failed"),
                         Err(_) => tracing::debug!("TLS handshake timed out"),
                     }
                 }
             }
-            drop(permit);
+            conn.leave();
             drop(open);
         });
     }
@@ -102,7 +110,8 @@ pub async fn serve(
 /// One connection, plain or TLS, until it closes or the server stops.
 async fn serve_connection<S>(
     stream: S,
-    service: TowerToHyperService<Router>,
+    service: Tracked,
+    conn: &ConnRef,
     limits: Limits,
     mut stop: watch::Receiver<bool>,
 ) where
@@ -116,6 +125,7 @@ async fn serve_connection<S>(
         .max_header_size(MAX_HEAD_BYTES)
         // One buffer per write, so ProblemIo sees hyper's answers whole.
         .writev(false);
+    let conn_ref = conn;
     let conn = builder.serve_connection(io, service);
     tokio::pin!(conn);
     let mut stopping = false;
@@ -131,6 +141,15 @@ async fn serve_connection<S>(
                 stopping = true;
                 conn.as_mut().graceful_shutdown();
             }
+            // Displaced by a newer connection while idle: closed outright
+            // (a request that started meanwhile still finishes).
+            _ = conn_ref.evict.notified(), if !stopping => {
+                if conn_ref.is_idle() {
+                    break;
+                }
+                stopping = true;
+                conn.as_mut().graceful_shutdown();
+            }
         }
     }
 }
@@ -140,17 +159,27 @@ async fn stopped(shutdown: &mut watch::Receiver<bool>) {
     let _ = shutdown.wait_for(|stop| *stop).await;
 }
 
-/// Answers a connection over the cap with 503 problem+json and closes it.
-async fn refuse(mut stream: TcpStream, max_connections: usize) {
+/// Answers a refused connection with 503 problem+json and closes it.
+async fn refuse(mut stream: TcpStream, refusal: Refusal, limits: ConnLimits) {
+    let detail = match refusal {
+        Refusal::PerAddress => format!(
+            "this client address holds its maximum of {} connections \
+             (server option --max-connections-per-address); retry later",
+            limits.max_per_address
+        ),
+        Refusal::Full => format!(
+            "the server holds its maximum of {} connections, all in requests \
+             (server options --max-connections, --reserved-connections); retry later",
+            limits.max_connections + limits.reserved_connections
+        ),
+    };
     let problem = Problem {
         problem_type: "urn:robocal:problem:too-many-connections".into(),
         title: "Service Unavailable".into(),
         status: 503,
-        detail: format!(
-            "the server holds its maximum of {max_connections} connections \
-             (server option --max-connections); retry later"
-        ),
+        detail,
         errors: vec![],
+        controller: None,
     };
     let body = serde_json::to_vec(&problem).unwrap_or_default();
     let head = format!(

@@ -123,6 +123,7 @@ fn replacement(head: &[u8], max_head_bytes: usize) -> Option<Vec<u8>> {
         status: code,
         detail,
         errors: vec![],
+        controller: None,
     };
     let body = serde_json::to_vec(&problem).ok()?;
     let mut out = format!(

@@ -4,6 +4,7 @@
 //! [`MAX_IN_FLIGHT`], and records the answer. A receiver that hangs costs
 //! one permit for [`DeliveryPolicy::timeout`], never an API request.
 
+use std::net::SocketAddr;
 use std::sync::Arc;
 use std::time::Duration;
 
@@ -11,6 +12,7 @@ use reqwest::header::CONTENT_TYPE;
 use tokio::sync::{watch, Semaphore};
 use tokio::task::JoinHandle;
 
+use super::address_guard::AddressGuard;
 use super::signature::{sign, DELIVERY_HEADER, EVENT_HEADER, SIGNATURE_HEADER};
 use crate::domain::now_unix_ms;
 use crate::store::{DynStore, OutboxDelivery};
@@ -57,21 +59,11 @@ impl DeliveryPolicy {
 pub fn spawn(
     store: DynStore,
     policy: DeliveryPolicy,
+    guard: AddressGuard,
     mut shutdown: watch::Receiver<bool>,
 ) -> JoinHandle<()> {
+    let guard = Arc::new(guard);
     tokio::spawn(async move {
-        let client = match reqwest::Client::builder()
-            .timeout(policy.timeout)
-            .connect_timeout(CONNECT_TIMEOUT.min(policy.timeout))
-            .redirect(reqwest::redirect::Policy::none())
-            .build()
-        {
-            Ok(c) => c,
-            Err(e) => {
-                tracing::error!(error = %e, "webhook delivery disabled: no HTTP client");
-                return;
-            }
-        };
         let permits = Arc::new(Semaphore::new(MAX_IN_FLIGHT));
         let lease = policy.timeout * LEASE_TIMEOUTS;
         while !*shutdown.borrow() {
@@ -85,9 +77,9 @@ pub fn spawn(
                             let Ok(permit) = permits.clone().acquire_owned().await else {
                                 return;
                             };
-                            let (store, client) = (store.clone(), client.clone());
+                            let (store, guard) = (store.clone(), guard.clone());
                             tokio::spawn(async move {
-                                deliver(&store, &client, &policy, d).await;
+                                deliver(&store, &guard, &policy, d).await;
                                 drop(permit);
                             });
                         }
@@ -107,22 +99,52 @@ pub fn spawn(
     })
 }
 
-/// Sends one event and records the outcome.
-async fn deliver(
-    store: &DynStore,
-    client: &reqwest::Client,
+/// A client that connects to `host` only at `addrs` (checked), follows no
+/// redirect, and gives up after the policy's timeouts.
+fn pinned_client(
     policy: &DeliveryPolicy,
-    d: OutboxDelivery,
-) {
-    let answer = client
-        .post(&d.url)
+    host: &str,
+    addrs: &[SocketAddr],
+) -> reqwest::Result<reqwest::Client> {
+    reqwest::Client::builder()
+        .timeout(policy.timeout)
+        .connect_timeout(CONNECT_TIMEOUT.min(policy.timeout))
+        .redirect(reqwest::redirect::Policy::none())
+        .resolve_to_addrs(host, addrs)
+        .build()
+}
+
+/// Resolves and checks the receiver, then POSTs to the checked addresses.
+async fn send(
+    guard: &AddressGuard,
+    policy: &DeliveryPolicy,
+    d: &OutboxDelivery,
+) -> Result<reqwest::Response, String> {
+    let url = reqwest::Url::parse(&d.url).map_err(|e| format!("bad URL: {e}"))?;
+    let host = url.host_str().ok_or("the URL names no host")?.to_string();
+    let port = url.port_or_known_default().ok_or("the URL names no port")?;
+    let addrs = guard.resolve(&host, port).await?;
+    let client = pinned_client(policy, &host, &addrs).map_err(|e| e.to_string())?;
+    client
+        .post(url)
         .header(CONTENT_TYPE, "application/json")
         .header(EVENT_HEADER, &d.event)
         .header(DELIVERY_HEADER, &d.event_id)
         .header(SIGNATURE_HEADER, sign(&d.secret, d.body.as_bytes()))
         .body(d.body.clone())
         .send()
-        .await;
+        .await
+        .map_err(|e| format!("sending failed: {e}"))
+}
+
+/// Sends one event and records the outcome.
+async fn deliver(
+    store: &DynStore,
+    guard: &AddressGuard,
+    policy: &DeliveryPolicy,
+    d: OutboxDelivery,
+) {
+    let answer = send(guard, policy, &d).await;
     let error = match answer {
         Ok(r) if r.status().is_success() => {
             if let Err(e) = store.mark_delivered(&d.id).await {
@@ -132,7 +154,7 @@ async fn deliver(
             return;
         }
         Ok(r) => format!("the receiver answered {}", r.status()),
-        Err(e) => format!("sending failed: {e}"),
+        Err(e) => e,
     };
     let attempts = d.attempts + 1;
     let retry_at = (attempts < MAX_ATTEMPTS)

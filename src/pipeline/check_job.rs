@@ -12,7 +12,7 @@ use robocal_calib::kinematics::ParamLayout;
 use super::camera_stage::CameraStep;
 use super::measuring::Measuring;
 use super::{Input, Output, PipelineError, Stage, Summary};
-use crate::domain::{CheckDoc, CheckSuspect, CheckVerdict};
+use crate::domain::{controller_change, CheckDoc, CheckSuspect, CheckVerdict};
 
 /// Joint noise (encoders, repeatability) assumed in the check's
 /// covariance for a set that does not carry the joint refinement's
@@ -106,8 +106,15 @@ pub fn run(
             }
         })
         .collect();
+    // A set applied on another controller than its own is the verdict,
+    // whatever the residuals say (issue 34).
+    let controller_change = controller_change(
+        approved.set.controller.as_ref(),
+        input.session.controller.as_ref(),
+    );
     let doc = CheckDoc {
         verdict: match found.verdict {
+            _ if controller_change.is_some() => CheckVerdict::ControllerChanged,
             Verdict::Pass => CheckVerdict::Pass,
             Verdict::Drift => CheckVerdict::Drift,
             Verdict::BaseMoved => CheckVerdict::BaseMoved,
@@ -131,6 +138,7 @@ pub fn run(
         joint_noise_deg: joint_sigma_rad.to_degrees(),
         poses: data.len(),
         suspects,
+        controller_change,
     };
     within(Stage::Report, "done", 1.0);
     Ok(Output {

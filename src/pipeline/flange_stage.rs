@@ -8,7 +8,7 @@
 //!
 //! The intrinsics are held because the images determine the camera far
 //! better than controller poses can: on the RCT wrist set a free bundle
-//! bends `fx` by 5 % against the camera depth (docs/notes/session5-handeye.md).
+//! bends `fx` by 5 % against the camera depth (docs/decisions/0003-flange-pose-sessions.md).
 
 use nalgebra::Vector3;
 use robocal_calib::handeye::{calibrate_flange, FlangeCalibration, FlangeOptions, FlangeView};

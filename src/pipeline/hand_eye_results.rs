@@ -336,6 +336,7 @@ fn report(
         terms: None,
         gate: None,
         model_selection: None,
+        release: Default::default(),
         measurement_accuracy: None,
         regions: Vec::new(),
     }

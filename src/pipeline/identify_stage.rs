@@ -22,7 +22,7 @@ use robocal_calib::stats::AccuracyStats;
 
 use super::camera_stage::CameraStep;
 use super::measuring::Measuring;
-use super::model_selection::{select, HeldOut, SelectionInput};
+use super::model_selection::{select, HeldOut, PoseErrors, SelectionInput};
 use super::{PipelineError, PoseInput, Stage};
 use crate::domain::TermsDoc;
 use crate::report::model_selection::ModelSelectionReport;
@@ -54,10 +54,10 @@ pub struct Identified {
     pub before: AccuracyStats,
     pub after: AccuracyStats,
     /// Per validation pose: position error before and after (mm, world frame).
-    pub val_errors: Vec<(usize, Vector3<f64>, Vector3<f64>)>,
+    pub val_errors: Vec<PoseErrors>,
     /// The same for each pose left out by the screening (how far its joints
     /// and its image disagree), where its image gives a camera pose.
-    pub outlier_errors: Vec<(usize, Vector3<f64>, Vector3<f64>)>,
+    pub outlier_errors: Vec<PoseErrors>,
     /// The calibration and validation measurements (the release gate
     /// compares the approved set on the same poses).
     pub cal_data: Vec<Measurement>,
@@ -321,7 +321,7 @@ pub fn identify_robot(
     let (mut after, after_errors) =
         validate_with_terms(&evaluated.model, &evaluated.terms, &val_data)
             .map_err(|e| numerical(Stage::Identify, e))?;
-    let mut val_errors: Vec<(usize, Vector3<f64>, Vector3<f64>)> = val_index
+    let mut val_errors: Vec<PoseErrors> = val_index
         .iter()
         .zip(before_errors.iter().zip(&after_errors))
         .map(|(&i, (b, a))| (i, *b, *a))
@@ -330,9 +330,7 @@ pub fn identify_robot(
         // The validation poses repeat calibration configurations: the
         // headline is the held-out configurations' prediction, nominal
         // kinematics against the kept model (docs/method.md §7).
-        let pick = |f: fn(&(usize, Vector3<f64>, Vector3<f64>)) -> Vector3<f64>| {
-            errors.iter().map(f).collect::<Vec<_>>()
-        };
+        let pick = |f: fn(&PoseErrors) -> Vector3<f64>| errors.iter().map(f).collect::<Vec<_>>();
         before = AccuracyStats::from_errors(&pick(|e| e.1));
         after = AccuracyStats::from_errors(&pick(|e| e.2));
         val_errors = errors;

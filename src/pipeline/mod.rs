@@ -219,6 +219,7 @@ fn run_stages(
     let context = results::Context {
         serial: &input.serial,
         session_id: &input.session_id,
+        controller: input.session.controller.as_ref(),
         instrument: input.session.instrument,
         measuring,
         poses: &input.poses,

@@ -1,6 +1,6 @@
 //! Part of stage "identify" for camera jobs: how much of the kinematics
 //! the campaign can carry, chosen by how each model predicts arm
-//! configurations it was not fitted to (docs/method.md §6 "Model selection
+//! configurations it was not fitted to (docs/method.md §6.8 "Model selection
 //! by held-out groups", calib's `model_ladder`).
 //!
 //! The poses are grouped by configuration. When the validation poses repeat
@@ -104,6 +104,9 @@ impl HeldOut {
     }
 }
 
+/// One pose's position error (session pose index, before, after; mm).
+pub type PoseErrors = (usize, Vector3<f64>, Vector3<f64>);
+
 /// The model kept, and what the report and the gate need of the choice.
 pub struct Selected {
     /// The kept rung refitted on the calibration poses (`None`: the full
@@ -111,7 +114,7 @@ pub struct Selected {
     pub refit: Option<(JointRefinement, Vec<usize>)>,
     /// Held-out errors per pose (session index, nominal rung, kept rung)
     /// when the headline is leave-group-out.
-    pub heldout_errors: Option<Vec<(usize, Vector3<f64>, Vector3<f64>)>>,
+    pub heldout_errors: Option<Vec<PoseErrors>>,
     pub held_out: HeldOut,
     pub report: ModelSelectionReport,
 }

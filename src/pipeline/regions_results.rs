@@ -106,6 +106,7 @@ pub(super) fn output(input: &Input, fitted: Fitted) -> Result<Output, PipelineEr
     let context = results::Context {
         serial: &input.serial,
         session_id: &input.session_id,
+        controller: input.session.controller.as_ref(),
         instrument: crate::schema::session::Instrument::Camera,
         measuring: super::measuring::Measuring::camera_pose(),
         poses: &poses,

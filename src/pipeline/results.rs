@@ -69,6 +69,9 @@ fn parameter_rows(id: &Identified) -> Vec<ParameterReport> {
 pub struct Context<'a> {
     pub serial: &'a str,
     pub session_id: &'a str,
+    /// The controller the session was measured on (issue 34): the set
+    /// inherits it.
+    pub controller: Option<&'a crate::domain::ControllerIdentity>,
     /// The session's instrument (the set's frame names follow it).
     pub instrument: SessionInstrument,
     /// What each pose measured: a tracker's set records it (a 6-DoF
@@ -112,6 +115,7 @@ pub fn parameter_set(ctx: &Context, id: &Identified) -> ParameterSet {
         joint_noise_deg: id.joint_noise_rad.map(f64::to_degrees),
         terms: id.terms.clone(),
         session_target_to_base: Vec::new(),
+        controller: ctx.controller.cloned(),
     }
 }
 
@@ -252,6 +256,7 @@ pub fn report(ctx: &Context, id: &Identified, set: &ParameterSet) -> Report {
         uncertainty_map: super::uncertainty_map::workspace_map(id, ctx.poses),
         gate: None,
         model_selection: id.model_selection.clone(),
+        release: Default::default(),
         measurement_accuracy: None,
         regions: Vec::new(),
         terms: id

@@ -114,6 +114,8 @@ pub fn run(
         // One session's board: the approved set's other placements are
         // not this set's.
         session_target_to_base: Vec::new(),
+        // The controller this session was measured on, not the held set's.
+        controller: input.session.controller.clone(),
         ..approved.set.clone()
     };
     let frame = match scope {
@@ -201,6 +203,7 @@ pub fn run(
         terms: None,
         gate: Some(gate.report),
         model_selection: None,
+        release: Default::default(),
         measurement_accuracy: None,
         regions: Vec::new(),
     };

@@ -129,6 +129,7 @@ pub fn stage_output(
         uncertainty_map: None,
         gate: None,
         model_selection: None,
+        release: Default::default(),
         terms: None,
         regions: Vec::new(),
         measurement_accuracy: Some(MeasurementAccuracyReport {

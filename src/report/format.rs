@@ -2,7 +2,8 @@
 //! Every string that comes from a report (serial, pose ids, notes, warnings)
 //! goes through [`escape_xml`] before it reaches SVG or HTML.
 
-use super::model::{ErrorStats, Report};
+use super::model::{ErrorStats, ReleaseView, Report};
+use crate::domain::ReleaseStatus;
 
 /// Escapes the five XML special characters so that arbitrary text is safe
 /// in SVG/HTML element content and in double- or single-quoted attributes.
@@ -151,33 +152,97 @@ pub fn before_fit(report: &Report) -> &'static str {
     }
 }
 
-/// The one-line summary used as the header of every rendering.
-/// A set worse than before says so first (the release gate, issue 17).
+/// The one-line summary used as the header of every rendering. The set's
+/// release status opens it (see [`release_line`]).
 pub fn headline(report: &Report) -> String {
-    let line = format!(
+    let line = match &report.hand_eye {
+        Some(he) => super::hand_eye_section::hand_eye_headline(report, he),
+        None => before_after_line(report),
+    };
+    match release_line(report) {
+        Some(status) => format!("{status} {line}"),
+        None => line,
+    }
+}
+
+/// "mean 3-D error … before → … after (…x smaller)".
+fn before_after_line(report: &Report) -> String {
+    format!(
         "mean 3-D error at {} validation poses: {} mm before → {} mm after ({} smaller)",
         report.after.norm.n,
         mm(report.before.norm.mean_mm),
         mm(report.after.norm.mean_mm),
         improvement_text(report)
-    );
-    match worse_line(report) {
-        Some(worse) => format!("{worse} {line}"),
-        None => line,
-    }
+    )
 }
 
-/// The warning that opens every rendering of a set worse than before (the
-/// release gate, issue 17).
-pub fn worse_line(report: &Report) -> Option<String> {
+/// The gate's finding when it judged the set worse than before.
+fn gate_worse(report: &Report) -> Option<String> {
     let gate = report.gate.as_ref().filter(|g| g.worse)?;
     Some(format!(
-        "WORSE THAN BEFORE: {} mm against {} mm for {} on the same validation poses; \
-         held back as a candidate, not served as latest.",
+        "{} mm against {} mm for {} on the same validation poses",
         mm(gate.mean_mm.unwrap_or(f64::NAN)),
         mm(gate.compared_mean_mm.unwrap_or(f64::NAN)),
         gate.compared_with
     ))
+}
+
+/// "by {who} at {when}", or what a set approved before the gate existed says.
+fn decided_by(release: &ReleaseView) -> String {
+    match (&release.status_by, &release.status_at) {
+        (Some(by), Some(at)) => format!("by {by} at {at}"),
+        (Some(by), None) => format!("by {by}"),
+        (None, _) => "before the release gate existed".into(),
+    }
+}
+
+/// The reason as a clause (`: why`), or nothing.
+fn because(release: &ReleaseView) -> String {
+    match release.status_reason.as_deref().map(str::trim) {
+        Some(why) if !why.is_empty() => format!(": {why}"),
+        _ => String::new(),
+    }
+}
+
+/// The sentence that opens every rendering: the set's *current* release
+/// status, who gave it, when and why. A set the gate held back and a
+/// person approved says both (the person's decision first). A report read
+/// without its set's status (`release.status` absent) falls back to the
+/// gate's own warning, as stored at the end of the job.
+pub fn release_line(report: &Report) -> Option<String> {
+    let release = &report.release;
+    let worse = gate_worse(report);
+    let Some(status) = release.status else {
+        return worse.map(|w| {
+            format!("WORSE THAN BEFORE: {w}; held back as a candidate, not served as latest.")
+        });
+    };
+    Some(match status {
+        ReleaseStatus::Candidate => match worse {
+            Some(w) => format!(
+                "CANDIDATE, not served as latest: WORSE THAN BEFORE: {w} (held back {}).",
+                decided_by(release)
+            ),
+            None => format!(
+                "CANDIDATE, not served as latest (held back {}){}.",
+                decided_by(release),
+                because(release)
+            ),
+        },
+        ReleaseStatus::Rejected => format!(
+            "REJECTED {}{}; never served as latest.",
+            decided_by(release),
+            because(release)
+        ),
+        ReleaseStatus::Approved => match worse {
+            Some(w) => format!(
+                "APPROVED {}{}. The release gate had held it back: {w}.",
+                decided_by(release),
+                because(release)
+            ),
+            None => format!("Approved {}{}.", decided_by(release), because(release)),
+        },
+    })
 }
 
 #[cfg(test)]
@@ -209,5 +274,50 @@ mod tests {
         assert_eq!(with_precision_of(1403.2461, 0.41), "1403.25");
         assert_eq!(with_precision_of(-0.213_456, 0.0012), "-0.2135");
         assert_eq!(with_precision_of(640.0, 12.0), "640");
+    }
+
+    #[test]
+    fn the_headline_opens_with_the_current_status_not_the_gates_old_one() {
+        use crate::report::sample::sample_report;
+        use crate::report::GateReport;
+        let mut report = sample_report();
+        report.gate = Some(GateReport {
+            status: "candidate".into(),
+            reason: "worse".into(),
+            compared_with: "R/1".into(),
+            compared_mean_mm: Some(0.011),
+            mean_mm: Some(0.012),
+            worse: true,
+        });
+        // Read without its set: the gate's own warning.
+        assert!(headline(&report).starts_with("WORSE THAN BEFORE"));
+        report.release = ReleaseView {
+            status: Some(ReleaseStatus::Approved),
+            status_reason: Some("re-measured".into()),
+            status_by: Some("token:7 (ana)".into()),
+            status_at: Some("2026-11-27T10:00:00Z".into()),
+        };
+        let line = headline(&report);
+        assert!(
+            line.starts_with(
+                "APPROVED by token:7 (ana) at 2026-11-27T10:00:00Z: re-measured. \
+                 The release gate had held it back: "
+            ),
+            "{line}"
+        );
+        assert!(!line.contains("not served as latest"));
+        report.release.status = Some(ReleaseStatus::Rejected);
+        assert!(headline(&report).starts_with("REJECTED by token:7 (ana)"));
+        report.gate = None;
+        report.release.status = Some(ReleaseStatus::Candidate);
+        report.release.status_by = Some("gate".into());
+        assert!(headline(&report).starts_with(
+            "CANDIDATE, not served as latest (held back by gate at 2026-11-27T10:00:00Z): re-measured."
+        ));
+        report.release.status = Some(ReleaseStatus::Approved);
+        report.release.status_by = None;
+        assert!(
+            headline(&report).starts_with("Approved before the release gate existed: re-measured.")
+        );
     }
 }

@@ -2,7 +2,8 @@
 //! A4 print layout, the SVG charts inline, no external assets. Every string
 //! from the report is escaped. The sections live in `html_sections.rs`.
 
-use super::format::{before_fit, escape_xml, improvement_text, mm, worse_line};
+use super::format::{before_fit, escape_xml, improvement_text, mm, release_line};
+use super::hand_eye_section::{hand_eye_section, hand_eye_verdict};
 use super::html_sections::*;
 use super::model::Report;
 use super::svg::{
@@ -50,6 +51,10 @@ figure svg { width: 100%; height: auto; display: block; }
 .pair svg { width: 50%; }
 figcaption { font-size: 9pt; color: var(--muted); margin-top: 2px; }
 .flag { font-weight: bold; }
+.release { border-left: 5px solid #222; padding: 6px 10px; margin: 0 0 10px 0; }
+.release.status-candidate, .release.status-unknown { border-color: #d9730d; background: #fdf3e7; }
+.release.status-rejected { border-color: #a33; background: #fbeaea; }
+.release.status-approved { border-color: #2e7d32; background: #edf6ee; }
 .warn { color: #a33; }
 ul.notes li { margin: 3px 0; }
 .signoff { display: grid; grid-template-columns: repeat(3, 1fr); gap: 28px; margin-top: 30px;
@@ -132,11 +137,12 @@ fn page_footer_rule(report: &Report) -> String {
 }
 
 fn header(page: &mut String, report: &Report) {
-    if let Some(worse) = worse_line(report) {
+    if let Some(line) = release_line(report) {
+        let status = report.release.status.map_or("unknown", |s| s.as_str());
         let _ = writeln!(
             page,
-            "<p class=\"worse\"><strong>{}</strong></p>",
-            escape_xml(&worse)
+            "<p class=\"release status-{status}\" id=\"release-status\"><strong>{}</strong></p>",
+            escape_xml(&line)
         );
     }
     let _ = write!(
@@ -144,6 +150,7 @@ fn header(page: &mut String, report: &Report) {
         "<header>\n<h1>Robot calibration accuracy report</h1>\n<table class=\"meta\">\
          <tr><th>Robot serial</th><td>{}</td><th>Parameter set</th><td>v{}</td><th>Created</th><td>{}</td></tr>\
          <tr><th>Instrument</th><td>{} ({})</td><th>Job</th><td class=\"id\">{}</td><th>Session</th><td class=\"id\">{}</td></tr>\
+         <tr><th>Status</th><td id=\"status\">{}</td></tr>\
          </table>\n</header>\n",
         escape_xml(&report.serial),
         report.version,
@@ -151,8 +158,14 @@ fn header(page: &mut String, report: &Report) {
         escape_xml(&report.instrument),
         escape_xml(&report.measurement),
         escape_xml(&report.job_id),
-        escape_xml(&report.session_id)
+        escape_xml(&report.session_id),
+        report.release.status.map_or("not recorded", |s| s.as_str())
     );
+    if let Some(he) = &report.hand_eye {
+        hand_eye_verdict(page, report, he);
+        hand_eye_section(page, he);
+        return;
+    }
     let (b, a) = (&report.before.norm, &report.after.norm);
     let _ = writeln!(
         page,
@@ -170,12 +183,20 @@ fn header(page: &mut String, report: &Report) {
 
 fn accuracy(page: &mut String, report: &Report) {
     page.push_str("<section>\n<h2>1. Accuracy at the validation poses</h2>\n");
-    let _ = writeln!(
+    if report.hand_eye.is_some() {
+        page.push_str(
+            "<p>Camera positions predicted from the controller's flange poses with the identified \
+             hand–eye transform, against those the images measure. No kinematics were identified, \
+             so \"before\" and \"after\" are the same model and cannot differ.</p>\n<div class=\"tables\">",
+        );
+    } else {
+        let _ = writeln!(
         page,
         "<p>Before: nominal kinematics with only the base frame and {} fitted. After: the identified \
          parameter set. Validation poses are not used for identification.</p>\n<div class=\"tables\">",
-        before_fit(report)
-    );
+            before_fit(report)
+        );
+    }
     stats_table(page, report);
     axis_table(page, report);
     page.push_str("</div>\n");

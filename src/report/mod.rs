@@ -10,6 +10,7 @@ mod field_key;
 mod field_marks;
 pub mod format;
 pub mod hand_eye;
+mod hand_eye_section;
 mod html;
 mod html_sections;
 pub mod measurement_accuracy;

@@ -222,7 +222,7 @@ pub struct Report {
     /// and in sets stored without a job).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gate: Option<GateReport>,
-    /// A stage session's set (issue 18): the measurement system's own
+    /// A stage session's set: the measurement system's own
     /// accuracy per sequence (paper Table 1, Fig. 5).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub measurement_accuracy: Option<super::MeasurementAccuracyReport>,
@@ -234,10 +234,34 @@ pub struct Report {
     /// not run: too few configurations, terms selected, paper mode).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub model_selection: Option<super::model_selection::ModelSelectionReport>,
-    /// A multi-session set (issue 18): each session's (region's)
+    /// A multi-session set: each session's (region's)
     /// validation accuracy, before and after, on its own validation poses.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub regions: Vec<super::regions::RegionReport>,
+    /// The set's current release status, filled in when the report is
+    /// served (the stored document predates any decision on it).
+    #[serde(flatten)]
+    pub release: ReleaseView,
+}
+
+/// A parameter set's release status as a report shows it: what it is now,
+/// who gave it, when and why (a person's approval overrides the gate's
+/// comparison in [`GateReport`], which stays as the record of the job).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, ToSchema)]
+pub struct ReleaseView {
+    /// `approved` (what `latest` may serve), `candidate` (waits for a
+    /// person) or `rejected`; absent in a report read without its set.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub status: Option<crate::domain::ReleaseStatus>,
+    /// Why it has its status (the gate's comparison or a person's reason).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub status_reason: Option<String>,
+    /// Who gave it: `gate`, `token:{id} ({name})` or `anonymous`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub status_by: Option<String>,
+    /// When (RFC 3339 UTC).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub status_at: Option<String>,
 }
 
 /// Predicted 1σ of the tool (camera or tracker tool point) position over a
@@ -268,7 +292,7 @@ pub struct UncertaintyCell {
     pub position_std_mm: f64,
 }
 
-/// The release gate's comparison in a report (issue 17): what the set was
+/// The release gate's comparison in a report: what the set was
 /// compared with on the same validation poses at the end of the job.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 pub struct GateReport {

@@ -1,5 +1,5 @@
 //! The report's account of how much of the kinematics the campaign could
-//! carry (docs/method.md §6 "Model selection by held-out groups"): the
+//! carry (docs/method.md §6.8 "Model selection by held-out groups"): the
 //! arm configurations it has, whether its validation poses repeat them,
 //! the ladder of models with each rung's prediction of configurations it
 //! was not fitted to, the rung kept and why, and what the campaign could

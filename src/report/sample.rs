@@ -125,6 +125,7 @@ pub fn sample_report_sized(calibration: usize, validation: usize) -> Report {
         terms: None,
         gate: None,
         model_selection: None,
+        release: Default::default(),
         measurement_accuracy: None,
         regions: Vec::new(),
     }

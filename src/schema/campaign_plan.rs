@@ -61,10 +61,15 @@ pub struct CampaignPlanBody {
     /// intrinsics the campaign's job will reuse and hold.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub camera_calibration_id: Option<String>,
-    pub flange_to_camera_guess: PoseDoc,
+    /// The camera in the flange frame; omitted: the robot's latest
+    /// parameter set's `flange_to_camera` (a 422 when it has none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub flange_to_camera_guess: Option<PoseDoc>,
     /// The board in the base frame's terms, the same frame as a parameter
-    /// set's `target_to_base`.
-    pub target_to_base_guess: PoseDoc,
+    /// set's `target_to_base`; omitted: the robot's latest set's (a 422
+    /// when it has none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub target_to_base_guess: Option<PoseDoc>,
     /// Calibration poses to plan (5 to 10: a quick check by default).
     pub poses: u32,
     #[serde(default)]
@@ -115,10 +120,12 @@ impl CampaignPlanBody {
         if self.camera.is_none() && self.camera_calibration_id.is_none() {
             c.fail("camera", "give camera or camera_calibration_id");
         }
-        self.flange_to_camera_guess
-            .check(&mut c, "flange_to_camera_guess");
-        self.target_to_base_guess
-            .check(&mut c, "target_to_base_guess");
+        if let Some(p) = &self.flange_to_camera_guess {
+            p.check(&mut c, "flange_to_camera_guess");
+        }
+        if let Some(p) = &self.target_to_base_guess {
+            p.check(&mut c, "target_to_base_guess");
+        }
         if self.poses == 0 || self.poses.saturating_add(self.validation_poses) > MAX_PLAN_POSES {
             c.fail(
                 "poses",

@@ -44,7 +44,7 @@ pub enum Validation {
     Holdout(Holdout),
 }
 
-/// What a calibration re-fits (issue 17).
+/// What a calibration re-fits.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum CalibrationScope {
@@ -98,12 +98,12 @@ pub struct CalibrationOptions {
     pub scope: CalibrationScope,
     /// Select non-geometric terms (joint compliance, angle-periodic joint
     /// errors) after the geometric fit and keep those the campaign
-    /// identifies and that lower the held-out error (issue 19); `false`:
+    /// identifies and that lower the held-out error; `false`:
     /// geometry only. Absent: on for tracker sessions, off for camera
     /// sessions (see [`CalibrationOptions::non_geometric_for`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub non_geometric: Option<bool>,
-    /// `POST /v1/robots/{serial}/calibrations` only (issue 18): the
+    /// `POST /v1/robots/{serial}/calibrations` only: the
     /// sessions (board placements, regions) of one robot fitted together:
     /// one kinematic model and hand–eye, one `target_to_base` per session,
     /// the camera intrinsics shared. Empty for a one-session job.
@@ -148,7 +148,7 @@ impl CalibrationOptions {
 }
 
 impl CalibrationOptions {
-    /// A job over several sessions (issue 18).
+    /// A job over several sessions.
     pub fn is_multi_session(&self) -> bool {
         self.sessions.len() > 1
     }

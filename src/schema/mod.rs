@@ -1,4 +1,4 @@
-//! The REST contract's request documents (`../shared/docs/api.md`) as typed
+//! The REST contract's request documents (`docs/api.md`) as typed
 //! values, and their validation. Shared by the HTTP layer (parsing) and the
 //! job workers (reading stored documents back); no I/O here.
 
@@ -9,6 +9,7 @@ pub mod campaign_plan;
 pub mod flange_pose;
 mod frame_pose;
 pub mod job;
+pub mod nul;
 pub mod pose_body;
 pub mod robot;
 pub mod session;

@@ -1,5 +1,6 @@
 //! Robot documents: the joint table (DH or Hayati per joint) or a preset.
 
+use robocal_calib::kinematics::prior::KinematicPrior;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
@@ -7,6 +8,7 @@ use robocal_calib::kinematics::model::choose_conventions;
 use robocal_calib::kinematics::{presets, Convention as CoreConvention, Joint, RobotModel};
 
 use super::{Checker, FieldError, MAX_ANGLE_DEG, MAX_LENGTH_MM};
+use crate::domain::ControllerIdentity;
 
 /// Most joints a robot may have.
 pub const MAX_JOINTS: usize = 12;
@@ -94,6 +96,76 @@ pub struct RobotBody {
     pub kinematics: Option<KinematicsDoc>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub preset: Option<Preset>,
+    /// The controller the robot runs on (issue 34). Sessions record it,
+    /// sets inherit it; a change is recorded in the robot's history. A
+    /// replacement without it removes it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub controller: Option<ControllerIdentity>,
+    /// The prior σ of the kinematic parameters' deviations from this table
+    /// (docs/method.md §6.7): what a campaign that cannot determine a
+    /// parameter leaves it at. Absent: manufacturing tolerances (joint
+    /// zeros 0.2°, lengths 1 mm, twists 0.1°).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub prior: Option<PriorDoc>,
+}
+
+/// The prior standard deviations of a robot's kinematic deviations from
+/// its nominal table, per parameter kind.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PriorDoc {
+    /// Joint zeros `dtheta` (deg), 0 < σ ≤ 10.
+    #[schema(exclusive_minimum = 0.0, maximum = 10.0)]
+    pub joint_offset_deg: f64,
+    /// Lengths and offsets `a`, `d` (mm), 0 < σ ≤ 100.
+    #[schema(exclusive_minimum = 0.0, maximum = 100.0)]
+    pub length_mm: f64,
+    /// Twists `alpha` and Hayati tilts `beta` (deg), 0 < σ ≤ 10.
+    #[schema(exclusive_minimum = 0.0, maximum = 10.0)]
+    pub twist_deg: f64,
+}
+
+/// Largest prior σ of an angle (deg) and of a length (mm): beyond them a
+/// "prior" no longer says anything a table does not.
+const MAX_PRIOR_DEG: f64 = 10.0;
+const MAX_PRIOR_MM: f64 = 100.0;
+
+impl PriorDoc {
+    fn check(&self, c: &mut Checker) {
+        for (field, value, max) in [
+            (
+                "prior.joint_offset_deg",
+                self.joint_offset_deg,
+                MAX_PRIOR_DEG,
+            ),
+            ("prior.length_mm", self.length_mm, MAX_PRIOR_MM),
+            ("prior.twist_deg", self.twist_deg, MAX_PRIOR_DEG),
+        ] {
+            if !(value.is_finite() && value > 0.0 && value <= max) {
+                c.fail(field, format!("must be > 0 and at most {max}"));
+            }
+        }
+    }
+}
+
+impl From<PriorDoc> for KinematicPrior {
+    fn from(d: PriorDoc) -> Self {
+        Self {
+            joint_offset_deg: d.joint_offset_deg,
+            length_mm: d.length_mm,
+            twist_deg: d.twist_deg,
+        }
+    }
+}
+
+impl From<KinematicPrior> for PriorDoc {
+    fn from(p: KinematicPrior) -> Self {
+        Self {
+            joint_offset_deg: p.joint_offset_deg,
+            length_mm: p.length_mm,
+            twist_deg: p.twist_deg,
+        }
+    }
 }
 
 /// A serial as the domain type accepts it ([`crate::domain::Serial`]).
@@ -125,6 +197,12 @@ impl RobotBody {
         };
         if let Some(doc) = &doc {
             doc.check(&mut c);
+        }
+        if let Some(controller) = &self.controller {
+            controller.check("controller", &mut c);
+        }
+        if let Some(prior) = &self.prior {
+            prior.check(&mut c);
         }
         c.finish()?;
         Ok(doc

@@ -24,7 +24,7 @@ pub enum Instrument {
     #[default]
     Camera,
     Tracker,
-    /// A camera on a linear stage (issue 18, paper section 4): poses are
+    /// A camera on a linear stage (paper section 4): poses are
     /// images with the stage's reading, and the job calibrates and assesses
     /// the camera itself (no robot is identified).
     Stage,
@@ -57,7 +57,7 @@ impl Instrument {
     }
 }
 
-/// What board the camera sees (issue 14): robocal's dot grid (`kind`
+/// What board the camera sees: robocal's dot grid (`kind`
 /// `"dots"`, the default, may be omitted), a ChArUco board, a chessboard
 /// or OpenCV's asymmetric circle grid.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
@@ -159,8 +159,8 @@ pub struct SessionBody {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub volume: Option<String>,
     /// Payload at the tool during the campaign (kg), when known: the
-    /// compliance terms then get a candidate driven by its gravity torque
-    /// (issue 19). A finite mass from 0 to `MAX_PAYLOAD_KG`.
+    /// compliance terms then get a candidate driven by its gravity torque.
+    /// A finite mass from 0 to `MAX_PAYLOAD_KG`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub payload_kg: Option<f64>,
     /// A tracker session's position standard deviation per axis (mm),
@@ -169,10 +169,15 @@ pub struct SessionBody {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tracker_sigma_mm: Option<f64>,
     /// A tracker session's orientation standard deviation per axis (deg)
-    /// for poses with `measured_pose` (a 6-DoF probe, issue 19), the
+    /// for poses with `measured_pose` (a 6-DoF probe), the
     /// weight of each measured orientation; default 0.01° (a T-Mac's).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tracker_orientation_sigma_deg: Option<f64>,
+    /// The controller the campaign is measured on (issue 34); absent: the
+    /// robot's `controller` when the session is created. The session's
+    /// sets inherit it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub controller: Option<crate::domain::ControllerIdentity>,
 }
 
 /// Largest payload a session may state (kg): beyond any industrial arm's.
@@ -185,6 +190,9 @@ pub const MAX_TRACKER_SIGMA_DEG: f64 = 10.0;
 impl SessionBody {
     pub fn check(&self) -> Result<(), Vec<FieldError>> {
         let mut c = Checker::default();
+        if let Some(controller) = &self.controller {
+            controller.check("controller", &mut c);
+        }
         if self.instrument.has_camera() {
             match &self.target {
                 None => c.fail("target", "required for a camera or stage session"),

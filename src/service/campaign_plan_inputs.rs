@@ -15,7 +15,7 @@ use super::results::typed;
 use crate::domain::Target;
 use crate::schema::campaign_plan::{CampaignPlanBody, PlanPurposeDoc};
 use crate::schema::robot::{doc_to_model, KinematicsDoc};
-use crate::schema::session::CameraDoc;
+use crate::schema::session::{CameraDoc, Instrument};
 use crate::schema::Checker;
 use crate::store::DynStore;
 
@@ -51,20 +51,42 @@ fn board_points(target: &Target) -> Vec<Point3<f64>> {
         .collect()
 }
 
-/// The kinematics the plan uses: the latest parameter set's, else nominal.
-pub async fn planning_robot(store: &DynStore, serial: &str) -> ServiceResult<(RobotModel, String)> {
+/// What the plan starts from: the kinematics (the latest parameter set's,
+/// else nominal), what they are called, and the latest set's calibrated
+/// frames (the guesses a request may omit).
+pub struct PlanningRobot {
+    pub robot: RobotModel,
+    pub model_name: String,
+    /// The latest set's `target_to_base` and `flange_to_camera`.
+    pub latest: Option<CalibratedModel>,
+}
+
+/// The robot a plan is computed for (404 for an unknown serial).
+pub async fn planning_robot(store: &DynStore, serial: &str) -> ServiceResult<PlanningRobot> {
     let robot = store
         .get_robot(serial)
         .await?
         .ok_or_else(|| ServiceError::not_found("robot", serial))?;
     if let Some(set) = store.get_parameter_set(serial, None).await? {
-        if let Ok(model) = typed(&set).and_then(|t| t.model().map_err(ServiceError::internal)) {
-            return Ok((model.robot, format!("{serial}/{}", set.version)));
+        if let Ok(typed) = typed(&set) {
+            if let Ok(model) = typed.model() {
+                // A tracker set's frames are the tracker's, not a board's.
+                let camera = typed.instrument == Instrument::Camera;
+                return Ok(PlanningRobot {
+                    robot: model.robot.clone(),
+                    model_name: format!("{serial}/{}", set.version),
+                    latest: camera.then_some(model),
+                });
+            }
         }
     }
     let doc: KinematicsDoc =
         serde_json::from_value(robot.kinematics).map_err(ServiceError::internal)?;
-    Ok((doc_to_model(&doc), "nominal".to_string()))
+    Ok(PlanningRobot {
+        robot: doc_to_model(&doc),
+        model_name: "nominal".to_string(),
+        latest: None,
+    })
 }
 
 /// Intrinsics and image size: the reused calibration's, else the nominal camera's.

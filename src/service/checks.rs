@@ -5,6 +5,8 @@
 //! that can only fail.
 
 use super::error::{ServiceError, ServiceResult};
+use super::results::typed;
+use crate::domain::{check_controller, ControllerIdentity};
 use crate::jobs::queue::{enqueue_calibration, enqueue_check, QueuePolicy};
 use crate::schema::job::CalibrationOptions;
 use crate::store::{DynStore, JobRecord, SessionRecord};
@@ -54,12 +56,23 @@ pub async fn start_calibration(
 }
 
 /// Queues a quick re-check of the session against the robot's latest
-/// approved set (409 naming `serial` when it has none).
+/// approved set (409 naming `serial` when it has none; 409 naming
+/// `controller` when the caller expects another controller than the set's).
 pub async fn start_check(
     store: &DynStore,
     policy: &QueuePolicy,
     session: &SessionRecord,
+    expect_controller: Option<&ControllerIdentity>,
 ) -> ServiceResult<JobRecord> {
     require_approved(store, &session.serial, "serial").await?;
+    if expect_controller.is_some() {
+        let approved = store.get_parameter_set(&session.serial, None).await?;
+        let recorded = approved
+            .as_ref()
+            .and_then(|r| typed(r).ok())
+            .and_then(|set| set.controller);
+        check_controller(expect_controller, recorded.as_ref())
+            .map_err(ServiceError::controller("the approved parameter set"))?;
+    }
     Ok(enqueue_check(store, policy, session).await?)
 }

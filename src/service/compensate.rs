@@ -36,10 +36,16 @@ pub struct CompensateRequest {
     pub tool: Option<PoseDoc>,
     #[serde(default)]
     pub seed_joints_deg: Option<Seeds>,
-    /// A multi-session set (issue 18): work in this session's board frame
+    /// A multi-session set: work in this session's board frame
     /// (its `target_to_base`); absent: the set's own `target_to_base`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub session_id: Option<String>,
+    /// The controller the caller is about to apply the answer on (issue
+    /// 34): 409 naming `controller` when the set was made on another (a
+    /// field left out is not compared). `?controller_serial=` does the
+    /// same for the serial alone.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub expect_controller: Option<crate::domain::ControllerIdentity>,
 }
 
 /// Where the solver's run that found a target's joints started.

@@ -66,7 +66,19 @@ pub fn is_safe_name(name: &str) -> bool {
 
 impl DatasetReader {
     pub fn open(path: &Path, limits: DatasetLimits) -> Result<DatasetReader, DatasetError> {
-        let file = File::open(path).map_err(|e| malformed("archive", e))?;
+        let mut file = File::open(path).map_err(|e| malformed("archive", e))?;
+        // The zip reader keeps one entry per name: a second one is refused
+        // here, before it could stand in for the first.
+        match super::zip_names::first_duplicate(&mut file) {
+            Ok(None) => {}
+            Ok(Some(name)) => {
+                return Err(DatasetError::Invalid(vec![FieldError::new(
+                    format!("archive/{name}"),
+                    "duplicate entry: the archive holds this name more than once",
+                )]))
+            }
+            Err(e) => return Err(malformed("archive", e)),
+        }
         let archive = ZipArchive::new(file)
             .map_err(|e| malformed("archive", format!("not a zip archive: {e}")))?;
         if archive.len() > MAX_ENTRIES {
@@ -91,6 +103,16 @@ impl DatasetReader {
             total: 0,
         };
         let bytes = reader.read_entry(MANIFEST, MAX_MANIFEST_BYTES, "max_json_bytes")?;
+        if let Some(field) = crate::schema::nul::json_nul_field(&bytes) {
+            return Err(DatasetError::Invalid(vec![FieldError::new(
+                if field.starts_with('[') {
+                    format!("{MANIFEST}{field}")
+                } else {
+                    format!("{MANIFEST}.{field}")
+                },
+                crate::schema::nul::NUL_MESSAGE,
+            )]));
+        }
         let de = &mut serde_json::Deserializer::from_slice(&bytes);
         reader.manifest = serde_path_to_error::deserialize(de).map_err(|e| {
             let path = e.path().to_string();

@@ -32,6 +32,20 @@ impl From<DatasetError> for ServiceError {
     }
 }
 
+/// An image's refusal names its file as well as its manifest entry (the
+/// user knows the photo by its name, not by its index).
+fn naming_file(e: ServiceError, file: &str) -> ServiceError {
+    match e {
+        ServiceError::Invalid(mut errors) => {
+            for error in &mut errors {
+                error.message = format!("{file}: {}", error.message);
+            }
+            ServiceError::Invalid(errors)
+        }
+        other => other,
+    }
+}
+
 impl PoseIntake {
     /// Refuses a dataset for a tracker session (checked before the body is read).
     pub fn check_takes_dataset(&self) -> ServiceResult<()> {
@@ -103,13 +117,14 @@ impl PoseIntake {
                 .await
                 .map_err(ServiceError::internal)?;
                 reader = back;
+                let file = reader.manifest[i].image.clone();
                 match bytes {
-                    Ok(bytes) => in_flight.push_back(tokio::spawn(ingest_image(
-                        self.store.clone(),
-                        bytes,
-                        check.clone(),
-                        field,
-                    ))),
+                    Ok(bytes) => {
+                        let ingest = ingest_image(self.store.clone(), bytes, check.clone(), field);
+                        in_flight.push_back(tokio::spawn(async move {
+                            ingest.await.map_err(|e| naming_file(e, &file))
+                        }))
+                    }
                     Err(e) => failure = Some(e),
                 }
             }

@@ -2,6 +2,7 @@
 //! service's terms (which field, which resource, which limit); `api/error.rs`
 //! turns it into problem+json in one place.
 
+use crate::domain::ControllerMismatch;
 use crate::schema::FieldError;
 use crate::store::StoreError;
 
@@ -34,6 +35,14 @@ pub enum ServiceError {
         field: &'static str,
         message: String,
     },
+    /// The request expected another controller than the one the set (or
+    /// robot) records (issue 34): 409 naming `controller`, both identities
+    /// in the problem's `controller` member. `what` names the recorder.
+    #[error("controller mismatch")]
+    ControllerMismatch {
+        what: &'static str,
+        mismatch: Box<ControllerMismatch>,
+    },
     #[error(transparent)]
     Store(#[from] StoreError),
     /// A fault of the service itself (a task that died, a stored document
@@ -57,6 +66,13 @@ impl ServiceError {
 
     pub fn internal(cause: impl std::fmt::Display) -> ServiceError {
         ServiceError::Internal(cause.to_string())
+    }
+}
+
+impl ServiceError {
+    /// `check_controller`'s refusal of a call on `what` (`the parameter set`).
+    pub fn controller(what: &'static str) -> impl FnOnce(Box<ControllerMismatch>) -> ServiceError {
+        move |mismatch| ServiceError::ControllerMismatch { what, mismatch }
     }
 }
 

@@ -23,7 +23,7 @@ pub struct ForwardRequest {
     /// A tool in the flange frame (api.md: relative to the calibrated hand–eye).
     #[serde(default)]
     pub tool: Option<PoseDoc>,
-    /// A multi-session set (issue 18): work in this session's board frame
+    /// A multi-session set: work in this session's board frame
     /// (its `target_to_base`); absent: the set's own `target_to_base`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub session_id: Option<String>,

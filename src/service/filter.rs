@@ -31,10 +31,16 @@ pub struct FilterRequest {
     /// configuration in the program. Mid-range joints when absent.
     #[serde(default)]
     pub seed_joints_deg: Option<Vec<f64>>,
-    /// A multi-session set (issue 18): work in this session's board frame
+    /// A multi-session set: work in this session's board frame
     /// (its `target_to_base`); absent: the set's own `target_to_base`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub session_id: Option<String>,
+    /// The controller the caller is about to apply the answer on (issue
+    /// 34): 409 naming `controller` when the set was made on another (a
+    /// field left out is not compared). `?controller_serial=` does the
+    /// same for the serial alone.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub expect_controller: Option<crate::domain::ControllerIdentity>,
 }
 
 /// Per target (same order; `null` where `errors` names the index).

@@ -8,7 +8,7 @@ use serde::Deserialize;
 
 use super::error::{ServiceError, ServiceResult};
 use super::results;
-use crate::domain::{JobState, Serial};
+use crate::domain::{ControllerIdentity, JobState, ReleaseStatus, Serial};
 use crate::report::{AccuracySummary, Report};
 use crate::store::{DynStore, JobFilter, JobRecord, ParameterSetRecord};
 
@@ -30,6 +30,10 @@ pub struct SetSummary {
     /// Mean 3-D error at the validation poses, mm, before and after (none
     /// for a set stored without an accuracy report).
     pub accuracy: Option<Accuracy>,
+    /// Its release status now, who gave it and why.
+    pub status: ReleaseStatus,
+    pub status_by: Option<String>,
+    pub status_reason: Option<String>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -37,14 +41,22 @@ pub struct Accuracy {
     pub validation_poses: usize,
     pub before_mean_mm: f64,
     pub after_mean_mm: f64,
+    /// A hand–eye set's reprojection RMS (px): such a set identified no
+    /// kinematics, so its before and after are the same model and the
+    /// pages show what it measured instead.
+    pub hand_eye_rms_px: Option<f64>,
 }
 
 /// The latest re-check of a robot and what it found (`pass`, `drift`,
-/// `base_moved`).
+/// `base_moved`, `controller_changed`).
 #[derive(Debug, Clone)]
 pub struct CheckSummary {
     pub verdict: String,
     pub at: String,
+    /// The version the check judged (`None` for checks stored before the
+    /// version was carried): a card must not show a verdict on v1 as if
+    /// it were on the current v5.
+    pub checked_version: Option<i64>,
 }
 
 /// A job that is queued or running.
@@ -65,11 +77,16 @@ pub struct JobBrief {
 pub struct RobotSummary {
     pub serial: String,
     pub model: String,
+    /// The robot's controller identity (issue 34); `None`: none given.
+    pub controller: Option<ControllerIdentity>,
     /// What `latest` serves; `None` before the first calibration.
     pub current: Option<SetSummary>,
     /// `None`: never checked.
     pub last_check: Option<CheckSummary>,
     pub jobs_in_progress: Vec<JobBrief>,
+    /// The robot's newest job when it failed (a robot whose last job
+    /// failed must not look like an untouched one).
+    pub last_failed: Option<JobBrief>,
 }
 
 /// A robot's own page.
@@ -87,6 +104,14 @@ pub struct RobotDetail {
 struct ReportAccuracy {
     before: AccuracySummary,
     after: AccuracySummary,
+    #[serde(default)]
+    hand_eye: Option<HandEyeFit>,
+}
+
+/// The part of a report's hand–eye section the pages show.
+#[derive(Deserialize)]
+struct HandEyeFit {
+    reprojection_rms_px: f64,
 }
 
 impl From<JobRecord> for JobBrief {
@@ -112,12 +137,16 @@ async fn summary_of(store: &DynStore, set: &ParameterSetRecord) -> ServiceResult
             validation_poses: r.after.norm.n,
             before_mean_mm: r.before.norm.mean_mm,
             after_mean_mm: r.after.norm.mean_mm,
+            hand_eye_rms_px: r.hand_eye.map(|h| h.reprojection_rms_px),
         });
     Ok(SetSummary {
         version: set.version,
         created_at: set.created_at.clone(),
         job_id: set.job_id.clone(),
         accuracy,
+        status: set.status,
+        status_by: set.status_by.clone(),
+        status_reason: set.status_reason.clone(),
     })
 }
 
@@ -130,14 +159,21 @@ async fn current_set(store: &DynStore, serial: &str) -> ServiceResult<Option<Set
     }
 }
 
-/// The robot's last judged quick re-check (issue 17), if any.
+/// The robot's last judged quick re-check, if any.
 async fn last_check(store: &DynStore, serial: &str) -> ServiceResult<Option<CheckSummary>> {
     let checks = store.list_checks(serial, 1).await?;
     Ok(checks.into_iter().next().and_then(|job| {
         let verdict = job.result.as_ref()?.get("verdict")?.as_str()?.to_string();
+        let checked_version = job
+            .result
+            .as_ref()
+            .and_then(|r| r.get("checked_version"))
+            .and_then(|v| v.as_i64())
+            .filter(|v| *v >= 1);
         Some(CheckSummary {
             verdict,
             at: job.finished_at.unwrap_or(job.created_at),
+            checked_version,
         })
     }))
 }
@@ -158,6 +194,23 @@ async fn active_jobs(store: &DynStore, serial: Option<&str>) -> ServiceResult<Ve
     Ok(jobs)
 }
 
+/// The robot's newest job, when it failed.
+async fn last_failed(store: &DynStore, serial: &str) -> ServiceResult<Option<JobBrief>> {
+    let filter = JobFilter {
+        serial: Some(serial.to_string()),
+        ..JobFilter::default()
+    };
+    let newest = store
+        .list_jobs(&filter, 1, None)
+        .await?
+        .items
+        .into_iter()
+        .next();
+    Ok(newest
+        .filter(|j| j.state == JobState::Failed)
+        .map(JobBrief::from))
+}
+
 /// Every robot (the first [`MAX_ROBOTS`] by serial) with what it runs now.
 pub async fn fleet(store: &DynStore) -> ServiceResult<Vec<RobotSummary>> {
     let robots = store.list_robots(MAX_ROBOTS, None).await?.items;
@@ -167,6 +220,7 @@ pub async fn fleet(store: &DynStore) -> ServiceResult<Vec<RobotSummary>> {
         rows.push(RobotSummary {
             current: current_set(store, &robot.serial).await?,
             last_check: last_check(store, &robot.serial).await?,
+            last_failed: last_failed(store, &robot.serial).await?,
             jobs_in_progress: active
                 .iter()
                 .filter(|j| j.serial == robot.serial)
@@ -174,6 +228,7 @@ pub async fn fleet(store: &DynStore) -> ServiceResult<Vec<RobotSummary>> {
                 .collect(),
             serial: robot.serial,
             model: robot.model,
+            controller: robot.controller,
         });
     }
     Ok(rows)
@@ -211,23 +266,20 @@ pub async fn robot(store: &DynStore, serial: &str) -> ServiceResult<RobotDetail>
         summary: RobotSummary {
             current: current_set(store, &serial).await?,
             last_check: last_check(store, &serial).await?,
+            last_failed: last_failed(store, &serial).await?,
             jobs_in_progress: active_jobs(store, Some(&serial)).await?,
             serial: robot.serial,
             model: robot.model,
+            controller: robot.controller,
         },
         versions,
         recent_jobs,
     })
 }
 
-/// The accuracy report of version `version` of robot `serial` (404 when
-/// absent, 409 when the set holds no report to draw).
+/// The accuracy report of version `version` of robot `serial`, with the
+/// set's identity and current release status as `/v1/…/report.html` shows
+/// it (404 when absent, 409 when the set holds no report to draw).
 pub async fn report(store: &DynStore, serial: &str, version: i64) -> ServiceResult<Report> {
-    let doc = store
-        .get_report(serial, version)
-        .await?
-        .ok_or_else(|| ServiceError::not_found("report", &format!("{serial}/{version}")))?;
-    serde_json::from_value(doc).map_err(|_| {
-        ServiceError::Conflict("this parameter set has no accuracy report to draw".into())
-    })
+    super::report_view::typed_report(store, serial, &version.to_string()).await
 }

@@ -36,7 +36,7 @@ pub struct ImagePose {
     pub image: Vec<u8>,
     /// The image's file name, as a label.
     pub label: Option<String>,
-    /// A stage session's parts (issue 18): the stage's reading and the
+    /// A stage session's parts: the stage's reading and the
     /// sequence, as sent (checked by [`StageReading::check`]).
     pub stage_position_mm: Option<[f64; 3]>,
     pub sequence: Option<u32>,
@@ -48,6 +48,19 @@ pub async fn find_session(store: &DynStore, id: &str) -> ServiceResult<SessionRe
         .get_session(id)
         .await?
         .ok_or_else(|| ServiceError::not_found("session", id))
+}
+
+/// The controller identity robot `serial` records (issue 34): what a new
+/// session records unless it names its own. 404 when there is no robot.
+pub async fn robot_controller(
+    store: &DynStore,
+    serial: &str,
+) -> ServiceResult<Option<crate::domain::ControllerIdentity>> {
+    let robot = store
+        .get_robot(serial)
+        .await?
+        .ok_or_else(|| ServiceError::not_found("robot", serial))?;
+    Ok(robot.controller)
 }
 
 /// Number of joints of the robot `serial` (0 for a joint table that is not a list).

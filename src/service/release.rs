@@ -7,7 +7,7 @@ use serde::Serialize;
 use utoipa::ToSchema;
 
 use super::error::{ServiceError, ServiceResult};
-use crate::domain::{CheckDoc, Decision, Release, ReleaseStatus};
+use crate::domain::{CheckDoc, ControllerChange, Decision, Release, ReleaseStatus};
 use crate::report::ParameterReport;
 use crate::store::{DynStore, ParameterSetRecord};
 
@@ -135,6 +135,9 @@ pub struct History {
     pub decisions: Vec<Decision>,
     /// Re-checks, newest first (at most 100).
     pub checks: Vec<HistoryCheck>,
+    /// Every change of the robot's controller identity (issue 34), oldest
+    /// first: from, to, when.
+    pub controller_changes: Vec<ControllerChange>,
 }
 
 /// Every parameter set of the serial, oldest first.
@@ -193,6 +196,7 @@ pub async fn history(store: &DynStore, serial: &str) -> ServiceResult<History> {
         approved,
         decisions: store.list_decisions(serial).await?,
         checks,
+        controller_changes: store.list_controller_changes(serial).await?,
     })
 }
 

@@ -11,7 +11,7 @@ use super::evaluate::{ForwardRequest, ForwardResponse};
 use super::filter::{self, FilterRequest, FilterResponse, Filtering};
 use super::target_stream;
 use super::uncertainty::{self, Uncertainty, UncertaintyMapRequest, UncertaintyMapResponse};
-use crate::domain::ParameterSet;
+use crate::domain::{check_controller, ControllerIdentity, ParameterSet};
 use crate::pipeline::hand_eye_results::HAND_EYE_KIND;
 use crate::schema::robot::{doc_to_model, KinematicsDoc};
 use crate::store::DynStore;
@@ -79,15 +79,19 @@ async fn model(
     serial: &str,
     version: &str,
     session_id: Option<&str>,
+    expect_controller: Option<&ControllerIdentity>,
 ) -> ServiceResult<TermModel> {
     let record = find_parameter_set(store, serial, version).await?;
     refuse_hand_eye(&record)?;
-    in_session(typed(&record)?, session_id)?
+    let set = typed(&record)?;
+    check_controller(expect_controller, set.controller.as_ref())
+        .map_err(ServiceError::controller("the parameter set"))?;
+    in_session(set, session_id)?
         .term_model()
         .map_err(|_| no_model())
 }
 
-/// The set in session `session_id`'s board frame (issue 18); 422 naming
+/// The set in session `session_id`'s board frame; 422 naming
 /// `session_id` when the set knows no such session.
 fn in_session(set: ParameterSet, session_id: Option<&str>) -> ServiceResult<ParameterSet> {
     let Some(id) = session_id else {
@@ -167,7 +171,14 @@ pub async fn compensate(
     version: &str,
     request: CompensateRequest,
 ) -> ServiceResult<CompensateResponse> {
-    let model = model(store, serial, version, request.session_id.as_deref()).await?;
+    let model = model(
+        store,
+        serial,
+        version,
+        request.session_id.as_deref(),
+        request.expect_controller.as_ref(),
+    )
+    .await?;
     let answer = tokio::task::spawn_blocking(move || compensate::compensate(&model, &request))
         .await
         .map_err(ServiceError::internal)?;
@@ -183,7 +194,14 @@ pub async fn compensate_stream(
     version: &str,
     request: CompensateRequest,
 ) -> ServiceResult<impl Stream<Item = Vec<u8>>> {
-    let model = model(store, serial, version, request.session_id.as_deref()).await?;
+    let model = model(
+        store,
+        serial,
+        version,
+        request.session_id.as_deref(),
+        request.expect_controller.as_ref(),
+    )
+    .await?;
     let plan = Compensation::check(&model, &request)?;
     Ok(target_stream::ndjson(plan.len(), move |i| plan.solve(i)))
 }
@@ -207,7 +225,14 @@ async fn filtering(
     version: &str,
     request: &FilterRequest,
 ) -> ServiceResult<Filtering> {
-    let model = model(store, serial, version, request.session_id.as_deref()).await?;
+    let model = model(
+        store,
+        serial,
+        version,
+        request.session_id.as_deref(),
+        request.expect_controller.as_ref(),
+    )
+    .await?;
     let nominal = nominal_chain(store, serial).await?;
     Ok(Filtering::check(&model, nominal, request)?)
 }

@@ -190,7 +190,7 @@ pub struct UncertaintyMapRequest {
     /// (the calibrated camera or tool point when absent).
     #[serde(default)]
     pub tool: Option<PoseDoc>,
-    /// A multi-session set's session (issue 18): the σ of the tool in that
+    /// A multi-session set's session: the σ of the tool in that
     /// session's board frame, with that board's own covariance (as
     /// `forward`'s `session_id`).
     #[serde(default)]

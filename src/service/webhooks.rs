@@ -8,6 +8,7 @@ use rand::RngCore;
 
 use super::error::{ServiceError, ServiceResult};
 use crate::domain::{new_id, now_rfc3339, DomainEvent};
+use crate::outbox::address_guard::AddressGuard;
 use crate::schema::webhook::{
     DeliveryCounts, WebhookBody, WebhookCreated, WebhookList, WebhookOut,
 };
@@ -28,6 +29,8 @@ pub struct SelfAddress {
     /// The `Host` the request came in with (`name[:port]`).
     pub host: Option<String>,
     pub tls: bool,
+    /// Which addresses receivers may have (`--webhook-allow-networks`).
+    pub guard: AddressGuard,
 }
 
 impl SelfAddress {
@@ -74,6 +77,16 @@ fn check_url(url: &str, me: &SelfAddress) -> ServiceResult<String> {
         .ok_or_else(|| bad("names no port"))?;
     if me.is_self(host, port) {
         return Err(bad("points at this service itself"));
+    }
+    // Addresses written in the URL are checked now (names at every delivery,
+    // after resolving them); `localhost.` is `localhost`.
+    let bare = host.trim_start_matches('[').trim_end_matches(']');
+    let literal = match bare.trim_end_matches('.').to_ascii_lowercase().as_str() {
+        "localhost" => Some(IpAddr::from([127, 0, 0, 1])),
+        _ => bare.parse::<IpAddr>().ok(),
+    };
+    if let Some(why) = literal.and_then(|ip| me.guard.refusal(ip, port)) {
+        return Err(bad(&format!("refused receiver: {why}")));
     }
     Ok(parsed.to_string())
 }
@@ -188,6 +201,10 @@ mod tests {
             bind: "127.0.0.1:8080".parse().unwrap(),
             host: host.map(str::to_string),
             tls: false,
+            guard: AddressGuard {
+                bind: "127.0.0.1:8080".parse().unwrap(),
+                allow: vec!["127.0.0.0/8".parse().unwrap()],
+            },
         }
     }
 
@@ -201,6 +218,11 @@ mod tests {
             "http://0.0.0.0:8080/",
             "http://robocal.plant:8080/hook",
             "http://ROBOCAL.plant:8080/hook",
+            "http://[::ffff:127.0.0.1]:8080/",
+            "http://localhost.:8080/",
+            "http://169.254.169.254/latest/meta-data/",
+            "http://[fe80::1]/",
+            "http://10.0.0.5/hook",
         ] {
             assert!(check_url(url, &m).is_err(), "{url}");
         }

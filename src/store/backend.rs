@@ -44,8 +44,16 @@ pub trait Backend: Send + Sync + 'static {
 
     fn pool(&self) -> &Pool<Self::Db>;
 
-    /// Opens a transaction that is going to write.
-    async fn begin_write(&self) -> StoreResult<Transaction<'static, Self::Db>>;
+    /// Opens a transaction that is going to write (backend-specific).
+    async fn open_write(&self) -> StoreResult<Transaction<'static, Self::Db>>;
+
+    /// Opens a transaction that is going to write; inside a keyed request
+    /// it marks the request's `Idempotency-Key` as written ([`super::write_guard`]).
+    async fn begin_write(&self) -> StoreResult<Transaction<'static, Self::Db>> {
+        let mut tx = self.open_write().await?;
+        super::write_guard::mark(&mut tx).await?;
+        Ok(tx)
+    }
 
     /// Serialises enqueues (the `--max-queued` bound is a count, then an
     /// insert) inside the enqueue's transaction. Nothing to do where the

@@ -26,6 +26,7 @@ pub use repo::CHECK_KIND;
 mod rows;
 pub mod sqlite;
 mod statement;
+pub mod write_guard;
 
 #[derive(Debug, thiserror::Error)]
 pub enum StoreError {
@@ -62,6 +63,17 @@ pub trait RobotStore: Send + Sync {
     /// images no other pose names. A robot created later under the same
     /// serial starts empty. `false` if absent.
     async fn delete_robot(&self, serial: &str) -> StoreResult<bool>;
+    /// Sets the robot's controller identity (`None`: removes it) and, when
+    /// that changes it, records the change in its history, in one
+    /// transaction; `true` when it changed. `NotFound("robot")` when absent.
+    async fn set_robot_controller(
+        &self,
+        serial: &str,
+        controller: Option<&ControllerIdentity>,
+        at: &str,
+    ) -> StoreResult<bool>;
+    /// The robot's controller changes, oldest first.
+    async fn list_controller_changes(&self, serial: &str) -> StoreResult<Vec<ControllerChange>>;
 }
 
 #[async_trait]
@@ -239,6 +251,10 @@ pub trait AuthStore: Send + Sync {
     /// Marks the token revoked (its row stays); `None` when no token has
     /// this id. Revoking a revoked token keeps the first revocation.
     async fn revoke_token(&self, id: &str) -> StoreResult<Option<TokenRecord>>;
+    /// [`revoke_token`](Self::revoke_token) over the API: refused
+    /// ([`StoreError::Conflict`]) when it would leave no usable admin
+    /// token, so the service cannot lock its administrators out.
+    async fn revoke_token_keeping_an_admin(&self, id: &str) -> StoreResult<Option<TokenRecord>>;
     /// Records a use at `now_ms` unless one was recorded after
     /// `now_ms - min_interval_ms` (so a busy token costs one write a minute).
     async fn touch_token(&self, id: &str, now_ms: i64, min_interval_ms: i64) -> StoreResult<()>;

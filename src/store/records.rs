@@ -6,14 +6,15 @@
 //! parameter set and its report, a job's per-pose detection): the code that
 //! reads them types them once, where it reads them.
 
+use robocal_calib::kinematics::prior::KinematicPrior;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
-use crate::domain::StageReading;
 use crate::domain::{
     CheckDoc, ImageDetection, ImageMeta, JobState, JointsDeg, MeasuredPose, PoseSet, Release,
     ReleaseStatus,
 };
+use crate::domain::{ControllerIdentity, StageReading};
 use crate::schema::flange_pose::FlangePoseDoc;
 use crate::schema::pose_body::ImagePointDoc;
 use crate::schema::session::SessionBody;
@@ -37,6 +38,12 @@ pub struct RobotRecord {
     pub model: String,
     pub preset: Option<String>,
     pub kinematics: Value,
+    /// The controller identity (issue 34); written by
+    /// `RobotStore::set_robot_controller`, never by `put_robot`.
+    pub controller: Option<ControllerIdentity>,
+    /// The prior on the kinematic deviations (docs/method.md §6.7);
+    /// `None`: manufacturing tolerances.
+    pub prior: Option<KinematicPrior>,
     pub created_at: String,
     pub updated_at: String,
 }

@@ -136,6 +136,8 @@ pub fn robot(row: &impl Columns) -> StoreResult<RobotRecord> {
         model: row.string("model"),
         preset: row.opt_string("preset"),
         kinematics: json(row.str("kinematics"))?,
+        controller: opt_typed(row.opt_str("controller"))?,
+        prior: opt_typed(row.opt_str("prior"))?,
         created_at: row.string("created_at"),
         updated_at: row.string("updated_at"),
     })

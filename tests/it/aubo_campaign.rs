@@ -238,6 +238,28 @@ async fn aubo_campaign_calibrates_through_the_service() {
         weak.iter().any(|w| w.ends_with("_2")) && weak.iter().all(|w| !w.ends_with("_5")),
         "weak {weak:?}"
     );
+    // The last photo of each group validates: the validation repeats the
+    // calibration's six configurations, so the headline is leave-group-out
+    // and the model is the one that predicts held-out groups best
+    // (docs/method.md §6.8, §7.6; `aubo_heldout` measures the same on
+    // OpenCV's corners: BENCHMARKS.md "Model selection").
+    let m = &report["model_selection"];
+    eprintln!("model selection {m}");
+    assert_eq!(m["configurations"], 6, "{m}");
+    assert_eq!(m["val_shares_configurations"], true, "{m}");
+    assert_eq!(m["validation"], "leave_group_out");
+    assert_eq!(report["after"]["n"], 24, "{}", report["after"]);
+    let rms = |rung: &str| {
+        m["rungs"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["rung"] == rung)
+            .and_then(|r| r["heldout_rms_px"].as_f64())
+            .unwrap()
+    };
+    let kept = rms(m["chosen"].as_str().unwrap());
+    assert!(kept <= rms("hand_eye") && kept <= rms("full"), "{m}");
     app.shutdown().await;
 }
 

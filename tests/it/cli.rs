@@ -226,19 +226,31 @@ async fn upload_calibrate_forward_and_compensate_through_the_binary() {
     let streamed = ok(&out);
     let lines: Vec<&str> = streamed.lines().collect();
     assert_eq!(lines.len(), 3, "{streamed}");
-    assert_eq!(lines[0], robocal::cli::filter::OUTPUT_COLUMNS);
+    assert_eq!(lines[0], robocal::cli::filter::output_columns(6));
     let cells: Vec<&str> = lines[1].split(',').collect();
     assert_eq!(cells[0], "0", "{streamed}");
+    // One column per joint, fixed decimals: no exponent, no round-off tail.
+    assert_eq!(cells.len(), 15, "{streamed}");
     assert!(
-        cells[8].parse::<f64>().unwrap() < MAX_RESIDUAL_MM,
+        !lines[1].contains('e') && !lines[1].contains(' '),
         "{streamed}"
     );
-    assert!(lines[2].starts_with("1,,,,,,,,,\""), "{streamed}");
+    assert!(
+        cells[13].parse::<f64>().unwrap() < MAX_RESIDUAL_MM,
+        "{streamed}"
+    );
+    assert!(lines[2].starts_with("1,,,,,,,,,,,,,,\""), "{streamed}");
     // The same numbers as the whole JSON answer.
     let mut json_args = filter_args.to_vec();
     json_args.push("--json");
     let whole: Value = serde_json::from_str(&ok(&robocal(&app, &json_args).await)).unwrap();
-    assert_eq!(cells[1..7], pose_cells(&whole["nominal_targets"][0]));
+    for (cell, whole) in cells[1..7]
+        .iter()
+        .zip(pose_cells(&whole["nominal_targets"][0]))
+    {
+        let (a, b): (f64, f64) = (cell.parse().unwrap(), whole.parse().unwrap());
+        assert!((a - b).abs() <= 1e-6, "{cell} vs {whole}");
+    }
     assert_eq!(whole["errors"][0]["index"], 1, "{whole}");
 
     // export: the URDF for the controller, written to a file.
@@ -351,6 +363,14 @@ async fn flange_pose_campaign_uploads_and_calibrates_through_the_binary() {
     assert!(
         ok(&out).starts_with("Calibration report"),
         "{}",
+        text(&out.stdout)
+    );
+    assert!(
+        text(&out.stdout).contains(&format!(
+            "job {}, session ",
+            robocal::cli::campaign::LOCAL_JOB
+        )),
+        "no blank job: {}",
         text(&out.stdout)
     );
 

@@ -245,5 +245,10 @@ async fn exports_reproduce_forward_and_carry_the_table() {
         .as_str()
         .unwrap()
         .contains("urdf, dh-json, csv"));
+    // Without `format`: the same 422 naming it, not a 400 about the query string.
+    let r = app.get(&format!("{base}/export")).await;
+    assert_eq!(r.status(), 422);
+    let problem: Value = r.json().await.unwrap();
+    assert_eq!(problem["errors"][0]["field"], "format", "{problem}");
     app.shutdown().await;
 }

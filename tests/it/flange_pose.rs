@@ -200,6 +200,52 @@ async fn simulated_flange_campaign_gives_the_true_hand_eye_and_flags_the_lie() {
             .is_some_and(|d| d.contains("hand–eye")),
         "{problem}"
     );
+    // Every page says what a hand–eye set measured, never a before → after
+    // that cannot move (issue 37, item 5).
+    let rms = robocal::report::format::fixed(he["reprojection_rms_px"].as_f64().unwrap(), 3);
+    let fleet = app.get("/").await.text().await.unwrap();
+    assert!(
+        fleet.contains(&format!(
+            "hand–eye set (kinematics not identified): reprojection {rms} px"
+        )),
+        "{fleet}"
+    );
+    assert!(
+        !fleet.contains("(nominal "),
+        "no nominal → set for a hand–eye set: {fleet}"
+    );
+    let robot = app
+        .get(&format!("/robots/{serial}"))
+        .await
+        .text()
+        .await
+        .unwrap();
+    assert!(robot.contains("(no kinematics)</td>"), "{robot}");
+    let page = app
+        .get(&format!("/robots/{serial}/reports/1"))
+        .await
+        .text()
+        .await
+        .unwrap();
+    assert!(page.contains("<section id=\"hand-eye\">"), "{page}");
+    assert!(page.contains("camera in the flange frame"));
+    assert!(page.contains("the kinematics were not identified, so there is no before and after"));
+    assert!(
+        !page.contains("smaller</div>"),
+        "no improvement factor: {page}"
+    );
+    let text = robocal::report::render_table(
+        &serde_json::from_value(
+            app.get_ok(&format!("/v1/robots/{serial}/parameter-sets/1/report"))
+                .await,
+        )
+        .unwrap(),
+    );
+    assert!(
+        text.contains("hand–eye calibration (kinematics not identified)"),
+        "{text}"
+    );
+    assert!(!text.contains("x smaller)"), "{text}");
     app.shutdown().await;
 }
 

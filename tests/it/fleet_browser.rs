@@ -14,7 +14,8 @@ use serde_json::{json, Value};
 
 use robocal::domain::Scope;
 
-use super::fleet_page::{read_token, robot_with_reported_set};
+use super::fleet_page::{read_token, robot_with_failed_job, robot_with_reported_set};
+use super::release_reports::{job_of, robot_with_decided_sets};
 use crate::support::*;
 
 /// Set (not `0`): a missing browser fails the test instead of skipping it.
@@ -266,6 +267,10 @@ async fn a_person_signs_in_sees_the_fleet_and_follows_a_robot_in_chromium() {
     // start outlasted the 12 s and the page showed no job in progress.
     let app = spawn_app_with(|c| c.test_stage_delay_ms = BROWSER_STAGE_DELAY_MS).await;
     let mean = robot_with_reported_set(&app, "CELL-7").await;
+    // Sets a gate and people decided on, and a robot whose only job failed
+    // (before CELL-8's job holds the worker).
+    robot_with_decided_sets(&app, "CELL-9").await;
+    let failed = robot_with_failed_job(&app, "CELL-F").await;
     let session = app.robot_and_session("CELL-8").await;
     app.add_point_poses(&session, 3, 1).await;
     let r = app
@@ -282,6 +287,7 @@ async fn a_person_signs_in_sees_the_fleet_and_follows_a_robot_in_chromium() {
     app.wait_job(&job, Duration::from_secs(30), |v| v["state"] == "running")
         .await;
     let (token, _) = read_token(&app, Scope::Read).await;
+    let (admin, _) = read_token(&app, Scope::Admin).await;
 
     let browser = Driver::start(&chromium, &chromedriver).await;
     browser.goto(&app.url("/")).await;
@@ -299,7 +305,7 @@ async fn a_person_signs_in_sees_the_fleet_and_follows_a_robot_in_chromium() {
         "the token is in no URL"
     );
     let summary = browser.text("#fleet-summary").await;
-    assert_eq!(summary, "2 robots · 1 job in progress");
+    assert_eq!(summary, "4 robots · 1 job in progress");
     let seven = browser.text("#robot-CELL-7").await;
     assert!(seven.contains("v1 · just now"), "{seven}");
     let accuracy = robocal::report::format::mm(mean);
@@ -337,10 +343,62 @@ async fn a_person_signs_in_sees_the_fleet_and_follows_a_robot_in_chromium() {
         .await;
     let report = browser.text("body").await;
     assert!(report.contains("validation poses"), "{report}");
+
+    // The report a click reaches names its own version and job and says
+    // the set's current status, who gave it and why (issue 37, items 1-2).
+    browser.goto(&app.url("/robots/CELL-9")).await;
+    let versions = browser.text("#versions").await;
+    assert!(versions.contains("Status"), "{versions}");
+    assert!(
+        browser.text("#v4 .status").await == "rejected · by anonymous",
+        "{versions}"
+    );
+    assert!(browser.text("#v3 .status").await.starts_with("candidate"));
+    browser.click("#v2 a").await;
+    browser
+        .wait_for_url(&app.url("/robots/CELL-9/reports/2"))
+        .await;
+    let header = browser.text("header").await;
+    assert!(
+        header.contains("Parameter set") && header.contains("v2") && !header.contains("v0"),
+        "{header}"
+    );
+    assert!(header.contains(&job_of(2)), "{header}");
+    let status = browser.text("#release-status").await;
+    assert!(
+        status.starts_with("APPROVED by anonymous") && status.contains("re-measured on the cell"),
+        "{status}"
+    );
+    browser.screenshot("report-approved.png").await;
+    browser.goto(&app.url("/robots/CELL-9/reports/4")).await;
+    let status = browser.text("#release-status").await;
+    assert!(status.starts_with("REJECTED by anonymous"), "{status}");
+
+    // A robot whose only job failed: its card says so, why, and the whole
+    // job id, which the robot page's jobs table shows too (item 10).
+    browser.goto(&app.url("/")).await;
+    let card = browser.text("#robot-CELL-F").await;
+    assert!(card.contains("calibration failed"), "{card}");
+    assert!(card.contains(&format!("job {failed}")), "{card}");
+    let border = browser
+        .script("return getComputedStyle(document.getElementById('robot-CELL-F')).borderTopWidth;")
+        .await;
+    assert_eq!(border, "2px", "a failed robot's card stands out");
+    browser.screenshot("fleet-failed.png").await;
+    browser.click("#robot-CELL-F .failed a").await;
+    browser
+        .wait_for_url(&app.url(&format!("/robots/CELL-F#job-{failed}")))
+        .await;
+    let row = browser.text(&format!("#job-{failed}")).await;
+    assert!(
+        row.contains(&failed) && row.contains("calibration poses"),
+        "{row}"
+    );
     browser.quit().await;
     // The running job stops at its next pose instead of holding the runtime.
     app.client
         .delete(app.url(&format!("/v1/jobs/{job}")))
+        .bearer_auth(&admin)
         .send()
         .await
         .unwrap();

@@ -103,6 +103,27 @@ async fn anonymous_fleet_page_shows_robots_sets_accuracy_and_links() {
     assert_eq!(app.get("/robots/FP-1/reports/x").await.status(), 404);
 }
 
+/// The login form (checked), its nonce and its cookie as `name=value`.
+pub async fn login_form(c: &reqwest::Client, app: &TestApp) -> (String, String) {
+    let form = c.get(app.url("/login")).send().await.unwrap();
+    assert_eq!(form.status(), 200);
+    let cookie = form.headers()["set-cookie"].to_str().unwrap();
+    assert!(
+        cookie.contains("HttpOnly") && cookie.contains("SameSite=Strict"),
+        "{cookie}"
+    );
+    let cookie = cookie.split(';').next().unwrap().to_string();
+    let text = form.text().await.unwrap();
+    assert!(text.contains("action=\"/login\""));
+    let nonce = text
+        .split("name=\"nonce\" value=\"")
+        .nth(1)
+        .and_then(|rest| rest.split('"').next())
+        .expect("the form carries a nonce")
+        .to_string();
+    (cookie, nonce)
+}
+
 #[tokio::test]
 async fn with_tokens_the_pages_need_a_login_cookie_never_the_token_in_a_url() {
     let app = spawn_app().await;
@@ -113,25 +134,53 @@ async fn with_tokens_the_pages_need_a_login_cookie_never_the_token_in_a_url() {
     let r = c.get(app.url("/")).send().await.unwrap();
     assert_eq!(r.status(), StatusCode::SEE_OTHER);
     assert_eq!(r.headers()["location"], "/login");
-    let form = c.get(app.url("/login")).send().await.unwrap();
-    assert_eq!(form.status(), 200);
-    assert!(form.text().await.unwrap().contains("action=\"/login\""));
+    let (form_cookie, nonce) = login_form(&c, &app).await;
+
+    // Login CSRF: a form posted from elsewhere has no nonce matching the
+    // browser's login cookie, and signs nobody in.
+    for (cookie, body) in [
+        (None, format!("token={token}")),
+        (None, format!("token={token}&nonce={nonce}")),
+        (
+            Some(form_cookie.as_str()),
+            format!("token={token}&nonce=other"),
+        ),
+    ] {
+        let mut post = c
+            .post(app.url("/login"))
+            .header("content-type", "application/x-www-form-urlencoded")
+            .body(body);
+        if let Some(cookie) = cookie {
+            post = post.header("cookie", cookie);
+        }
+        let forged = post.send().await.unwrap();
+        assert_eq!(forged.status(), 403);
+        assert!(!forged.headers()["set-cookie"]
+            .to_str()
+            .unwrap()
+            .starts_with("robocal_session="));
+    }
 
     let bad = c
         .post(app.url("/login"))
         .header("content-type", "application/x-www-form-urlencoded")
-        .body("token=rbc_wrong")
+        .header("cookie", &form_cookie)
+        .body(format!("token=rbc_wrong&nonce={nonce}"))
         .send()
         .await
         .unwrap();
     assert_eq!(bad.status(), 401);
-    assert!(bad.headers().get("set-cookie").is_none());
+    assert!(bad.headers()["set-cookie"]
+        .to_str()
+        .unwrap()
+        .starts_with("robocal_login="));
     assert!(bad.text().await.unwrap().contains("unknown token"));
 
     let ok = c
         .post(app.url("/login"))
         .header("content-type", "application/x-www-form-urlencoded")
-        .body(format!("token={token}"))
+        .header("cookie", &form_cookie)
+        .body(format!("token={token}&nonce={nonce}"))
         .send()
         .await
         .unwrap();
@@ -209,4 +258,59 @@ async fn anonymous_pages_refuse_a_rebound_host() {
         .await
         .unwrap();
     assert_eq!(r.status(), 421);
+}
+
+/// Robot `serial` whose only job failed (one calibration pose); its id.
+pub async fn robot_with_failed_job(app: &TestApp, serial: &str) -> String {
+    let session = app.robot_and_session(serial).await;
+    app.add_point_poses(&session, 1, 0).await;
+    let r = app
+        .post_json(&format!("/v1/sessions/{session}/calibrations"), &json!({}))
+        .await;
+    assert_eq!(r.status(), 202);
+    let job = r.json::<serde_json::Value>().await.unwrap()["job_id"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    let done = app
+        .wait_job(&job, std::time::Duration::from_secs(60), is_finished)
+        .await;
+    assert_eq!(done["state"], "failed", "{done}");
+    job
+}
+
+#[tokio::test]
+async fn a_robot_whose_job_failed_says_why_with_the_whole_job_id() {
+    let app = spawn_app().await;
+    let job = robot_with_failed_job(&app, "FP-F").await;
+    app.robot_and_session("FP-U").await;
+    let page = app.get("/").await.text().await.unwrap();
+    let card = page
+        .split("id=\"robot-FP-F\"")
+        .nth(1)
+        .and_then(|c| c.split("</section>").next())
+        .unwrap();
+    assert!(page.contains("class=\"card robot failed\" id=\"robot-FP-F\""));
+    assert!(card.contains("calibration failed</span>: "), "{card}");
+    assert!(card.contains("calibration poses"), "the reason: {card}");
+    assert!(
+        card.contains(&format!("href=\"/robots/FP-F#job-{job}\">job {job}</a>")),
+        "{card}"
+    );
+    assert!(
+        page.contains("class=\"card robot\" id=\"robot-FP-U\""),
+        "an untouched robot is not failed"
+    );
+
+    let robot = app.get("/robots/FP-F").await.text().await.unwrap();
+    let row = robot
+        .split(&format!("<tr id=\"job-{job}\">"))
+        .nth(1)
+        .and_then(|r| r.split("</tr>").next())
+        .unwrap_or_else(|| panic!("a row for the whole id: {robot}"));
+    assert!(
+        row.contains(&format!("<td class=\"id\">{job}</td>")),
+        "{row}"
+    );
+    assert!(row.contains("calibration poses"), "{row}");
 }

@@ -32,7 +32,34 @@ async fn hostile_uploads_get_4xx_and_server_keeps_serving() {
     let bomb = zip_bytes(&[("poses.json", manifest), ("a.png", &vec![0u8; 30_000_000])]);
     let mut truncated = b"--XyZ\r\nContent-Disposition: form-data; name=\"joints_deg\"\r\n\r\n[0,0,0,0,0,0]\r\n--XyZ\r\nContent-Disposition: form-data; name=\"image\"; filename=\"a.png\"\r\n\r\n".to_vec();
     truncated.extend_from_slice(&good_png[..good_png.len() / 2]);
+    // Two entries named a.png (the zip writer refuses that: renamed in the bytes).
+    let mut duplicate = zip_bytes(&[
+        ("poses.json", manifest),
+        ("a.png", &good_png),
+        ("b.png", &good_png),
+    ]);
+    for i in 0..duplicate.len() - 5 {
+        if &duplicate[i..i + 5] == b"b.png" {
+            duplicate[i] = b'a';
+        }
+    }
+    let nul_manifest = br#"[{"joints_deg":[0,0,0,0,0,0],"image":"a.png","label":"x\u0000"}]"#;
     let cases = vec![
+        Case {
+            name: "duplicate zip entries",
+            request: zip_post(duplicate),
+            status: 422,
+            field: Some("archive/a.png"),
+        },
+        Case {
+            name: "NUL in the manifest",
+            request: zip_post(zip_bytes(&[
+                ("poses.json", nul_manifest),
+                ("a.png", &good_png),
+            ])),
+            status: 422,
+            field: Some("poses.json[0].label"),
+        },
         Case {
             name: "wrong joint count",
             request: c.post(&poses).json(
@@ -194,7 +221,21 @@ async fn hostile_uploads_get_4xx_and_server_keeps_serving() {
             field: None,
         },
     ];
+    let corrupt = good_png[..good_png.len() - 30].to_vec();
+    let corrupt_zip = zip_post(zip_bytes(&[("poses.json", manifest), ("a.png", &corrupt)]));
     run_cases(&app, cases).await;
+    // A corrupt image in an archive is named by its file, not only its index.
+    let r = corrupt_zip.send().await.unwrap();
+    assert_eq!(r.status(), 422);
+    let p: Value = r.json().await.unwrap();
+    assert_eq!(p["errors"][0]["field"], "poses.json[0].image", "{p}");
+    assert!(
+        p["errors"][0]["message"]
+            .as_str()
+            .unwrap()
+            .starts_with("a.png: "),
+        "{p}"
+    );
     let session: Value = app
         .get(&format!("/v1/sessions/{s}"))
         .await
@@ -282,4 +323,33 @@ async fn a_huge_image_in_a_small_file_is_refused_from_its_header() {
         grown < MAX_REFUSED_UPLOAD_PEAK_KB,
         "peak grew by {grown} kB"
     );
+}
+
+/// Issue 32, item 2: a write token could create a session with an
+/// 18000x18000 camera, and its images were then decoded at that size.
+#[tokio::test]
+async fn a_session_camera_over_the_pixel_ceiling_is_refused() {
+    // The default ceiling (50 MP).
+    let app = spawn_app().await;
+    let r = app.put_json("/v1/robots/CEIL", &robot_body()).await;
+    assert_eq!(r.status(), 201);
+    let mut huge = session_body();
+    huge["camera"]["width"] = json!(18_000);
+    huge["camera"]["height"] = json!(18_000);
+    let r = app.post_json("/v1/robots/CEIL/sessions", &huge).await;
+    assert_eq!(r.status(), 422);
+    let problem: Value = r.json().await.unwrap();
+    assert_eq!(problem["errors"][0]["field"], "camera", "{problem}");
+    assert!(
+        problem["detail"]
+            .as_str()
+            .unwrap()
+            .contains("--max-camera-pixels"),
+        "{problem}"
+    );
+    // The test camera is far below the ceiling.
+    let r = app
+        .post_json("/v1/robots/CEIL/sessions", &session_body())
+        .await;
+    assert_eq!(r.status(), 201);
 }

@@ -151,3 +151,47 @@ async fn jobs_filter_by_state_serial_and_kind_with_paging() {
         assert_eq!(problem["errors"][0]["field"], field, "{q}: {problem}");
     }
 }
+
+/// Issue 32, item 7: a stream stayed open 72 s after its token was revoked.
+#[tokio::test]
+async fn revoking_the_token_ends_its_open_streams_within_a_second() {
+    let app = spawn_app_with(|c| c.test_stage_delay_ms = 10_000).await;
+    let session = app.robot_and_session("EV-R").await;
+    app.add_point_poses(&session, 3, 1).await;
+    let job = start_calibration(&app.client, &app.base, &session).await;
+    let token = crate::tokens::stored_token(&app, robocal::domain::Scope::Read, None).await;
+    let r = app
+        .client
+        .get(app.url(&format!("/v1/jobs/{job}/events")))
+        .bearer_auth(&token)
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(r.status(), 200);
+    let mut body = r.bytes_stream();
+    // The first events arrive; the job runs on for tens of seconds.
+    assert!(body.next().await.is_some());
+    let s = robocal::store::connect(&app.database_url).await.unwrap();
+    let id = s
+        .list_tokens()
+        .await
+        .unwrap()
+        .into_iter()
+        .find(|t| t.name == "test")
+        .unwrap()
+        .id;
+    s.revoke_token(&id).await.unwrap();
+    let revoked = std::time::Instant::now();
+    let drained = tokio::time::timeout(Duration::from_secs(5), async {
+        while let Some(chunk) = body.next().await {
+            if chunk.is_err() {
+                break;
+            }
+        }
+    })
+    .await;
+    assert!(drained.is_ok(), "the stream stayed open after revocation");
+    let took = revoked.elapsed();
+    // The job itself runs 4 × 10 s: the stream did not end with it.
+    assert!(took < Duration::from_millis(1500), "closed after {took:?}");
+}

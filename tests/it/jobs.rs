@@ -207,6 +207,8 @@ async fn queue_reclaims_expired_leases_until_max_attempts() {
         model: "m".into(),
         preset: None,
         kinematics: json!({"joints": []}),
+        controller: None,
+        prior: None,
         created_at: "t".into(),
         updated_at: "t".into(),
     };

@@ -1,7 +1,7 @@
 //! Issue 19's 6-DoF probe on real data through the service: the UR10 of
 //! Landgraf 2021 was measured with a Leica T-Mac, whose orientation the
 //! file gives as intrinsic X-Y-Z angles (`R = Rx·Ry·Rz`, probe in tracker;
-//! `calib::kinematics::tracker_pose`, docs/notes/session12-ur10pose.md).
+//! `calib::kinematics::tracker_pose`, docs/decisions/0030-tmac-euler-convention.md).
 //! A user converts them to the contract's pose and uploads every 10th pose
 //! of Series B as `measured_pose` with the T-Mac's noise. The job fits the
 //! orientation: it finds the probe's frame on the flange (a quarter turn
@@ -114,7 +114,7 @@ async fn the_t_mac_orientation_finds_the_probe_and_pins_the_wrist() {
         .await;
     let session = probe_session(&app, "UR10-TMAC", &pose_bodies(SERIES_B, STRIDE, "cal")).await;
     // Geometry only, so the comparison is the orientation's alone (the
-    // terms on this robot: docs/notes/session12-ur10pose.md).
+    // terms on this robot: docs/decisions/0023-term-joint-ranges.md).
     let path = format!("/v1/sessions/{session}/calibrations");
     let options = |measurement: &str| {
         json!({

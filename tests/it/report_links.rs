@@ -141,17 +141,23 @@ async fn report_links_open_one_report_without_a_header_until_they_expire() {
     let secret = s.server_secret("report-links", "unused").await.unwrap();
     assert_ne!(secret, "unused", "the key was created with the first link");
     let set_path = "/v1/robots/RL-1/parameter-sets/2";
+    let created = s
+        .get_parameter_set("RL-1", Some(2))
+        .await
+        .unwrap()
+        .unwrap()
+        .created_at;
     let past = now_unix_ms() / 1000 - 1;
     let expired = app.url(&format!(
         "{set_path}/report.html?expires={past}&sig={}",
-        sign(&secret, set_path, past)
+        sign(&secret, set_path, &created, past)
     ));
     let detail = refused(open(&expired).await, 401).await;
     assert!(detail.contains("expired"), "{detail}");
     let future = past + 120;
     let fresh = app.url(&format!(
         "{set_path}/report.svg?expires={future}&sig={}",
-        sign(&secret, set_path, future)
+        sign(&secret, set_path, &created, future)
     ));
     assert_eq!(open(&fresh).await.status(), 200, "the same key, in time");
 
@@ -197,4 +203,47 @@ async fn report_link_requests_are_checked() {
         .await
         .unwrap();
     refused(r, 401).await;
+}
+
+/// Issue 32, item 8: an old link opened the report of a robot deleted and
+/// created again under its serial; link URLs followed the request's `Host`.
+#[tokio::test]
+async fn a_link_names_its_set_not_a_serial_and_version_and_uses_the_public_base() {
+    let app =
+        spawn_app_with(|c| c.public_base_url = Some("https://robocal.plant.example/".into())).await;
+    reports(&app).await;
+    let admin = stored_token(&app, Scope::Admin, None).await;
+    let path = "/v1/robots/RL-2/parameter-sets/1/report-links";
+    let r = create_link(&app, &admin, path, json!({"expires_in_minutes": 5})).await;
+    assert_eq!(r.status(), 201);
+    let link: Value = r.json().await.unwrap();
+    let url = link["url"].as_str().unwrap();
+    let public = "https://robocal.plant.example/v1/robots/RL-2/parameter-sets/1/report.html?";
+    assert!(url.starts_with(public), "{url}");
+    let local = url.replace("https://robocal.plant.example", &app.base);
+    assert_eq!(open(&local).await.status(), 200);
+
+    // The robot is deleted and created again; its new set 1 is another set.
+    let r = app
+        .client
+        .delete(app.url("/v1/robots/RL-2"))
+        .bearer_auth(&admin)
+        .send()
+        .await
+        .unwrap();
+    assert!(r.status().is_success(), "{}", r.status());
+    let r = app
+        .client
+        .put(app.url("/v1/robots/RL-2"))
+        .bearer_auth(&admin)
+        .json(&robot_body())
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(r.status(), 201);
+    let s = store::connect(&app.database_url).await.unwrap();
+    let set = NewParameterSet::approved(json!({}), serde_json::to_value(sample_report()).unwrap());
+    tokio::time::sleep(std::time::Duration::from_millis(5)).await;
+    s.insert_parameter_set("RL-2", None, &set).await.unwrap();
+    refused(open(&local).await, 403).await;
 }

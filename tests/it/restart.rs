@@ -188,3 +188,81 @@ async fn a_key_in_flight_at_kill_9_is_free_after_restart() {
     second.child.kill().unwrap();
     second.child.wait().unwrap();
 }
+
+#[tokio::test]
+async fn a_keyed_write_that_committed_before_a_crash_is_not_run_again() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = fresh_database(&dir);
+    let args = [
+        "--database-url",
+        &db,
+        "--bind",
+        "127.0.0.1:0",
+        "--lease-secs",
+        "1",
+    ];
+    let c = reqwest::Client::new();
+    // The process aborts after handling a keyed request, before storing its
+    // answer: the write has committed, the key is still pending.
+    let mut first = spawn_binary(
+        &args,
+        &[("ROBOCAL_TEST_CRASH_BEFORE_IDEMPOTENT_ANSWER", "true")],
+    );
+    let (session, _, _) = robot_with_session(&c, &first.base, "K10", 3, "cal").await;
+    let poses_now = |base: String| {
+        let c = c.clone();
+        let session = session.clone();
+        async move {
+            let s: Value = c
+                .get(format!("{base}/v1/sessions/{session}"))
+                .send()
+                .await
+                .unwrap()
+                .json()
+                .await
+                .unwrap();
+            s["pose_count"].as_i64().unwrap()
+        }
+    };
+    let before = poses_now(first.base.clone()).await;
+    let post = |base: &str| {
+        c.post(format!("{base}/v1/sessions/{session}/poses"))
+            .header("idempotency-key", "crash-1")
+            .json(&point_pose(7, "cal"))
+            .send()
+    };
+    assert!(post(&first.base).await.is_err(), "the process answered");
+    let _ = first.child.wait();
+
+    let mut second = spawn_binary(&args, &[]);
+    assert_eq!(
+        poses_now(second.base.clone()).await,
+        before + 1,
+        "the write committed"
+    );
+    // Past the dead holder's lease (5 s, the shortest for keys) the retry
+    // used to run the write again; now it is told the request was done.
+    let deadline = std::time::Instant::now() + Duration::from_secs(15);
+    let answer = loop {
+        let r = post(&second.base).await.unwrap();
+        let status = r.status();
+        let body: Value = r.json().await.unwrap();
+        let in_flight = status == 409 && body["type"] == "urn:robocal:problem:conflict";
+        if !in_flight || std::time::Instant::now() > deadline {
+            break body;
+        }
+        tokio::time::sleep(Duration::from_millis(200)).await;
+    };
+    assert_eq!(
+        answer["type"], "urn:robocal:problem:idempotent-request-done",
+        "{answer}"
+    );
+    assert_eq!(answer["status"], 409, "{answer}");
+    assert_eq!(
+        poses_now(second.base.clone()).await,
+        before + 1,
+        "run twice"
+    );
+    second.child.kill().unwrap();
+    second.child.wait().unwrap();
+}

@@ -123,3 +123,41 @@ async fn sessions_create_get_list() {
         .unwrap();
     assert_eq!(list["items"].as_array().unwrap().len(), 2);
 }
+
+/// The robot document's `prior` (docs/method.md §6.7): stored, served,
+/// replaced with the robot, and refused with a 422 naming the field when
+/// it is not a usable σ.
+#[tokio::test]
+async fn the_kinematic_prior_is_part_of_the_robot_document() {
+    let app = spawn_app().await;
+    let mut body = robot_body();
+    body["prior"] = json!({"joint_offset_deg": 0.05, "length_mm": 0.3, "twist_deg": 0.02});
+    let r = app.put_json("/v1/robots/PRIOR-1", &body).await;
+    assert_eq!(r.status(), 201);
+    let got: Value = app.get("/v1/robots/PRIOR-1").await.json().await.unwrap();
+    assert_eq!(got["prior"]["length_mm"], 0.3, "{got}");
+    assert_eq!(got["prior"]["joint_offset_deg"], 0.05);
+    // Replaced without it: manufacturing tolerances again (not served).
+    let r = app.put_json("/v1/robots/PRIOR-1", &robot_body()).await;
+    assert_eq!(r.status(), 200);
+    let got: Value = app.get("/v1/robots/PRIOR-1").await.json().await.unwrap();
+    assert!(got.get("prior").is_none(), "{got}");
+    for (field, bad) in [
+        (
+            "prior.length_mm",
+            json!({"joint_offset_deg": 0.1, "length_mm": 0.0, "twist_deg": 0.1}),
+        ),
+        (
+            "prior.twist_deg",
+            json!({"joint_offset_deg": 0.1, "length_mm": 1.0, "twist_deg": 45.0}),
+        ),
+    ] {
+        let mut body = robot_body();
+        body["prior"] = bad;
+        let r = app.put_json("/v1/robots/PRIOR-2", &body).await;
+        assert_eq!(r.status(), 422);
+        let problem: Value = r.json().await.unwrap();
+        assert_eq!(problem["errors"][0]["field"], field, "{problem}");
+    }
+    assert_eq!(app.get("/v1/robots/PRIOR-2").await.status(), 404);
+}

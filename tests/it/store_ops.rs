@@ -25,6 +25,8 @@ fn robot(serial: &str) -> RobotRecord {
         model: "Test arm".into(),
         preset: None,
         kinematics: json!({"joints": []}),
+        controller: None,
+        prior: None,
         created_at: now_rfc3339(),
         updated_at: now_rfc3339(),
     }

@@ -81,6 +81,8 @@ pub fn test_config(database_url: &str, dir: &tempfile::TempDir) -> ServeConfig {
     config.lease_secs = 2;
     config.shutdown_grace_secs = 5;
     config.upload_dir = Some(dir.path().to_path_buf());
+    // Webhook receivers of the tests listen on loopback.
+    config.webhook_allow_networks = vec!["127.0.0.0/8".parse().unwrap()];
     // Queue and API tests use tiny synthetic sessions; `e2e` turns the
     // numerical stages back on.
     config.test_validate_only = true;

@@ -3,7 +3,7 @@
 
 use std::time::{Duration, Instant};
 
-use tokio::io::AsyncWriteExt;
+use tokio::io::{AsyncReadExt, AsyncWriteExt};
 
 use crate::raw_http::*;
 use crate::support::*;
@@ -71,7 +71,12 @@ async fn a_body_that_stops_sending_is_answered_408() {
 
 #[tokio::test]
 async fn a_slow_but_steady_body_is_not_timed_out() {
-    let app = spawn_app_with(|c| c.body_idle_timeout_secs = 1).await;
+    // Above the minimum rate (100 bytes/s), never silent for a second.
+    let app = spawn_app_with(|c| {
+        c.body_idle_timeout_secs = 1;
+        c.min_body_bytes_per_sec = 100;
+    })
+    .await;
     let body = serde_json::to_vec(&robot_body()).unwrap();
     let mut slow = connect(&app.base).await;
     let head = format!(
@@ -92,53 +97,35 @@ async fn a_slow_but_steady_body_is_not_timed_out() {
 }
 
 #[tokio::test]
-async fn connections_over_the_cap_are_answered_503_and_closed() {
-    let app = spawn_app_with(|c| c.max_connections = 2).await;
-    let mut held = vec![connect(&app.base).await, connect(&app.base).await];
-    // Let the server accept both before the third arrives.
-    tokio::time::sleep(Duration::from_millis(200)).await;
-    let refused = exchange(
-        &app.base,
-        format!(
-            "GET /healthz HTTP/1.1\r\nHost: {}\r\n\r\n",
-            crate::raw_http::addr_of(&app.base)
-        )
-        .as_bytes(),
-    )
+async fn a_body_trickled_under_the_minimum_rate_is_answered_408() {
+    // Before the rate, every byte restarted the idle timer: a body at one
+    // byte a second held its connection forever.
+    let app = spawn_app_with(|c| {
+        c.body_idle_timeout_secs = 1;
+        c.min_body_bytes_per_sec = 100;
+    })
     .await;
-    assert_eq!(refused.status, 503, "{refused:?}");
-    assert!(refused.header("retry-after").is_some());
-    let problem = refused.problem();
-    assert!(
-        problem["detail"]
-            .as_str()
-            .unwrap()
-            .contains("--max-connections"),
-        "{problem}"
-    );
-    // A held connection is still served, and closing one frees a place.
-    held[0]
-        .write_all(
-            format!(
-                "GET /healthz HTTP/1.1\r\nHost: {}\r\n\r\n",
-                crate::raw_http::addr_of(&app.base)
-            )
-            .as_bytes(),
-        )
-        .await
-        .unwrap();
-    let served = read_response(&mut held[0], GRACE).await.expect("served");
-    assert_eq!(served.status, 200);
-    held.truncate(1);
-    tokio::time::sleep(Duration::from_millis(200)).await;
-    let after = exchange(
-        &app.base,
-        format!(
-            "GET /healthz HTTP/1.1\r\nHost: {}\r\nConnection: close\r\n\r\n",
-            crate::raw_http::addr_of(&app.base)
-        )
-        .as_bytes(),
-    )
-    .await;
-    assert_eq!(after.status, 200, "{after:?}");
+    let mut trickle = connect(&app.base).await;
+    let head = format!(
+        "PUT /v1/robots/T3 HTTP/1.1\r\nHost: {host}\r\nContent-Type: application/json\r\nContent-Length: 10000\r\n\r\n",
+        host = crate::raw_http::addr_of(&app.base));
+    trickle.write_all(head.as_bytes()).await.unwrap();
+    let start = Instant::now();
+    let (mut reader, mut writer) = trickle.into_split();
+    let sender = tokio::spawn(async move {
+        loop {
+            tokio::time::sleep(Duration::from_millis(200)).await;
+            if writer.write_all(b" ").await.is_err() {
+                break;
+            }
+        }
+    });
+    let mut answer = Vec::new();
+    let _ = tokio::time::timeout(GRACE, reader.read_to_end(&mut answer)).await;
+    sender.abort();
+    let text = String::from_utf8_lossy(&answer).to_string();
+    assert!(start.elapsed() >= Duration::from_millis(900));
+    assert!(text.starts_with("HTTP/1.1 408 "), "{text:?}");
+    assert!(text.contains("--min-body-bytes-per-sec"), "{text}");
+    assert_eq!(app.get("/v1/robots/T3").await.status(), 404);
 }

@@ -144,7 +144,8 @@ async fn tokens_are_listed_as_items_revoked_and_expire() {
     assert!(states.contains(&"expired"), "{states:?}");
     assert!(!serde_json::to_string(&items).unwrap().contains(&read));
 
-    // Revoking every token does not bring anonymous access back.
+    // Revoking every token does not bring anonymous access back. Over the
+    // API the last admin token stays (409); the CLI's way revokes it.
     for t in &items {
         let id = t["id"].as_str().unwrap();
         let r = c
@@ -153,7 +154,15 @@ async fn tokens_are_listed_as_items_revoked_and_expire() {
             .send()
             .await
             .unwrap();
-        assert!(matches!(r.status().as_u16(), 204 | 401), "{}", r.status());
+        assert!(
+            matches!(r.status().as_u16(), 204 | 401 | 409),
+            "{}",
+            r.status()
+        );
+    }
+    let s = store::connect(&app.database_url).await.unwrap();
+    for t in &items {
+        s.revoke_token(t["id"].as_str().unwrap()).await.unwrap();
     }
     assert_eq!(app.get("/v1/robots").await.status(), 401);
 }
@@ -260,4 +269,56 @@ async fn cli_creates_lists_and_revokes_tokens() {
         &db,
     ]);
     assert!(!out.status.success(), "a bad duration is refused");
+}
+
+/// Issue 32, item 10: the fuzzer revoked its own admin token and locked
+/// itself out. The last usable admin token cannot be revoked over the API.
+#[tokio::test]
+async fn the_last_admin_token_cannot_be_revoked() {
+    let app = spawn_app().await;
+    let first = stored_token(&app, Scope::Admin, None).await;
+    let ids = |list: Value| -> Vec<String> {
+        list["items"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|t| t["id"].as_str().unwrap().to_string())
+            .collect()
+    };
+    let list = get_as(&app, "/v1/tokens", &first)
+        .await
+        .json()
+        .await
+        .unwrap();
+    let first_id = ids(list)[0].clone();
+    let delete = |id: String, as_token: String| {
+        let c = app.client.clone();
+        let url = app.url(&format!("/v1/tokens/{id}"));
+        async move { c.delete(url).bearer_auth(as_token).send().await.unwrap() }
+    };
+    let refused = delete(first_id.clone(), first.clone()).await;
+    assert_eq!(refused.status(), 409);
+    let problem: Value = refused.json().await.unwrap();
+    assert!(
+        problem["detail"]
+            .as_str()
+            .unwrap()
+            .contains("last usable admin"),
+        "{problem}"
+    );
+    assert_eq!(
+        get_as(&app, "/v1/tokens", &first).await.status(),
+        200,
+        "still admin"
+    );
+
+    let second = stored_token(&app, Scope::Admin, None).await;
+    assert_eq!(delete(first_id.clone(), second.clone()).await.status(), 204);
+    let list = get_as(&app, "/v1/tokens", &second)
+        .await
+        .json()
+        .await
+        .unwrap();
+    let second_id = ids(list).into_iter().find(|i| *i != first_id).unwrap();
+    assert_eq!(delete(second_id, second.clone()).await.status(), 409);
 }

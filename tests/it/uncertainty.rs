@@ -6,7 +6,7 @@
 //! repeatability. The `uncertainty-map` answers the same σ at the same
 //! joints, solves a box by IK and names unreachable points.
 //!
-//! What is checked, and why (docs/notes/session8-sigma.md): the
+//! What is checked, and why (docs/decisions/0015-predicted-sigma.md): the
 //! validation poses of one campaign share ONE draw of the parameter
 //! error, so the per-pose RMS(error/σ) of one campaign spreads
 //! from about 0.2 to 2 even with an exact σ (over 20 rendered campaigns

@@ -302,6 +302,9 @@ async fn webhook_events_survive_kill_9_of_the_sender() {
         // A delivery killed in flight is sent again after its claim (2 timeouts).
         "--webhook-timeout-secs",
         "1",
+        // The test's receiver listens on loopback.
+        "--webhook-allow-networks",
+        "127.0.0.0/8",
     ];
     let rx = Receiver::default();
     rx.fail_all.store(true, Ordering::SeqCst);

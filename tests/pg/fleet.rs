@@ -400,6 +400,8 @@ async fn notify_wakes_other_replicas_without_polling() {
         model: "m".into(),
         preset: None,
         kinematics: json!({}),
+        controller: None,
+        prior: None,
         created_at: "t".into(),
         updated_at: "t".into(),
     })

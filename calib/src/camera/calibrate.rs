@@ -122,8 +122,8 @@ pub fn calibrate(
     // The per-image Tsai spread only judges the paper's own answer. In
     // refined mode the sequence merely starts the joint fit, which has its
     // own test (the fitted focal's standard deviation, below): a spread
-    // over a few nearly flat views (RCT's wrist set, docs/notes/session6-
-    // flange.md) must not refuse a camera the joint fit determines well.
+    // over a few nearly flat views (RCT's wrist set, docs/decisions/
+    // 0033-camera-stage-robustness.md) must not refuse a camera the joint fit determines well.
     if options.mode == CalibrationMode::Paper {
         check_focal_determined_paper(&paper)?;
     }

@@ -1,4 +1,4 @@
-//! Arm configurations of a campaign (method.md §7 "Held-out groups"): poses
+//! Arm configurations of a campaign (method.md §7.6 "Held-out groups"): poses
 //! that share the shoulder and elbow (joints 1–3) within a few degrees see
 //! the same link geometry; only the wrist differs. A model is judged by how
 //! it predicts configurations it was not fitted to, so poses are grouped by

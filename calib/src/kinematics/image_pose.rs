@@ -1,5 +1,5 @@
 //! One pose of a camera campaign as the joint refinement reads it
-//! (method.md §8), and the noise it weighs the data with.
+//! (method.md §6.4), and the noise it weighs the data with.
 
 use nalgebra::{Point2, Point3};
 

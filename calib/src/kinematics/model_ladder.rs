@@ -1,4 +1,4 @@
-//! The model ladder (method.md §6 "Model selection by held-out groups"): a
+//! The model ladder (method.md §6.8 "Model selection by held-out groups"): a
 //! campaign decides how much of the kinematics it can carry by how each
 //! candidate model predicts arm configurations it was not fitted to. Every
 //! rung is fitted on the image points of all configuration groups but one

@@ -159,3 +159,74 @@ fn the_ladder_keeps_what_predicts_unseen_configurations() {
         );
     }
 }
+
+/// An arm exactly at its nominal model, shot in six configuration groups:
+/// identifying its kinematics cannot pay, and the ladder keeps the
+/// nominal kinematics (only board, hand–eye and camera fitted).
+#[test]
+fn identification_that_cannot_pay_keeps_the_nominal_kinematics() {
+    let prior = KinematicPrior::default();
+    for seed in [21, 22] {
+        let c = case(seed, 0.0);
+        let ladder = climb(&input(&c, &prior, &[]), &Rung::ALL).unwrap();
+        let scores: Vec<String> = ladder
+            .scores
+            .iter()
+            .map(|s| format!("{} {:.4}px", s.rung.as_str(), s.heldout_rms_px))
+            .collect();
+        assert_eq!(ladder.chosen, Rung::HandEye, "seed {seed}: {scores:?}");
+    }
+}
+
+/// Well-excited campaigns (stations spread over the workspace, every pose
+/// its own configuration) lose nothing: the ladder's model validates
+/// within 2 % of the full model's on the sum over campaigns.
+#[test]
+fn well_excited_campaigns_lose_nothing() {
+    let prior = KinematicPrior::default();
+    let (mut chosen_sum, mut full_sum) = (0.0, 0.0);
+    for seed in [1, 2, 3] {
+        let mut spec = CampaignSpec::standard("irb2400", seed).unwrap();
+        spec.cal_poses = 30;
+        spec.val_poses = 12;
+        let campaign = crate::sim::campaign::simulate_campaign(&spec).unwrap();
+        let mut c = case(seed, 1.0);
+        c.campaign = campaign;
+        let truth = c.campaign.truth.model().unwrap();
+        c.nominal = CalibratedModel {
+            robot: spec.nominal.clone(),
+            ..truth
+        };
+        c.cal = c
+            .campaign
+            .poses
+            .iter()
+            .filter(|p| p.set == crate::sim::campaign_io::PoseSet::Cal)
+            .map(|p| ImagePose {
+                joints_rad: p.joints_rad.clone(),
+                observations: p.observations(&c.campaign.truth.board),
+            })
+            .collect();
+        let joints: Vec<Vec<f64>> = c.cal.iter().map(|p| p.joints_rad.clone()).collect();
+        c.groups = configuration_groups(&joints, &[]);
+        let ladder = climb(&input(&c, &prior, &[]), &Rung::ALL).unwrap();
+        let fit = |rung| {
+            fit_rung(rung, &input(&c, &prior, &[]), &c.cal, noise())
+                .unwrap()
+                .0
+        };
+        let chosen = validation_mm(&c, &fit(ladder.chosen));
+        let full = validation_mm(&c, &fit(Rung::Full));
+        eprintln!(
+            "seed {seed}: {} groups, chosen {} {chosen:.5} mm, full {full:.5}",
+            ladder.groups,
+            ladder.chosen.as_str()
+        );
+        chosen_sum += chosen;
+        full_sum += full;
+    }
+    assert!(
+        chosen_sum <= 1.02 * full_sum,
+        "{chosen_sum} against {full_sum}"
+    );
+}

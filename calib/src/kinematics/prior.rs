@@ -1,4 +1,4 @@
-//! Priors on the kinematic deviations (method.md §6 "Priors"): the
+//! Priors on the kinematic deviations (method.md §6.7 "Priors"): the
 //! identification is a maximum a posteriori fit in which every kinematic
 //! parameter's deviation from the nominal model carries a Gaussian prior of
 //! the size manufacturing leaves (joint zeros from mastering, lengths and

@@ -62,7 +62,7 @@ pub fn joint_refine_regions(
 /// with the shared model, starting from their values in `terms`: an error
 /// the geometry cannot hold (a joint's compliance) otherwise leaks into the
 /// shared kinematics and depth scale, and the one model of several regions
-/// loses its advantage over a local one (docs/notes/session11-regions2.md).
+/// loses its advantage over a local one (docs/decisions/0029-regions-judged-over-campaigns.md).
 /// The result's `terms` holds them with their covariance.
 pub fn joint_refine_regions_with_terms(
     start: &CalibratedModel,

@@ -6,7 +6,7 @@
 //! One campaign decides little: every model's validation error is mostly
 //! its depth-scale error (the focal length against the board distance,
 //! method.md §4), so which of two models wins one campaign is close to a
-//! coin weighted by their σ_fx (docs/notes/session11-regions2.md). The
+//! coin weighted by their σ_fx (docs/decisions/0029-regions-judged-over-campaigns.md). The
 //! claims are therefore asserted on the mean over seeds (each seed is a
 //! new true robot, hand–eye and draw of poses), and the carried-over one
 //! per pair (region r, model carried from region s) as a paired
@@ -181,7 +181,7 @@ fn the_multi_region_model_beats_every_carried_over_model_per_pair() {
 /// over 24 campaigns, but no longer beats it (1.0–1.07x in two regions)
 /// and beats the carried-over models only in some pairs: region 2's local
 /// model carried into region 0 or 1, and region 0's into region 1, are as
-/// good as the global one (BENCHMARKS.md "Session 11 — regions per pair").
+/// good as the global one (BENCHMARKS.md "Regions").
 /// The geometry absorbs the compliance region by region; modelled, the
 /// pairs are restored (next test).
 #[test]
@@ -206,7 +206,7 @@ fn modelled_compliance_restores_the_per_pair_claim() {
     assert_better_per_pair(&means);
 }
 
-/// The figures of BENCHMARKS.md "Session 11 — regions per pair", over 80
+/// The figures of BENCHMARKS.md "Regions", over 80
 /// campaigns (`cargo test -p robocal-calib --lib pairs_sweep -- --ignored
 /// --nocapture`, about 3 min).
 #[test]

@@ -68,7 +68,7 @@ fn multi_region_fit_recovers_the_board_placements() {
 
 /// One campaign (seed 18) against the size of the unmodelled error
 /// (`cargo test -p robocal-calib --lib compliance_sweep -- --ignored --nocapture`;
-/// BENCHMARKS.md session 9, whose regions still shared their draws). One
+/// BENCHMARKS.md "Regions", whose regions still shared their draws). One
 /// seed says little: see `regions_pairs_tests.rs` for figures over seeds.
 #[test]
 #[ignore = "prints the figures of BENCHMARKS.md"]

@@ -3,7 +3,7 @@
 //! pinned down there and nowhere else: on the UR10 (Landgraf 2021) the
 //! joint-4 harmonics that Series B's full poses keep (B's joint 4 spans
 //! −245°…3°) and that pass every held-out test inside B make Series D
-//! (−124°…201°) worse (BENCHMARKS.md, session 12). No test on the
+//! (−124°…201°) worse (BENCHMARKS.md, "Non-geometric terms"). No test on the
 //! calibration poses can see that, so the set keeps the range and `forward`
 //! says when a pose leaves it.
 

@@ -3,7 +3,7 @@
 //! Landgraf 2021 UR10 files and the `[dp mm; dr rad]` covariance that
 //! [`crate::geometry::pose_error`] whitens.
 //!
-//! Convention (found on the data, `docs/notes/session12-ur10pose.md`):
+//! Convention (found on the data, `docs/decisions/0030-tmac-euler-convention.md`):
 //! `rx, ry, rz` (deg) are intrinsic X-Y-Z angles,
 //! `R = Rx(rx) · Ry(ry) · Rz(rz)`, and `R` with the measured position is
 //! the probe's pose in the tracker frame (`tracker_to_probe`, which maps

@@ -161,7 +161,7 @@ pub fn anchor_joints(
 
 /// Stations generated at most per feasible candidate wanted: the PUMA 560
 /// keeps about one station in 4.6 of the simulator's ranges (BENCHMARKS.md,
-/// "Session 7 — campaign planner"), a tighter cell fewer.
+/// "Campaign planner"), a tighter cell fewer.
 pub const MAX_STATIONS_PER_CANDIDATE: usize = 8;
 
 /// Generate stations until `request.candidates` are feasible (at most

@@ -56,7 +56,7 @@ pub enum PlanPurpose {
 /// What the selection optimises after its D-optimal start. By default
 /// ([`PlanCriterion::for_purpose`]) a calibration plan is I-optimal: on the
 /// simulator it is the one that beats 60 random poses with 30 (BENCHMARKS.md,
-/// "Session 7 — campaign planner"); a quick check is D-optimal, every drift
+/// "Campaign planner"); a quick check is D-optimal, every drift
 /// parameter counting alike.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PlanCriterion {

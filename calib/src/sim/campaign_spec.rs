@@ -53,7 +53,7 @@ pub struct CampaignSpec {
     /// kinematics and hand–eye) in several board placements need distinct
     /// streams to be independent sessions: with one stream they redraw the
     /// same stations and pixel noise wherever their accepted stations line
-    /// up (up to 22 of 50 poses, seed 18, docs/notes/session11-regions2.md).
+    /// up (up to 22 of 50 poses, seed 18, docs/decisions/0029-regions-judged-over-campaigns.md).
     pub pose_stream: u64,
 }
 

@@ -1,4 +1,4 @@
-//! Campaigns shot in configuration groups (method.md §7 "Held-out
+//! Campaigns shot in configuration groups (method.md §7.6 "Held-out
 //! groups"), as many real hand–eye campaigns are: a few shoulder/elbow
 //! configurations, and within each only the wrist moves to look at the
 //! board from another angle. Links 1–3 are then weakly excited: the

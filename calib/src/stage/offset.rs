@@ -19,8 +19,8 @@
 //! `Σ_θ = σ² (JᵀJ)⁺` (and took `Ḡ_s` by re-measuring every image once per
 //! intrinsic parameter). On rendered campaigns of 8 varied layouts the true
 //! offsets were 1.88x that σ (RMS of offset / σ per axis) on 9- and on
-//! 25-image sequences. Session 11 measured why (BENCHMARKS "Session 11 —
-//! stage offset σ"): the dot errors of rendered images are partly shared
+//! 25-image sequences. Session 11 measured why (BENCHMARKS "Stage
+//! accuracy"): the dot errors of rendered images are partly shared
 //! by a sequence's images (`super::noise`), so the white `Σ_θ` is 1.4-1.5x
 //! too small; the images' own pose noise averaged over the sequence
 //! (`D_s`) was left out, and it does not average down as `1/n` either

@@ -50,7 +50,7 @@ const COARSE_CONVERGED_PX: f64 = 0.02;
 /// near its fixed point leaves a small fraction of its last step. The
 /// full-window stage starts at the coarse stage's fixed point, so its first
 /// step usually ends it; the rendered benches' RMS is the same as with
-/// 5e-3 to four digits (BENCHMARKS.md, session 9 — targets).
+/// 5e-3 to four digits (BENCHMARKS.md, "Detection").
 const SYMMETRY_CONVERGED_PX: f64 = 0.02;
 /// Smallest half window the fits accept, pixels.
 pub const MIN_HALF_WINDOW_PX: f64 = 1.5;

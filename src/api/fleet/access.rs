@@ -6,7 +6,9 @@
 //! (`server_secrets`, shared by every replica), `HttpOnly`,
 //! `SameSite=Strict`, `Secure` under TLS. The token itself is never put in
 //! a cookie or a URL; a revoked or expired token ends its sessions at the
-//! next page.
+//! next page. The login form carries a nonce that must match its own
+//! `SameSite=Strict` cookie (`robocal_login`), so a page on another site
+//! cannot sign a browser in under the attacker's token (login CSRF).
 
 use axum::http::{header, HeaderMap, Uri};
 use base64::Engine;
@@ -29,6 +31,11 @@ const SECRET_NAME: &str = "fleet-sessions";
 const SECRET_BYTES: usize = 32;
 /// Longest token accepted by the login form, bytes.
 const MAX_TOKEN_BYTES: usize = 256;
+/// The login form's nonce cookie, and how long a form stays usable.
+pub const LOGIN_COOKIE: &str = "robocal_login";
+const LOGIN_FORM_SECS: i64 = 3600;
+/// Random bytes of a login nonce.
+const NONCE_BYTES: usize = 16;
 
 /// Who is looking at a page.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -89,14 +96,36 @@ fn verify_value(secret: &str, value: &str, now_unix: i64) -> Option<String> {
 
 /// The session cookie's value among the request's cookies.
 fn cookie_value(headers: &HeaderMap) -> Option<&str> {
+    named_cookie(headers, COOKIE)
+}
+
+fn named_cookie<'h>(headers: &'h HeaderMap, wanted: &str) -> Option<&'h str> {
     headers
         .get_all(header::COOKIE)
         .iter()
         .filter_map(|v| v.to_str().ok())
         .flat_map(|v| v.split(';'))
         .filter_map(|pair| pair.trim().split_once('='))
-        .find(|(name, _)| *name == COOKIE)
+        .find(|(name, _)| *name == wanted)
         .map(|(_, value)| value)
+}
+
+/// A fresh login-form nonce and the `Set-Cookie` value that goes with it.
+pub fn login_nonce(state: &AppState) -> (String, String) {
+    let mut bytes = [0u8; NONCE_BYTES];
+    rand::rng().fill_bytes(&mut bytes);
+    let nonce = base64::engine::general_purpose::URL_SAFE_NO_PAD.encode(bytes);
+    let attributes = cookie_attributes(state).replacen("Path=/", "Path=/login", 1);
+    let cookie = format!("{LOGIN_COOKIE}={nonce}; Max-Age={LOGIN_FORM_SECS}; {attributes}");
+    (nonce, cookie)
+}
+
+/// The form's nonce is the one its browser's login cookie holds.
+pub fn login_nonce_matches(headers: &HeaderMap, form_nonce: Option<&str>) -> bool {
+    match (named_cookie(headers, LOGIN_COOKIE), form_nonce) {
+        (Some(cookie), Some(form)) => !cookie.is_empty() && hash_token(cookie) == hash_token(form),
+        _ => false,
+    }
 }
 
 fn cookie_attributes(state: &AppState) -> &'static str {

@@ -29,9 +29,13 @@ a { color: var(--accent); }
 .card dt { color: var(--muted); }
 .card dd { margin: 0; overflow-wrap: anywhere; }
 .verdict { font-weight: 600; }
-.verdict.pass { color: var(--ok); } .verdict.drift { color: var(--bad); } .verdict.base_moved { color: var(--warn); }
+.verdict.pass { color: var(--ok); } .verdict.drift { color: var(--bad); } .verdict.base_moved { color: var(--warn); } .verdict.controller_changed { color: var(--bad); }
 .state-running { color: var(--accent); font-weight: 600; } .state-failed { color: var(--bad); }
 .state-succeeded { color: var(--ok); }
+.release-approved { color: var(--ok); } .release-candidate { color: var(--warn); font-weight: 600; }
+.release-rejected { color: var(--bad); font-weight: 600; }
+.card.failed { border-color: var(--bad); border-width: 2px; } .stale { color: var(--warn); }
+td.error { white-space: normal; min-width: 16rem; }
 .scroll { overflow-x: auto; background: #fff; border: 1px solid var(--rule); border-radius: 8px; }
 table { border-collapse: collapse; width: 100%; }
 th, td { text-align: left; padding: 6px 10px; border-bottom: 1px solid var(--rule); white-space: nowrap; }
@@ -69,7 +73,7 @@ pub fn page(title: &str, body: &str, logout: bool) -> String {
 
 /// The login form (`POST /login` with a token of any scope); `error`
 /// says why the last attempt was refused.
-pub fn login_page(error: Option<&str>) -> String {
+pub fn login_page(error: Option<&str>, nonce: &str) -> String {
     let mut body = String::from("<div class=\"login card\">\n<h1>Sign in</h1>\n");
     if let Some(e) = error {
         let _ = writeln!(body, "<p class=\"error\">{}</p>", escape_xml(e));
@@ -77,8 +81,15 @@ pub fn login_page(error: Option<&str>) -> String {
     body.push_str(
         "<form method=\"post\" action=\"/login\">\n\
          <label for=\"token\">API token (read scope is enough)</label>\n\
-         <input id=\"token\" name=\"token\" type=\"password\" autocomplete=\"current-password\" required>\n\
-         <button type=\"submit\">Sign in</button>\n</form>\n\
+         <input id=\"token\" name=\"token\" type=\"password\" autocomplete=\"current-password\" required>\n",
+    );
+    let _ = writeln!(
+        body,
+        "<input type=\"hidden\" name=\"nonce\" value=\"{}\">",
+        escape_xml(nonce)
+    );
+    body.push_str(
+        "<button type=\"submit\">Sign in</button>\n</form>\n\
          <p class=\"muted\">The token is checked once; the browser then keeps a session cookie, \
          never the token.</p>\n</div>",
     );
@@ -163,7 +174,7 @@ mod tests {
 
     #[test]
     fn pages_are_self_contained_and_fit_a_phone() {
-        for html in [login_page(Some("<bad>")), message_page("x", "y", true)] {
+        for html in [login_page(Some("<bad>"), "n"), message_page("x", "y", true)] {
             assert!(html.contains("name=\"viewport\""));
             assert!(
                 !html.contains("http://") && !html.contains("https://"),

@@ -137,17 +137,33 @@ async fn login_form(State(state): State<AppState>) -> ApiResult<Response> {
     if !access::tokens_required(&state).await? {
         return Ok(see_other("/"));
     }
-    Ok(html(StatusCode::OK, frame::login_page(None)))
+    Ok(login_page(&state, StatusCode::OK, None))
+}
+
+/// The login form with a fresh nonce and its cookie.
+fn login_page(state: &AppState, status: StatusCode, error: Option<&str>) -> Response {
+    let (nonce, cookie) = access::login_nonce(state);
+    let mut r = html(status, frame::login_page(error, &nonce));
+    if let Ok(v) = HeaderValue::from_str(&cookie) {
+        r.headers_mut().insert(header::SET_COOKIE, v);
+    }
+    r
 }
 
 #[derive(Deserialize)]
 struct LoginForm {
     token: Option<String>,
+    /// The form's nonce, matched against its cookie (login CSRF).
+    nonce: Option<String>,
 }
 
-/// `token=…` (form-encoded): a session cookie and back to the fleet, or
-/// the form again (401) saying why.
-async fn login(State(state): State<AppState>, body: Body) -> ApiResult<Response> {
+/// `token=…&nonce=…` (form-encoded): a session cookie and back to the
+/// fleet, or the form again (401; 403 without the form's nonce) saying why.
+async fn login(
+    State(state): State<AppState>,
+    headers: HeaderMap,
+    body: Body,
+) -> ApiResult<Response> {
     if !access::tokens_required(&state).await? {
         return Ok(see_other("/"));
     }
@@ -156,6 +172,13 @@ async fn login(State(state): State<AppState>, body: Body) -> ApiResult<Response>
         .map_err(|_| ApiError::malformed("token", "the login form is too large"))?;
     let text = String::from_utf8_lossy(&bytes);
     let form: LoginForm = query_of(&text)?;
+    if !access::login_nonce_matches(&headers, form.nonce.as_deref()) {
+        return Ok(login_page(
+            &state,
+            StatusCode::FORBIDDEN,
+            Some("this sign-in form expired or was not sent from this site: sign in again"),
+        ));
+    }
     match access::login(&state, form.token.as_deref().unwrap_or("")).await? {
         Ok(cookie) => {
             let mut r = see_other("/");
@@ -164,7 +187,7 @@ async fn login(State(state): State<AppState>, body: Body) -> ApiResult<Response>
             }
             Ok(r)
         }
-        Err(why) => Ok(html(StatusCode::UNAUTHORIZED, frame::login_page(Some(why)))),
+        Err(why) => Ok(login_page(&state, StatusCode::UNAUTHORIZED, Some(why))),
     }
 }
 

@@ -5,8 +5,13 @@
 use std::fmt::Write;
 
 use super::frame::{ago, old, page};
-use crate::report::format::{escape_xml, mm};
-use crate::service::fleet::{JobBrief, RobotDetail, RobotSummary, SetSummary, MAX_ROBOTS};
+use crate::report::format::{escape_xml, fixed, mm};
+use crate::service::fleet::{
+    Accuracy, JobBrief, RobotDetail, RobotSummary, SetSummary, MAX_ROBOTS,
+};
+
+/// Decimals of a reprojection RMS in pixels.
+const PX_DECIMALS: usize = 3;
 
 /// What a robot that was never re-checked shows.
 pub const NO_CHECKS: &str = "no checks";
@@ -21,6 +26,17 @@ fn report_href(serial: &str, version: i64) -> String {
 
 fn accuracy_text(set: &SetSummary) -> String {
     match &set.accuracy {
+        Some(Accuracy {
+            hand_eye_rms_px: Some(px),
+            validation_poses,
+            after_mean_mm,
+            ..
+        }) => format!(
+            "hand–eye set (kinematics not identified): reprojection {} px; camera {} mm mean \
+             at {validation_poses} validation poses",
+            fixed(*px, PX_DECIMALS),
+            mm(*after_mean_mm)
+        ),
         Some(a) => format!(
             "{} mm mean at {} validation poses (nominal {} mm)",
             mm(a.after_mean_mm),
@@ -42,6 +58,18 @@ fn job_text(j: &JobBrief) -> String {
     )
 }
 
+/// Which set a check judged, said when it is not the current one.
+fn checked_against(checked: Option<i64>, current: Option<i64>) -> String {
+    match checked {
+        Some(v) if Some(v) == current => format!(" · on v{v}"),
+        Some(v) => match current {
+            Some(c) => format!(" · <span class=\"stale\">on v{v}, not the current v{c}</span>"),
+            None => format!(" · on v{v}"),
+        },
+        None => String::new(),
+    }
+}
+
 /// The `<dl>` of a robot's state, shared by both pages.
 fn state_list(r: &RobotSummary, now_ms: i64) -> String {
     let mut dl = String::from("<dl>\n");
@@ -58,8 +86,9 @@ fn state_list(r: &RobotSummary, now_ms: i64) -> String {
     };
     let check = match &r.last_check {
         Some(c) => format!(
-            "<span class=\"verdict {0}\">{0}</span> · {1}",
+            "<span class=\"verdict {0}\">{0}</span>{1} · {2}",
             escape_xml(&c.verdict),
+            checked_against(c.checked_version, r.current.as_ref().map(|s| s.version)),
             escape_xml(&ago(&c.at, now_ms))
         ),
         None => format!("<span class=\"muted\">{NO_CHECKS}</span>"),
@@ -80,6 +109,14 @@ fn state_list(r: &RobotSummary, now_ms: i64) -> String {
             .join("<br>")
     };
     let _ = writeln!(dl, "<dt>Model</dt><dd>{}</dd>", escape_xml(&r.model));
+    let controller = match &r.controller {
+        Some(c) => escape_xml(&c.describe()),
+        None => "<span class=\"muted\">not given</span>".into(),
+    };
+    let _ = writeln!(
+        dl,
+        "<dt>Controller</dt><dd class=\"controller\">{controller}</dd>"
+    );
     let _ = writeln!(dl, "<dt>Parameter set</dt><dd class=\"set\">{set}</dd>");
     let _ = writeln!(
         dl,
@@ -87,6 +124,18 @@ fn state_list(r: &RobotSummary, now_ms: i64) -> String {
     );
     let _ = writeln!(dl, "<dt>Last check</dt><dd class=\"check\">{check}</dd>");
     let _ = writeln!(dl, "<dt>Jobs</dt><dd class=\"jobs\">{jobs}</dd>");
+    if let Some(j) = &r.last_failed {
+        let _ = writeln!(
+            dl,
+            "<dt>Last job</dt><dd class=\"failed\"><span class=\"state-failed\">{} failed</span>: {} \
+             (<a href=\"{2}#job-{3}\">job {3}</a>, {4})</dd>",
+            escape_xml(&j.kind),
+            escape_xml(j.error.as_deref().unwrap_or("no reason recorded")),
+            robot_href(&j.serial),
+            escape_xml(&j.id),
+            escape_xml(&ago(&j.created_at, now_ms))
+        );
+    }
     dl.push_str("</dl>\n");
     dl
 }
@@ -119,10 +168,11 @@ pub fn fleet_page(robots: &[RobotSummary], now_ms: i64, logout: bool) -> String 
     for r in robots {
         let _ = write!(
             body,
-            "<section class=\"card robot\" id=\"robot-{0}\">\n<h2><a href=\"{1}\">{0}</a></h2>\n{2}</section>\n",
+            "<section class=\"card robot{3}\" id=\"robot-{0}\">\n<h2><a href=\"{1}\">{0}</a></h2>\n{2}</section>\n",
             escape_xml(&r.serial),
             robot_href(&r.serial),
-            state_list(r, now_ms)
+            state_list(r, now_ms),
+            if r.last_failed.is_some() { " failed" } else { "" }
         );
     }
     body.push_str("</div>");
@@ -140,7 +190,7 @@ fn versions_table(
     }
     let mut t = String::from(
         "<div class=\"scroll\"><table id=\"versions\">\n<thead><tr><th>Version</th><th>Report</th>\
-         <th class=\"num\">Mean error mm<br>nominal → set</th><th>Created</th></tr></thead>\n<tbody>\n",
+         <th>Status</th><th class=\"num\">Mean error mm<br>nominal → set</th><th>Created</th></tr></thead>\n<tbody>\n",
     );
     for v in versions {
         let mark = if Some(v.version) == current {
@@ -149,6 +199,9 @@ fn versions_table(
             ""
         };
         let accuracy = match &v.accuracy {
+            Some(a) if a.hand_eye_rms_px.is_some() => {
+                format!("hand–eye: {} (no kinematics)", mm(a.after_mean_mm))
+            }
             Some(a) => format!("{} → {}", mm(a.before_mean_mm), mm(a.after_mean_mm)),
             None => "—".into(),
         };
@@ -163,13 +216,28 @@ fn versions_table(
         };
         let _ = writeln!(
             t,
-            "<tr><td>v{}{mark}</td><td>{report}</td><td class=\"num\">{accuracy}</td><td>{}</td></tr>",
+            "<tr id=\"v{0}\"><td>v{0}{mark}</td><td>{report}</td><td class=\"status\">{1}</td>\
+             <td class=\"num\">{accuracy}</td><td>{2}</td></tr>",
             v.version,
+            status_cell(v),
             escape_xml(&ago(&v.created_at, now_ms))
         );
     }
     t.push_str("</tbody></table></div>\n");
     t
+}
+
+/// A version's release status, who gave it (and why, on hover).
+fn status_cell(v: &SetSummary) -> String {
+    let by = match &v.status_by {
+        Some(by) => format!(" · by {}", escape_xml(by)),
+        None => String::new(),
+    };
+    format!(
+        "<span class=\"release-{0}\" title=\"{1}\">{0}</span>{by}",
+        v.status.as_str(),
+        escape_xml(v.status_reason.as_deref().unwrap_or(""))
+    )
 }
 
 fn jobs_table(jobs: &[JobBrief], now_ms: i64) -> String {
@@ -178,20 +246,21 @@ fn jobs_table(jobs: &[JobBrief], now_ms: i64) -> String {
     }
     let mut t = String::from(
         "<div class=\"scroll\"><table id=\"jobs\">\n<thead><tr><th>Job</th><th>Kind</th><th>State</th>\
-         <th>Stage</th><th class=\"num\">Progress</th><th>Created</th></tr></thead>\n<tbody>\n",
+         <th>Stage</th><th class=\"num\">Progress</th><th>Created</th><th>Error</th></tr></thead>\n<tbody>\n",
     );
     for j in jobs {
+        // The whole id: what `robocal jobs` prints and `/v1/jobs/{id}` takes.
         let _ = writeln!(
             t,
-            "<tr><td title=\"{0}\">{1}</td><td>{2}</td><td class=\"state-{3}\">{3}</td><td>{4}</td>\
-             <td class=\"num\">{5:.0}%</td><td>{6}</td></tr>",
+            "<tr id=\"job-{0}\"><td class=\"id\">{0}</td><td>{1}</td><td class=\"state-{2}\">{2}</td><td>{3}</td>\
+             <td class=\"num\">{4:.0}%</td><td>{5}</td><td class=\"error\">{6}</td></tr>",
             escape_xml(&j.id),
-            escape_xml(&j.id[j.id.len().saturating_sub(8)..]),
             escape_xml(&j.kind),
             j.state.as_str(),
             escape_xml(j.stage.as_deref().unwrap_or("—")),
             j.progress * 100.0,
-            escape_xml(&ago(&j.created_at, now_ms))
+            escape_xml(&ago(&j.created_at, now_ms)),
+            escape_xml(j.error.as_deref().unwrap_or(""))
         );
     }
     t.push_str("</tbody></table></div>\n");
@@ -223,13 +292,13 @@ pub fn robot_page(detail: &RobotDetail, now_ms: i64, logout: bool) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::domain::JobState;
-    use crate::service::fleet::Accuracy;
+    use crate::domain::{JobState, ReleaseStatus};
 
     fn robot(serial: &str) -> RobotSummary {
         RobotSummary {
             serial: serial.into(),
             model: "UR<5>".into(),
+            controller: None,
             current: Some(SetSummary {
                 version: 3,
                 created_at: "2026-11-20T10:00:00.000Z".into(),
@@ -238,9 +307,14 @@ mod tests {
                     validation_poses: 12,
                     before_mean_mm: 11.36,
                     after_mean_mm: 0.0841,
+                    hand_eye_rms_px: None,
                 }),
+                status: ReleaseStatus::Approved,
+                status_by: Some("gate".into()),
+                status_reason: Some("better than nominal".into()),
             }),
             last_check: None,
+            last_failed: None,
             jobs_in_progress: vec![JobBrief {
                 id: "0193-job".into(),
                 serial: serial.into(),
@@ -281,5 +355,24 @@ mod tests {
         assert!(html.contains("href=\"/robots/R-1/reports/3\""));
         assert!(html.contains("(current)"));
         assert!(html.contains("action=\"/logout\""));
+    }
+
+    #[test]
+    fn a_check_on_an_older_set_says_which() {
+        use crate::service::fleet::CheckSummary;
+        let mut r = robot("R-1");
+        r.last_check = Some(CheckSummary {
+            verdict: "pass".into(),
+            at: "2026-11-20T10:00:00.000Z".into(),
+            checked_version: Some(1),
+        });
+        let html = fleet_page(&[r.clone()], 0, false);
+        assert!(
+            html.contains(">pass</span> · <span class=\"stale\">on v1, not the current v3</span>"),
+            "{html}"
+        );
+        r.last_check.as_mut().unwrap().checked_version = Some(3);
+        let html = fleet_page(&[r], 0, false);
+        assert!(html.contains(">pass</span> · on v3 · "), "{html}");
     }
 }

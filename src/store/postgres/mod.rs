@@ -27,7 +27,7 @@ use tokio::sync::{watch, Notify};
 
 use super::backend::Backend;
 use super::migrations::{migrator, Embedded};
-use super::repo::UPSERT_ROBOT;
+use super::repo::{prior_text, UPSERT_ROBOT};
 use super::statement::{run_statements, Driver};
 use super::{StoreError, StoreResult};
 use crate::store::RobotRecord;
@@ -92,6 +92,21 @@ const MIGRATIONS: &[Embedded] = &[
         12,
         "stage reading",
         include_str!("../../../migrations/postgres/0012_stage_reading.sql"),
+    ),
+    (
+        30,
+        "controller identity",
+        include_str!("../../../migrations/postgres/0030_controller_identity.sql"),
+    ),
+    (
+        32,
+        "idempotency wrote",
+        include_str!("../../../migrations/postgres/0032_idempotency_wrote.sql"),
+    ),
+    (
+        40,
+        "robot prior",
+        include_str!("../../../migrations/postgres/0040_robot_prior.sql"),
     ),
 ];
 
@@ -159,7 +174,7 @@ impl Backend for PgStore {
         &self.pool
     }
 
-    async fn begin_write(&self) -> StoreResult<Transaction<'static, Postgres>> {
+    async fn open_write(&self) -> StoreResult<Transaction<'static, Postgres>> {
         Ok(self.pool.begin().await?)
     }
 
@@ -181,6 +196,7 @@ impl Backend for PgStore {
             .bind(r.kinematics.to_string())
             .bind(&r.created_at)
             .bind(&r.updated_at)
+            .bind(prior_text(r)?)
             .fetch_one(&self.pool)
             .await?;
         Ok(inserted)

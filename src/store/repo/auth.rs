@@ -7,7 +7,7 @@ use crate::domain::{
 use crate::store::backend::Backend;
 use crate::store::rows::{token, Columns};
 use crate::store::statement::{query, Statement};
-use crate::store::{AuthStore, StoreResult};
+use crate::store::{AuthStore, StoreError, StoreResult};
 
 /// Stored responses are kept this long, then a key may be used afresh.
 const IDEMPOTENCY_TTL_MS: i64 = 24 * 3600 * 1000;
@@ -86,6 +86,40 @@ impl<B: Backend> AuthStore for B {
         row.as_ref().map(token).transpose()
     }
 
+    async fn revoke_token_keeping_an_admin(&self, id: &str) -> StoreResult<Option<TokenRecord>> {
+        let now = now_unix_ms();
+        let mut tx = self.begin_write().await?;
+        // The usable admin tokens, locked: two revocations at once cannot
+        // each count the other as the one that remains.
+        let admins = query(format!(
+            "SELECT id FROM tokens WHERE scope = $1 AND revoked_ms IS NULL
+               AND (expires_ms IS NULL OR expires_ms > $2) ORDER BY id{}",
+            B::FOR_UPDATE
+        ))
+        .bind(Scope::Admin.as_str())
+        .bind(now)
+        .fetch_all(&mut tx)
+        .await?;
+        let others = admins.iter().filter(|r| r.str("id") != id).count();
+        if others == 0 && admins.len() == 1 {
+            return Err(StoreError::Conflict(format!(
+                "token {id} is the last usable admin token: create another admin token \
+                 before revoking it"
+            )));
+        }
+        query("UPDATE tokens SET revoked_ms = $2 WHERE id = $1 AND revoked_ms IS NULL")
+            .bind(id)
+            .bind(now)
+            .execute(&mut tx)
+            .await?;
+        let row = query(format!("SELECT {TOKEN_COLUMNS} FROM tokens WHERE id = $1"))
+            .bind(id)
+            .fetch_optional(&mut tx)
+            .await?;
+        tx.commit().await?;
+        row.as_ref().map(token).transpose()
+    }
+
     async fn touch_token(&self, id: &str, now_ms: i64, min_interval_ms: i64) -> StoreResult<()> {
         query(
             "UPDATE tokens SET last_used_ms = $2
@@ -127,8 +161,8 @@ impl<B: Backend> AuthStore for B {
         // the same rows could deadlock, and a failed sweep changes nothing
         // for this request.
         if let Err(e) = query(
-            "DELETE FROM idempotency WHERE (state = 'done' AND created_ms < $1)
-                OR (state = 'pending' AND lease_until_ms < $2)",
+            "DELETE FROM idempotency WHERE ((state = 'done' OR wrote = 1) AND created_ms < $1)
+                OR (state = 'pending' AND wrote = 0 AND lease_until_ms < $2)",
         )
         .bind(now - IDEMPOTENCY_TTL_MS)
         .bind(now)
@@ -139,12 +173,12 @@ impl<B: Backend> AuthStore for B {
         }
         let mut tx = self.begin_write().await?;
         // This key, if expired (or held by a request whose lease lapsed: its
-        // process died), is free again.
+        // process died), is free again, unless that request wrote.
         bind_key(
             query(
                 "DELETE FROM idempotency WHERE principal = $1 AND idem_key = $2
-                   AND ((state = 'done' AND created_ms < $3)
-                        OR (state = 'pending' AND lease_until_ms < $4))",
+                   AND (((state = 'done' OR wrote = 1) AND created_ms < $3)
+                        OR (state = 'pending' AND wrote = 0 AND lease_until_ms < $4))",
             ),
             s,
         )
@@ -175,7 +209,8 @@ impl<B: Backend> AuthStore for B {
         }
         let row = bind_key(
             query(
-                "SELECT method, path, state, fingerprint, status, headers, body FROM idempotency
+                "SELECT method, path, state, wrote, lease_until_ms, fingerprint, status, headers, body
+                 FROM idempotency
                  WHERE principal = $1 AND idem_key = $2",
             ),
             s,
@@ -195,6 +230,10 @@ impl<B: Backend> AuthStore for B {
             });
         }
         if row.str("state") == "pending" {
+            let lapsed = row.int("lease_until_ms") < now;
+            if row.int("wrote") != 0 && lapsed {
+                return Ok(IdempotencyClaim::Lost);
+            }
             return Ok(IdempotencyClaim::InFlight);
         }
         let headers: Vec<(String, String)> =
@@ -256,7 +295,19 @@ impl<B: Backend> AuthStore for B {
         bind_key(
             query(
                 "DELETE FROM idempotency WHERE principal = $1 AND idem_key = $2
-                   AND state = 'pending' AND holder = $3",
+                   AND state = 'pending' AND holder = $3 AND wrote = 0",
+            ),
+            s,
+        )
+        .bind(&s.holder)
+        .execute(self.pool())
+        .await?;
+        // A request that wrote keeps its key: lapsed now, a retry is told
+        // it was carried out rather than running again.
+        bind_key(
+            query(
+                "UPDATE idempotency SET lease_until_ms = 0, holder = NULL
+                 WHERE principal = $1 AND idem_key = $2 AND state = 'pending' AND holder = $3",
             ),
             s,
         )

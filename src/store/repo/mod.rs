@@ -24,7 +24,7 @@ mod sessions;
 mod webhooks;
 
 pub use release::CHECK_KIND;
-pub use robots::UPSERT_ROBOT;
+pub use robots::{prior_text, UPSERT_ROBOT};
 
 #[async_trait]
 impl<B: Backend> Store for B {

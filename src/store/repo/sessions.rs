@@ -23,6 +23,8 @@ impl<B: Backend> SessionStore for B {
     ) -> StoreResult<SessionRecord> {
         let id = new_id();
         let created_at = now_rfc3339();
+        // A transaction, so a keyed request's key is marked with the insert.
+        let mut tx = self.begin_write().await?;
         let inserted = query(
             "INSERT INTO sessions (id, serial, instrument, spec, created_at)
              SELECT $1, serial, $2, $3, $4 FROM robots WHERE serial = $5",
@@ -32,11 +34,11 @@ impl<B: Backend> SessionStore for B {
         .bind(serde_json::to_string(spec)?)
         .bind(&created_at)
         .bind(serial)
-        .execute(self.pool())
+        .execute(&mut tx)
         .await;
         match inserted {
             Ok(0) => return Err(StoreError::NotFound("robot")),
-            Ok(_) => {}
+            Ok(_) => tx.commit().await?,
             // The robot was deleted between the SELECT and the insert's FK check.
             Err(e) if is_foreign_key_violation(&e) => return Err(StoreError::NotFound("robot")),
             Err(e) => return Err(e.into()),

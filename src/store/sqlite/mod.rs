@@ -16,7 +16,7 @@ use sqlx::{Sqlite, Transaction};
 
 use super::backend::Backend;
 use super::migrations::{migrator, Embedded};
-use super::repo::UPSERT_ROBOT;
+use super::repo::{prior_text, UPSERT_ROBOT};
 use super::statement::query;
 use super::statement::{run_statements, Driver};
 use super::{StoreError, StoreResult};
@@ -78,6 +78,21 @@ const MIGRATIONS: &[Embedded] = &[
         12,
         "stage reading",
         include_str!("../../../migrations/sqlite/0012_stage_reading.sql"),
+    ),
+    (
+        30,
+        "controller identity",
+        include_str!("../../../migrations/sqlite/0030_controller_identity.sql"),
+    ),
+    (
+        32,
+        "idempotency wrote",
+        include_str!("../../../migrations/sqlite/0032_idempotency_wrote.sql"),
+    ),
+    (
+        40,
+        "robot prior",
+        include_str!("../../../migrations/sqlite/0040_robot_prior.sql"),
     ),
 ];
 
@@ -161,7 +176,7 @@ impl Backend for SqliteStore {
 
     /// `BEGIN IMMEDIATE`: takes the write lock up front, so two writers that
     /// read before they write never deadlock on a lock upgrade.
-    async fn begin_write(&self) -> StoreResult<Transaction<'static, Sqlite>> {
+    async fn open_write(&self) -> StoreResult<Transaction<'static, Sqlite>> {
         Ok(self.pool.begin_with("BEGIN IMMEDIATE").await?)
     }
 
@@ -178,6 +193,7 @@ impl Backend for SqliteStore {
             .bind(r.kinematics.to_string())
             .bind(&r.created_at)
             .bind(&r.updated_at)
+            .bind(prior_text(r)?)
             .execute(&mut tx)
             .await?;
         tx.commit().await?;

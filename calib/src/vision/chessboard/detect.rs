@@ -34,7 +34,7 @@ pub const REFINE_WINDOW_FRACTION: f64 = 0.4;
 /// Bounds of the refinement half window, pixels. The upper one trades
 /// noise against time: on blurred boards (σ 2 px, noise 3) 12 px gave a
 /// corner RMS of 0.0302 px, 14 px 0.0282, 16 px 0.0276, at a cost growing
-/// with the window's area (BENCHMARKS.md, session 9 — targets).
+/// with the window's area (BENCHMARKS.md, "Detection").
 pub const MIN_REFINE_HALF_WINDOW_PX: f64 = 2.0;
 pub const MAX_REFINE_HALF_WINDOW_PX: f64 = 14.0;
 
