@@ -313,6 +313,105 @@ async fn plan_predicts_with_the_dot_noise_of_the_robots_earlier_job() {
     assert_eq!(stated["sigma_px"], 0.05);
 }
 
+/// A calibrated camera set of robot `serial` whose frames are those of
+/// [`body`]'s guesses (the nominal IRB 2400 as its kinematics).
+async fn calibrated_camera_set(app: &TestApp, serial: &str) {
+    use robocal::domain::ParameterSet;
+    use robocal::schema::robot::{preset_doc, Preset};
+    use robocal::schema::session::Instrument;
+    use robocal::schema::PoseOut;
+    let guesses = body(CAL_POSES, 0);
+    let pose = |v: &Value| {
+        let f = |k: &str| -> [f64; 3] { serde_json::from_value(v[k].clone()).unwrap() };
+        robocal_calib::geometry::pose_from_xyz_rpy_deg(f("translation_mm"), f("rotation_deg"))
+            .unwrap()
+    };
+    let set = ParameterSet {
+        instrument: Instrument::Camera,
+        measurement: None,
+        session_id: "s".into(),
+        kinematics: preset_doc(Preset::Irb2400),
+        world_to_base: PoseOut::new(&pose(&guesses["target_to_base_guess"])),
+        flange_to_tool: PoseOut::new(&pose(&guesses["flange_to_camera_guess"])),
+        camera: None,
+        camera_mode: None,
+        camera_calibration_id: None,
+        fixed: Vec::new(),
+        parameters: Vec::new(),
+        covariance: None,
+        joint_noise_deg: None,
+        terms: None,
+        session_target_to_base: Vec::new(),
+        controller: None,
+    };
+    let store = store::connect(&app.database_url).await.unwrap();
+    store
+        .insert_parameter_set(
+            serial,
+            None,
+            &NewParameterSet::approved(serde_json::to_value(&set).unwrap(), json!({})),
+        )
+        .await
+        .unwrap();
+}
+
+#[tokio::test]
+async fn omitted_guesses_come_from_the_latest_set_and_a_wrong_one_is_named() {
+    let app = spawn_app().await;
+    robot(&app, "PLAN-4").await;
+    let url = "/v1/robots/PLAN-4/campaign-plans";
+    let mut bare = body(CAL_POSES, 0);
+    let obj = bare.as_object_mut().unwrap();
+    obj.remove("target_to_base_guess");
+    obj.remove("flange_to_camera_guess");
+    // No calibrated set yet: the 422 names both fields and says why.
+    let r = app.post_json(url, &bare).await;
+    assert_eq!(r.status(), 422);
+    let p: Value = r.json().await.unwrap();
+    let fields: Vec<&str> = p["errors"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| e["field"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        fields,
+        ["target_to_base_guess", "flange_to_camera_guess"],
+        "{p}"
+    );
+    assert!(p.to_string().contains("no calibrated camera set"), "{p}");
+
+    // With a calibrated set, the same request plans from its frames.
+    calibrated_camera_set(&app, "PLAN-4").await;
+    let r = app.post_json(url, &bare).await;
+    assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
+
+    // A board guess a metre off: infeasible, and the answer says where the
+    // latest set puts the board.
+    let mut off = body(CAL_POSES, 0);
+    off["target_to_base_guess"]["translation_mm"][2] = json!(
+        off["target_to_base_guess"]["translation_mm"][2]
+            .as_f64()
+            .unwrap()
+            + 3000.0
+    );
+    let r = app.post_json(url, &off).await;
+    assert_eq!(r.status(), 422);
+    let p: Value = r.json().await.unwrap();
+    let hint = p["errors"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|e| e["field"] == "target_to_base_guess")
+        .unwrap_or_else(|| panic!("a hint naming the guess: {p}"));
+    let message = hint["message"].as_str().unwrap();
+    assert!(
+        message.contains("where the robot's latest set PLAN-4/1 puts the board")
+            && message.contains("omit target_to_base_guess"),
+        "{message}"
+    );
+}
+
 /// A camera session of robot `serial` on the plan body's board and camera,
 /// with one pose per joints (deg) in `cal` and `val`; its id.
 async fn session_with_joints(
@@ -432,102 +531,4 @@ async fn plan_extends_a_session_with_the_predicted_gain() {
         let p: Value = r.json().await.unwrap();
         assert_eq!(p["errors"][0]["field"], "extend_session", "{p}");
     }
-
-/// A calibrated camera set of robot `serial` whose frames are those of
-/// [`body`]'s guesses (the nominal IRB 2400 as its kinematics).
-async fn calibrated_camera_set(app: &TestApp, serial: &str) {
-    use robocal::domain::ParameterSet;
-    use robocal::schema::robot::{preset_doc, Preset};
-    use robocal::schema::session::Instrument;
-    use robocal::schema::PoseOut;
-    let guesses = body(CAL_POSES, 0);
-    let pose = |v: &Value| {
-        let f = |k: &str| -> [f64; 3] { serde_json::from_value(v[k].clone()).unwrap() };
-        robocal_calib::geometry::pose_from_xyz_rpy_deg(f("translation_mm"), f("rotation_deg"))
-            .unwrap()
-    };
-    let set = ParameterSet {
-        instrument: Instrument::Camera,
-        measurement: None,
-        session_id: "s".into(),
-        kinematics: preset_doc(Preset::Irb2400),
-        world_to_base: PoseOut::new(&pose(&guesses["target_to_base_guess"])),
-        flange_to_tool: PoseOut::new(&pose(&guesses["flange_to_camera_guess"])),
-        camera: None,
-        camera_mode: None,
-        camera_calibration_id: None,
-        fixed: Vec::new(),
-        parameters: Vec::new(),
-        covariance: None,
-        joint_noise_deg: None,
-        terms: None,
-        session_target_to_base: Vec::new(),
-        controller: None,
-    };
-    let store = store::connect(&app.database_url).await.unwrap();
-    store
-        .insert_parameter_set(
-            serial,
-            None,
-            &NewParameterSet::approved(serde_json::to_value(&set).unwrap(), json!({})),
-        )
-        .await
-        .unwrap();
-}
-
-#[tokio::test]
-async fn omitted_guesses_come_from_the_latest_set_and_a_wrong_one_is_named() {
-    let app = spawn_app().await;
-    robot(&app, "PLAN-4").await;
-    let url = "/v1/robots/PLAN-4/campaign-plans";
-    let mut bare = body(CAL_POSES, 0);
-    let obj = bare.as_object_mut().unwrap();
-    obj.remove("target_to_base_guess");
-    obj.remove("flange_to_camera_guess");
-    // No calibrated set yet: the 422 names both fields and says why.
-    let r = app.post_json(url, &bare).await;
-    assert_eq!(r.status(), 422);
-    let p: Value = r.json().await.unwrap();
-    let fields: Vec<&str> = p["errors"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|e| e["field"].as_str().unwrap())
-        .collect();
-    assert_eq!(
-        fields,
-        ["target_to_base_guess", "flange_to_camera_guess"],
-        "{p}"
-    );
-    assert!(p.to_string().contains("no calibrated camera set"), "{p}");
-
-    // With a calibrated set, the same request plans from its frames.
-    calibrated_camera_set(&app, "PLAN-4").await;
-    let r = app.post_json(url, &bare).await;
-    assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
-
-    // A board guess a metre off: infeasible, and the answer says where the
-    // latest set puts the board.
-    let mut off = body(CAL_POSES, 0);
-    off["target_to_base_guess"]["translation_mm"][2] = json!(
-        off["target_to_base_guess"]["translation_mm"][2]
-            .as_f64()
-            .unwrap()
-            + 3000.0
-    );
-    let r = app.post_json(url, &off).await;
-    assert_eq!(r.status(), 422);
-    let p: Value = r.json().await.unwrap();
-    let hint = p["errors"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|e| e["field"] == "target_to_base_guess")
-        .unwrap_or_else(|| panic!("a hint naming the guess: {p}"));
-    let message = hint["message"].as_str().unwrap();
-    assert!(
-        message.contains("where the robot's latest set PLAN-4/1 puts the board")
-            && message.contains("omit target_to_base_guess"),
-        "{message}"
-    );
 }
