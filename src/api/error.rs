@@ -23,7 +23,7 @@ pub struct ApiError {
     pub detail: String,
     pub errors: Vec<FieldError>,
     pub retry_after_secs: Option<u64>,
-    /// A controller mismatch's two identities (409, issue 34).
+    /// A controller mismatch's two identities (409).
     pub controller: Option<Box<ControllerMismatch>>,
 }
 

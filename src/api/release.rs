@@ -139,8 +139,8 @@ async fn history(
 #[derive(Debug, Clone, Default, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CheckBody {
-    /// The controller the caller expects the approved set to be made on
-    /// (issue 34): 409 naming `controller` when it records another.
+    /// The controller the caller expects the approved set to be made on:
+    /// 409 naming `controller` when it records another.
     #[serde(default)]
     pub expect_controller: Option<ControllerIdentity>,
 }

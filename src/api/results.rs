@@ -107,7 +107,7 @@ pub struct ParameterSetFields {
     /// its value, σ and unit; `forward`, `compensate`, `filter` and the
     /// predicted σ include them. Absent when none was kept.
     pub terms: Option<crate::domain::TermsDoc>,
-    /// The controller the set's session was measured on (issue 34);
+    /// The controller the set's session was measured on;
     /// absent when none was recorded.
     pub controller: Option<crate::domain::ControllerIdentity>,
 }

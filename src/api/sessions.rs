@@ -55,7 +55,7 @@ pub struct SessionSpecOut {
     pub volume: Option<String>,
     /// Payload at the tool during the campaign (kg).
     pub payload_kg: Option<f64>,
-    /// The controller the session was measured on (issue 34): the one it
+    /// The controller the session was measured on: the one it
     /// was created with, else the robot's then.
     pub controller: Option<crate::domain::ControllerIdentity>,
 }

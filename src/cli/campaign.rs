@@ -32,7 +32,7 @@ use crate::schema::Checker;
 const NOISE_SEED_STRIDE: u64 = 0x9e37_79b9_7f4a_7c15;
 
 /// The board every simulated campaign uses: 9x9 dots of 8 mm on a 25 mm
-/// pitch with a 12 mm origin marker (issue 3).
+/// pitch with a 12 mm origin marker.
 pub fn simulated_target() -> TargetSpec {
     TargetSpec::robocal_9x9()
 }

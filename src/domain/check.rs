@@ -19,7 +19,7 @@ pub enum CheckVerdict {
     /// Re-fitting the board's (or tracker's) transform alone explains them.
     BaseMoved,
     /// The check's session was measured on another controller than the
-    /// set records (issue 34): whatever the residuals, the set is not the
+    /// set records: whatever the residuals, the set is not the
     /// controller's any more (swapped, re-mastered, its calibration
     /// reloaded). The test's figures are still given.
     ControllerChanged,

@@ -61,7 +61,7 @@ pub struct ParameterSet {
     /// 18): each session's board in the base frame, the first session's
     /// equal to `world_to_base`. Empty for a one-session set.
     pub session_target_to_base: Vec<SessionBoard>,
-    /// The controller the set's session was measured on (issue 34),
+    /// The controller the set's session was measured on,
     /// inherited from the session; absent when none was recorded.
     pub controller: Option<ControllerIdentity>,
 }

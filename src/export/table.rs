@@ -68,7 +68,7 @@ pub struct DhTable {
     /// `matrix`); absent for sets stored before it was kept.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub covariance: Option<CovarianceDoc>,
-    /// The kept non-geometric terms with σ and units (issue 19); absent
+    /// The kept non-geometric terms with σ and units; absent
     /// when the set keeps none.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub terms: Option<TermsDoc>,

@@ -26,7 +26,7 @@ const UNKNOWN_VELOCITY: f64 = 0.0;
 
 /// The URDF document of `model`, robot named `name`; `terms`, the set's
 /// kept non-geometric terms, are named in a comment: a URDF has no element
-/// for a joint deflection that depends on the configuration (issue 19).
+/// for a joint deflection that depends on the configuration.
 pub fn write_urdf(
     name: &str,
     model: &CalibratedModel,

@@ -114,7 +114,7 @@ const LOCAL_SETS_SCANNED: i64 = 200;
 
 /// The newest local (one-session) set of each of `sessions`, with its
 /// report's validation figures: the side by side of local and global
-/// models in each region (issue 18).
+/// models in each region.
 async fn local_models(
     store: &DynStore,
     serial: &str,

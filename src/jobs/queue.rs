@@ -49,7 +49,7 @@ pub async fn enqueue_calibration(
     store.enqueue_job(&job, policy.max_queued).await
 }
 
-/// Writes a quick re-check job (issue 17): no options.
+/// Writes a quick re-check job: no options.
 pub async fn enqueue_check(
     store: &DynStore,
     policy: &QueuePolicy,

@@ -62,7 +62,7 @@ pub struct Identified {
     /// compares the approved set on the same poses).
     pub cal_data: Vec<Measurement>,
     pub val_data: Vec<Measurement>,
-    /// The selection of non-geometric terms, when it ran (issue 19).
+    /// The selection of non-geometric terms, when it ran.
     pub selection: Option<TermIdentification>,
     /// The kept terms as the set stores them (`None`: none kept).
     pub terms: Option<TermsDoc>,

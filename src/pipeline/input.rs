@@ -45,10 +45,10 @@ pub struct Input {
     /// the release gate compares with it, partial scopes and re-checks
     /// hold it.
     pub approved: Option<ApprovedSet>,
-    /// A quick re-check (issue 17) instead of a calibration.
+    /// A quick re-check instead of a calibration.
     pub check: bool,
     /// The further sessions of a calibration over several board placements
-    /// (issue 18); empty for a one-session job. This input's own session
+    ///; empty for a one-session job. This input's own session
     /// is the first placement.
     pub regions: Vec<RegionInput>,
     /// Per session of a multi-session job: the newest local (one-session)
@@ -118,7 +118,7 @@ pub struct PoseInput {
     pub image_points: Vec<ImagePointDoc>,
     pub measured_position_mm: Option<[f64; 3]>,
     pub measured_pose: Option<PoseDoc>,
-    /// A stage session's image: the stage's reading (issue 18).
+    /// A stage session's image: the stage's reading.
     pub stage_reading: Option<StageReading>,
 }
 

@@ -16,7 +16,7 @@ pub struct Output {
     /// Every camera pose's image points with their reprojection residuals
     /// (empty for tracker sessions and validation-only runs).
     pub detections: Vec<PoseDetection>,
-    /// A quick re-check's verdict (issue 17): the job's `result` then
+    /// A quick re-check's verdict: the job's `result` then
     /// holds its fields.
     pub check: Option<crate::domain::CheckDoc>,
 }

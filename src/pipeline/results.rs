@@ -69,7 +69,7 @@ fn parameter_rows(id: &Identified) -> Vec<ParameterReport> {
 pub struct Context<'a> {
     pub serial: &'a str,
     pub session_id: &'a str,
-    /// The controller the session was measured on (issue 34): the set
+    /// The controller the session was measured on: the set
     /// inherits it.
     pub controller: Option<&'a crate::domain::ControllerIdentity>,
     /// The session's instrument (the set's frame names follow it).

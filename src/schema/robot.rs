@@ -96,7 +96,7 @@ pub struct RobotBody {
     pub kinematics: Option<KinematicsDoc>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub preset: Option<Preset>,
-    /// The controller the robot runs on (issue 34). Sessions record it,
+    /// The controller the robot runs on. Sessions record it,
     /// sets inherit it; a change is recorded in the robot's history. A
     /// replacement without it removes it.
     #[serde(default, skip_serializing_if = "Option::is_none")]

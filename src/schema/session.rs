@@ -173,7 +173,7 @@ pub struct SessionBody {
     /// weight of each measured orientation; default 0.01° (a T-Mac's).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tracker_orientation_sigma_deg: Option<f64>,
-    /// The controller the campaign is measured on (issue 34); absent: the
+    /// The controller the campaign is measured on; absent: the
     /// robot's `controller` when the session is created. The session's
     /// sets inherit it.
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -36,7 +36,7 @@ pub enum ServiceError {
         message: String,
     },
     /// The request expected another controller than the one the set (or
-    /// robot) records (issue 34): 409 naming `controller`, both identities
+    /// robot) records: 409 naming `controller`, both identities
     /// in the problem's `controller` member. `what` names the recorder.
     #[error("controller mismatch")]
     ControllerMismatch {

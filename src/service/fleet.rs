@@ -77,7 +77,7 @@ pub struct JobBrief {
 pub struct RobotSummary {
     pub serial: String,
     pub model: String,
-    /// The robot's controller identity (issue 34); `None`: none given.
+    /// The robot's controller identity; `None`: none given.
     pub controller: Option<ControllerIdentity>,
     /// What `latest` serves; `None` before the first calibration.
     pub current: Option<SetSummary>,

@@ -50,7 +50,7 @@ pub async fn find_session(store: &DynStore, id: &str) -> ServiceResult<SessionRe
         .ok_or_else(|| ServiceError::not_found("session", id))
 }
 
-/// The controller identity robot `serial` records (issue 34): what a new
+/// The controller identity robot `serial` records: what a new
 /// session records unless it names its own. 404 when there is no robot.
 pub async fn robot_controller(
     store: &DynStore,

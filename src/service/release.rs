@@ -135,7 +135,7 @@ pub struct History {
     pub decisions: Vec<Decision>,
     /// Re-checks, newest first (at most 100).
     pub checks: Vec<HistoryCheck>,
-    /// Every change of the robot's controller identity (issue 34), oldest
+    /// Every change of the robot's controller identity, oldest
     /// first: from, to, when.
     pub controller_changes: Vec<ControllerChange>,
 }

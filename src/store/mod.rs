@@ -201,7 +201,7 @@ pub trait ResultStore: Send + Sync {
     async fn get_report(&self, serial: &str, version: i64) -> StoreResult<Option<Value>>;
 }
 
-/// The release gate (issue 17): status changes with who and when, and a
+/// The release gate: status changes with who and when, and a
 /// robot's finished re-checks.
 #[async_trait]
 pub trait ReleaseStore: Send + Sync {
@@ -285,7 +285,7 @@ pub trait AuthStore: Send + Sync {
     async fn abandon_idempotency(&self, scope: &IdempotencyScope) -> StoreResult<()>;
 }
 
-/// A stored campaign plan (issue 16): the request and the plan documents.
+/// A stored campaign plan: the request and the plan documents.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CampaignPlanRecord {
     pub id: String,

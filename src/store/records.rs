@@ -38,7 +38,7 @@ pub struct RobotRecord {
     pub model: String,
     pub preset: Option<String>,
     pub kinematics: Value,
-    /// The controller identity (issue 34); written by
+    /// The controller identity; written by
     /// `RobotStore::set_robot_controller`, never by `put_robot`.
     pub controller: Option<ControllerIdentity>,
     /// The prior on the kinematic deviations (docs/method.md §6.7);
@@ -175,7 +175,7 @@ pub enum JobOutcome {
         /// Every pose's final image points with residuals (empty: keep
         /// what the detect stage stored).
         detections: Vec<PoseDetection>,
-        /// A quick re-check's verdict document (issue 17), merged into the
+        /// A quick re-check's verdict document, merged into the
         /// job's `result` at its top level.
         check: Option<Box<CheckDoc>>,
     },
