@@ -49,9 +49,20 @@ fn start_replicas(n: usize, db: &str, workers: &str, stage_delay_ms: &str) -> Ve
         &[
             ("ROBOCAL_TEST_STAGE_DELAY_MS", stage_delay_ms),
             ("ROBOCAL_TEST_PARAMETER_SETS", "true"),
+            // Every writer of these tests connects from 127.0.0.1, where a
+            // plant's clients come from many addresses: the per-address cap
+            // (a hostile client's limit, 64 by default) is not under test.
+            (
+                "ROBOCAL_MAX_CONNECTIONS_PER_ADDRESS",
+                FLEET_CONNECTIONS_PER_ADDRESS,
+            ),
         ],
     )
 }
+
+/// Connections one address may hold on a test replica: above the 300
+/// concurrent requests of [`two_hundred_concurrent_writers_across_replicas`].
+const FLEET_CONNECTIONS_PER_ADDRESS: &str = "512";
 
 /// Waits until every job is finished; returns them by id.
 async fn wait_all(c: &reqwest::Client, base: &str, jobs: &[String]) -> BTreeMap<String, Value> {
