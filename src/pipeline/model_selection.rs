@@ -60,8 +60,6 @@ pub struct HeldOut {
     pub identifiable: Vec<usize>,
     pub noise: ImageNoise,
     pub hold_intrinsics: bool,
-    /// Session pose index of every image.
-    pub pose_index: Vec<usize>,
 }
 
 impl HeldOut {
@@ -124,6 +122,20 @@ fn mean_mm(score: &RungScore) -> Option<f64> {
     (!e.is_empty()).then(|| e.iter().map(Vector3::norm).sum::<f64>() / e.len() as f64)
 }
 
+/// The image points of `poses` (session indices; every one has a view,
+/// `select` keeps only those).
+fn image_poses(s: &SelectionInput, poses: &[usize]) -> Vec<ImagePose> {
+    poses
+        .iter()
+        .filter_map(|&i| {
+            Some(ImagePose {
+                joints_rad: s.poses[i].joints_deg.to_radians(),
+                observations: s.camera.observations_of(i)?.to_vec(),
+            })
+        })
+        .collect()
+}
+
 /// Run the ladder; `None` when the campaign has too few configurations to
 /// hold any out (the full model is kept, as before).
 pub fn select(s: &SelectionInput) -> Result<Option<Selected>, IdentifyError> {
@@ -146,15 +158,7 @@ pub fn select(s: &SelectionInput) -> Result<Option<Selected>, IdentifyError> {
         configuration_groups(&joints[..cal.len()], &[])
     };
     let intrinsics = s.full.intrinsics;
-    let images: Vec<ImagePose> = pool
-        .iter()
-        .filter_map(|&i| {
-            Some(ImagePose {
-                joints_rad: s.poses[i].joints_deg.to_radians(),
-                observations: s.camera.observations_of(i)?.to_vec(),
-            })
-        })
-        .collect();
+    let images = image_poses(s, &pool);
     let measured: Vec<Option<Measurement>> = pool
         .iter()
         .map(|&i| {
@@ -187,7 +191,6 @@ pub fn select(s: &SelectionInput) -> Result<Option<Selected>, IdentifyError> {
         identifiable: identifiable.clone(),
         noise,
         hold_intrinsics: s.hold_intrinsics,
-        pose_index: pool.clone(),
     };
     let input = LadderInput {
         campaign_free: s.campaign_free,
@@ -200,15 +203,7 @@ pub fn select(s: &SelectionInput) -> Result<Option<Selected>, IdentifyError> {
         Rung::Full => None,
         rung => {
             // The kept rung on the calibration poses, its noise estimated.
-            let cal_images: Vec<ImagePose> = cal
-                .iter()
-                .filter_map(|&i| {
-                    Some(ImagePose {
-                        joints_rad: s.poses[i].joints_deg.to_radians(),
-                        observations: s.camera.observations_of(i)?.to_vec(),
-                    })
-                })
-                .collect();
+            let cal_images = image_poses(s, &cal);
             let estimate = ImageNoise {
                 sigma_px: s.full.sigma_px,
                 joint: JointNoise::Estimate,

@@ -12,7 +12,7 @@
 //! six shoulder/elbow configurations that motivated this predicted unseen
 //! configurations worse than the nominal model).
 
-use nalgebra::{DVector, Vector3};
+use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
 use super::identify::{validate, Measurement};
@@ -346,17 +346,6 @@ pub fn errors_mm(score: &RungScore) -> Vec<Vector3<f64>> {
     let mut e = score.heldout_errors_mm.clone();
     e.sort_by_key(|(i, _)| *i);
     e.iter().map(|(_, v)| Vector3::from(*v)).collect()
-}
-
-/// A diagonal of prior σ (internal units) for `free`, `None` where a
-/// parameter has none: the yardstick for "the campaign did not determine
-/// this" (posterior σ close to the prior's).
-pub fn prior_sigmas(prior: &KinematicPrior, layout: &ParamLayout, free: &[usize]) -> DVector<f64> {
-    DVector::from_iterator(
-        free.len(),
-        free.iter()
-            .map(|&i| prior.sigma(layout.params[i].kind).unwrap_or(0.0)),
-    )
 }
 
 #[cfg(test)]
