@@ -174,10 +174,16 @@ async fn targets_hold(preset: &str) {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn irb2400_accuracy_targets_hold_through_the_service() {
+    if !crate::support::numerics_run_here("irb2400_accuracy") {
+        return;
+    }
     targets_hold("irb2400").await;
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn puma560_accuracy_targets_hold_through_the_service() {
+    if !crate::support::numerics_run_here("puma560_accuracy") {
+        return;
+    }
     targets_hold("puma560").await;
 }

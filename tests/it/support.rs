@@ -55,6 +55,24 @@ pub fn backend() -> Backend {
     })
 }
 
+/// Whether a test whose subject is the numerics (a whole simulated or real
+/// campaign calibrated through the service, minutes on 2 cores) runs in
+/// this run: always on SQLite, and on PostgreSQL only when
+/// [`NUMERICS_ON_PG_VAR`] is set. Its store traffic is that of every other
+/// job test, which does run on both backends; its figures do not depend on
+/// the backend. Says so on stderr when it does not run.
+pub fn numerics_run_here(test: &str) -> bool {
+    let run = backend() == Backend::Sqlite
+        || std::env::var_os(NUMERICS_ON_PG_VAR).is_some_and(|v| v != "0");
+    if !run {
+        eprintln!("{test}: not run on PostgreSQL (a numerics test; set {NUMERICS_ON_PG_VAR}=1 to run it)");
+    }
+    run
+}
+
+/// Set (not `0`): [`numerics_run_here`] also runs the numerics tests on PostgreSQL.
+pub const NUMERICS_ON_PG_VAR: &str = "ROBOCAL_TEST_NUMERICS_ON_PG";
+
 /// A fresh, empty database for one test, on the selected backend. Keep the
 /// guard for the whole test: the PostgreSQL database is dropped with it.
 pub fn fresh_database(dir: &tempfile::TempDir) -> TestDb {
