@@ -21,18 +21,20 @@ export ROBOCAL_BIN=${ROBOCAL_BIN:-$repo/target/debug/robocal}
 
 work=$(mktemp -d /tmp/robocal-pyclient.XXXXXX)
 trap 'rm -rf "$work"' EXIT
+# A copy of the package and the document: pip builds in the source tree
+# and generate.sh rewrites it; neither touches the repository.
+copy=$work/repo
+mkdir -p "$copy/clients" "$copy/openapi"
+cp -a clients/python "$copy/clients/python"
+cp openapi/openapi.json "$copy/openapi/"
 python3 -m venv "$work/venv"
-"$work/venv/bin/pip" install -q "./clients/python[test]"
+"$work/venv/bin/pip" install -q "$copy/clients/python[test]"
 step "installed into a fresh venv"
 
-# 1. Regenerate into a copy and compare: the committed code is what the
+# 1. Regenerate in the copy and compare: the committed code is what the
 #    document generates (else run clients/python/generate.sh and commit).
-cp -a clients/python "$work/regen"
-mkdir -p "$work/regen-repo/clients" "$work/regen-repo/openapi"
-mv "$work/regen" "$work/regen-repo/clients/python"
-cp openapi/openapi.json "$work/regen-repo/openapi/"
-GENERATOR_VENV=${GENERATOR_VENV:-$work/generator} "$work/regen-repo/clients/python/generate.sh" >/dev/null
-if ! diff -r clients/python/robocal_client/_generated "$work/regen-repo/clients/python/robocal_client/_generated" \
+GENERATOR_VENV=${GENERATOR_VENV:-$work/generator} "$copy/clients/python/generate.sh" >/dev/null
+if ! diff -r clients/python/robocal_client/_generated "$copy/clients/python/robocal_client/_generated" \
   -x __pycache__ >"$work/regen.diff"; then
   head -n 40 "$work/regen.diff" >&2
   echo "python-client.sh: robocal_client/_generated is stale: run clients/python/generate.sh and commit" >&2
