@@ -36,7 +36,7 @@ def test_parameter_set_and_list(calibrated: Calibrated) -> None:
     assert latest.version == 1
     assert isinstance(latest.kinematics, models.KinematicsDoc) and len(latest.kinematics.joints) == 6
     listed = calibrated.client.list_parameter_sets(calibrated.serial)
-    assert [item.version for item in listed.items] == [1]
+    assert 1 in [item.version for item in listed.items]
 
 
 def test_compensate_streams_one_line_per_target(calibrated: Calibrated) -> None:
@@ -61,6 +61,9 @@ def test_compensate_streams_one_line_per_target(calibrated: Calibrated) -> None:
         assert all(math.isfinite(j) for j in line.joints_deg)
     whole = client.compensate(calibrated.serial, request)
     assert len(whole.joints_deg) == len(lines) and whole.errors == []
+    filtered = list(client.filter_stream(calibrated.serial, {**request, "seed_joints_deg": joints[0]}))
+    assert [line.index for line in filtered] == [0, 1, 2]
+    assert all(isinstance(line.nominal_target, models.FramePose) for line in filtered), filtered
 
 
 def test_exports(calibrated: Calibrated) -> None:
