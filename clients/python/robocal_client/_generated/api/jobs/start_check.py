@@ -1,0 +1,308 @@
+from http import HTTPStatus
+from typing import Any, cast
+from urllib.parse import quote
+
+import httpx
+
+from ...client import AuthenticatedClient, Client
+from ...types import Response, UNSET
+from ... import errors
+
+from ...models.check_body import CheckBody
+from ...models.job_accepted import JobAccepted
+from ...models.problem import Problem
+from ...types import UNSET, Unset
+from typing import cast
+
+
+
+def _get_kwargs(
+    id: str,
+    *,
+    body: CheckBody | Unset = UNSET,
+    controller_serial: str | Unset = UNSET,
+
+) -> dict[str, Any]:
+    headers: dict[str, Any] = {}
+
+
+    
+
+    params: dict[str, Any] = {}
+
+    params["controller_serial"] = controller_serial
+
+
+    params = {k: v for k, v in params.items() if v is not UNSET and v is not None}
+
+
+    _kwargs: dict[str, Any] = {
+        "method": "post",
+        "url": "/v1/sessions/{id}/checks".format(id=quote(str(id), safe=""),),
+        "params": params,
+    }
+
+    
+    if not isinstance(body, Unset):
+        _kwargs["json"] = body.to_dict()
+
+    headers["Content-Type"] = "application/json"
+
+    _kwargs["headers"] = headers
+    return _kwargs
+
+
+
+def _parse_response(*, client: AuthenticatedClient | Client, response: httpx.Response) -> JobAccepted | Problem | None:
+    if response.status_code == 202:
+        response_202 = JobAccepted.from_dict(response.json())
+
+
+
+        return response_202
+
+    if response.status_code == 400:
+        response_400 = Problem.from_dict(response.json())
+
+
+
+        return response_400
+
+    if response.status_code == 401:
+        response_401 = Problem.from_dict(response.json())
+
+
+
+        return response_401
+
+    if response.status_code == 403:
+        response_403 = Problem.from_dict(response.json())
+
+
+
+        return response_403
+
+    if response.status_code == 404:
+        response_404 = Problem.from_dict(response.json())
+
+
+
+        return response_404
+
+    if response.status_code == 408:
+        response_408 = Problem.from_dict(response.json())
+
+
+
+        return response_408
+
+    if response.status_code == 409:
+        response_409 = Problem.from_dict(response.json())
+
+
+
+        return response_409
+
+    if response.status_code == 413:
+        response_413 = Problem.from_dict(response.json())
+
+
+
+        return response_413
+
+    if response.status_code == 415:
+        response_415 = Problem.from_dict(response.json())
+
+
+
+        return response_415
+
+    if response.status_code == 422:
+        response_422 = Problem.from_dict(response.json())
+
+
+
+        return response_422
+
+    if response.status_code == 429:
+        response_429 = Problem.from_dict(response.json())
+
+
+
+        return response_429
+
+    if response.status_code == 503:
+        response_503 = Problem.from_dict(response.json())
+
+
+
+        return response_503
+
+    if client.raise_on_unexpected_status:
+        raise errors.UnexpectedStatus(response.status_code, response.content)
+    else:
+        return None
+
+
+def _build_response(*, client: AuthenticatedClient | Client, response: httpx.Response) -> Response[JobAccepted | Problem]:
+    return Response(
+        status_code=HTTPStatus(response.status_code),
+        content=response.content,
+        headers=response.headers,
+        parsed=_parse_response(client=client, response=response),
+    )
+
+
+def sync_detailed(
+    id: str,
+    *,
+    client: AuthenticatedClient | Client,
+    body: CheckBody | Unset = UNSET,
+    controller_serial: str | Unset = UNSET,
+
+) -> Response[JobAccepted | Problem]:
+    """ Queue a quick re-check of the session (5–10 poses, camera or tracker)
+    against the robot's latest approved set. The job's `result` holds
+    `verdict` (`pass`, `drift`, `base_moved`, or `controller_changed` when
+    the session was measured on another controller than the set's), `mean_mm`,
+    `expected_mean_mm`, `p_value` and `suspects` (see `CheckDoc`).
+
+    Args:
+        id (str):
+        controller_serial (str | Unset):
+        body (CheckBody | Unset): A re-check's options: only the controller the caller expects.
+
+    Raises:
+        errors.UnexpectedStatus: If the server returns an undocumented status code and Client.raise_on_unexpected_status is True.
+        httpx.TimeoutException: If the request takes longer than Client.timeout.
+
+    Returns:
+        Response[JobAccepted | Problem]
+     """
+
+
+    kwargs = _get_kwargs(
+        id=id,
+body=body,
+controller_serial=controller_serial,
+
+    )
+
+    response = client.get_httpx_client().request(
+        **kwargs,
+    )
+
+    return _build_response(client=client, response=response)
+
+def sync(
+    id: str,
+    *,
+    client: AuthenticatedClient | Client,
+    body: CheckBody | Unset = UNSET,
+    controller_serial: str | Unset = UNSET,
+
+) -> JobAccepted | Problem | None:
+    """ Queue a quick re-check of the session (5–10 poses, camera or tracker)
+    against the robot's latest approved set. The job's `result` holds
+    `verdict` (`pass`, `drift`, `base_moved`, or `controller_changed` when
+    the session was measured on another controller than the set's), `mean_mm`,
+    `expected_mean_mm`, `p_value` and `suspects` (see `CheckDoc`).
+
+    Args:
+        id (str):
+        controller_serial (str | Unset):
+        body (CheckBody | Unset): A re-check's options: only the controller the caller expects.
+
+    Raises:
+        errors.UnexpectedStatus: If the server returns an undocumented status code and Client.raise_on_unexpected_status is True.
+        httpx.TimeoutException: If the request takes longer than Client.timeout.
+
+    Returns:
+        JobAccepted | Problem
+     """
+
+
+    return sync_detailed(
+        id=id,
+client=client,
+body=body,
+controller_serial=controller_serial,
+
+    ).parsed
+
+async def asyncio_detailed(
+    id: str,
+    *,
+    client: AuthenticatedClient | Client,
+    body: CheckBody | Unset = UNSET,
+    controller_serial: str | Unset = UNSET,
+
+) -> Response[JobAccepted | Problem]:
+    """ Queue a quick re-check of the session (5–10 poses, camera or tracker)
+    against the robot's latest approved set. The job's `result` holds
+    `verdict` (`pass`, `drift`, `base_moved`, or `controller_changed` when
+    the session was measured on another controller than the set's), `mean_mm`,
+    `expected_mean_mm`, `p_value` and `suspects` (see `CheckDoc`).
+
+    Args:
+        id (str):
+        controller_serial (str | Unset):
+        body (CheckBody | Unset): A re-check's options: only the controller the caller expects.
+
+    Raises:
+        errors.UnexpectedStatus: If the server returns an undocumented status code and Client.raise_on_unexpected_status is True.
+        httpx.TimeoutException: If the request takes longer than Client.timeout.
+
+    Returns:
+        Response[JobAccepted | Problem]
+     """
+
+
+    kwargs = _get_kwargs(
+        id=id,
+body=body,
+controller_serial=controller_serial,
+
+    )
+
+    response = await client.get_async_httpx_client().request(
+        **kwargs
+    )
+
+    return _build_response(client=client, response=response)
+
+async def asyncio(
+    id: str,
+    *,
+    client: AuthenticatedClient | Client,
+    body: CheckBody | Unset = UNSET,
+    controller_serial: str | Unset = UNSET,
+
+) -> JobAccepted | Problem | None:
+    """ Queue a quick re-check of the session (5–10 poses, camera or tracker)
+    against the robot's latest approved set. The job's `result` holds
+    `verdict` (`pass`, `drift`, `base_moved`, or `controller_changed` when
+    the session was measured on another controller than the set's), `mean_mm`,
+    `expected_mean_mm`, `p_value` and `suspects` (see `CheckDoc`).
+
+    Args:
+        id (str):
+        controller_serial (str | Unset):
+        body (CheckBody | Unset): A re-check's options: only the controller the caller expects.
+
+    Raises:
+        errors.UnexpectedStatus: If the server returns an undocumented status code and Client.raise_on_unexpected_status is True.
+        httpx.TimeoutException: If the request takes longer than Client.timeout.
+
+    Returns:
+        JobAccepted | Problem
+     """
+
+
+    return (await asyncio_detailed(
+        id=id,
+client=client,
+body=body,
+controller_serial=controller_serial,
+
+    )).parsed

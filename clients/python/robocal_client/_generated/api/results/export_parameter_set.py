@@ -1,0 +1,275 @@
+from http import HTTPStatus
+from typing import Any, cast
+from urllib.parse import quote
+
+import httpx
+
+from ...client import AuthenticatedClient, Client
+from ...types import Response, UNSET
+from ... import errors
+
+from ...models.problem import Problem
+from ...types import UNSET, Unset
+from typing import cast
+
+
+
+def _get_kwargs(
+    serial: str,
+    version: str,
+    *,
+    format_: str,
+    controller_serial: str | Unset = UNSET,
+
+) -> dict[str, Any]:
+    
+
+    
+
+    params: dict[str, Any] = {}
+
+    params["format"] = format_
+
+    params["controller_serial"] = controller_serial
+
+
+    params = {k: v for k, v in params.items() if v is not UNSET and v is not None}
+
+
+    _kwargs: dict[str, Any] = {
+        "method": "get",
+        "url": "/v1/robots/{serial}/parameter-sets/{version}/export".format(serial=quote(str(serial), safe=""),version=quote(str(version), safe=""),),
+        "params": params,
+    }
+
+
+    return _kwargs
+
+
+
+def _parse_response(*, client: AuthenticatedClient | Client, response: httpx.Response) -> Problem | str | None:
+    if response.status_code == 200:
+        response_200 = response.text
+        return response_200
+
+    if response.status_code == 400:
+        response_400 = Problem.from_dict(response.json())
+
+
+
+        return response_400
+
+    if response.status_code == 401:
+        response_401 = Problem.from_dict(response.json())
+
+
+
+        return response_401
+
+    if response.status_code == 403:
+        response_403 = Problem.from_dict(response.json())
+
+
+
+        return response_403
+
+    if response.status_code == 404:
+        response_404 = Problem.from_dict(response.json())
+
+
+
+        return response_404
+
+    if response.status_code == 409:
+        response_409 = Problem.from_dict(response.json())
+
+
+
+        return response_409
+
+    if response.status_code == 422:
+        response_422 = Problem.from_dict(response.json())
+
+
+
+        return response_422
+
+    if response.status_code == 503:
+        response_503 = Problem.from_dict(response.json())
+
+
+
+        return response_503
+
+    if client.raise_on_unexpected_status:
+        raise errors.UnexpectedStatus(response.status_code, response.content)
+    else:
+        return None
+
+
+def _build_response(*, client: AuthenticatedClient | Client, response: httpx.Response) -> Response[Problem | str]:
+    return Response(
+        status_code=HTTPStatus(response.status_code),
+        content=response.content,
+        headers=response.headers,
+        parsed=_parse_response(client=client, response=response),
+    )
+
+
+def sync_detailed(
+    serial: str,
+    version: str,
+    *,
+    client: AuthenticatedClient | Client,
+    format_: str,
+    controller_serial: str | Unset = UNSET,
+
+) -> Response[Problem | str]:
+    """ The parameter set in a form a controller or an off-line programming tool
+    reads. Every controller form opens with a comment naming the set, its
+    version, its release status and its controller identity.
+
+    Args:
+        serial (str):
+        version (str):
+        format_ (str):
+        controller_serial (str | Unset):
+
+    Raises:
+        errors.UnexpectedStatus: If the server returns an undocumented status code and Client.raise_on_unexpected_status is True.
+        httpx.TimeoutException: If the request takes longer than Client.timeout.
+
+    Returns:
+        Response[Problem | str]
+     """
+
+
+    kwargs = _get_kwargs(
+        serial=serial,
+version=version,
+format_=format_,
+controller_serial=controller_serial,
+
+    )
+
+    response = client.get_httpx_client().request(
+        **kwargs,
+    )
+
+    return _build_response(client=client, response=response)
+
+def sync(
+    serial: str,
+    version: str,
+    *,
+    client: AuthenticatedClient | Client,
+    format_: str,
+    controller_serial: str | Unset = UNSET,
+
+) -> Problem | str | None:
+    """ The parameter set in a form a controller or an off-line programming tool
+    reads. Every controller form opens with a comment naming the set, its
+    version, its release status and its controller identity.
+
+    Args:
+        serial (str):
+        version (str):
+        format_ (str):
+        controller_serial (str | Unset):
+
+    Raises:
+        errors.UnexpectedStatus: If the server returns an undocumented status code and Client.raise_on_unexpected_status is True.
+        httpx.TimeoutException: If the request takes longer than Client.timeout.
+
+    Returns:
+        Problem | str
+     """
+
+
+    return sync_detailed(
+        serial=serial,
+version=version,
+client=client,
+format_=format_,
+controller_serial=controller_serial,
+
+    ).parsed
+
+async def asyncio_detailed(
+    serial: str,
+    version: str,
+    *,
+    client: AuthenticatedClient | Client,
+    format_: str,
+    controller_serial: str | Unset = UNSET,
+
+) -> Response[Problem | str]:
+    """ The parameter set in a form a controller or an off-line programming tool
+    reads. Every controller form opens with a comment naming the set, its
+    version, its release status and its controller identity.
+
+    Args:
+        serial (str):
+        version (str):
+        format_ (str):
+        controller_serial (str | Unset):
+
+    Raises:
+        errors.UnexpectedStatus: If the server returns an undocumented status code and Client.raise_on_unexpected_status is True.
+        httpx.TimeoutException: If the request takes longer than Client.timeout.
+
+    Returns:
+        Response[Problem | str]
+     """
+
+
+    kwargs = _get_kwargs(
+        serial=serial,
+version=version,
+format_=format_,
+controller_serial=controller_serial,
+
+    )
+
+    response = await client.get_async_httpx_client().request(
+        **kwargs
+    )
+
+    return _build_response(client=client, response=response)
+
+async def asyncio(
+    serial: str,
+    version: str,
+    *,
+    client: AuthenticatedClient | Client,
+    format_: str,
+    controller_serial: str | Unset = UNSET,
+
+) -> Problem | str | None:
+    """ The parameter set in a form a controller or an off-line programming tool
+    reads. Every controller form opens with a comment naming the set, its
+    version, its release status and its controller identity.
+
+    Args:
+        serial (str):
+        version (str):
+        format_ (str):
+        controller_serial (str | Unset):
+
+    Raises:
+        errors.UnexpectedStatus: If the server returns an undocumented status code and Client.raise_on_unexpected_status is True.
+        httpx.TimeoutException: If the request takes longer than Client.timeout.
+
+    Returns:
+        Problem | str
+     """
+
+
+    return (await asyncio_detailed(
+        serial=serial,
+version=version,
+client=client,
+format_=format_,
+controller_serial=controller_serial,
+
+    )).parsed

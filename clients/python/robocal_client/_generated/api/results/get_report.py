@@ -1,0 +1,257 @@
+from http import HTTPStatus
+from typing import Any, cast
+from urllib.parse import quote
+
+import httpx
+
+from ...client import AuthenticatedClient, Client
+from ...types import Response, UNSET
+from ... import errors
+
+from ...models.problem import Problem
+from ...models.report import Report
+from ...types import UNSET, Unset
+from typing import cast
+
+
+
+def _get_kwargs(
+    serial: str,
+    version: str,
+    *,
+    compare: str | Unset = UNSET,
+
+) -> dict[str, Any]:
+    
+
+    
+
+    params: dict[str, Any] = {}
+
+    params["compare"] = compare
+
+
+    params = {k: v for k, v in params.items() if v is not UNSET and v is not None}
+
+
+    _kwargs: dict[str, Any] = {
+        "method": "get",
+        "url": "/v1/robots/{serial}/parameter-sets/{version}/report".format(serial=quote(str(serial), safe=""),version=quote(str(version), safe=""),),
+        "params": params,
+    }
+
+
+    return _kwargs
+
+
+
+def _parse_response(*, client: AuthenticatedClient | Client, response: httpx.Response) -> Problem | Report | None:
+    if response.status_code == 200:
+        response_200 = Report.from_dict(response.json())
+
+
+
+        return response_200
+
+    if response.status_code == 400:
+        response_400 = Problem.from_dict(response.json())
+
+
+
+        return response_400
+
+    if response.status_code == 401:
+        response_401 = Problem.from_dict(response.json())
+
+
+
+        return response_401
+
+    if response.status_code == 403:
+        response_403 = Problem.from_dict(response.json())
+
+
+
+        return response_403
+
+    if response.status_code == 404:
+        response_404 = Problem.from_dict(response.json())
+
+
+
+        return response_404
+
+    if response.status_code == 422:
+        response_422 = Problem.from_dict(response.json())
+
+
+
+        return response_422
+
+    if response.status_code == 503:
+        response_503 = Problem.from_dict(response.json())
+
+
+
+        return response_503
+
+    if client.raise_on_unexpected_status:
+        raise errors.UnexpectedStatus(response.status_code, response.content)
+    else:
+        return None
+
+
+def _build_response(*, client: AuthenticatedClient | Client, response: httpx.Response) -> Response[Problem | Report]:
+    return Response(
+        status_code=HTTPStatus(response.status_code),
+        content=response.content,
+        headers=response.headers,
+        parsed=_parse_response(client=client, response=response),
+    )
+
+
+def sync_detailed(
+    serial: str,
+    version: str,
+    *,
+    client: AuthenticatedClient | Client,
+    compare: str | Unset = UNSET,
+
+) -> Response[Problem | Report]:
+    """ The accuracy report of a parameter set (`latest`: the newest approved).
+    `status` is the set's current release status; `?compare={v2}` adds
+    `comparison`, version v2 side by side.
+
+    Args:
+        serial (str):
+        version (str):
+        compare (str | Unset):
+
+    Raises:
+        errors.UnexpectedStatus: If the server returns an undocumented status code and Client.raise_on_unexpected_status is True.
+        httpx.TimeoutException: If the request takes longer than Client.timeout.
+
+    Returns:
+        Response[Problem | Report]
+     """
+
+
+    kwargs = _get_kwargs(
+        serial=serial,
+version=version,
+compare=compare,
+
+    )
+
+    response = client.get_httpx_client().request(
+        **kwargs,
+    )
+
+    return _build_response(client=client, response=response)
+
+def sync(
+    serial: str,
+    version: str,
+    *,
+    client: AuthenticatedClient | Client,
+    compare: str | Unset = UNSET,
+
+) -> Problem | Report | None:
+    """ The accuracy report of a parameter set (`latest`: the newest approved).
+    `status` is the set's current release status; `?compare={v2}` adds
+    `comparison`, version v2 side by side.
+
+    Args:
+        serial (str):
+        version (str):
+        compare (str | Unset):
+
+    Raises:
+        errors.UnexpectedStatus: If the server returns an undocumented status code and Client.raise_on_unexpected_status is True.
+        httpx.TimeoutException: If the request takes longer than Client.timeout.
+
+    Returns:
+        Problem | Report
+     """
+
+
+    return sync_detailed(
+        serial=serial,
+version=version,
+client=client,
+compare=compare,
+
+    ).parsed
+
+async def asyncio_detailed(
+    serial: str,
+    version: str,
+    *,
+    client: AuthenticatedClient | Client,
+    compare: str | Unset = UNSET,
+
+) -> Response[Problem | Report]:
+    """ The accuracy report of a parameter set (`latest`: the newest approved).
+    `status` is the set's current release status; `?compare={v2}` adds
+    `comparison`, version v2 side by side.
+
+    Args:
+        serial (str):
+        version (str):
+        compare (str | Unset):
+
+    Raises:
+        errors.UnexpectedStatus: If the server returns an undocumented status code and Client.raise_on_unexpected_status is True.
+        httpx.TimeoutException: If the request takes longer than Client.timeout.
+
+    Returns:
+        Response[Problem | Report]
+     """
+
+
+    kwargs = _get_kwargs(
+        serial=serial,
+version=version,
+compare=compare,
+
+    )
+
+    response = await client.get_async_httpx_client().request(
+        **kwargs
+    )
+
+    return _build_response(client=client, response=response)
+
+async def asyncio(
+    serial: str,
+    version: str,
+    *,
+    client: AuthenticatedClient | Client,
+    compare: str | Unset = UNSET,
+
+) -> Problem | Report | None:
+    """ The accuracy report of a parameter set (`latest`: the newest approved).
+    `status` is the set's current release status; `?compare={v2}` adds
+    `comparison`, version v2 side by side.
+
+    Args:
+        serial (str):
+        version (str):
+        compare (str | Unset):
+
+    Raises:
+        errors.UnexpectedStatus: If the server returns an undocumented status code and Client.raise_on_unexpected_status is True.
+        httpx.TimeoutException: If the request takes longer than Client.timeout.
+
+    Returns:
+        Problem | Report
+     """
+
+
+    return (await asyncio_detailed(
+        serial=serial,
+version=version,
+client=client,
+compare=compare,
+
+    )).parsed

@@ -1,0 +1,7 @@
+from enum import StrEnum
+
+class JointType(StrEnum):
+    REVOLUTE = "revolute"
+
+    def __str__(self) -> str:
+        return str(self.value)
