@@ -40,7 +40,7 @@ impl Pooled {
     fn row(&self, name: &str, option: &str) -> String {
         let n = self.campaigns.max(1) as f64;
         format!(
-            "| {name}{option} | {} | {:.4} | {:.4} ({:.4} + {:.4}) | **{:.2}x** | {:.4} / {:.4} = {:.2}x | {:.2}x | {} |",
+            "| {name}{option} | {} | {:.4} | {:.4} ({:.4}, {:.4}) | **{:.2}x** | {:.4} / {:.4} = {:.2}x | {:.2}x | {} |",
             self.campaigns,
             (self.job_ms / n).sqrt(),
             (self.bound_ms / n).sqrt(),
@@ -97,7 +97,10 @@ fn main() {
                     s.pixel_sigma_px = px;
                 }
             }) else {
-                eprintln!("{} seed {seed}: campaign could not be simulated", kind.as_str());
+                eprintln!(
+                    "{} seed {seed}: campaign could not be simulated",
+                    kind.as_str()
+                );
                 continue;
             };
             let bound = match campaign_bound(&k.spec, &k.campaign, &k.cal, false) {
@@ -161,7 +164,7 @@ fn main() {
             rows.push(pooled[o].row(kind.as_str(), option));
         }
     }
-    println!("| kind | campaigns | job RMS mm | bound RMS mm (parameters + encoder) | ratio | mean: job / bound | parameters' ratio | rungs |");
+    println!("| kind | campaigns | job RMS mm | bound RMS mm (parameters, encoder) | ratio | mean: job / bound | parameters' ratio | rungs |");
     println!("|---|---|---|---|---|---|---|---|");
     for r in rows {
         println!("{r}");

@@ -192,8 +192,8 @@ fn validation_bound(
 /// `E|e|` for `e ~ N(0, c)`, by [`MEAN_NORM_DRAWS`] draws.
 pub fn expected_norm(c: &Matrix3<f64>, rng: &mut StdRng) -> f64 {
     let eigen = c.symmetric_eigen();
-    let root = eigen.eigenvectors
-        * Matrix3::from_diagonal(&eigen.eigenvalues.map(|l| l.max(0.0).sqrt()));
+    let root =
+        eigen.eigenvectors * Matrix3::from_diagonal(&eigen.eigenvalues.map(|l| l.max(0.0).sqrt()));
     let sum: f64 = (0..MEAN_NORM_DRAWS)
         .map(|_| {
             let z = Vector3::from_fn(|_, _| StandardNormal.sample(rng));

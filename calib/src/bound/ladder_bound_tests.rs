@@ -36,6 +36,10 @@ fn the_ladder_job_is_within_its_ratio_of_the_bound_on_grouped_campaigns() {
         }
         let ratio = (job / bound).sqrt();
         eprintln!("{}: pooled ratio {ratio:.3}", kind.as_str());
-        assert!(ratio <= MAX_RATIO, "{}: {ratio:.3}x the bound", kind.as_str());
+        assert!(
+            ratio <= MAX_RATIO,
+            "{}: {ratio:.3}x the bound",
+            kind.as_str()
+        );
     }
 }

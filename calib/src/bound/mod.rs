@@ -10,9 +10,9 @@
 pub mod campaign;
 pub mod cramer_rao;
 #[cfg(test)]
-mod monte_carlo_tests;
-#[cfg(test)]
 mod ladder_bound_tests;
+#[cfg(test)]
+mod monte_carlo_tests;
 
 pub use campaign::{campaign_bound, identifiable};
 pub use cramer_rao::{cramer_rao, BoundInput, CramerRao, PoseBound, ValidationBound};

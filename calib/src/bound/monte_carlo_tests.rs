@@ -151,9 +151,7 @@ fn repetition(p: &Problem, rng: &mut StdRng) -> (DVector<f64>, f64) {
         .val_joints
         .iter()
         .zip(&val_truth)
-        .map(|(q, t)| {
-            (fit.model.world_to_tool(q).unwrap().translation.vector - t).norm_squared()
-        })
+        .map(|(q, t)| (fit.model.world_to_tool(q).unwrap().translation.vector - t).norm_squared())
         .sum::<f64>()
         / p.val_joints.len() as f64;
     (error, val_ms)
@@ -164,7 +162,10 @@ fn repetition(p: &Problem, rng: &mut StdRng) -> (DVector<f64>, f64) {
 fn whitened_mean(errors: &[DVector<f64>], covariance: &DMatrix<f64>) -> f64 {
     let n = covariance.nrows();
     let inverse = covariance.clone().cholesky().unwrap().inverse();
-    errors.iter().map(|d| (d.transpose() * &inverse * d)[(0, 0)]).sum::<f64>()
+    errors
+        .iter()
+        .map(|d| (d.transpose() * &inverse * d)[(0, 0)])
+        .sum::<f64>()
         / (errors.len() * n) as f64
 }
 
@@ -172,7 +173,8 @@ fn whitened_mean(errors: &[DVector<f64>], covariance: &DMatrix<f64>) -> f64 {
 fn the_bound_matches_a_monte_carlo_of_a_small_problem() {
     let p = problem();
     let mut rng = StdRng::seed_from_u64(0x3c_ab1e);
-    let runs: Vec<(DVector<f64>, f64)> = (0..REPETITIONS).map(|_| repetition(&p, &mut rng)).collect();
+    let runs: Vec<(DVector<f64>, f64)> =
+        (0..REPETITIONS).map(|_| repetition(&p, &mut rng)).collect();
     let errors: Vec<DVector<f64>> = runs.iter().map(|r| r.0.clone()).collect();
     // The bound needs only which points each image sees.
     let images: Vec<ImagePose> = p
@@ -198,7 +200,14 @@ fn the_bound_matches_a_monte_carlo_of_a_small_problem() {
     // The worst direction too: the whitened sample covariance's extreme
     // eigenvalues, against the Marchenko–Pastur edges (1 ± sqrt(n/N))² of
     // white noise, with a margin for their own fluctuation.
-    let inverse_root = right.covariance.clone().cholesky().unwrap().l().try_inverse().unwrap();
+    let inverse_root = right
+        .covariance
+        .clone()
+        .cholesky()
+        .unwrap()
+        .l()
+        .try_inverse()
+        .unwrap();
     let mut sample = DMatrix::zeros(n, n);
     for d in &errors {
         let z = &inverse_root * d;
@@ -231,12 +240,21 @@ fn the_bound_matches_a_monte_carlo_of_a_small_problem() {
         no_encoder.validation.rms_mm.powi(2),
     );
     assert!((t - 1.0).abs() < tolerance, "whitened {t}");
-    assert!(eigen.min() > 0.75 * edge_lo && eigen.max() < 1.25 * edge_hi, "{eigen:?}");
+    assert!(
+        eigen.min() > 0.75 * edge_lo && eigen.max() < 1.25 * edge_hi,
+        "{eigen:?}"
+    );
     assert!(
         (val_mean - predicted).abs() < STANDARD_ERRORS * val_se,
         "validation {val_mean} ± {val_se} against {predicted}"
     );
     // Either wrong noise model fails the same test.
-    assert!((t_pixel - 1.0).abs() > tolerance, "wrong pixel noise passes: {t_pixel}");
-    assert!((t_encoder - 1.0).abs() > tolerance, "ignored encoder passes: {t_encoder}");
+    assert!(
+        (t_pixel - 1.0).abs() > tolerance,
+        "wrong pixel noise passes: {t_pixel}"
+    );
+    assert!(
+        (t_encoder - 1.0).abs() > tolerance,
+        "ignored encoder passes: {t_encoder}"
+    );
 }

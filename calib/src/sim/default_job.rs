@@ -134,8 +134,13 @@ pub fn default_job_fit(
     let noise = start_noise(spec);
     if non_geometric {
         let candidates = CandidateOptions::for_robot(&start.robot);
-        let pose_level =
-            identify_with_terms(&start, Instrument::Camera, &measurements, options, &candidates)?;
+        let pose_level = identify_with_terms(
+            &start,
+            Instrument::Camera,
+            &measurements,
+            options,
+            &candidates,
+        )?;
         let on_images = select_terms_on_images(&pose_level, &intrinsics, cal, noise, false)?;
         return Ok(JobFit {
             terms: on_images.selection.terms.clone(),
