@@ -89,7 +89,7 @@ fn main() {
         } else {
             1
         });
-        let mut pooled = vec![Pooled::default(), Pooled::default()];
+        let mut pooled = [Pooled::default(), Pooled::default()];
         for seed in first..first + campaigns {
             let t0 = Instant::now();
             let Ok(k) = simulate_kind(kind, seed, |s| {

@@ -23,7 +23,7 @@ pub const UNDETERMINED_RCOND: f64 = 1e-12;
 /// covariance); fixed seed, so the bound is deterministic. Relative
 /// sampling error about 1 % per pose, far less over a campaign.
 pub const MEAN_NORM_DRAWS: usize = 4000;
-const MEAN_NORM_SEED: u64 = 0xc4b_0_b0;
+const MEAN_NORM_SEED: u64 = 0x00c4_b0b0;
 
 /// What the bound needs: where the information is evaluated, and the
 /// recorded joints of the validation poses.

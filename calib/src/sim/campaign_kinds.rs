@@ -59,7 +59,7 @@ pub const SMALL_ERROR_SCALE: f64 = 0.1;
 /// Validation poses of the grouped campaigns (as the ladder's tests).
 pub const GROUPED_VAL_POSES: usize = 12;
 /// Seeds the clutter apart from the campaign's own draws.
-const CLUTTER_SEED: u64 = 0xc1_0773;
+const CLUTTER_SEED: u64 = 0x00c1_0773;
 
 /// The KR 16 class robot of [`KR16_DH_TABLE`].
 pub fn kr16_dh_robot() -> RobotModel {
