@@ -7,6 +7,7 @@
 //! numerics unless a name says `_deg`.
 
 pub mod arrow;
+pub mod bound;
 pub mod camera;
 pub mod chi_square;
 pub mod covariance;

@@ -86,6 +86,14 @@ impl ArrowMatrix {
         Some(d)
     }
 
+    /// The Schur complement of the tail, `S = A_hh - sum_k A_hk A_kk^-1 A_kh`:
+    /// for a normal matrix, the head's information with every tail block
+    /// marginalised (the Fisher information of the head when the tail are
+    /// nuisance unknowns); `None` when a tail block is not positive definite.
+    pub fn schur_complement(&self) -> Option<DMatrix<f64>> {
+        Elimination::new(self, BlockInverse::Exact).map(|e| e.schur)
+    }
+
     /// The parts of `A^-1` a covariance needs (see [`ArrowInverse`]);
     /// `None` when `A` is not positive definite.
     pub fn invert(&self) -> Option<ArrowInverse> {

@@ -7,13 +7,13 @@
 //! robot sent as a plain DH table with a 5 MP camera. The campaign is identified as a job does it
 //! (`sim::planned::calibrate_images`).
 
-use robocal_calib::camera::Intrinsics;
-use robocal_calib::kinematics::model::{choose_conventions, Joint};
-use robocal_calib::kinematics::RobotModel;
 use robocal_calib::plan::plan_campaign;
 use robocal_calib::plan::request::DEFAULT_CANDIDATES;
 use robocal_calib::sim::campaign::{simulate_campaign, CampaignSpec};
 use robocal_calib::sim::campaign_io::PoseSet;
+use robocal_calib::sim::campaign_kinds::{
+    kr16_dh_robot as dh_table_robot, FIVE_MP_INTRINSICS, FIVE_MP_SIZE_PX,
+};
 use robocal_calib::sim::planned::{calibrate_images, expected_error, plan_request, shoot_with};
 
 /// Cells averaged per preset.
@@ -28,48 +28,8 @@ const DRAWS: u64 = 6;
 const PLANNED_POSES: usize = 30;
 const RATIO_RANGE: (f64, f64) = (0.67, 1.5);
 
-/// A six-axis robot as a user would send it: a plain DH table (`a_mm,
-/// alpha_deg, d_mm, theta_offset_deg, min_deg, max_deg` per joint), no
-/// preset and no conventions, which the service completes as
-/// `schema::robot::doc_to_model` does (`choose_conventions`: Hayati for the
-/// parallel axes 2-3). Link dimensions of a KUKA KR 16 (a1 260, d1 675,
-/// a2 680, a3 35, d4 670, d6 115 mm); twists, zero position and joint
-/// ranges in the IRB 2400 table's frames (KUKA's own zero and signs
-/// differ), so the simulator's IRB 2400 home joints look at the board.
-const DH_TABLE: [[f64; 6]; 6] = [
-    [260.0, -90.0, 675.0, 0.0, -185.0, 185.0],
-    [680.0, 0.0, 0.0, -90.0, -100.0, 110.0],
-    [35.0, -90.0, 0.0, 0.0, -60.0, 65.0],
-    [0.0, 90.0, 670.0, 0.0, -350.0, 350.0],
-    [0.0, -90.0, 0.0, 0.0, -120.0, 120.0],
-    [0.0, 0.0, 115.0, 0.0, -350.0, 350.0],
-];
-
-/// A 5 MP camera: 2448x2048 px of 3.45 um behind a 12 mm lens.
-const FIVE_MP_SIZE_PX: (u32, u32) = (2448, 2048);
-const FIVE_MP_INTRINSICS: Intrinsics = Intrinsics {
-    fx: 3479.0,
-    fy: 3477.0,
-    cx: 1231.0,
-    cy: 1017.0,
-    k1: -0.09,
-    k2: 0.06,
-    p1: 1e-4,
-    p2: -2e-4,
-    k3: 0.0,
-};
-
-fn dh_table_robot() -> RobotModel {
-    let joints: Vec<_> = DH_TABLE
-        .iter()
-        .map(|&[a, alpha, d, offset, lo, hi]| (None, Joint::dh(a, alpha, d, offset, (lo, hi))))
-        .collect();
-    RobotModel {
-        joints: choose_conventions(&joints),
-    }
-}
-
-/// The simulator's cell for the DH-table robot and the 5 MP camera (the
+/// The simulator's cell for the DH-table robot (a KR 16 class arm as a
+/// plain DH table, `sim::campaign_kinds::kr16_dh_robot`) and the 5 MP camera (the
 /// standard spec otherwise: errors, noise, ranges, board).
 fn dh_table_spec(seed: u64) -> CampaignSpec {
     let mut spec = CampaignSpec::standard("irb2400", seed).unwrap();

@@ -19,6 +19,7 @@ mod ik_seeds;
 #[cfg(test)]
 mod ik_tests;
 mod image_fit;
+pub mod image_information;
 pub mod image_pose;
 pub mod image_term_selection;
 #[cfg(test)]

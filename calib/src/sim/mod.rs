@@ -5,7 +5,11 @@ pub mod camera_step;
 pub mod camera_terms;
 pub mod campaign;
 pub mod campaign_io;
+/// The simulated campaign kinds the bound benchmark judges the fit on.
+pub mod campaign_kinds;
 pub mod campaign_spec;
+/// A camera job's default identification, from calib.
+pub mod default_job;
 pub mod experiment;
 pub mod experiment_error;
 /// Campaigns shot in configuration groups (weakly excited links).
