@@ -71,13 +71,16 @@ fn robot() -> RobotModel {
     }
 }
 
+/// A photo's corners: board point (mm) and image point (px).
+type Corners = Vec<(Point3<f64>, Point2<f64>)>;
+
 /// Every photo: (group, joints rad, corners as observations), in file order.
 fn photos() -> Vec<(usize, ImagePose)> {
     let csv = std::fs::read_to_string(format!(
         "{DIR}/derived_opencv5/corners_findChessboardCorners.csv"
     ))
     .expect("corners");
-    let mut corners: BTreeMap<String, Vec<(Point3<f64>, Point2<f64>)>> = BTreeMap::new();
+    let mut corners: BTreeMap<String, Corners> = BTreeMap::new();
     for line in csv.lines().skip(1) {
         let f: Vec<&str> = line.split(',').collect();
         let id: usize = f[1].parse().expect("id");
