@@ -3,7 +3,7 @@
 use axum::extract::{Path, Query, State};
 use axum::Json;
 use serde::{Deserialize, Serialize};
-use serde_json::{Map, Value};
+use serde_json::Value;
 use utoipa::ToSchema;
 use utoipa_axum::router::OpenApiRouter;
 use utoipa_axum::routes;
@@ -15,8 +15,7 @@ use super::controller_query::ControllerQuery;
 use super::error::{ApiError, ApiResult, Problem};
 use super::extract::{ApiJson, Paging, SerialPath};
 use super::{ndjson, AppState};
-use crate::domain::{controller_expectation, ReleaseStatus};
-use crate::report::schema::IntrinsicsSchema;
+use crate::domain::{controller_expectation, CalibratedSet, ReleaseStatus};
 use crate::report::{render_html, render_svg, Report};
 use crate::schema::PoseOut;
 use crate::service::{compensate, evaluate, filter, release, report_view, results, uncertainty};
@@ -44,7 +43,6 @@ pub struct ParameterSetOut {
     pub created_at: String,
     /// The release gate: `approved` (what `latest` serves, the newest
     /// one), `candidate` (waits for a person) or `rejected`.
-    #[schema(value_type = String, example = "approved")]
     pub status: ReleaseStatus,
     /// Why it has its status (the gate's comparison, or a person's reason).
     pub status_reason: Option<String>,
@@ -52,64 +50,10 @@ pub struct ParameterSetOut {
     /// sets approved when the gate was introduced) and when.
     pub status_by: Option<String>,
     pub status_at: Option<String>,
-    /// Kinematics, `target_to_base`, `flange_to_camera`, intrinsics, fixed parameters.
+    /// What the set identified, told apart by `kind`: a robot model
+    /// (`kinematic`), a hand–eye (`hand_eye`) or a camera (`stage_camera`).
     #[serde(flatten)]
-    #[schema(value_type = ParameterSetFields)]
-    pub parameters: Map<String, Value>,
-}
-
-/// The identified model of a parameter set, as served (the stored
-/// `ParameterSetDoc` with the contract's frame names). Camera sets have
-/// `target_to_base`, `flange_to_camera` and `camera`; tracker sets
-/// `instrument_to_base` and `flange_to_tool`. A hand–eye set (`kind`
-/// `"hand_eye"`, from a session of controller flange poses) has no
-/// `kinematics`, and adds `base_to_target` and `board_scale`.
-#[derive(ToSchema)]
-#[allow(dead_code)] // a schema only: the answer serialises the stored document
-pub struct ParameterSetFields {
-    /// `camera` or `tracker`.
-    pub instrument: String,
-    /// The session the parameters were identified from.
-    pub session_id: String,
-    /// `"hand_eye"` for a set from controller flange poses (no
-    /// kinematics; `forward`, `compensate`, `filter` and exports answer
-    /// 409); absent for a kinematic calibration.
-    pub kind: Option<String>,
-    /// The identified joint table (absent in a hand–eye set).
-    pub kinematics: Option<crate::schema::robot::KinematicsDoc>,
-    /// The board in the robot base frame (hand–eye sets).
-    pub base_to_target: Option<PoseOut>,
-    /// True board coordinates / configured ones (hand–eye sets).
-    pub board_scale: Option<f64>,
-    /// The calibration board's frame in the robot base frame (camera sets).
-    pub target_to_base: Option<PoseOut>,
-    /// The camera in the flange frame (camera sets).
-    pub flange_to_camera: Option<PoseOut>,
-    /// The laser tracker's frame in the robot base frame (tracker sets).
-    pub instrument_to_base: Option<PoseOut>,
-    /// The measured tool point in the flange frame (tracker sets).
-    pub flange_to_tool: Option<PoseOut>,
-    /// The calibrated camera intrinsics (camera sets).
-    pub camera: Option<IntrinsicsSchema>,
-    /// How `camera` was obtained: `refined`, `paper` or `fixed`.
-    pub camera_mode: Option<String>,
-    /// The calibration (`"{serial}/{version}"`) whose intrinsics were held fixed.
-    pub camera_calibration_id: Option<String>,
-    /// Parameters held fixed as unidentifiable.
-    pub fixed: Vec<String>,
-    /// Every identified parameter against its nominal value.
-    pub parameters: Vec<crate::report::ParameterReport>,
-    /// The identified parameters' full covariance, in the units of
-    /// `parameters` (what `forward`'s predicted σ propagate). Absent for
-    /// sets stored before it was kept.
-    pub covariance: Option<crate::domain::CovarianceDoc>,
-    /// The non-geometric terms kept by the selection, each with
-    /// its value, σ and unit; `forward`, `compensate`, `filter` and the
-    /// predicted σ include them. Absent when none was kept.
-    pub terms: Option<crate::domain::TermsDoc>,
-    /// The controller the set's session was measured on;
-    /// absent when none was recorded.
-    pub controller: Option<crate::domain::ControllerIdentity>,
+    pub parameters: CalibratedSet,
 }
 
 #[derive(Debug, Serialize, ToSchema)]
@@ -120,10 +64,6 @@ pub struct ParameterSetList {
 
 impl From<ParameterSetRecord> for ParameterSetOut {
     fn from(p: ParameterSetRecord) -> ParameterSetOut {
-        let parameters = match p.parameters {
-            Value::Object(map) => map,
-            other => Map::from_iter([("parameters".to_string(), other)]),
-        };
         ParameterSetOut {
             serial: p.serial,
             version: p.version,
@@ -133,7 +73,7 @@ impl From<ParameterSetRecord> for ParameterSetOut {
             status_reason: p.status_reason,
             status_by: p.status_by,
             status_at: p.status_at,
-            parameters,
+            parameters: p.parameters,
         }
     }
 }

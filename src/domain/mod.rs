@@ -4,12 +4,15 @@
 
 use serde::{Deserialize, Serialize};
 
+mod calibrated_set;
 mod check;
 mod controller;
 
 mod events;
 mod flange_pose;
+mod hand_eye_set;
 mod image_detection;
+mod job;
 mod joints;
 mod label;
 mod measured_pose;
@@ -19,10 +22,12 @@ mod parameter_terms;
 mod pose_set;
 mod release;
 mod serial;
+mod stage_camera_set;
 mod stage_reading;
 mod target;
 mod target_symmetry;
 
+pub use calibrated_set::CalibratedSet;
 pub use check::{controller_change, CheckDoc, CheckSuspect, CheckVerdict, ControllerChangeSeen};
 pub use controller::{
     check_expected as check_controller, expectation as controller_expectation, ControllerChange,
@@ -31,7 +36,9 @@ pub use controller::{
 
 pub use events::DomainEvent;
 pub use flange_pose::{check_robot_pose, FlangePose, PoseKind, RobotPose};
+pub use hand_eye_set::HandEyeSet;
 pub use image_detection::ImageDetection;
+pub use job::{CalibrationResult, CheckResult, JobKind, JobResult, JobSummary};
 pub use joints::{JointsDeg, MAX_JOINT_DEG};
 pub use label::{
     check_label, label_from_archive_path, label_from_file_name, label_or_number, LABEL_RULE,
@@ -44,6 +51,7 @@ pub use parameter_terms::{KeptTerm, TermsDoc};
 pub use pose_set::PoseSet;
 pub use release::{Decision, Release, ReleaseStatus, ANONYMOUS_ACTOR, GATE_ACTOR};
 pub use serial::{InvalidSerial, Serial, MAX_SERIAL_LEN, SERIAL_RULE};
+pub use stage_camera_set::{StageCameraSet, StageSequence};
 pub use stage_reading::{StageReading, MAX_SEQUENCE};
 pub use target::{FoundPoint, Target};
 pub use target_symmetry::BoardSymmetry;
@@ -58,7 +66,7 @@ pub struct ImageMeta {
     pub height: u32,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, utoipa::ToSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum JobState {
     Queued,

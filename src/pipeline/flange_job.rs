@@ -6,6 +6,7 @@ use super::camera_stage::CameraStep;
 use super::flange_stage::hand_eye;
 use super::measure::Measured;
 use super::{PipelineError, Stage};
+use crate::domain::CalibratedSet;
 
 /// The rest of a flange-pose session's job after the camera stage: the
 /// hand–eye fit, then its parameter set and report.
@@ -43,11 +44,11 @@ pub fn run(
     out.report.gate = Some(gate.report);
     within(Stage::Report, "done", 1.0);
     Ok(super::Output {
-        parameter_set: Some(crate::store::NewParameterSet {
-            parameters: serde_json::to_value(&out.parameters).unwrap_or_default(),
-            report: serde_json::to_value(&out.report).unwrap_or_default(),
-            release: gate.release,
-        }),
+        parameter_set: Some(super::output::new_set(
+            CalibratedSet::HandEye(out.parameters),
+            &out.report,
+            gate.release,
+        )?),
         summary: out.summary,
         detections: Vec::new(),
         check: None,

@@ -49,9 +49,10 @@ pub use validate::validate;
 
 use robocal_calib::kinematics::nongeometric::CandidateOptions;
 
+use crate::domain::CalibratedSet;
 use crate::schema::session::Instrument;
 use crate::schema::{FieldError, PoseDoc};
-use crate::store::{NewParameterSet, PoseDetection};
+use crate::store::PoseDetection;
 
 /// Fewest calibration poses a job accepts. Identification needs more
 /// observations than unknowns; the identification stage refines this check.
@@ -252,11 +253,11 @@ fn run_stages(
     };
     within(Stage::Report, "done", 1.0);
     Ok(Output {
-        parameter_set: Some(NewParameterSet {
-            parameters: serde_json::to_value(&set).unwrap_or_default(),
-            report: serde_json::to_value(&report).unwrap_or_default(),
-            release: gate.release,
-        }),
+        parameter_set: Some(output::new_set(
+            CalibratedSet::Kinematic(set),
+            &report,
+            gate.release,
+        )?),
         summary: results::summary(&identified),
         detections,
         check: None,

@@ -20,11 +20,10 @@ use super::measure::Measured;
 use super::measuring::Measuring;
 use super::results::residual_field;
 use super::{Input, Output, PipelineError, Stage, Summary};
-use crate::domain::ParameterSet;
+use crate::domain::{CalibratedSet, ParameterSet};
 use crate::report::{DetectionReport, IdentifiabilityReport, PoseReport, Report};
 use crate::schema::job::CalibrationScope;
 use crate::schema::PoseOut;
-use crate::store::NewParameterSet;
 
 fn numerical(message: impl std::fmt::Display) -> PipelineError {
     PipelineError::numerical(Stage::Identify, message)
@@ -216,11 +215,11 @@ pub fn run(
     };
     within(Stage::Report, "done", 1.0);
     Ok(Output {
-        parameter_set: Some(NewParameterSet {
-            parameters: serde_json::to_value(&set).unwrap_or_default(),
-            report: serde_json::to_value(&report).unwrap_or_default(),
-            release: gate.release,
-        }),
+        parameter_set: Some(super::output::new_set(
+            CalibratedSet::Kinematic(set),
+            &report,
+            gate.release,
+        )?),
         summary,
         detections: Vec::new(),
         check: None,

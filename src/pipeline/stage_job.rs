@@ -13,9 +13,8 @@ use super::camera_stage::view_of;
 use super::measure::Measured;
 use super::stage_results::stage_output;
 use super::{Input, Output, PipelineError, Stage};
-use crate::domain::Target;
+use crate::domain::{CalibratedSet, Target};
 use crate::schema::session::CameraDoc;
-use crate::store::NewParameterSet;
 
 /// The rest of a stage session's job after the detect stage.
 pub fn run(
@@ -65,11 +64,11 @@ pub fn run(
     report.gate = Some(gate.report);
     within(Stage::Report, "done", 1.0);
     Ok(Output {
-        parameter_set: Some(NewParameterSet {
-            parameters: serde_json::to_value(&out.parameters).unwrap_or_default(),
-            report: serde_json::to_value(&report).unwrap_or_default(),
-            release: gate.release,
-        }),
+        parameter_set: Some(super::output::new_set(
+            CalibratedSet::StageCamera(out.parameters),
+            &report,
+            gate.release,
+        )?),
         summary: out.summary,
         detections: Vec::new(),
         check: None,

@@ -1,0 +1,117 @@
+//! What a calibration job identified, as one type: a kinematic set (a
+//! robot model with its frames), a hand–eye set (flange poses, no
+//! kinematics) or a stage camera set (intrinsics only). A fixed-camera set
+//! becomes one more variant. The stored and served document is the
+//! variant's document with its `kind`; sets stored before `kind` was
+//! written read as kinematic (only kinematic sets were stored without it).
+
+use serde::{Deserialize, Serialize};
+use serde_json::{Map, Value};
+use utoipa::ToSchema;
+
+use super::{HandEyeSet, ParameterSet, StageCameraSet};
+
+/// The key that tells the variants apart.
+const KIND_KEY: &str = "kind";
+
+/// A calibrated parameter set, one variant per what the job identified.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum CalibratedSet {
+    /// A robot model: the identified joint table and its two frames.
+    Kinematic(ParameterSet),
+    /// A hand–eye calibration from the controller's flange poses.
+    HandEye(HandEyeSet),
+    /// A camera calibrated on a translation stage.
+    StageCamera(StageCameraSet),
+}
+
+/// The variants' names, as `kind` carries them.
+const KINEMATIC: &str = "kinematic";
+const HAND_EYE: &str = "hand_eye";
+const STAGE_CAMERA: &str = "stage_camera";
+
+impl CalibratedSet {
+    /// The variant's `kind`.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            CalibratedSet::Kinematic(_) => KINEMATIC,
+            CalibratedSet::HandEye(_) => HAND_EYE,
+            CalibratedSet::StageCamera(_) => STAGE_CAMERA,
+        }
+    }
+
+    /// The kinematic set, `None` for a set that holds no robot model.
+    pub fn kinematic(&self) -> Option<&ParameterSet> {
+        match self {
+            CalibratedSet::Kinematic(set) => Some(set),
+            _ => None,
+        }
+    }
+
+    /// [`Self::kinematic`], by value.
+    pub fn into_kinematic(self) -> Option<ParameterSet> {
+        match self {
+            CalibratedSet::Kinematic(set) => Some(set),
+            _ => None,
+        }
+    }
+
+    /// The session the set was calibrated from (the first, for a set over
+    /// several).
+    pub fn session_id(&self) -> &str {
+        match self {
+            CalibratedSet::Kinematic(s) => &s.session_id,
+            CalibratedSet::HandEye(s) => &s.session_id,
+            CalibratedSet::StageCamera(s) => &s.session_id,
+        }
+    }
+
+    /// The camera intrinsics the set holds, if any (what a later session
+    /// may reuse as `camera_calibration_id`).
+    pub fn camera(&self) -> Option<&robocal_calib::camera::Intrinsics> {
+        match self {
+            CalibratedSet::Kinematic(s) => s.camera.as_ref(),
+            CalibratedSet::HandEye(s) => Some(&s.camera),
+            CalibratedSet::StageCamera(s) => Some(&s.camera),
+        }
+    }
+
+    /// The identified rows, guess or nominal against identified (none for
+    /// a stage camera set).
+    pub fn parameter_rows(&self) -> &[crate::report::ParameterReport] {
+        match self {
+            CalibratedSet::Kinematic(s) => &s.parameters,
+            CalibratedSet::HandEye(s) => &s.parameters,
+            CalibratedSet::StageCamera(_) => &[],
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for CalibratedSet {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use serde::de::Error;
+        let mut doc = Map::<String, Value>::deserialize(d)?;
+        let kind = match doc.remove(KIND_KEY) {
+            None => KINEMATIC.to_string(),
+            Some(Value::String(kind)) => kind,
+            Some(other) => {
+                return Err(D::Error::custom(format!(
+                    "`kind` of a parameter set is a string, not {other}"
+                )))
+            }
+        };
+        let doc = Value::Object(doc);
+        let decoded = match kind.as_str() {
+            KINEMATIC => serde_json::from_value(doc).map(CalibratedSet::Kinematic),
+            HAND_EYE => serde_json::from_value(doc).map(CalibratedSet::HandEye),
+            STAGE_CAMERA => serde_json::from_value(doc).map(CalibratedSet::StageCamera),
+            other => {
+                return Err(D::Error::custom(format!(
+                    "unknown parameter set kind {other:?} (one of {KINEMATIC}, {HAND_EYE}, {STAGE_CAMERA})"
+                )))
+            }
+        };
+        decoded.map_err(|e| D::Error::custom(format!("a {kind} parameter set: {e}")))
+    }
+}
