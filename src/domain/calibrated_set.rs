@@ -79,7 +79,7 @@ impl CalibratedSet {
 
     /// The identified rows, guess or nominal against identified (none for
     /// a stage camera set).
-    pub fn parameter_rows(&self) -> &[crate::report::ParameterReport] {
+    pub fn parameter_rows(&self) -> &[super::ParameterReport] {
         match self {
             CalibratedSet::Kinematic(s) => &s.parameters,
             CalibratedSet::HandEye(s) => &s.parameters,

@@ -9,9 +9,9 @@ use robocal_calib::camera::Intrinsics;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
-use crate::report::schema::IntrinsicsSchema;
-use crate::report::ParameterReport;
-use crate::schema::PoseOut;
+use super::numerics_schema::IntrinsicsSchema;
+use super::ParameterReport;
+use super::PoseOut;
 
 /// A hand–eye set (`kind` `hand_eye`), from a session of controller flange
 /// poses.

@@ -9,14 +9,22 @@ mod check;
 mod controller;
 
 mod events;
+mod field_error;
 mod flange_pose;
+mod flange_pose_doc;
+mod frame_pose;
 mod hand_eye_set;
 mod image_detection;
+mod image_point;
 mod job;
+mod instrument;
 mod joints;
+mod kinematics_doc;
 mod label;
 mod measured_pose;
+pub mod numerics_schema;
 mod parameter_covariance;
+mod parameter_report;
 mod parameter_set;
 mod parameter_terms;
 mod pose_set;
@@ -25,6 +33,7 @@ mod serial;
 mod stage_camera_set;
 mod stage_reading;
 mod target;
+mod target_doc;
 mod target_symmetry;
 
 pub use calibrated_set::CalibratedSet;
@@ -35,10 +44,18 @@ pub use controller::{
 };
 
 pub use events::DomainEvent;
+pub use field_error::{Checker, FieldError, MAX_ANGLE_DEG, MAX_LENGTH_MM};
+pub use frame_pose::PoseOut;
 pub use flange_pose::{check_robot_pose, FlangePose, PoseKind, RobotPose};
 pub use hand_eye_set::HandEyeSet;
+pub use flange_pose_doc::FlangePoseDoc;
 pub use image_detection::ImageDetection;
+pub use image_point::ImagePointDoc;
 pub use job::{CalibrationResult, CheckResult, JobKind, JobResult, JobSummary};
+pub use instrument::{Instrument, Measurement};
+pub use kinematics_doc::{
+    doc_to_model, model_to_doc, Convention, JointDoc, JointType, KinematicsDoc, MAX_JOINTS,
+};
 pub use joints::{JointsDeg, MAX_JOINT_DEG};
 pub use label::{
     check_label, label_from_archive_path, label_from_file_name, label_or_number, LABEL_RULE,
@@ -46,6 +63,7 @@ pub use label::{
 };
 pub use measured_pose::{MeasuredPoint, MeasuredPose};
 pub use parameter_covariance::CovarianceDoc;
+pub use parameter_report::ParameterReport;
 pub use parameter_set::{FrameNames, ParameterSet, SessionBoard};
 pub use parameter_terms::{KeptTerm, TermsDoc};
 pub use pose_set::PoseSet;
@@ -54,6 +72,7 @@ pub use serial::{InvalidSerial, Serial, MAX_SERIAL_LEN, SERIAL_RULE};
 pub use stage_camera_set::{StageCameraSet, StageSequence};
 pub use stage_reading::{StageReading, MAX_SEQUENCE};
 pub use target::{FoundPoint, Target};
+pub use target_doc::{TargetDoc, TargetKind, MAX_GRID_SIDE};
 pub use target_symmetry::BoardSymmetry;
 
 /// Metadata of a stored image; the bytes live in the content-addressed blob store.

@@ -13,13 +13,12 @@ use robocal_calib::kinematics::{CalibratedModel, ParamLayout};
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
-use super::{ControllerIdentity, CovarianceDoc, TermsDoc};
-use crate::report::schema::IntrinsicsSchema;
-use crate::report::ParameterReport;
-use crate::schema::job::Measurement;
-use crate::schema::robot::{doc_to_model, KinematicsDoc};
-use crate::schema::session::Instrument;
-use crate::schema::PoseOut;
+use super::{
+    doc_to_model, ControllerIdentity, CovarianceDoc, Instrument, KinematicsDoc, Measurement, TermsDoc,
+};
+use super::numerics_schema::IntrinsicsSchema;
+use super::ParameterReport;
+use super::PoseOut;
 
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(into = "StoredSet", try_from = "StoredSet")]

@@ -8,8 +8,8 @@ use robocal_calib::camera::{Intrinsics, IntrinsicsStdDev};
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
-use crate::report::schema::{IntrinsicsSchema, IntrinsicsStdSchema};
-use crate::schema::PoseOut;
+use super::numerics_schema::{IntrinsicsSchema, IntrinsicsStdSchema};
+use super::PoseOut;
 
 /// A stage camera set (`kind` `stage_camera`).
 #[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]

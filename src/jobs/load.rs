@@ -46,7 +46,6 @@ pub async fn load_input(
         serde_json::from_value(robot.kinematics).map_err(|e| bad("kinematics", e))?;
     let spec = session.spec;
     let options: CalibrationOptions = job.options.calibration();
-    let check = job.kind == JobKind::Check;
     let approved = approved_set(store, &session.serial).await?;
     let fixed_camera = match &spec.camera_calibration_id {
         Some(id) => Some(
@@ -58,7 +57,7 @@ pub async fn load_input(
                 })?,
         ),
         // A re-check or a partial scope holds the approved set's camera.
-        None if check || !options.scope.is_full() => approved.as_ref().and_then(|a| {
+        None if job.kind == JobKind::Check || !options.scope.is_full() => approved.as_ref().and_then(|a| {
             Some(FixedCamera {
                 calibration_id: a.id.clone(),
                 intrinsics: a.set.camera?,
@@ -101,7 +100,7 @@ pub async fn load_input(
         test_stage_delay,
         validate_only: false,
         approved,
-        check,
+        kind: job.kind,
         local_models,
         regions,
     })

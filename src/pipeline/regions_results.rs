@@ -8,7 +8,7 @@ use robocal_calib::kinematics::term_model::TermModel;
 use robocal_calib::stats::AccuracyStats;
 
 use super::identify_stage::Identified;
-use super::regions_job::{Fitted, JointFit, SessionValidation};
+use super::jobs::regions::{Fitted, JointFit, SessionValidation};
 use super::screen_stage::Outlier;
 use super::{detections, gate, results, Input, Output, PipelineError, PoseInput};
 use crate::domain::{CalibratedSet, CovarianceDoc, SessionBoard};

@@ -7,21 +7,7 @@ use super::session::Instrument;
 use super::{Checker, FieldError};
 use crate::domain::JobKind;
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum Measurement {
-    Pose,
-    Position,
-}
-
-impl Measurement {
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Measurement::Pose => "pose",
-            Measurement::Position => "position",
-        }
-    }
-}
+pub use crate::domain::Measurement;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
 #[serde(rename_all = "snake_case")]

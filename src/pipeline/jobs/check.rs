@@ -9,9 +9,9 @@ use robocal_calib::kinematics::recheck::{
 };
 use robocal_calib::kinematics::ParamLayout;
 
-use super::camera_stage::CameraStep;
-use super::measuring::Measuring;
-use super::{Input, Output, PipelineError, Stage, Summary};
+use crate::pipeline::camera_stage::CameraStep;
+use crate::pipeline::measuring::Measuring;
+use crate::pipeline::{Input, Output, PipelineError, Stage, Summary};
 use crate::domain::{controller_change, CheckDoc, CheckSuspect, CheckVerdict};
 
 /// Joint noise (encoders, repeatability) assumed in the check's
