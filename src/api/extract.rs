@@ -301,10 +301,9 @@ impl<S: Send + Sync> FromRequestParts<S> for JobQuery {
         };
         let kind = match raw.kind.as_deref() {
             None | Some("") => None,
-            Some(k) => Some(
-                JobKind::parse(k)
-                    .ok_or_else(|| ApiError::invalid("kind", format!("one of {}", JobKind::names())))?,
-            ),
+            Some(k) => Some(JobKind::parse(k).ok_or_else(|| {
+                ApiError::invalid("kind", format!("one of {}", JobKind::names()))
+            })?),
         };
         Ok(JobQuery(JobFilter {
             state,

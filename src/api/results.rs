@@ -15,9 +15,9 @@ use super::controller_query::ControllerQuery;
 use super::error::{ApiError, ApiResult, Problem};
 use super::extract::{ApiJson, Paging, SerialPath};
 use super::{ndjson, AppState};
+use crate::domain::calibrated_set_schema::{all_of, tagged_one_of, Schemas};
 use crate::domain::{controller_expectation, CalibratedSet, ReleaseStatus};
 use crate::report::{render_html, render_svg, Report};
-use crate::schema::PoseOut;
 use crate::service::{compensate, evaluate, filter, release, report_view, results, uncertainty};
 use crate::store::ParameterSetRecord;
 
@@ -35,8 +35,19 @@ pub fn router() -> OpenApiRouter<AppState> {
 }
 
 /// An identified parameter set: the stored document plus its identity.
-#[derive(Debug, Serialize, ToSchema)]
+#[derive(Debug, Serialize)]
 pub struct ParameterSetOut {
+    #[serde(flatten)]
+    pub identity: ParameterSetIdentity,
+    /// What the set identified, told apart by `kind`.
+    #[serde(flatten)]
+    pub parameters: CalibratedSet,
+}
+
+/// Where a served parameter set stands: its robot, version, job and
+/// release status.
+#[derive(Debug, Serialize, ToSchema)]
+pub struct ParameterSetIdentity {
     pub serial: String,
     pub version: i64,
     pub job_id: Option<String>,
@@ -50,10 +61,40 @@ pub struct ParameterSetOut {
     /// sets approved when the gate was introduced) and when.
     pub status_by: Option<String>,
     pub status_at: Option<String>,
-    /// What the set identified, told apart by `kind`: a robot model
-    /// (`kinematic`), a hand–eye (`hand_eye`) or a camera (`stage_camera`).
-    #[serde(flatten)]
-    pub parameters: CalibratedSet,
+}
+
+/// Each served variant: its `kind`, its schema name and the set's.
+const SERVED_SETS: [(&str, &str, &str); 3] = [
+    ("kinematic", "KinematicSetOut", "KinematicSet"),
+    ("hand_eye", "HandEyeSetOut", "HandEyeSet"),
+    ("stage_camera", "StageCameraSetOut", "StageCameraSet"),
+];
+
+/// The served set's schema: one object per variant (the identity's
+/// properties and the set's), told apart by `kind`.
+impl utoipa::PartialSchema for ParameterSetOut {
+    fn schema() -> utoipa::openapi::RefOr<utoipa::openapi::schema::Schema> {
+        let variants = SERVED_SETS.map(|(kind, name, _)| (kind, name));
+        tagged_one_of(
+            &variants,
+            "An identified parameter set: its identity and release status, and \
+             what it identified, told apart by `kind`.",
+        )
+    }
+}
+
+impl ToSchema for ParameterSetOut {
+    fn schemas(schemas: &mut Schemas) {
+        schemas.push((
+            "ParameterSetIdentity".into(),
+            <ParameterSetIdentity as utoipa::PartialSchema>::schema(),
+        ));
+        <ParameterSetIdentity as ToSchema>::schemas(schemas);
+        for (_, name, set) in SERVED_SETS {
+            schemas.push((name.into(), all_of(&["ParameterSetIdentity", set])));
+        }
+        <CalibratedSet as ToSchema>::schemas(schemas);
+    }
 }
 
 #[derive(Debug, Serialize, ToSchema)]
@@ -65,14 +106,16 @@ pub struct ParameterSetList {
 impl From<ParameterSetRecord> for ParameterSetOut {
     fn from(p: ParameterSetRecord) -> ParameterSetOut {
         ParameterSetOut {
-            serial: p.serial,
-            version: p.version,
-            job_id: p.job_id,
-            created_at: p.created_at,
-            status: p.status,
-            status_reason: p.status_reason,
-            status_by: p.status_by,
-            status_at: p.status_at,
+            identity: ParameterSetIdentity {
+                serial: p.serial,
+                version: p.version,
+                job_id: p.job_id,
+                created_at: p.created_at,
+                status: p.status,
+                status_reason: p.status_reason,
+                status_by: p.status_by,
+                status_at: p.status_at,
+            },
             parameters: p.parameters,
         }
     }

@@ -7,15 +7,16 @@
 
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
-use utoipa::ToSchema;
 
 use super::{HandEyeSet, ParameterSet, StageCameraSet};
 
 /// The key that tells the variants apart.
-const KIND_KEY: &str = "kind";
+pub(super) const KIND_KEY: &str = "kind";
 
 /// A calibrated parameter set, one variant per what the job identified.
-#[derive(Debug, Clone, Serialize, ToSchema)]
+///
+/// Its schema is `calibrated_set_schema.rs`'s.
+#[derive(Debug, Clone, Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum CalibratedSet {
     /// A robot model: the identified joint table and its two frames.
@@ -27,9 +28,9 @@ pub enum CalibratedSet {
 }
 
 /// The variants' names, as `kind` carries them.
-const KINEMATIC: &str = "kinematic";
-const HAND_EYE: &str = "hand_eye";
-const STAGE_CAMERA: &str = "stage_camera";
+pub(super) const KINEMATIC: &str = "kinematic";
+pub(super) const HAND_EYE: &str = "hand_eye";
+pub(super) const STAGE_CAMERA: &str = "stage_camera";
 
 impl CalibratedSet {
     /// The variant's `kind`.
@@ -113,5 +114,59 @@ impl<'de> Deserialize<'de> for CalibratedSet {
             }
         };
         decoded.map_err(|e| D::Error::custom(format!("a {kind} parameter set: {e}")))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use serde_json::json;
+
+    use super::*;
+
+    fn kinematic() -> CalibratedSet {
+        CalibratedSet::Kinematic(ParameterSet::placeholder("s1"))
+    }
+
+    /// Every variant is written with its `kind` and reads back as itself.
+    #[test]
+    fn a_set_round_trips_with_its_kind() {
+        let doc = serde_json::to_value(kinematic()).unwrap();
+        assert_eq!(doc[KIND_KEY], KINEMATIC);
+        assert_eq!(doc["session_id"], "s1");
+        assert!(doc.get("target_to_base").is_some(), "{doc}");
+        let back: CalibratedSet = serde_json::from_value(doc).unwrap();
+        assert_eq!(back.kind(), KINEMATIC);
+        assert_eq!(back.session_id(), "s1");
+    }
+
+    /// A row stored before `kind` was written (only kinematic sets were)
+    /// reads as a kinematic set; a hand–eye row keeps its variant.
+    #[test]
+    fn a_set_without_kind_reads_as_kinematic() {
+        let mut doc = serde_json::to_value(kinematic()).unwrap();
+        doc.as_object_mut().unwrap().remove(KIND_KEY);
+        let read: CalibratedSet = serde_json::from_value(doc).unwrap();
+        assert!(read.kinematic().is_some());
+        let pose = serde_json::to_value(ParameterSet::placeholder("x").world_to_base).unwrap();
+        let hand_eye = json!({"kind": "hand_eye", "instrument": "camera", "session_id": "h",
+            "target_to_base": pose, "flange_to_camera": pose, "base_to_target": pose,
+            "board_scale": 1.0, "camera": {"fx": 1.0, "fy": 1.0, "cx": 0.0, "cy": 0.0,
+            "k1": 0.0, "k2": 0.0, "p1": 0.0, "p2": 0.0, "k3": 0.0},
+            "camera_mode": "refined", "fixed": [], "parameters": []});
+        let read: CalibratedSet = serde_json::from_value(hand_eye).unwrap();
+        assert_eq!(read.kind(), HAND_EYE);
+        assert!(read.kinematic().is_none());
+    }
+
+    /// An unknown kind or a document of the wrong shape is an error that
+    /// names the kind, never a default.
+    #[test]
+    fn a_set_that_does_not_read_says_why() {
+        let unknown = json!({"kind": "fixed_camera", "session_id": "s"});
+        let e = serde_json::from_value::<CalibratedSet>(unknown).unwrap_err();
+        assert!(e.to_string().contains("fixed_camera"), "{e}");
+        let broken = json!({"kind": "stage_camera", "session_id": "s"});
+        let e = serde_json::from_value::<CalibratedSet>(broken).unwrap_err();
+        assert!(e.to_string().contains("stage_camera"), "{e}");
     }
 }

@@ -5,8 +5,8 @@
 
 use robocal_calib::geometry::{pose_from_matrix_rows, pose_from_xyz_rpy_deg, Pose};
 
-use super::JointsDeg;
 use super::FlangePoseDoc;
+use super::JointsDeg;
 use super::{Checker, MAX_ANGLE_DEG, MAX_LENGTH_MM};
 
 /// The flange in the base frame, as the controller reported it.

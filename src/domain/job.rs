@@ -149,3 +149,62 @@ impl JobResult {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use serde_json::json;
+
+    use super::*;
+
+    /// A calibration's result reads back as one; a re-check's (it holds a
+    /// verdict) as a check with its fields at the top level, as served.
+    #[test]
+    fn a_stored_result_reads_as_its_kind() {
+        let calibration = JobResult::new(
+            CalibrationResult {
+                summary: JobSummary {
+                    calibration_poses: 4,
+                    ..JobSummary::default()
+                },
+                serial: Some("R1".into()),
+                version: Some(2),
+                status: Some(ReleaseStatus::Candidate),
+                status_reason: Some("worse".into()),
+            },
+            None,
+        );
+        let doc = serde_json::to_value(&calibration).unwrap();
+        assert_eq!(doc["status"], "candidate");
+        assert_eq!(doc["summary"]["calibration_poses"], 4);
+        assert_eq!(JobResult::decode(doc).unwrap(), calibration);
+        let check = json!({"summary": {"calibration_poses": 0, "validation_poses": 5},
+            "verdict": "drift", "mean_mm": 0.2, "expected_mean_mm": 0.1, "p_value": 0.001,
+            "base_p_value": 0.002, "chi2": 40.0, "dof": 15, "significance": 0.01,
+            "test": "chi-square", "checked_against": "R1/1", "checked_version": 1,
+            "joint_noise_deg": 0.001, "poses": 5, "suspects": []});
+        let read = JobResult::decode(check.clone()).unwrap();
+        assert_eq!(
+            read.check().map(|c| c.verdict),
+            Some(super::super::CheckVerdict::Drift)
+        );
+        assert_eq!(read.calibration().summary.validation_poses, 5);
+        assert_eq!(serde_json::to_value(&read).unwrap(), check);
+    }
+
+    /// A verdict document of the wrong shape is an error, not a
+    /// calibration result without a verdict.
+    #[test]
+    fn a_broken_check_result_is_an_error() {
+        let broken = json!({"summary": {}, "verdict": "maybe"});
+        assert!(JobResult::decode(broken).is_err());
+    }
+
+    #[test]
+    fn kinds_parse_their_names() {
+        for kind in JobKind::ALL {
+            assert_eq!(JobKind::parse(kind.as_str()), Some(kind));
+            assert_eq!(serde_json::to_value(kind).unwrap(), kind.as_str());
+        }
+        assert_eq!(JobKind::parse("plan"), None);
+    }
+}

@@ -5,6 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 mod calibrated_set;
+pub mod calibrated_set_schema;
 mod check;
 mod controller;
 
@@ -16,8 +17,8 @@ mod frame_pose;
 mod hand_eye_set;
 mod image_detection;
 mod image_point;
-mod job;
 mod instrument;
+mod job;
 mod joints;
 mod kinematics_doc;
 mod label;
@@ -45,18 +46,18 @@ pub use controller::{
 
 pub use events::DomainEvent;
 pub use field_error::{Checker, FieldError, MAX_ANGLE_DEG, MAX_LENGTH_MM};
-pub use frame_pose::PoseOut;
 pub use flange_pose::{check_robot_pose, FlangePose, PoseKind, RobotPose};
-pub use hand_eye_set::HandEyeSet;
 pub use flange_pose_doc::FlangePoseDoc;
+pub use frame_pose::PoseOut;
+pub use hand_eye_set::HandEyeSet;
 pub use image_detection::ImageDetection;
 pub use image_point::ImagePointDoc;
-pub use job::{CalibrationResult, CheckResult, JobKind, JobResult, JobSummary};
 pub use instrument::{Instrument, Measurement};
+pub use job::{CalibrationResult, CheckResult, JobKind, JobResult, JobSummary};
+pub use joints::{JointsDeg, MAX_JOINT_DEG};
 pub use kinematics_doc::{
     doc_to_model, model_to_doc, Convention, JointDoc, JointType, KinematicsDoc, MAX_JOINTS,
 };
-pub use joints::{JointsDeg, MAX_JOINT_DEG};
 pub use label::{
     check_label, label_from_archive_path, label_from_file_name, label_or_number, LABEL_RULE,
     MAX_LABEL_CHARS,

@@ -13,12 +13,13 @@ use robocal_calib::kinematics::{CalibratedModel, ParamLayout};
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
-use super::{
-    doc_to_model, ControllerIdentity, CovarianceDoc, Instrument, KinematicsDoc, Measurement, TermsDoc,
-};
 use super::numerics_schema::IntrinsicsSchema;
 use super::ParameterReport;
 use super::PoseOut;
+use super::{
+    doc_to_model, ControllerIdentity, CovarianceDoc, Instrument, KinematicsDoc, Measurement,
+    TermsDoc,
+};
 
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(into = "StoredSet", try_from = "StoredSet")]

@@ -57,12 +57,14 @@ pub async fn load_input(
                 })?,
         ),
         // A re-check or a partial scope holds the approved set's camera.
-        None if job.kind == JobKind::Check || !options.scope.is_full() => approved.as_ref().and_then(|a| {
-            Some(FixedCamera {
-                calibration_id: a.id.clone(),
-                intrinsics: a.set.camera?,
+        None if job.kind == JobKind::Check || !options.scope.is_full() => {
+            approved.as_ref().and_then(|a| {
+                Some(FixedCamera {
+                    calibration_id: a.id.clone(),
+                    intrinsics: a.set.camera?,
+                })
             })
-        }),
+        }
         None => None,
     };
     let poses = load_poses(store, &session.id).await?;

@@ -79,4 +79,3 @@ pub fn run_observed(
     jobs::run(input, &within, detected, cancel, &mut cause)
         .map_err(|e| session_cause::name_in(e, cause))
 }
-

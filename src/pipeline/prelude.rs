@@ -5,8 +5,8 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::{
-    board_turn, camera_stage, detections, measure, session_cause, validate, Input,
-    PipelineError, Stage, Summary,
+    board_turn, camera_stage, detections, measure, session_cause, validate, Input, PipelineError,
+    Stage, Summary,
 };
 use crate::domain::Target;
 use crate::schema::session::{CameraDoc, Instrument};
@@ -71,7 +71,8 @@ pub fn run(
     let mut notes = Vec::new();
     let (measured, camera) = match input.session.instrument {
         Instrument::Camera => {
-            let (measured, step) = camera_session(input, within, detected, cancel, cause, &mut notes)?;
+            let (measured, step) =
+                camera_session(input, within, detected, cancel, cause, &mut notes)?;
             (Some(measured), Some(step))
         }
         Instrument::Tracker | Instrument::Stage => (None, None),
@@ -96,7 +97,11 @@ pub fn run_stage<'a>(
     validated(input, within, cancel)?;
     let (target, camera) = board_and_camera(input)?;
     let measured = detect(input, &target, within, detected, cancel, cause)?;
-    let notes = cause.as_ref().map(|c| format!("{c}.")).into_iter().collect();
+    let notes = cause
+        .as_ref()
+        .map(|c| format!("{c}."))
+        .into_iter()
+        .collect();
     Ok(StagePrelude {
         notes,
         measured,
@@ -190,14 +195,9 @@ pub fn detect(
 }
 
 /// The session's board, typed, and its camera (camera and stage sessions).
-pub fn board_and_camera(
-    input: &Input,
-) -> Result<(Target, &CameraDoc), PipelineError> {
+pub fn board_and_camera(input: &Input) -> Result<(Target, &CameraDoc), PipelineError> {
     match (&input.session.target, &input.session.camera) {
-        (Some(t), Some(c)) => Ok((
-            Target::from_doc(t).map_err(PipelineError::Invalid)?,
-            c,
-        )),
+        (Some(t), Some(c)) => Ok((Target::from_doc(t).map_err(PipelineError::Invalid)?, c)),
         _ => Err(PipelineError::Invalid(vec![FieldError::new(
             "session",
             "a camera or stage session needs target and camera",

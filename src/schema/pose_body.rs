@@ -3,7 +3,7 @@
 //! `measured_pose`), its image points, and a dataset archive's entry;
 //! each checked against its session.
 
-use serde::{Deserialize, Serialize};
+use serde::Deserialize;
 use utoipa::ToSchema;
 
 use super::flange_pose::FlangePoseDoc;

@@ -4,10 +4,9 @@ use robocal_calib::kinematics::prior::KinematicPrior;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
-use robocal_calib::kinematics::model::choose_conventions;
-use robocal_calib::kinematics::{presets, Convention as CoreConvention, Joint, RobotModel};
+use robocal_calib::kinematics::presets;
 
-use super::{Checker, FieldError, MAX_ANGLE_DEG, MAX_LENGTH_MM};
+use super::{Checker, FieldError};
 use crate::domain::ControllerIdentity;
 
 /// Most joints a robot may have.
@@ -16,7 +15,9 @@ pub use crate::domain::MAX_SERIAL_LEN;
 /// Longest model name.
 pub const MAX_MODEL_LEN: usize = 200;
 
-pub use crate::domain::{doc_to_model, model_to_doc, Convention, JointDoc, JointType, KinematicsDoc};
+pub use crate::domain::{
+    doc_to_model, model_to_doc, Convention, JointDoc, JointType, KinematicsDoc,
+};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
 #[serde(rename_all = "snake_case")]

@@ -7,7 +7,6 @@
 //! may be any robot's.
 
 use robocal_calib::camera::Intrinsics;
-use serde::Deserialize;
 
 use super::error::{ServiceError, ServiceResult};
 use super::report_camera::report_camera;

@@ -122,7 +122,7 @@ impl From<JobRecord> for JobBrief {
         JobBrief {
             id: j.id,
             serial: j.serial,
-            kind: j.kind,
+            kind: j.kind.as_str().into(),
             state: j.state,
             stage: j.stage,
             progress: j.progress,

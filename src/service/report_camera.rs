@@ -51,7 +51,9 @@ pub async fn report_camera(
         return Ok(None);
     };
     let read: StoredReport = serde_json::from_value(report).map_err(|e| {
-        StoreError::Backend(format!("camera section of stored report {serial}/{version}: {e}"))
+        StoreError::Backend(format!(
+            "camera section of stored report {serial}/{version}: {e}"
+        ))
     })?;
     Ok(read.camera)
 }

@@ -10,14 +10,14 @@ use robocal_calib::kinematics::prior::KinematicPrior;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
+use crate::domain::FlangePoseDoc;
+use crate::domain::ImagePointDoc;
 use crate::domain::{
     CalibratedSet, CheckDoc, ImageDetection, ImageMeta, JobKind, JobResult, JobState, JobSummary,
     JointsDeg, MeasuredPose, PoseSet, Release, ReleaseStatus,
 };
 use crate::domain::{ControllerIdentity, StageReading};
-use crate::schema::flange_pose::FlangePoseDoc;
 use crate::schema::job::JobOptions;
-use crate::schema::pose_body::ImagePointDoc;
 use crate::schema::session::SessionBody;
 use crate::schema::PoseDoc;
 

@@ -7,8 +7,10 @@ use sqlx::{Decode, Row, Type};
 
 use super::StoreError;
 use super::StoreResult;
+use crate::domain::{
+    ImageMeta, JobKind, JobResult, JobState, JointsDeg, PoseSet, ReleaseStatus, Scope, TokenRecord,
+};
 use crate::schema::job::JobOptions;
-use crate::domain::{ImageMeta, JobKind, JobResult, JobState, JointsDeg, PoseSet, ReleaseStatus, Scope, TokenRecord};
 use crate::store::{
     ClaimedJob, JobRecord, ParameterSetRecord, PoseRecord, RobotRecord, SessionRecord,
 };
@@ -167,9 +169,7 @@ pub fn job(row: &impl Columns) -> StoreResult<JobRecord> {
     let result = opt_json(row.opt_str("result"))?
         .map(JobResult::decode)
         .transpose()
-        .map_err(|e| {
-            StoreError::Backend(format!("stored result of job {}: {e}", row.str("id")))
-        })?;
+        .map_err(|e| StoreError::Backend(format!("stored result of job {}: {e}", row.str("id"))))?;
     Ok(JobRecord {
         id: row.string("id"),
         kind,

@@ -3,8 +3,8 @@ use std::time::Duration;
 use serde_json::{json, Value};
 
 use robocal::domain::{now_unix_ms, JobState, LeaseStatus};
-use robocal::schema::session::SessionBody;
 use robocal::schema::job::JobOptions;
+use robocal::schema::session::SessionBody;
 use robocal::store;
 use robocal::store::{JobOutcome, NewJob, NewParameterSet};
 

@@ -12,9 +12,9 @@ use robocal::domain::{
     new_id, now_rfc3339, now_unix_ms, IdempotencyClaim, IdempotencyScope, ImageMeta, JobState,
     JointsDeg, LeaseStatus, Scope, StoredResponse,
 };
+use robocal::schema::job::JobOptions;
 use robocal::schema::pose_body::ImagePointDoc;
 use robocal::schema::session::{PoseSet, SessionBody};
-use robocal::schema::job::JobOptions;
 use robocal::store::{self, DynStore, StoreError};
 use robocal::store::{JobOutcome, NewJob, NewParameterSet, NewPose, RobotRecord};
 

@@ -2,11 +2,11 @@
 //! hand–eye fit ([`crate::pipeline::flange_stage`]), then its parameter set and
 //! report ([`crate::pipeline::hand_eye_results`]); no kinematics are identified.
 
+use crate::domain::CalibratedSet;
 use crate::pipeline::camera_stage::CameraStep;
 use crate::pipeline::flange_stage::hand_eye;
 use crate::pipeline::measure::Measured;
 use crate::pipeline::{PipelineError, Stage};
-use crate::domain::CalibratedSet;
 
 /// The rest of a flange-pose session's job after the camera stage: the
 /// hand–eye fit, then its parameter set and report.
@@ -27,7 +27,8 @@ pub fn run(
             measured.points.len()
         ));
     }
-    let mut out = crate::pipeline::hand_eye_results::hand_eye_output(input, measured, camera, &step, notes);
+    let mut out =
+        crate::pipeline::hand_eye_results::hand_eye_output(input, measured, camera, &step, notes);
     // A hand–eye set holds no kinematics to evaluate on another set's
     // terms, and its `before` is its `after` (the flange poses against the
     // images): nothing to be better than, so only a non-finite result is

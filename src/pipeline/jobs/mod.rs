@@ -100,7 +100,13 @@ pub fn run(
         }
         Plan::Scoped => {
             let p = prelude::run(input, within, detected, cancel, cause)?;
-            scoped::run(input, p.measured.as_ref(), p.camera.as_ref(), p.notes, within)
+            scoped::run(
+                input,
+                p.measured.as_ref(),
+                p.camera.as_ref(),
+                p.notes,
+                within,
+            )
         }
         Plan::Calibration => {
             let p = prelude::run(input, within, detected, cancel, cause)?;

@@ -14,13 +14,13 @@ use robocal_calib::kinematics::identify::{
 use robocal_calib::kinematics::initial::initial_world_to_base;
 use robocal_calib::kinematics::{ParamKind, ParamLayout};
 
+use crate::domain::{CalibratedSet, ParameterSet};
 use crate::pipeline::camera_stage::{camera_report, CameraStep};
 use crate::pipeline::identify_stage::split;
 use crate::pipeline::measure::Measured;
 use crate::pipeline::measuring::Measuring;
 use crate::pipeline::results::residual_field;
 use crate::pipeline::{Input, Output, PipelineError, Stage, Summary};
-use crate::domain::{CalibratedSet, ParameterSet};
 use crate::report::{DetectionReport, IdentifiabilityReport, PoseReport, Report};
 use crate::schema::job::CalibrationScope;
 use crate::schema::PoseOut;

@@ -9,11 +9,11 @@ use robocal_calib::camera::calibrate::CalibrationOptions;
 use robocal_calib::camera::observations::ImageSize;
 use robocal_calib::stage::{calibrate_stage, StageError, StageView};
 
+use crate::domain::{CalibratedSet, Target};
 use crate::pipeline::camera_stage::view_of;
 use crate::pipeline::measure::Measured;
 use crate::pipeline::stage_results::stage_output;
 use crate::pipeline::{Input, Output, PipelineError, Stage};
-use crate::domain::{CalibratedSet, Target};
 use crate::schema::session::CameraDoc;
 
 /// The rest of a stage session's job after the detect stage.
