@@ -291,8 +291,9 @@ async fn queue_reclaims_expired_leases_until_max_attempts() {
     let done = s.get_job(&job.id).await.unwrap().unwrap();
     assert_eq!(done.state, JobState::Succeeded);
     let result = done.result.unwrap();
+    let stored = result.calibration();
     assert_eq!(
-        (result["serial"].as_str(), result["version"].as_i64()),
+        (stored.serial.as_deref(), stored.version),
         (Some("X"), Some(1))
     );
     assert_eq!(s.get_report("X", 1).await.unwrap().unwrap()["r"], 2);

@@ -220,7 +220,7 @@ async fn every_store_operation_round_trips() {
     );
     let finished = s.get_job(&c1.id).await.unwrap().unwrap();
     assert_eq!(finished.state, JobState::Succeeded);
-    assert_eq!(finished.result.unwrap()["version"], 1);
+    assert_eq!(finished.result.unwrap().calibration().version, Some(1));
     assert_eq!(
         s.finish_job(&c1.id, "w1", &done).await.unwrap(),
         LeaseStatus::Lost
