@@ -21,10 +21,11 @@ from robocal_client.api.results import get_parameter_set, get_report, get_report
 from robocal_client.api.robots import put_robot
 from robocal_client.api.sessions import create_session
 from robocal_client.models import (
+    CalibrationResult,
     DatasetOut,
     JobAccepted,
     JobOut,
-    ParameterSetOut,
+    KinematicSetOut,
     PoseImageUpload,
     PoseOut,
     PoseSet,
@@ -98,9 +99,12 @@ def main():
         assert time.monotonic() < deadline, f"job still {job.state}"
         time.sleep(0.5)
     assert job.state == "succeeded", job.error
+    # The result is typed: a calibration's, naming the version it stored.
+    assert isinstance(job.result, CalibrationResult), type(job.result)
+    assert job.result.version == 1 and job.result.summary.calibration_poses > 0, job.result
 
     parameters = expect(
-        get_parameter_set.sync_detailed(SERIAL, "latest", client=client), ParameterSetOut
+        get_parameter_set.sync_detailed(SERIAL, "latest", client=client), KinematicSetOut
     )
     assert parameters.version == 1 and len(parameters.kinematics.joints) == 6
     assert parameters.camera is not None and parameters.camera.fx > 0

@@ -97,8 +97,10 @@ fn main() -> Result<(), String> {
             let (spec, campaign) = simulate(preset, dir.path(), args.cal, args.val, seed)?;
             let output = run_local(dir.path(), "GAP")?;
             let set = output.parameter_set.ok_or("no parameter set")?;
-            let typed: ParameterSet =
-                serde_json::from_value(set.parameters).map_err(|e| e.to_string())?;
+            let typed: ParameterSet = set
+                .parameters
+                .into_kinematic()
+                .ok_or("not a kinematic set")?;
             let model = typed.model()?;
             let intr_pipe: Intrinsics = typed.camera.ok_or("no camera intrinsics")?;
             let fixed = typed.fixed;

@@ -78,8 +78,10 @@ fn main() -> Result<(), String> {
                 refine_intrinsics: false,
                 ..CalibrationOptions::default()
             })?;
-            let typed = |v: &serde_json::Value| -> Result<ParameterSet, String> {
-                serde_json::from_value(v.clone()).map_err(|e| e.to_string())
+            let typed = |v: &robocal::domain::CalibratedSet| -> Result<ParameterSet, String> {
+                v.kinematic()
+                    .cloned()
+                    .ok_or_else(|| "not a kinematic set".into())
             };
             let pipeline = compare_with_truth(&typed(&set.parameters)?, &campaign)?;
             let two_step = compare_with_truth(&typed(&two_step.parameters)?, &campaign)?;

@@ -53,8 +53,10 @@ fn main() -> Result<(), String> {
             let report: robocal::report::Report =
                 serde_json::from_value(set.report.clone()).map_err(|e| e.to_string())?;
             let dot_px = robocal::testkit::accuracy::dot_noise_px(&report)?;
-            let set: ParameterSet =
-                serde_json::from_value(set.parameters).map_err(|e| e.to_string())?;
+            let set: ParameterSet = set
+                .parameters
+                .into_kinematic()
+                .ok_or("not a kinematic set")?;
             // The set with its kept terms (none unless the job selected some).
             let model = set.term_model()?;
             let u = Uncertainty::of(&set, &model).ok_or("no covariance")??;

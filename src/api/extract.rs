@@ -10,8 +10,7 @@ use serde::Deserialize;
 
 use super::error::ApiError;
 use super::AppState;
-use crate::domain::{InvalidSerial, JobState, Serial};
-use crate::jobs::queue::JOB_KINDS;
+use crate::domain::{InvalidSerial, JobKind, JobState, Serial};
 use crate::store::JobFilter;
 
 /// Default page size of listings.
@@ -302,13 +301,9 @@ impl<S: Send + Sync> FromRequestParts<S> for JobQuery {
         };
         let kind = match raw.kind.as_deref() {
             None | Some("") => None,
-            Some(k) if JOB_KINDS.contains(&k) => Some(k.to_string()),
-            Some(_) => {
-                return Err(ApiError::invalid(
-                    "kind",
-                    format!("one of {}", JOB_KINDS.join(", ")),
-                ))
-            }
+            Some(k) => Some(JobKind::parse(k).ok_or_else(|| {
+                ApiError::invalid("kind", format!("one of {}", JobKind::names()))
+            })?),
         };
         Ok(JobQuery(JobFilter {
             state,

@@ -94,10 +94,14 @@ fn sse_event(event: JobEvent) -> Event {
         JobEvent::Progress { stage, progress } => {
             ("progress", json!({ "stage": stage, "progress": progress }))
         }
-        JobEvent::End(job) => (
-            "end",
-            serde_json::to_value(JobOut::from(*job)).unwrap_or_default(),
-        ),
+        JobEvent::End(job) => {
+            // A job document that does not serialise ends the stream with
+            // the reason, not with an empty `end`.
+            return Event::default()
+                .event("end")
+                .json_data(JobOut::from(*job))
+                .unwrap_or_else(|e| Event::default().event("error").data(e.to_string()));
+        }
     };
     Event::default().event(name).data(data.to_string())
 }

@@ -8,7 +8,6 @@ use axum::http::{header, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::Json;
 use serde::Serialize;
-use serde_json::Value;
 use utoipa::ToSchema;
 use utoipa_axum::router::OpenApiRouter;
 use utoipa_axum::routes;
@@ -17,8 +16,8 @@ use super::error::{ApiError, ApiResult, Problem};
 use super::extract::{ApiJson, JobQuery, OptionalJson, Paging, SerialPath};
 use super::sessions::find_session;
 use super::AppState;
-use crate::domain::JobState;
-use crate::schema::job::CalibrationOptions;
+use crate::domain::{JobKind, JobResult, JobState};
+use crate::schema::job::{CalibrationOptions, JobOptions};
 use crate::store::JobRecord;
 
 pub fn router() -> OpenApiRouter<AppState> {
@@ -32,10 +31,9 @@ pub fn router() -> OpenApiRouter<AppState> {
 #[derive(Debug, Serialize, ToSchema)]
 pub struct JobOut {
     pub id: String,
-    pub kind: String,
+    pub kind: JobKind,
     pub session_id: String,
     pub serial: String,
-    #[schema(value_type = String, example = "queued")]
     pub state: JobState,
     pub stage: Option<String>,
     /// 0..1 over the whole job.
@@ -44,12 +42,12 @@ pub struct JobOut {
     pub max_attempts: i64,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub error: Option<String>,
-    /// `{"serial","version"}` when a parameter set was stored, and a `summary`.
+    /// A succeeded job's result: its `summary`, `serial` and `version`
+    /// when it stored a parameter set, and a re-check's verdict.
     #[serde(skip_serializing_if = "Option::is_none")]
-    #[schema(value_type = Option<Object>)]
-    pub result: Option<Value>,
-    #[schema(value_type = Object)]
-    pub options: Value,
+    pub result: Option<JobResult>,
+    /// The job's options, by its kind.
+    pub options: JobOptions,
     pub created_at: String,
     pub started_at: Option<String>,
     pub finished_at: Option<String>,

@@ -3,7 +3,7 @@
 use axum::extract::{Path, Query, State};
 use axum::Json;
 use serde::{Deserialize, Serialize};
-use serde_json::{Map, Value};
+use serde_json::Value;
 use utoipa::ToSchema;
 use utoipa_axum::router::OpenApiRouter;
 use utoipa_axum::routes;
@@ -15,10 +15,9 @@ use super::controller_query::ControllerQuery;
 use super::error::{ApiError, ApiResult, Problem};
 use super::extract::{ApiJson, Paging, SerialPath};
 use super::{ndjson, AppState};
-use crate::domain::{controller_expectation, ReleaseStatus};
-use crate::report::schema::IntrinsicsSchema;
+use crate::domain::calibrated_set_schema::{all_of, tagged_one_of, Schemas};
+use crate::domain::{controller_expectation, CalibratedSet, ReleaseStatus};
 use crate::report::{render_html, render_svg, Report};
-use crate::schema::PoseOut;
 use crate::service::{compensate, evaluate, filter, release, report_view, results, uncertainty};
 use crate::store::ParameterSetRecord;
 
@@ -36,15 +35,25 @@ pub fn router() -> OpenApiRouter<AppState> {
 }
 
 /// An identified parameter set: the stored document plus its identity.
-#[derive(Debug, Serialize, ToSchema)]
+#[derive(Debug, Serialize)]
 pub struct ParameterSetOut {
+    #[serde(flatten)]
+    pub identity: ParameterSetIdentity,
+    /// What the set identified, told apart by `kind`.
+    #[serde(flatten)]
+    pub parameters: CalibratedSet,
+}
+
+/// Where a served parameter set stands: its robot, version, job and
+/// release status.
+#[derive(Debug, Serialize, ToSchema)]
+pub struct ParameterSetIdentity {
     pub serial: String,
     pub version: i64,
     pub job_id: Option<String>,
     pub created_at: String,
     /// The release gate: `approved` (what `latest` serves, the newest
     /// one), `candidate` (waits for a person) or `rejected`.
-    #[schema(value_type = String, example = "approved")]
     pub status: ReleaseStatus,
     /// Why it has its status (the gate's comparison, or a person's reason).
     pub status_reason: Option<String>,
@@ -52,64 +61,40 @@ pub struct ParameterSetOut {
     /// sets approved when the gate was introduced) and when.
     pub status_by: Option<String>,
     pub status_at: Option<String>,
-    /// Kinematics, `target_to_base`, `flange_to_camera`, intrinsics, fixed parameters.
-    #[serde(flatten)]
-    #[schema(value_type = ParameterSetFields)]
-    pub parameters: Map<String, Value>,
 }
 
-/// The identified model of a parameter set, as served (the stored
-/// `ParameterSetDoc` with the contract's frame names). Camera sets have
-/// `target_to_base`, `flange_to_camera` and `camera`; tracker sets
-/// `instrument_to_base` and `flange_to_tool`. A hand–eye set (`kind`
-/// `"hand_eye"`, from a session of controller flange poses) has no
-/// `kinematics`, and adds `base_to_target` and `board_scale`.
-#[derive(ToSchema)]
-#[allow(dead_code)] // a schema only: the answer serialises the stored document
-pub struct ParameterSetFields {
-    /// `camera` or `tracker`.
-    pub instrument: String,
-    /// The session the parameters were identified from.
-    pub session_id: String,
-    /// `"hand_eye"` for a set from controller flange poses (no
-    /// kinematics; `forward`, `compensate`, `filter` and exports answer
-    /// 409); absent for a kinematic calibration.
-    pub kind: Option<String>,
-    /// The identified joint table (absent in a hand–eye set).
-    pub kinematics: Option<crate::schema::robot::KinematicsDoc>,
-    /// The board in the robot base frame (hand–eye sets).
-    pub base_to_target: Option<PoseOut>,
-    /// True board coordinates / configured ones (hand–eye sets).
-    pub board_scale: Option<f64>,
-    /// The calibration board's frame in the robot base frame (camera sets).
-    pub target_to_base: Option<PoseOut>,
-    /// The camera in the flange frame (camera sets).
-    pub flange_to_camera: Option<PoseOut>,
-    /// The laser tracker's frame in the robot base frame (tracker sets).
-    pub instrument_to_base: Option<PoseOut>,
-    /// The measured tool point in the flange frame (tracker sets).
-    pub flange_to_tool: Option<PoseOut>,
-    /// The calibrated camera intrinsics (camera sets).
-    pub camera: Option<IntrinsicsSchema>,
-    /// How `camera` was obtained: `refined`, `paper` or `fixed`.
-    pub camera_mode: Option<String>,
-    /// The calibration (`"{serial}/{version}"`) whose intrinsics were held fixed.
-    pub camera_calibration_id: Option<String>,
-    /// Parameters held fixed as unidentifiable.
-    pub fixed: Vec<String>,
-    /// Every identified parameter against its nominal value.
-    pub parameters: Vec<crate::report::ParameterReport>,
-    /// The identified parameters' full covariance, in the units of
-    /// `parameters` (what `forward`'s predicted σ propagate). Absent for
-    /// sets stored before it was kept.
-    pub covariance: Option<crate::domain::CovarianceDoc>,
-    /// The non-geometric terms kept by the selection, each with
-    /// its value, σ and unit; `forward`, `compensate`, `filter` and the
-    /// predicted σ include them. Absent when none was kept.
-    pub terms: Option<crate::domain::TermsDoc>,
-    /// The controller the set's session was measured on;
-    /// absent when none was recorded.
-    pub controller: Option<crate::domain::ControllerIdentity>,
+/// Each served variant: its `kind`, its schema name and the set's.
+const SERVED_SETS: [(&str, &str, &str); 3] = [
+    ("kinematic", "KinematicSetOut", "KinematicSet"),
+    ("hand_eye", "HandEyeSetOut", "HandEyeSet"),
+    ("stage_camera", "StageCameraSetOut", "StageCameraSet"),
+];
+
+/// The served set's schema: one object per variant (the identity's
+/// properties and the set's), told apart by `kind`.
+impl utoipa::PartialSchema for ParameterSetOut {
+    fn schema() -> utoipa::openapi::RefOr<utoipa::openapi::schema::Schema> {
+        let variants = SERVED_SETS.map(|(kind, name, _)| (kind, name));
+        tagged_one_of(
+            &variants,
+            "An identified parameter set: its identity and release status, and \
+             what it identified, told apart by `kind`.",
+        )
+    }
+}
+
+impl ToSchema for ParameterSetOut {
+    fn schemas(schemas: &mut Schemas) {
+        schemas.push((
+            "ParameterSetIdentity".into(),
+            <ParameterSetIdentity as utoipa::PartialSchema>::schema(),
+        ));
+        <ParameterSetIdentity as ToSchema>::schemas(schemas);
+        for (_, name, set) in SERVED_SETS {
+            schemas.push((name.into(), all_of(&["ParameterSetIdentity", set])));
+        }
+        <CalibratedSet as ToSchema>::schemas(schemas);
+    }
 }
 
 #[derive(Debug, Serialize, ToSchema)]
@@ -120,20 +105,18 @@ pub struct ParameterSetList {
 
 impl From<ParameterSetRecord> for ParameterSetOut {
     fn from(p: ParameterSetRecord) -> ParameterSetOut {
-        let parameters = match p.parameters {
-            Value::Object(map) => map,
-            other => Map::from_iter([("parameters".to_string(), other)]),
-        };
         ParameterSetOut {
-            serial: p.serial,
-            version: p.version,
-            job_id: p.job_id,
-            created_at: p.created_at,
-            status: p.status,
-            status_reason: p.status_reason,
-            status_by: p.status_by,
-            status_at: p.status_at,
-            parameters,
+            identity: ParameterSetIdentity {
+                serial: p.serial,
+                version: p.version,
+                job_id: p.job_id,
+                created_at: p.created_at,
+                status: p.status,
+                status_reason: p.status_reason,
+                status_by: p.status_by,
+                status_at: p.status_at,
+            },
+            parameters: p.parameters,
         }
     }
 }

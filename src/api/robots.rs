@@ -55,7 +55,11 @@ impl TryFrom<RobotRecord> for RobotOut {
             preset: r
                 .preset
                 .as_deref()
-                .and_then(|p| serde_json::from_value(serde_json::json!(p)).ok()),
+                .map(|p| {
+                    Preset::parse(p)
+                        .ok_or_else(|| ApiError::internal(format!("stored preset {p:?} unknown")))
+                })
+                .transpose()?,
             serial: r.serial,
             model: r.model,
             controller: r.controller,

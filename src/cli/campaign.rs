@@ -245,7 +245,7 @@ pub fn run_local_with(
         regions: Vec::new(),
         local_models: Vec::new(),
         approved: None,
-        check: false,
+        kind: crate::domain::JobKind::Calibration,
     };
     pipeline::run(&input, &|_, _, _| {}, &AtomicBool::new(false)).map_err(|e| e.to_string())
 }

@@ -8,7 +8,7 @@
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
-use crate::schema::{Checker, FieldError};
+use super::{Checker, FieldError};
 
 /// Longest value of any identity field.
 pub const MAX_CONTROLLER_FIELD_CHARS: usize = 200;

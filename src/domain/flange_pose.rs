@@ -5,9 +5,9 @@
 
 use robocal_calib::geometry::{pose_from_matrix_rows, pose_from_xyz_rpy_deg, Pose};
 
+use super::FlangePoseDoc;
 use super::JointsDeg;
-use crate::schema::flange_pose::FlangePoseDoc;
-use crate::schema::{Checker, MAX_ANGLE_DEG, MAX_LENGTH_MM};
+use super::{Checker, MAX_ANGLE_DEG, MAX_LENGTH_MM};
 
 /// The flange in the base frame, as the controller reported it.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -5,12 +5,12 @@
 
 use serde::Serialize;
 
-use crate::schema::Checker;
+use super::Checker;
 
 /// Largest joint angle accepted anywhere (uploads, forward, compensate
 /// seeds), degrees: two turns either way, beyond any real joint's travel,
 /// so a number past it is a unit mistake (radians sent twice, milli-degrees).
-pub const MAX_JOINT_DEG: f64 = crate::schema::MAX_ANGLE_DEG;
+pub const MAX_JOINT_DEG: f64 = super::MAX_ANGLE_DEG;
 
 /// One robot configuration: a joint angle per joint, degrees. Serialised
 /// as the plain array the contract and the store use; read back only

@@ -4,25 +4,40 @@
 
 use serde::{Deserialize, Serialize};
 
+mod calibrated_set;
+pub mod calibrated_set_schema;
 mod check;
 mod controller;
 
 mod events;
+mod field_error;
 mod flange_pose;
+mod flange_pose_doc;
+mod frame_pose;
+mod hand_eye_set;
 mod image_detection;
+mod image_point;
+mod instrument;
+mod job;
 mod joints;
+mod kinematics_doc;
 mod label;
 mod measured_pose;
+pub mod numerics_schema;
 mod parameter_covariance;
+mod parameter_report;
 mod parameter_set;
 mod parameter_terms;
 mod pose_set;
 mod release;
 mod serial;
+mod stage_camera_set;
 mod stage_reading;
 mod target;
+mod target_doc;
 mod target_symmetry;
 
+pub use calibrated_set::CalibratedSet;
 pub use check::{controller_change, CheckDoc, CheckSuspect, CheckVerdict, ControllerChangeSeen};
 pub use controller::{
     check_expected as check_controller, expectation as controller_expectation, ControllerChange,
@@ -30,22 +45,35 @@ pub use controller::{
 };
 
 pub use events::DomainEvent;
+pub use field_error::{Checker, FieldError, MAX_ANGLE_DEG, MAX_LENGTH_MM};
 pub use flange_pose::{check_robot_pose, FlangePose, PoseKind, RobotPose};
+pub use flange_pose_doc::FlangePoseDoc;
+pub use frame_pose::PoseOut;
+pub use hand_eye_set::HandEyeSet;
 pub use image_detection::ImageDetection;
+pub use image_point::ImagePointDoc;
+pub use instrument::{Instrument, Measurement};
+pub use job::{CalibrationResult, CheckResult, JobKind, JobResult, JobSummary};
 pub use joints::{JointsDeg, MAX_JOINT_DEG};
+pub use kinematics_doc::{
+    doc_to_model, model_to_doc, Convention, JointDoc, JointType, KinematicsDoc, MAX_JOINTS,
+};
 pub use label::{
     check_label, label_from_archive_path, label_from_file_name, label_or_number, LABEL_RULE,
     MAX_LABEL_CHARS,
 };
 pub use measured_pose::{MeasuredPoint, MeasuredPose};
 pub use parameter_covariance::CovarianceDoc;
+pub use parameter_report::ParameterReport;
 pub use parameter_set::{FrameNames, ParameterSet, SessionBoard};
 pub use parameter_terms::{KeptTerm, TermsDoc};
 pub use pose_set::PoseSet;
 pub use release::{Decision, Release, ReleaseStatus, ANONYMOUS_ACTOR, GATE_ACTOR};
 pub use serial::{InvalidSerial, Serial, MAX_SERIAL_LEN, SERIAL_RULE};
+pub use stage_camera_set::{StageCameraSet, StageSequence};
 pub use stage_reading::{StageReading, MAX_SEQUENCE};
 pub use target::{FoundPoint, Target};
+pub use target_doc::{TargetDoc, TargetKind, MAX_GRID_SIDE};
 pub use target_symmetry::BoardSymmetry;
 
 /// Metadata of a stored image; the bytes live in the content-addressed blob store.
@@ -58,7 +86,7 @@ pub struct ImageMeta {
     pub height: u32,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, utoipa::ToSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum JobState {
     Queued,

@@ -11,13 +11,15 @@ use robocal_calib::camera::Intrinsics;
 use robocal_calib::kinematics::term_model::TermModel;
 use robocal_calib::kinematics::{CalibratedModel, ParamLayout};
 use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
 
-use super::{ControllerIdentity, CovarianceDoc, TermsDoc};
-use crate::report::ParameterReport;
-use crate::schema::job::Measurement;
-use crate::schema::robot::{doc_to_model, KinematicsDoc};
-use crate::schema::session::Instrument;
-use crate::schema::PoseOut;
+use super::numerics_schema::IntrinsicsSchema;
+use super::ParameterReport;
+use super::PoseOut;
+use super::{
+    doc_to_model, ControllerIdentity, CovarianceDoc, Instrument, KinematicsDoc, Measurement,
+    TermsDoc,
+};
 
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(into = "StoredSet", try_from = "StoredSet")]
@@ -67,7 +69,7 @@ pub struct ParameterSet {
 }
 
 /// One session's board placement in a multi-session set.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
 pub struct SessionBoard {
     pub session_id: String,
     pub target_to_base: PoseOut,
@@ -107,6 +109,31 @@ const TRACKER_FRAMES: FrameNames = FrameNames {
 };
 
 impl ParameterSet {
+    /// A camera set with an empty joint table and identity frames: what
+    /// the test hook stores for a job that identified nothing, and what a
+    /// test stores when the set's content is not what it checks.
+    pub fn placeholder(session_id: impl Into<String>) -> ParameterSet {
+        let identity = PoseOut::new(&robocal_calib::geometry::Pose::identity());
+        ParameterSet {
+            instrument: Instrument::Camera,
+            measurement: None,
+            session_id: session_id.into(),
+            kinematics: KinematicsDoc { joints: Vec::new() },
+            world_to_base: identity.clone(),
+            flange_to_tool: identity,
+            camera: None,
+            camera_mode: None,
+            camera_calibration_id: None,
+            fixed: Vec::new(),
+            parameters: Vec::new(),
+            covariance: None,
+            joint_noise_deg: None,
+            terms: None,
+            session_target_to_base: Vec::new(),
+            controller: None,
+        }
+    }
+
     /// What the contract calls this set's frames.
     pub fn frame_names(&self) -> FrameNames {
         match self.instrument {
@@ -192,40 +219,94 @@ impl ParameterSet {
 }
 
 /// The document as stored and served: each frame under the contract's
-/// name for the set's instrument.
-#[derive(Serialize, Deserialize)]
+/// name for the set's instrument. Camera sets have `target_to_base`,
+/// `flange_to_camera` and `camera`; tracker sets `instrument_to_base` and
+/// `flange_to_tool`.
+#[derive(Serialize, Deserialize, ToSchema)]
 struct StoredSet {
+    /// `camera`, `tracker` or `stage`.
     instrument: Instrument,
+    /// A tracker set's measurement: `pose` when the probe's orientation
+    /// was fitted with its position, `position` (or absent) for the tool
+    /// point only. Absent for camera sets.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     measurement: Option<Measurement>,
+    /// The session the parameters were identified from.
     session_id: String,
+    /// The identified joint table.
     kinematics: KinematicsDoc,
+    /// The calibration board's frame in the robot base frame (camera sets).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     target_to_base: Option<PoseOut>,
+    /// The laser tracker's frame in the robot base frame (tracker sets).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     instrument_to_base: Option<PoseOut>,
+    /// The camera in the flange frame (camera sets).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     flange_to_camera: Option<PoseOut>,
+    /// The measured tool point in the flange frame (tracker sets).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     flange_to_tool: Option<PoseOut>,
+    /// The calibrated camera intrinsics (camera sets).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(value_type = Option<IntrinsicsSchema>)]
     camera: Option<Intrinsics>,
+    /// How `camera` was obtained: `refined`, `paper` or `fixed`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     camera_mode: Option<String>,
+    /// The calibration (`"{serial}/{version}"`) whose intrinsics were held fixed.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     camera_calibration_id: Option<String>,
+    /// Parameters held fixed as unidentifiable.
     fixed: Vec<String>,
+    /// Every identified parameter against its nominal value.
     parameters: Vec<ParameterReport>,
+    /// The identified parameters' full covariance, in the units of
+    /// `parameters` (what `forward`'s predicted σ propagate). Absent for
+    /// sets stored before it was kept.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     covariance: Option<CovarianceDoc>,
+    /// Joint noise (deg, one standard deviation per joint) the joint
+    /// refinement estimated from the images; absent when it did not run.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     joint_noise_deg: Option<f64>,
+    /// The non-geometric terms kept by the selection, each with its value,
+    /// σ and unit; `forward`, `compensate`, `filter` and the predicted σ
+    /// include them. Absent when none was kept.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     terms: Option<TermsDoc>,
+    /// A set calibrated over several sessions (board placements): each
+    /// session's board in the base frame, the first equal to
+    /// `target_to_base`. Absent for a one-session set.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     session_target_to_base: Vec<SessionBoard>,
+    /// The controller the set's session was measured on; absent when none
+    /// was recorded.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     controller: Option<ControllerIdentity>,
+}
+
+/// The kinematic set's schema is its stored form's, under the name
+/// `KinematicSet`.
+impl utoipa::PartialSchema for ParameterSet {
+    fn schema() -> utoipa::openapi::RefOr<utoipa::openapi::schema::Schema> {
+        <StoredSet as utoipa::PartialSchema>::schema()
+    }
+}
+
+impl ToSchema for ParameterSet {
+    fn name() -> std::borrow::Cow<'static, str> {
+        std::borrow::Cow::Borrowed("KinematicSet")
+    }
+
+    fn schemas(
+        schemas: &mut Vec<(
+            String,
+            utoipa::openapi::RefOr<utoipa::openapi::schema::Schema>,
+        )>,
+    ) {
+        <StoredSet as ToSchema>::schemas(schemas)
+    }
 }
 
 impl From<ParameterSet> for StoredSet {

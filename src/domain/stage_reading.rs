@@ -5,7 +5,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::schema::{Checker, FieldError, MAX_LENGTH_MM};
+use super::{Checker, FieldError, MAX_LENGTH_MM};
 
 /// Largest sequence number: a stage campaign has a few board placements.
 pub const MAX_SEQUENCE: u32 = 1000;

@@ -10,8 +10,8 @@ use robocal_calib::vision::{
     self, AsymmetricCirclesSpec, CircleBoard, DecodedGrey, DetectError, DetectOptions, TargetSpec,
 };
 
-use crate::schema::session::{TargetDoc, TargetKind, MAX_GRID_SIDE};
-use crate::schema::{Checker, FieldError, MAX_LENGTH_MM};
+use super::{Checker, FieldError, MAX_LENGTH_MM};
+use super::{TargetDoc, TargetKind, MAX_GRID_SIDE};
 
 /// One identified board feature in an image: its board indices and its
 /// raw image position (px).

@@ -3,7 +3,7 @@
 use std::sync::Arc;
 use std::time::Duration;
 
-use crate::domain::{label_or_number, FlangePose, ParameterSet};
+use crate::domain::{label_or_number, FlangePose, JobKind};
 use crate::imaging::DecodeGate;
 use crate::pipeline::{
     ApprovedSet, FixedCamera, ImageSource, Input, PoseImage, PoseInput, RegionInput,
@@ -13,7 +13,7 @@ use crate::report::Report;
 use crate::schema::job::CalibrationOptions;
 use crate::schema::robot::KinematicsDoc;
 use crate::service::camera_reuse::{self, ReuseError};
-use crate::store::{ClaimedJob, DynStore, StoreError, CHECK_KIND};
+use crate::store::{ClaimedJob, DynStore, StoreError};
 
 /// Poses read per store call.
 const PAGE: i64 = 500;
@@ -45,9 +45,7 @@ pub async fn load_input(
     let kinematics: KinematicsDoc =
         serde_json::from_value(robot.kinematics).map_err(|e| bad("kinematics", e))?;
     let spec = session.spec;
-    let options: CalibrationOptions =
-        serde_json::from_value(job.options.clone()).map_err(|e| bad("options", e))?;
-    let check = job.kind == CHECK_KIND;
+    let options: CalibrationOptions = job.options.calibration();
     let approved = approved_set(store, &session.serial).await?;
     let fixed_camera = match &spec.camera_calibration_id {
         Some(id) => Some(
@@ -59,12 +57,14 @@ pub async fn load_input(
                 })?,
         ),
         // A re-check or a partial scope holds the approved set's camera.
-        None if check || !options.scope.is_full() => approved.as_ref().and_then(|a| {
-            Some(FixedCamera {
-                calibration_id: a.id.clone(),
-                intrinsics: a.set.camera?,
+        None if job.kind == JobKind::Check || !options.scope.is_full() => {
+            approved.as_ref().and_then(|a| {
+                Some(FixedCamera {
+                    calibration_id: a.id.clone(),
+                    intrinsics: a.set.camera?,
+                })
             })
-        }),
+        }
         None => None,
     };
     let poses = load_poses(store, &session.id).await?;
@@ -102,7 +102,7 @@ pub async fn load_input(
         test_stage_delay,
         validate_only: false,
         approved,
-        check,
+        kind: job.kind,
         local_models,
         regions,
     })
@@ -125,7 +125,7 @@ async fn local_models(
         .await?;
     let mut found: Vec<(String, LocalModel)> = Vec::new();
     for record in page.items {
-        let Ok(set) = serde_json::from_value::<ParameterSet>(record.parameters) else {
+        let Some(set) = record.parameters.into_kinematic() else {
             continue;
         };
         let wanted = sessions.contains(&set.session_id.as_str())
@@ -136,7 +136,11 @@ async fn local_models(
         }
         let report = store.get_report(serial, record.version).await?;
         let after = report
-            .and_then(|r| serde_json::from_value::<Report>(r).ok())
+            .map(serde_json::from_value::<Report>)
+            .transpose()
+            .map_err(|e| {
+                LoadError::Gone(format!("stored report {serial}/{}: {e}", record.version))
+            })?
             .map(|r| r.after);
         if let Some(after) = after {
             found.push((
@@ -152,19 +156,17 @@ async fn local_models(
 }
 
 /// The serial's newest approved set, typed; `None` when it has none, or
-/// when that set holds no calibrated model (a hand–eye set, a test marker):
+/// when that set holds no robot model (a hand–eye or stage camera set):
 /// the gate then compares with the nominal model.
 async fn approved_set(store: &DynStore, serial: &str) -> Result<Option<ApprovedSet>, LoadError> {
     let Some(record) = store.get_parameter_set(serial, None).await? else {
         return Ok(None);
     };
-    Ok(serde_json::from_value::<ParameterSet>(record.parameters)
-        .ok()
-        .map(|set| ApprovedSet {
-            id: format!("{serial}/{}", record.version),
-            version: record.version,
-            set,
-        }))
+    Ok(record.parameters.into_kinematic().map(|set| ApprovedSet {
+        id: format!("{serial}/{}", record.version),
+        version: record.version,
+        set,
+    }))
 }
 
 /// Whether the job that made a set was a full calibration (a `scope:
@@ -173,11 +175,10 @@ async fn full_scope(store: &DynStore, job_id: Option<&str>) -> Result<bool, Load
     let Some(id) = job_id else {
         return Ok(true);
     };
-    Ok(store
-        .get_job(id)
-        .await?
-        .and_then(|job| serde_json::from_value::<CalibrationOptions>(job.options).ok())
-        .is_none_or(|options| options.scope.is_full()))
+    let Some(job) = store.get_job(id).await? else {
+        return Ok(true);
+    };
+    Ok(job.options.calibration().scope.is_full())
 }
 
 /// Reads images from the store's blobs, from the job's blocking thread.

@@ -14,7 +14,7 @@ use tokio::time::Instant;
 
 use super::load::{load_input, LoadError};
 use super::queue::{claim_next, Lease, QueuePolicy};
-use crate::domain::LeaseStatus;
+use crate::domain::{CalibratedSet, LeaseStatus, ParameterSet};
 use crate::imaging::DecodeGate;
 use crate::pipeline::{self, PipelineError, Stage};
 use crate::store::DynStore;
@@ -209,7 +209,7 @@ impl Worker {
         let outcome = match result {
             Ok(Ok(out)) => JobOutcome::Succeeded {
                 parameter_set: out.parameter_set,
-                summary: serde_json::to_value(&out.summary).unwrap_or_default(),
+                summary: out.summary,
                 detections: stamp(&job_id, out.detections),
                 check: out.check.map(Box::new),
             },
@@ -272,7 +272,8 @@ fn panic_message(join: tokio::task::JoinError) -> String {
 }
 
 /// Test hook: gives a succeeded job without a parameter set a marker one
-/// (`{"test_marker": true, "job_id", "attempt"}`), stored like a real result.
+/// ([`ParameterSet::placeholder`], its report `{"test_marker": true,
+/// "job_id", "attempt"}`), stored like a real result.
 fn mark_test_parameter_set(outcome: &mut JobOutcome, job: &crate::store::ClaimedJob) {
     if let JobOutcome::Succeeded {
         parameter_set: set @ None,
@@ -280,12 +281,12 @@ fn mark_test_parameter_set(outcome: &mut JobOutcome, job: &crate::store::Claimed
     } = outcome
     {
         *set = Some(crate::store::NewParameterSet::approved(
+            CalibratedSet::Kinematic(ParameterSet::placeholder(&job.session_id)),
             serde_json::json!({
                 "test_marker": true,
                 "job_id": job.id,
                 "attempt": job.attempt,
             }),
-            serde_json::json!({ "test_marker": true }),
         ));
     }
 }

@@ -5,14 +5,9 @@
 use std::time::Duration;
 
 use crate::domain::{now_unix_ms, LeaseStatus};
-use crate::schema::job::CalibrationOptions;
+use crate::schema::job::{CalibrationOptions, CheckOptions, JobOptions};
 use crate::store::{ClaimedJob, JobOutcome, JobRecord, NewJob, SessionRecord};
 use crate::store::{DynStore, StoreResult};
-
-pub const CALIBRATION_KIND: &str = "calibration";
-
-/// Every job kind the queue runs (what `GET /v1/jobs?kind=` accepts).
-pub const JOB_KINDS: [&str; 2] = [CALIBRATION_KIND, crate::store::CHECK_KIND];
 
 /// Queue policy, from the server configuration.
 #[derive(Debug, Clone, Copy)]
@@ -40,10 +35,9 @@ pub async fn enqueue_calibration(
     options: &CalibrationOptions,
 ) -> StoreResult<JobRecord> {
     let job = NewJob {
-        kind: CALIBRATION_KIND.to_string(),
         session_id: session.id.clone(),
         serial: session.serial.clone(),
-        options: serde_json::to_value(options)?,
+        options: JobOptions::Calibration(options.clone()),
         max_attempts: policy.max_attempts,
     };
     store.enqueue_job(&job, policy.max_queued).await
@@ -56,10 +50,9 @@ pub async fn enqueue_check(
     session: &SessionRecord,
 ) -> StoreResult<JobRecord> {
     let job = NewJob {
-        kind: crate::store::CHECK_KIND.to_string(),
         session_id: session.id.clone(),
         serial: session.serial.clone(),
-        options: serde_json::json!({}),
+        options: JobOptions::Check(CheckOptions::default()),
         max_attempts: policy.max_attempts,
     };
     store.enqueue_job(&job, policy.max_queued).await

@@ -1,5 +1,5 @@
 //! Stage "report" of a flange-pose session (issue 14): the hand–eye
-//! parameter set (no kinematics: `kind` `"hand_eye"`) and its report, from
+//! parameter set ([`HandEyeSet`]: no kinematics) and its report, from
 //! the camera stage and the hand–eye fit ([`super::flange_stage`]).
 //!
 //! A hand–eye set holds no calibrated robot, so `forward`, `compensate`,
@@ -12,7 +12,6 @@ use robocal_calib::camera::Intrinsics;
 use robocal_calib::geometry::{pose_from_xyz_rpy_deg, Pose, PoseXyzRpy};
 use robocal_calib::handeye::PoseSigma;
 use robocal_calib::stats::AccuracyStats;
-use serde::{Deserialize, Serialize};
 
 use super::camera_stage::{camera_mode, camera_report, CameraStep};
 use super::flange_stage::HandEyeStep;
@@ -21,6 +20,7 @@ use super::measure::Measured;
 use super::output::Summary;
 use super::results::residual_field;
 use super::{Input, PoseInput};
+use crate::domain::HandEyeSet;
 use crate::report::{
     BoardScaleReport, FrameReport, HandEyeReport, IdentifiabilityReport, ParameterReport,
     PoseReport, Report,
@@ -28,8 +28,6 @@ use crate::report::{
 use crate::schema::session::PoseSet;
 use crate::schema::PoseOut;
 
-/// `kind` of a hand–eye parameter set.
-pub const HAND_EYE_KIND: &str = "hand_eye";
 /// The data contradict the configured board spacing when the fitted scale
 /// is this many standard deviations from 1.
 const SCALE_DOUBT_SIGMAS: f64 = 3.0;
@@ -42,27 +40,6 @@ const FRAME_PARAMS: [(&str, &str); 6] = [
     ("ry_deg", "deg"),
     ("rz_deg", "deg"),
 ];
-
-/// The stored parameter set of a flange-pose session.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct HandEyeSetDoc {
-    /// Always [`HAND_EYE_KIND`].
-    pub kind: String,
-    pub instrument: String,
-    pub session_id: String,
-    pub target_to_base: PoseOut,
-    pub flange_to_camera: PoseOut,
-    /// The board in the robot base frame.
-    pub base_to_target: PoseOut,
-    /// True board coordinates / configured ones.
-    pub board_scale: f64,
-    pub camera: Intrinsics,
-    pub camera_mode: String,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub camera_calibration_id: Option<String>,
-    pub fixed: Vec<String>,
-    pub parameters: Vec<ParameterReport>,
-}
 
 /// The six rows of a frame: its guess (identity without one) against the
 /// fitted value, with the reported standard deviations.
@@ -113,7 +90,7 @@ fn configured_pitch_mm(input: &Input) -> f64 {
 
 /// Everything the report stage produces for a flange-pose session.
 pub struct HandEyeOutput {
-    pub parameters: HandEyeSetDoc,
+    pub parameters: HandEyeSet,
     pub report: Report,
     pub summary: Summary,
 }
@@ -153,8 +130,7 @@ pub fn hand_eye_output(
         std: s.board_scale,
         fixed: false,
     });
-    let set = HandEyeSetDoc {
-        kind: HAND_EYE_KIND.into(),
+    let set = HandEyeSet {
         instrument: "camera".into(),
         session_id: input.session_id.clone(),
         target_to_base: PoseOut::new(&fit.target_to_base),

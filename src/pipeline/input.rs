@@ -8,7 +8,7 @@ use robocal_calib::camera::Intrinsics;
 use robocal_calib::kinematics::prior::KinematicPrior;
 use robocal_calib::kinematics::RobotModel;
 
-use crate::domain::{FlangePose, ImageDetection, JointsDeg, ParameterSet, StageReading};
+use crate::domain::{FlangePose, ImageDetection, JobKind, JointsDeg, ParameterSet, StageReading};
 use crate::imaging::DecodeGate;
 use crate::report::regions::LocalModel;
 use crate::schema::job::CalibrationOptions;
@@ -45,8 +45,9 @@ pub struct Input {
     /// the release gate compares with it, partial scopes and re-checks
     /// hold it.
     pub approved: Option<ApprovedSet>,
-    /// A quick re-check instead of a calibration.
-    pub check: bool,
+    /// What the job was queued as: a calibration or a quick re-check
+    /// (the pipeline's plan, [`super::jobs::Plan::of`], follows from it).
+    pub kind: JobKind,
     /// The further sessions of a calibration over several board placements
     ///; empty for a one-session job. This input's own session
     /// is the first placement.

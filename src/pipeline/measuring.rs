@@ -215,7 +215,7 @@ impl Measuring {
                 // The probe's frame in the tracker's: the tool's pose in
                 // the world frame, as `Observed::Pose` reads it.
                 MeasurementKind::Pose => Observed::Pose {
-                    world_to_tool: super::pose_of(pose.measured_pose.as_ref()?),
+                    world_to_tool: super::prelude::pose_of(pose.measured_pose.as_ref()?),
                     covariance: Some(self.tracker.pose_covariance()),
                 },
                 MeasurementKind::Position => Observed::Position {

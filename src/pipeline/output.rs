@@ -1,10 +1,27 @@
 //! What a job gives back: the parameter set with its report, a summary and
 //! every pose's image points; or why it stopped.
 
-use serde::Serialize;
-
+use crate::domain::{CalibratedSet, Release};
+use crate::report::Report;
 use crate::schema::FieldError;
 use crate::store::{NewParameterSet, PoseDetection};
+
+/// The set a job identified with its report and the gate's decision, as
+/// the store takes them; a report that does not serialise fails the
+/// report stage instead of storing `null`.
+pub fn new_set(
+    parameters: CalibratedSet,
+    report: &Report,
+    release: Release,
+) -> Result<NewParameterSet, PipelineError> {
+    let report = serde_json::to_value(report)
+        .map_err(|e| PipelineError::numerical(super::Stage::Report, format!("report: {e}")))?;
+    Ok(NewParameterSet {
+        parameters,
+        report,
+        release,
+    })
+}
 
 #[derive(Debug, Clone)]
 pub struct Output {
@@ -21,33 +38,8 @@ pub struct Output {
     pub check: Option<crate::domain::CheckDoc>,
 }
 
-/// The job's `result.summary`: the poses it used and, after a calibration,
-/// the mean validation error before and after.
-#[derive(Debug, Clone, Default, PartialEq, Serialize)]
-pub struct Summary {
-    /// The stage a validation-only run stopped after (`validate`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub stage: Option<&'static str>,
-    pub calibration_poses: usize,
-    pub validation_poses: usize,
-    /// The robot's joint count (validation-only runs).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub joints: Option<usize>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub before_mean_mm: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub after_mean_mm: Option<f64>,
-    /// Poses left out as contradicting their image (hand–eye jobs).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub outliers: Option<usize>,
-    /// Reprojection RMS of the hand–eye bundle (hand–eye jobs).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub reprojection_rms_px: Option<f64>,
-    /// The board's fitted scale against its configured spacing (hand–eye
-    /// jobs that fit it).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub board_scale: Option<f64>,
-}
+/// The job's `result.summary` (the domain's [`JobSummary`]).
+pub use crate::domain::JobSummary as Summary;
 
 #[derive(Debug, Clone, thiserror::Error)]
 pub enum PipelineError {

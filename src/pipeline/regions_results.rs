@@ -8,13 +8,12 @@ use robocal_calib::kinematics::term_model::TermModel;
 use robocal_calib::stats::AccuracyStats;
 
 use super::identify_stage::Identified;
-use super::regions_job::{Fitted, JointFit, SessionValidation};
+use super::jobs::regions::{Fitted, JointFit, SessionValidation};
 use super::screen_stage::Outlier;
 use super::{detections, gate, results, Input, Output, PipelineError, PoseInput};
-use crate::domain::{CovarianceDoc, SessionBoard};
+use crate::domain::{CalibratedSet, CovarianceDoc, SessionBoard};
 use crate::report::regions::RegionReport;
 use crate::schema::PoseOut;
-use crate::store::NewParameterSet;
 
 /// The set, its report and the detections of a multi-session job.
 pub(super) fn output(input: &Input, fitted: Fitted) -> Result<Output, PipelineError> {
@@ -153,11 +152,11 @@ pub(super) fn output(input: &Input, fitted: Fitted) -> Result<Output, PipelineEr
     (combined.before, combined.after) = (all_before, all_after);
     report.gate = Some(decision.report);
     Ok(Output {
-        parameter_set: Some(NewParameterSet {
-            parameters: serde_json::to_value(&set).unwrap_or_default(),
-            report: serde_json::to_value(&report).unwrap_or_default(),
-            release: decision.release,
-        }),
+        parameter_set: Some(super::output::new_set(
+            CalibratedSet::Kinematic(set),
+            &report,
+            decision.release,
+        )?),
         summary: results::summary(&combined),
         detections,
         check: None,

@@ -1,5 +1,5 @@
-//! Stage "report" of a stage session (issue 18): the camera set (`kind`
-//! `"stage_camera"`: intrinsics, no robot model) and its report, whose
+//! Stage "report" of a stage session (issue 18): the camera set
+//! ([`StageCameraSet`]: intrinsics, no robot model) and its report, whose
 //! `measurement_accuracy` is the paper's Table 1 per sequence and whose
 //! `per_pose[i].camera_in_target` is each image's measured camera pose.
 //!
@@ -8,53 +8,23 @@
 //! `compensate` and the exports refuse it (409: it holds no model).
 
 use nalgebra::Vector3;
-use robocal_calib::camera::{Intrinsics, IntrinsicsStdDev};
 use robocal_calib::geometry::Pose;
 use robocal_calib::stage::StageCalibration;
 use robocal_calib::stats::AccuracyStats;
-use serde::{Deserialize, Serialize};
 
 use super::measure::Measured;
 use super::output::Summary;
 use super::Input;
+use crate::domain::{StageCameraSet, StageSequence};
 use crate::report::{
     CameraReport, IdentifiabilityReport, MeasurementAccuracyReport, PoseReport, Report,
     SequenceAccuracyReport, ViewReport,
 };
 use crate::schema::PoseOut;
 
-/// `kind` of a stage session's set.
-pub const STAGE_CAMERA_KIND: &str = "stage_camera";
-
-/// One fitted sequence of the set.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct StageSequenceDoc {
-    pub sequence: u32,
-    /// The camera in the target frame at stage reading zero.
-    pub target_to_camera: PoseOut,
-    /// The stage's axes in the target frame, at the camera's position at
-    /// stage reading zero.
-    pub target_to_stage: PoseOut,
-}
-
-/// The stored parameter set of a stage session.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct StageSetDoc {
-    /// Always [`STAGE_CAMERA_KIND`].
-    pub kind: String,
-    pub instrument: String,
-    pub session_id: String,
-    pub camera: Intrinsics,
-    /// Always `"stage"`: fitted with the stage's translations as constraints.
-    pub camera_mode: String,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub camera_std: Option<IntrinsicsStdDev>,
-    pub sequences: Vec<StageSequenceDoc>,
-}
-
 /// Everything the report stage produces for a stage session.
 pub struct StageOutput {
-    pub parameters: StageSetDoc,
+    pub parameters: StageCameraSet,
     pub report: Report,
     pub summary: Summary,
 }
@@ -73,7 +43,7 @@ pub fn stage_output(
         .iter()
         .map(|s| {
             let at_zero = s.fit.target_to_camera(&Vector3::zeros());
-            StageSequenceDoc {
+            StageSequence {
                 sequence: s.sequence,
                 target_to_camera: PoseOut::new(&at_zero),
                 target_to_stage: PoseOut::new(&Pose::from_parts(
@@ -83,8 +53,7 @@ pub fn stage_output(
             }
         })
         .collect();
-    let parameters = StageSetDoc {
-        kind: STAGE_CAMERA_KIND.into(),
+    let parameters = StageCameraSet {
         instrument: "stage".into(),
         session_id: input.session_id.clone(),
         camera: fit.intrinsics,

@@ -123,7 +123,7 @@ pub fn validate(
         return Err(PipelineError::Invalid(errors));
     }
     Ok(Summary {
-        stage: Some(Stage::Validate.as_str()),
+        stage: Some(Stage::Validate.as_str().into()),
         calibration_poses: cal,
         validation_poses: val,
         joints: Some(joint_count),

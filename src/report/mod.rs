@@ -25,7 +25,7 @@ mod regions_table;
 pub mod sample;
 pub mod sample_regions;
 pub mod sample_stage;
-pub mod schema;
+pub use crate::domain::numerics_schema as schema;
 mod stage_chart;
 mod stage_section;
 pub mod svg;

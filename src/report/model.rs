@@ -143,18 +143,7 @@ impl DetectionFailure {
     }
 }
 
-/// One identified parameter against its nominal value.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
-pub struct ParameterReport {
-    /// E.g. "joint2.a_mm", "joint3.beta_deg", "target_to_base.tx_mm".
-    pub name: String,
-    pub unit: String,
-    pub nominal: f64,
-    pub identified: f64,
-    pub std: f64,
-    /// Held fixed as unidentifiable (redundant with another parameter).
-    pub fixed: bool,
-}
+pub use crate::domain::ParameterReport;
 
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, ToSchema)]
 pub struct IdentifiabilityReport {

@@ -45,10 +45,7 @@ impl TermsReport {
             .iter()
             .map(|l| TermLine {
                 name: l.name.clone(),
-                verdict: serde_json::to_value(l.verdict)
-                    .ok()
-                    .and_then(|v| v.as_str().map(str::to_string))
-                    .unwrap_or_default(),
+                verdict: l.verdict.as_str().into(),
                 value: finite_or_zero(l.value),
                 std_dev: finite_or_zero(l.std_dev),
                 unit: l.unit.clone(),

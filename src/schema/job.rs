@@ -5,22 +5,9 @@ use utoipa::ToSchema;
 
 use super::session::Instrument;
 use super::{Checker, FieldError};
+use crate::domain::JobKind;
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum Measurement {
-    Pose,
-    Position,
-}
-
-impl Measurement {
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Measurement::Pose => "pose",
-            Measurement::Position => "position",
-        }
-    }
-}
+pub use crate::domain::Measurement;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
 #[serde(rename_all = "snake_case")]
@@ -109,6 +96,47 @@ pub struct CalibrationOptions {
     /// the camera intrinsics shared. Empty for a one-session job.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub sessions: Vec<String>,
+}
+
+/// A re-check's options: none (the session and the latest approved set
+/// are the whole input).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, ToSchema)]
+pub struct CheckOptions {}
+
+/// A job's `options`, by its kind: a calibration's request body, or a
+/// re-check's (empty).
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+#[serde(untagged)]
+pub enum JobOptions {
+    Calibration(CalibrationOptions),
+    Check(CheckOptions),
+}
+
+impl JobOptions {
+    /// The kind of job these options are for.
+    pub fn kind(&self) -> JobKind {
+        match self {
+            JobOptions::Calibration(_) => JobKind::Calibration,
+            JobOptions::Check(_) => JobKind::Check,
+        }
+    }
+
+    /// The stored `options` of a `kind` job, read as that kind's.
+    pub fn decode(kind: JobKind, doc: serde_json::Value) -> Result<JobOptions, serde_json::Error> {
+        Ok(match kind {
+            JobKind::Calibration => JobOptions::Calibration(serde_json::from_value(doc)?),
+            JobKind::Check => JobOptions::Check(serde_json::from_value(doc)?),
+        })
+    }
+
+    /// A calibration's options; a re-check runs with the defaults (it
+    /// measures the session as a full calibration would).
+    pub fn calibration(&self) -> CalibrationOptions {
+        match self {
+            JobOptions::Calibration(o) => o.clone(),
+            JobOptions::Check(_) => CalibrationOptions::default(),
+        }
+    }
 }
 
 fn yes() -> bool {

@@ -6,8 +6,10 @@ use serde::Serialize;
 use utoipa::ToSchema;
 
 pub mod campaign_plan;
-pub mod flange_pose;
-mod frame_pose;
+/// The controller's flange pose document (its type lives in the domain).
+pub mod flange_pose {
+    pub use crate::domain::FlangePoseDoc;
+}
 pub mod job;
 pub mod nul;
 pub mod pose_body;
@@ -15,65 +17,7 @@ pub mod robot;
 pub mod session;
 pub mod webhook;
 
-pub use frame_pose::PoseOut;
-
-/// One validation failure, naming the field by its JSON path (`kinematics.joints[1].a_mm`).
-#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
-pub struct FieldError {
-    pub field: String,
-    pub message: String,
-}
-
-impl FieldError {
-    pub fn new(field: impl Into<String>, message: impl Into<String>) -> FieldError {
-        FieldError {
-            field: field.into(),
-            message: message.into(),
-        }
-    }
-}
-
-/// Collects field errors while a document is checked.
-#[derive(Debug, Default)]
-pub struct Checker {
-    pub errors: Vec<FieldError>,
-}
-
-impl Checker {
-    pub fn fail(&mut self, field: impl Into<String>, message: impl Into<String>) {
-        self.errors.push(FieldError::new(field, message));
-    }
-
-    /// A finite number within `[-bound, bound]`.
-    pub fn bounded(&mut self, field: impl Into<String>, value: f64, bound: f64, unit: &str) {
-        if !value.is_finite() || value.abs() > bound {
-            self.fail(
-                field,
-                format!("must be a finite number within ±{bound} {unit}"),
-            );
-        }
-    }
-
-    /// A finite number within `(0, max]`.
-    pub fn positive(&mut self, field: impl Into<String>, value: f64, max: f64, unit: &str) {
-        if !value.is_finite() || value <= 0.0 || value > max {
-            self.fail(field, format!("must be positive and at most {max} {unit}"));
-        }
-    }
-
-    pub fn finish(self) -> Result<(), Vec<FieldError>> {
-        if self.errors.is_empty() {
-            Ok(())
-        } else {
-            Err(self.errors)
-        }
-    }
-}
-
-/// Largest length accepted anywhere, millimetres (a 100 m robot is not a robot).
-pub const MAX_LENGTH_MM: f64 = 100_000.0;
-/// Largest angle accepted anywhere, degrees.
-pub const MAX_ANGLE_DEG: f64 = 720.0;
+pub use crate::domain::{Checker, FieldError, PoseOut, MAX_ANGLE_DEG, MAX_LENGTH_MM};
 
 /// A pose in the contract form: translation in mm, fixed-axis X-Y-Z angles in
 /// degrees (`R = Rz(rz) Ry(ry) Rx(rx)`), optionally a 4x4 row-major matrix.

@@ -3,7 +3,7 @@
 //! `measured_pose`), its image points, and a dataset archive's entry;
 //! each checked against its session.
 
-use serde::{Deserialize, Serialize};
+use serde::Deserialize;
 use utoipa::ToSchema;
 
 use super::flange_pose::FlangePoseDoc;
@@ -16,15 +16,7 @@ use crate::domain::{check_robot_pose, PoseSet, RobotPose};
 /// differ by rounding only.
 pub const MEASURED_POSE_AGREEMENT_MM: f64 = 1e-3;
 
-/// A dot's board index and its image position in pixels.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
-#[serde(deny_unknown_fields)]
-pub struct ImagePointDoc {
-    pub row: u32,
-    pub col: u32,
-    pub x: f64,
-    pub y: f64,
-}
+pub use crate::domain::ImagePointDoc;
 
 /// `POST /v1/sessions/{id}/poses` JSON body.
 #[derive(Debug, Clone, PartialEq, Deserialize, ToSchema)]

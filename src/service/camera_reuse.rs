@@ -7,7 +7,6 @@
 //! may be any robot's.
 
 use robocal_calib::camera::Intrinsics;
-use serde::Deserialize;
 
 use super::error::{ServiceError, ServiceResult};
 use super::report_camera::report_camera;
@@ -80,13 +79,6 @@ pub async fn resolve_for_session(
     }
 }
 
-/// What is read of a stored parameter set: its intrinsics, when it has
-/// them (any set with a `camera`, not only a whole calibrated one).
-#[derive(Deserialize)]
-struct StoredCamera {
-    camera: Option<Intrinsics>,
-}
-
 /// Looks the calibration up and checks it fits a session whose camera is
 /// `camera`: it has intrinsics, measured on images of the same size.
 pub async fn resolve(
@@ -100,14 +92,11 @@ pub async fn resolve(
         .await?
         .ok_or_else(|| ReuseError::NotFound(format!("no parameter set {id:?}")))?;
     let resolved = format!("{serial}/{}", set.version);
-    let intrinsics: Intrinsics = serde_json::from_value::<StoredCamera>(set.parameters)
-        .ok()
-        .and_then(|p| p.camera)
-        .ok_or_else(|| {
-            ReuseError::Unusable(format!(
-                "parameter set {resolved} has no camera intrinsics (not a camera calibration)"
-            ))
-        })?;
+    let intrinsics: Intrinsics = set.parameters.camera().copied().ok_or_else(|| {
+        ReuseError::Unusable(format!(
+            "parameter set {resolved} has no camera intrinsics (not a camera calibration)"
+        ))
+    })?;
     if let Some(camera) = camera {
         let calibrated = report_camera(store, serial, set.version).await?;
         if let Some((w, h)) = calibrated.map(|c| c.image_size()) {

@@ -127,7 +127,14 @@ async fn table_export(
     let identifiability: Option<IdentifiabilityReport> = report
         .as_ref()
         .and_then(|r| r.get("identifiability"))
-        .and_then(|v| serde_json::from_value(v.clone()).ok());
+        .map(|v| serde_json::from_value(v.clone()))
+        .transpose()
+        .map_err(|e| {
+            ServiceError::internal(format!(
+                "identifiability of stored report {serial}/{}: {e}",
+                record.version
+            ))
+        })?;
     let table = dh_table(serial, record.version, set, identifiability.as_ref());
     Ok(match format {
         ExportFormat::Csv => (write_csv(&table).into_bytes(), "csv", format.content_type()),

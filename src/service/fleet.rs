@@ -99,6 +99,9 @@ pub struct RobotDetail {
     pub recent_jobs: Vec<JobBrief>,
 }
 
+/// The key of a report's validation figures after calibration.
+const AFTER_KEY: &str = "after";
+
 /// The report's validation statistics, read without the rest of it.
 #[derive(Deserialize)]
 struct ReportAccuracy {
@@ -119,7 +122,7 @@ impl From<JobRecord> for JobBrief {
         JobBrief {
             id: j.id,
             serial: j.serial,
-            kind: j.kind,
+            kind: j.kind.as_str().into(),
             state: j.state,
             stage: j.stage,
             progress: j.progress,
@@ -131,8 +134,15 @@ impl From<JobRecord> for JobBrief {
 
 async fn summary_of(store: &DynStore, set: &ParameterSetRecord) -> ServiceResult<SetSummary> {
     let report = store.get_report(&set.serial, set.version).await?;
+    // A report without validation figures (a test marker) shows none; one
+    // whose figures do not read is an error, not a blank.
     let accuracy = report
-        .and_then(|r| serde_json::from_value::<ReportAccuracy>(r).ok())
+        .filter(|r| r.get(AFTER_KEY).is_some())
+        .map(serde_json::from_value::<ReportAccuracy>)
+        .transpose()
+        .map_err(|e| {
+            ServiceError::internal(format!("stored report {}/{}: {e}", set.serial, set.version))
+        })?
         .map(|r| Accuracy {
             validation_poses: r.after.norm.n,
             before_mean_mm: r.before.norm.mean_mm,
@@ -163,13 +173,9 @@ async fn current_set(store: &DynStore, serial: &str) -> ServiceResult<Option<Set
 async fn last_check(store: &DynStore, serial: &str) -> ServiceResult<Option<CheckSummary>> {
     let checks = store.list_checks(serial, 1).await?;
     Ok(checks.into_iter().next().and_then(|job| {
-        let verdict = job.result.as_ref()?.get("verdict")?.as_str()?.to_string();
-        let checked_version = job
-            .result
-            .as_ref()
-            .and_then(|r| r.get("checked_version"))
-            .and_then(|v| v.as_i64())
-            .filter(|v| *v >= 1);
+        let check = job.result.as_ref()?.check()?;
+        let verdict = check.verdict.as_str().to_string();
+        let checked_version = Some(check.checked_version).filter(|v| *v >= 1);
         Some(CheckSummary {
             verdict,
             at: job.finished_at.unwrap_or(job.created_at),

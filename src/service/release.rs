@@ -94,11 +94,7 @@ pub fn changes(old: &[ParameterReport], new: &[ParameterReport]) -> Vec<Paramete
 
 /// The identified rows of a stored set (empty for a set without them).
 fn rows(record: &ParameterSetRecord) -> Vec<ParameterReport> {
-    record
-        .parameters
-        .get("parameters")
-        .and_then(|v| serde_json::from_value(v.clone()).ok())
-        .unwrap_or_default()
+    record.parameters.parameter_rows().to_vec()
 }
 
 /// One approved version in a history.
@@ -182,7 +178,7 @@ pub async fn history(store: &DynStore, serial: &str) -> ServiceResult<History> {
         .await?
         .into_iter()
         .filter_map(|job| {
-            let check = serde_json::from_value(job.result?).ok()?;
+            let check = job.result?.check()?.clone();
             Some(HistoryCheck {
                 job_id: job.id,
                 session_id: job.session_id,

@@ -6,7 +6,7 @@
 
 use serde::Deserialize;
 
-use crate::store::{DynStore, StoreResult};
+use crate::store::{DynStore, StoreError, StoreResult};
 
 /// The part of a stored report read here.
 #[derive(Deserialize)]
@@ -47,9 +47,13 @@ pub async fn report_camera(
     serial: &str,
     version: i64,
 ) -> StoreResult<Option<ReportCamera>> {
-    Ok(store
-        .get_report(serial, version)
-        .await?
-        .and_then(|r| serde_json::from_value::<StoredReport>(r).ok())
-        .and_then(|r| r.camera))
+    let Some(report) = store.get_report(serial, version).await? else {
+        return Ok(None);
+    };
+    let read: StoredReport = serde_json::from_value(report).map_err(|e| {
+        StoreError::Backend(format!(
+            "camera section of stored report {serial}/{version}: {e}"
+        ))
+    })?;
+    Ok(read.camera)
 }

@@ -11,8 +11,7 @@ use super::evaluate::{ForwardRequest, ForwardResponse};
 use super::filter::{self, FilterRequest, FilterResponse, Filtering};
 use super::target_stream;
 use super::uncertainty::{self, Uncertainty, UncertaintyMapRequest, UncertaintyMapResponse};
-use crate::domain::{check_controller, ControllerIdentity, ParameterSet};
-use crate::pipeline::hand_eye_results::HAND_EYE_KIND;
+use crate::domain::{check_controller, CalibratedSet, ControllerIdentity, ParameterSet};
 use crate::schema::robot::{doc_to_model, KinematicsDoc};
 use crate::store::DynStore;
 use crate::store::ParameterSetRecord;
@@ -47,10 +46,10 @@ pub async fn find_parameter_set(
         .ok_or_else(|| ServiceError::not_found("parameter set", &format!("{serial}/{version}")))
 }
 
-/// A stored parameter set in its typed form (409 when the stored document
-/// is not a calibrated set).
+/// A stored parameter set's robot model (409 when the set holds none: a
+/// hand–eye or stage camera set).
 pub fn typed(record: &ParameterSetRecord) -> ServiceResult<ParameterSet> {
-    serde_json::from_value(record.parameters.clone()).map_err(|_| no_model())
+    record.parameters.kinematic().cloned().ok_or_else(no_model)
 }
 
 fn no_model() -> ServiceError {
@@ -61,7 +60,7 @@ fn no_model() -> ServiceError {
 /// identified kinematics, and evaluating the robot's nominal joint table
 /// under its name would pass uncalibrated kinematics off as calibrated.
 pub fn refuse_hand_eye(set: &ParameterSetRecord) -> ServiceResult<()> {
-    if set.parameters["kind"] == HAND_EYE_KIND {
+    if let CalibratedSet::HandEye(_) = set.parameters {
         return Err(ServiceError::Conflict(format!(
             "parameter set {}/{} is a hand–eye calibration from controller flange poses: \
              it identified no kinematics, so it has no model to evaluate or export; \

@@ -22,7 +22,6 @@ mod migrations;
 pub mod postgres;
 mod records;
 mod repo;
-pub use repo::CHECK_KIND;
 mod rows;
 pub mod sqlite;
 mod statement;

@@ -10,13 +10,14 @@ use robocal_calib::kinematics::prior::KinematicPrior;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
+use crate::domain::FlangePoseDoc;
+use crate::domain::ImagePointDoc;
 use crate::domain::{
-    CheckDoc, ImageDetection, ImageMeta, JobState, JointsDeg, MeasuredPose, PoseSet, Release,
-    ReleaseStatus,
+    CalibratedSet, CheckDoc, ImageDetection, ImageMeta, JobKind, JobResult, JobState, JobSummary,
+    JointsDeg, MeasuredPose, PoseSet, Release, ReleaseStatus,
 };
 use crate::domain::{ControllerIdentity, StageReading};
-use crate::schema::flange_pose::FlangePoseDoc;
-use crate::schema::pose_body::ImagePointDoc;
+use crate::schema::job::JobOptions;
 use crate::schema::session::SessionBody;
 use crate::schema::PoseDoc;
 
@@ -127,17 +128,17 @@ pub struct NewPose {
 #[derive(Debug, Clone)]
 pub struct JobRecord {
     pub id: String,
-    pub kind: String,
+    pub kind: JobKind,
     pub session_id: String,
     pub serial: String,
-    pub options: Value,
+    pub options: JobOptions,
     pub state: JobState,
     pub stage: Option<String>,
     pub progress: f64,
     pub attempts: i64,
     pub max_attempts: i64,
     pub error: Option<String>,
-    pub result: Option<Value>,
+    pub result: Option<JobResult>,
     pub created_at: String,
     pub started_at: Option<String>,
     pub finished_at: Option<String>,
@@ -145,10 +146,10 @@ pub struct JobRecord {
 
 #[derive(Debug, Clone)]
 pub struct NewJob {
-    pub kind: String,
     pub session_id: String,
     pub serial: String,
-    pub options: Value,
+    /// The job's options, which name its kind.
+    pub options: JobOptions,
     pub max_attempts: i64,
 }
 
@@ -156,11 +157,10 @@ pub struct NewJob {
 #[derive(Debug, Clone)]
 pub struct ClaimedJob {
     pub id: String,
-    /// `calibration` or `check`.
-    pub kind: String,
+    pub kind: JobKind,
     pub session_id: String,
     pub serial: String,
-    pub options: Value,
+    pub options: JobOptions,
     pub attempt: i64,
 }
 
@@ -170,8 +170,8 @@ pub enum JobOutcome {
     Succeeded {
         /// When the pipeline identified parameters: stored as the next version.
         parameter_set: Option<NewParameterSet>,
-        /// Extra result document (e.g. the validation summary).
-        summary: Value,
+        /// The job's `result.summary`.
+        summary: JobSummary,
         /// Every pose's final image points with residuals (empty: keep
         /// what the detect stage stored).
         detections: Vec<PoseDetection>,
@@ -187,7 +187,7 @@ pub enum JobOutcome {
 
 #[derive(Debug, Clone)]
 pub struct NewParameterSet {
-    pub parameters: Value,
+    pub parameters: CalibratedSet,
     pub report: Value,
     /// The release gate's decision (recorded as decided by `gate`).
     pub release: Release,
@@ -196,7 +196,7 @@ pub struct NewParameterSet {
 impl NewParameterSet {
     /// A set stored outside a job's gate: approved (see
     /// [`Release::stored_directly`]).
-    pub fn approved(parameters: Value, report: Value) -> NewParameterSet {
+    pub fn approved(parameters: CalibratedSet, report: Value) -> NewParameterSet {
         NewParameterSet {
             parameters,
             report,
@@ -210,7 +210,7 @@ pub struct ParameterSetRecord {
     pub serial: String,
     pub version: i64,
     pub job_id: Option<String>,
-    pub parameters: Value,
+    pub parameters: CalibratedSet,
     pub created_at: String,
     pub status: ReleaseStatus,
     pub status_reason: Option<String>,
@@ -225,7 +225,7 @@ pub struct ParameterSetRecord {
 pub struct JobFilter {
     pub state: Option<JobState>,
     pub serial: Option<String>,
-    pub kind: Option<String>,
+    pub kind: Option<JobKind>,
 }
 
 /// A webhook subscription (the secret signs every delivery's body).

@@ -7,7 +7,10 @@ use sqlx::{Decode, Row, Type};
 
 use super::StoreError;
 use super::StoreResult;
-use crate::domain::{ImageMeta, JobState, JointsDeg, PoseSet, ReleaseStatus, Scope, TokenRecord};
+use crate::domain::{
+    ImageMeta, JobKind, JobResult, JobState, JointsDeg, PoseSet, ReleaseStatus, Scope, TokenRecord,
+};
+use crate::schema::job::JobOptions;
 use crate::store::{
     ClaimedJob, JobRecord, ParameterSetRecord, PoseRecord, RobotRecord, SessionRecord,
 };
@@ -148,14 +151,31 @@ pub const JOB_COLUMNS: &str =
     "id, kind, session_id, serial, options, state, stage, progress, attempts,
     max_attempts, error, result, created_at, started_at, finished_at";
 
+/// A job's kind, and its options read as that kind's.
+fn kind_and_options(row: &impl Columns) -> StoreResult<(JobKind, JobOptions)> {
+    let id = row.str("id");
+    let kind = JobKind::parse(row.str("kind")).ok_or_else(|| {
+        StoreError::Backend(format!("job {id}: unknown kind {:?}", row.str("kind")))
+    })?;
+    let options = json(row.str("options"))
+        .and_then(|doc| Ok(JobOptions::decode(kind, doc)?))
+        .map_err(|e| StoreError::Backend(format!("stored options of job {id}: {e}")))?;
+    Ok((kind, options))
+}
+
 pub fn job(row: &impl Columns) -> StoreResult<JobRecord> {
     let state = row.str("state");
+    let (kind, options) = kind_and_options(row)?;
+    let result = opt_json(row.opt_str("result"))?
+        .map(JobResult::decode)
+        .transpose()
+        .map_err(|e| StoreError::Backend(format!("stored result of job {}: {e}", row.str("id"))))?;
     Ok(JobRecord {
         id: row.string("id"),
-        kind: row.string("kind"),
+        kind,
         session_id: row.string("session_id"),
         serial: row.string("serial"),
-        options: json(row.str("options"))?,
+        options,
         state: JobState::parse(state)
             .ok_or_else(|| StoreError::Backend(format!("unknown job state {state:?}")))?,
         stage: row.opt_string("stage"),
@@ -163,7 +183,7 @@ pub fn job(row: &impl Columns) -> StoreResult<JobRecord> {
         attempts: row.int("attempts"),
         max_attempts: row.int("max_attempts"),
         error: row.opt_string("error"),
-        result: opt_json(row.opt_str("result"))?,
+        result,
         created_at: row.string("created_at"),
         started_at: row.opt_string("started_at"),
         finished_at: row.opt_string("finished_at"),
@@ -171,11 +191,17 @@ pub fn job(row: &impl Columns) -> StoreResult<JobRecord> {
 }
 
 pub fn parameter_set(row: &impl Columns) -> StoreResult<ParameterSetRecord> {
+    let (serial, version) = (row.string("serial"), row.int("version"));
+    let parameters = serde_json::from_str(row.str("parameters")).map_err(|e| {
+        StoreError::Backend(format!(
+            "stored parameter set {serial}/{version} unreadable: {e}"
+        ))
+    })?;
     Ok(ParameterSetRecord {
-        serial: row.string("serial"),
-        version: row.int("version"),
+        serial,
+        version,
         job_id: row.opt_string("job_id"),
-        parameters: json(row.str("parameters"))?,
+        parameters,
         created_at: row.string("created_at"),
         status: release_status(row.str("status"))?,
         status_reason: row.opt_string("status_reason"),
@@ -189,12 +215,13 @@ pub fn release_status(s: &str) -> StoreResult<ReleaseStatus> {
 }
 
 pub fn claimed_job(row: &impl Columns) -> StoreResult<ClaimedJob> {
+    let (kind, options) = kind_and_options(row)?;
     Ok(ClaimedJob {
         id: row.string("id"),
-        kind: row.string("kind"),
+        kind,
         session_id: row.string("session_id"),
         serial: row.string("serial"),
-        options: json(row.str("options"))?,
+        options,
         attempt: row.int("attempts"),
     })
 }

@@ -6,6 +6,7 @@
 use serde_json::{json, Value};
 
 use robocal::domain::{now_unix_ms, ImageDetection, LeaseStatus, MeasuredPoint, MeasuredPose};
+use robocal::schema::job::JobOptions;
 use robocal::store;
 use robocal::store::{NewJob, NewParameterSet, PoseDetection};
 
@@ -36,7 +37,7 @@ fn camera_set(fx: f64, width: u32, height: u32) -> NewParameterSet {
     let intrinsics = json!({"fx": fx, "fy": fx, "cx": 32.0, "cy": 24.0,
         "k1": -0.1, "k2": 0.05, "p1": 0.0, "p2": 0.0, "k3": 0.0});
     NewParameterSet::approved(
-        json!({"instrument": "camera", "camera": intrinsics}),
+        camera_only_set(intrinsics),
         json!({"camera": {"mode": "refined", "image_width": width, "image_height": height}}),
     )
 }
@@ -61,7 +62,7 @@ async fn camera_calibration_id_must_name_a_camera_calibration_of_the_same_image_
     let store = store::connect(&app.database_url).await.unwrap();
     // Version 1: no camera (a tracker calibration); 2: a 64x48 camera;
     // 3: a camera of another image size.
-    let tracker = NewParameterSet::approved(json!({"instrument": "tracker"}), json!({}));
+    let tracker = NewParameterSet::approved(tracker_set(), json!({}));
     store
         .insert_parameter_set("CAM-1", None, &tracker)
         .await
@@ -182,10 +183,9 @@ async fn detections_are_written_whole_and_only_by_the_lease_holder() {
     let job = s
         .enqueue_job(
             &NewJob {
-                kind: "calibration".into(),
                 session_id: session.clone(),
                 serial: "DET-1".into(),
-                options: json!({}),
+                options: JobOptions::Calibration(Default::default()),
                 max_attempts: 2,
             },
             10,

@@ -258,7 +258,10 @@ async fn infeasible_and_bad_requests_name_the_constraint() {
 /// reprojection RMS (no calibrated model: the plan keeps the nominal one).
 fn camera_job(width: u32, height: u32, rms_px: f64) -> NewParameterSet {
     NewParameterSet::approved(
-        json!({"instrument": "camera"}),
+        camera_only_set(
+            json!({"fx": 2000.0, "fy": 2000.0, "cx": 1024.0, "cy": 768.0,
+            "k1": 0.0, "k2": 0.0, "p1": 0.0, "p2": 0.0, "k3": 0.0}),
+        ),
         json!({"camera": {"mode": "refined", "image_width": width,
             "image_height": height, "reprojection_rms_px": rms_px}}),
     )
@@ -284,7 +287,7 @@ async fn plan_predicts_with_the_dot_noise_of_the_robots_earlier_job() {
     // per dot; 2: a tracker job (no camera); 3: a camera job on other
     // images (another camera: says nothing of this one's noise).
     let store = store::connect(&app.database_url).await.unwrap();
-    let tracker = NewParameterSet::approved(json!({"instrument": "tracker"}), json!({}));
+    let tracker = NewParameterSet::approved(tracker_set(), json!({}));
     for set in [
         camera_job(2048, 1536, 0.3),
         tracker,
@@ -316,7 +319,7 @@ async fn plan_predicts_with_the_dot_noise_of_the_robots_earlier_job() {
 /// A calibrated camera set of robot `serial` whose frames are those of
 /// [`body`]'s guesses (the nominal IRB 2400 as its kinematics).
 async fn calibrated_camera_set(app: &TestApp, serial: &str) {
-    use robocal::domain::ParameterSet;
+    use robocal::domain::{CalibratedSet, ParameterSet};
     use robocal::schema::robot::{preset_doc, Preset};
     use robocal::schema::session::Instrument;
     use robocal::schema::PoseOut;
@@ -349,7 +352,7 @@ async fn calibrated_camera_set(app: &TestApp, serial: &str) {
         .insert_parameter_set(
             serial,
             None,
-            &NewParameterSet::approved(serde_json::to_value(&set).unwrap(), json!({})),
+            &NewParameterSet::approved(CalibratedSet::Kinematic(set), json!({})),
         )
         .await
         .unwrap();

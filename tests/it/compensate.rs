@@ -58,7 +58,7 @@ pub(crate) async fn stored_model(
         .insert_parameter_set(
             serial,
             None,
-            &NewParameterSet::approved(parameters, json!({})),
+            &NewParameterSet::approved(serde_json::from_value(parameters).unwrap(), json!({})),
         )
         .await
         .unwrap();

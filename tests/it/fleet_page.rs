@@ -26,7 +26,7 @@ pub async fn robot_with_reported_set(app: &TestApp, serial: &str) -> f64 {
         serial,
         None,
         &NewParameterSet::approved(
-            json!({ "instrument": "camera" }),
+            crate::support::placeholder_set("s"),
             serde_json::to_value(&report).unwrap(),
         ),
     )

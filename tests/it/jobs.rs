@@ -3,6 +3,7 @@ use std::time::Duration;
 use serde_json::{json, Value};
 
 use robocal::domain::{now_unix_ms, JobState, LeaseStatus};
+use robocal::schema::job::JobOptions;
 use robocal::schema::session::SessionBody;
 use robocal::store;
 use robocal::store::{JobOutcome, NewJob, NewParameterSet};
@@ -220,10 +221,9 @@ async fn queue_reclaims_expired_leases_until_max_attempts() {
     let job = s
         .enqueue_job(
             &NewJob {
-                kind: "calibration".into(),
                 session_id: session.id,
                 serial: "X".into(),
-                options: json!({}),
+                options: JobOptions::Calibration(Default::default()),
                 max_attempts: 2,
             },
             10,
@@ -245,7 +245,7 @@ async fn queue_reclaims_expired_leases_until_max_attempts() {
     );
     let outcome = JobOutcome::Succeeded {
         parameter_set: None,
-        summary: json!({}),
+        summary: Default::default(),
         detections: vec![],
         check: None,
     };
@@ -267,18 +267,20 @@ async fn queue_reclaims_expired_leases_until_max_attempts() {
         .await
         .unwrap();
     let new = NewJob {
-        kind: "calibration".into(),
         session_id: session.id,
         serial: "X".into(),
-        options: json!({}),
+        options: JobOptions::Calibration(Default::default()),
         max_attempts: 3,
     };
     let job = s.enqueue_job(&new, 10).await.unwrap();
     let w = s.claim_job("W", now, now + 60_000).await.unwrap().unwrap();
     assert_eq!(w.id, job.id);
     let outcome = JobOutcome::Succeeded {
-        parameter_set: Some(NewParameterSet::approved(json!({"p": 1}), json!({"r": 2}))),
-        summary: json!({"ok": true}),
+        parameter_set: Some(NewParameterSet::approved(
+            placeholder_set("p1"),
+            json!({"r": 2}),
+        )),
+        summary: Default::default(),
         detections: vec![],
         check: None,
     };
@@ -289,8 +291,9 @@ async fn queue_reclaims_expired_leases_until_max_attempts() {
     let done = s.get_job(&job.id).await.unwrap().unwrap();
     assert_eq!(done.state, JobState::Succeeded);
     let result = done.result.unwrap();
+    let stored = result.calibration();
     assert_eq!(
-        (result["serial"].as_str(), result["version"].as_i64()),
+        (stored.serial.as_deref(), stored.version),
         (Some("X"), Some(1))
     );
     assert_eq!(s.get_report("X", 1).await.unwrap().unwrap()["r"], 2);
@@ -301,10 +304,9 @@ async fn queue_reclaims_expired_leases_until_max_attempts() {
         .await
         .unwrap();
     let new = NewJob {
-        kind: "calibration".into(),
         session_id: session.id,
         serial: "X".into(),
-        options: json!({}),
+        options: JobOptions::Calibration(Default::default()),
         max_attempts: 2,
     };
     let job = s.enqueue_job(&new, 10).await.unwrap();
@@ -333,7 +335,7 @@ async fn parameter_sets_are_versioned_per_serial_and_served() {
     let _ = session;
     let set = |k: f64| {
         NewParameterSet::approved(
-            json!({"kinematics": {"joints": []}, "k": k}),
+            placeholder_set(&format!("k{k}")),
             json!({"after": {"rms_mm": k}}),
         )
     };
@@ -356,7 +358,8 @@ async fn parameter_sets_are_versioned_per_serial_and_served() {
         .await
         .unwrap();
     assert_eq!(list["items"][0]["version"], 2, "newest first");
-    assert_eq!(list["items"][1]["k"], 1.0);
+    assert_eq!(list["items"][1]["session_id"], "k1");
+    assert_eq!(list["items"][1]["kind"], "kinematic");
     let latest: Value = app
         .get("/v1/robots/V1/parameter-sets/latest")
         .await

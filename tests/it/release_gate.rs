@@ -7,19 +7,35 @@
 //! is in `e2e_points`, its numerics in `pipeline::gate` and calib's
 //! `kinematics::recheck`.
 
-use robocal::domain::{Release, ReleaseStatus};
+use robocal::domain::{CalibratedSet, ParameterSet, Release, ReleaseStatus};
+use robocal::report::ParameterReport;
 use robocal::store;
 use robocal::store::NewParameterSet;
 use serde_json::{json, Value};
 
 use crate::support::*;
 
+/// A free parameter's row: identified `value` from nominal 0.
+fn row(name: &str, unit: &str, value: f64, std: f64) -> ParameterReport {
+    ParameterReport {
+        name: name.into(),
+        unit: unit.into(),
+        nominal: 0.0,
+        identified: value,
+        std,
+        fixed: false,
+    }
+}
+
 pub fn set(k: f64, status: ReleaseStatus) -> NewParameterSet {
     NewParameterSet {
-        parameters: json!({"kinematics": {"joints": []}, "k": k, "parameters": [
-            {"name": "dtheta_2", "unit": "deg", "nominal": 0.0, "identified": k, "std": 0.01, "fixed": false},
-            {"name": "target_to_base.tx", "unit": "mm", "nominal": 0.0, "identified": k, "std": 0.1, "fixed": false}
-        ]}),
+        parameters: CalibratedSet::Kinematic(ParameterSet {
+            parameters: vec![
+                row("dtheta_2", "deg", k, 0.01),
+                row("target_to_base.tx", "mm", k, 0.1),
+            ],
+            ..ParameterSet::placeholder(format!("k{k}"))
+        }),
         report: json!({"after": {"mean_mm": k}}),
         release: Release {
             status,

@@ -53,7 +53,7 @@ pub async fn robot_with_decided_sets(app: &TestApp, serial: &str) {
             });
         }
         let set = NewParameterSet {
-            parameters: json!({ "instrument": "camera" }),
+            parameters: crate::support::placeholder_set("s"),
             report: serde_json::to_value(&report).unwrap(),
             release: Release {
                 status,

@@ -23,7 +23,10 @@ async fn reports(app: &TestApp) {
         assert_eq!(r.status(), 201);
     }
     let s = store::connect(&app.database_url).await.unwrap();
-    let set = NewParameterSet::approved(json!({}), serde_json::to_value(sample_report()).unwrap());
+    let set = NewParameterSet::approved(
+        placeholder_set("s"),
+        serde_json::to_value(sample_report()).unwrap(),
+    );
     for serial in ["RL-1", "RL-1", "RL-2"] {
         s.insert_parameter_set(serial, None, &set).await.unwrap();
     }
@@ -242,7 +245,10 @@ async fn a_link_names_its_set_not_a_serial_and_version_and_uses_the_public_base(
         .unwrap();
     assert_eq!(r.status(), 201);
     let s = store::connect(&app.database_url).await.unwrap();
-    let set = NewParameterSet::approved(json!({}), serde_json::to_value(sample_report()).unwrap());
+    let set = NewParameterSet::approved(
+        placeholder_set("s"),
+        serde_json::to_value(sample_report()).unwrap(),
+    );
     tokio::time::sleep(std::time::Duration::from_millis(5)).await;
     s.insert_parameter_set("RL-2", None, &set).await.unwrap();
     refused(open(&local).await, 403).await;

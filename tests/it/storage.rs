@@ -150,7 +150,7 @@ async fn a_deleted_robots_past_does_not_come_back() {
         .unwrap();
     let job = job["job_id"].as_str().unwrap().to_string();
     let store = store::connect(&app.database_url).await.unwrap();
-    let set = NewParameterSet::approved(json!({"kinematics": {"joints": []}}), json!({}));
+    let set = NewParameterSet::approved(placeholder_set("s"), json!({}));
     assert_eq!(
         store
             .insert_parameter_set("GONE-1", Some(&job), &set)
@@ -446,4 +446,70 @@ async fn poses_carry_their_labels() {
             .unwrap();
         assert_eq!(got["label"], label);
     }
+}
+
+/// A set stored before sets carried `kind` (only kinematic sets were
+/// stored without it) reads as a kinematic set, and is served with its
+/// `kind`; an old hand–eye row keeps its variant.
+#[tokio::test]
+async fn a_set_stored_without_kind_reads_as_kinematic() {
+    let app = spawn_app().await;
+    app.robot_and_session("OLD-1").await;
+    let store = store::connect(&app.database_url).await.unwrap();
+    for _ in 0..2 {
+        let set = NewParameterSet::approved(placeholder_set("new"), json!({}));
+        store
+            .insert_parameter_set("OLD-1", None, &set)
+            .await
+            .unwrap();
+    }
+    let identity = json!({"translation_mm": [0.0, 0.0, 0.0], "rotation_deg": [0.0, 0.0, 0.0],
+        "matrix": [[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]]});
+    let intrinsics = json!({"fx": 900.0, "fy": 900.0, "cx": 32.0, "cy": 24.0,
+        "k1": 0.0, "k2": 0.0, "p1": 0.0, "p2": 0.0, "k3": 0.0});
+    let old_kinematic = json!({"instrument": "camera", "session_id": "old",
+        "kinematics": {"joints": []}, "target_to_base": identity,
+        "flange_to_camera": identity, "fixed": [], "parameters": []});
+    let old_hand_eye = json!({"kind": "hand_eye", "instrument": "camera", "session_id": "old-he",
+        "target_to_base": identity, "flange_to_camera": identity, "base_to_target": identity,
+        "board_scale": 1.0, "camera": intrinsics, "camera_mode": "refined",
+        "fixed": [], "parameters": []});
+    for (version, doc) in [(1, &old_kinematic), (2, &old_hand_eye)] {
+        let sql = format!(
+            "UPDATE parameter_sets SET parameters = '{doc}' WHERE serial = 'OLD-1' AND version = {version}"
+        );
+        execute(&app.database_url, &sql).await;
+    }
+    let served = |v: i64| {
+        let app = &app;
+        async move {
+            let r = app
+                .get(&format!("/v1/robots/OLD-1/parameter-sets/{v}"))
+                .await;
+            assert_eq!(r.status(), 200);
+            r.json::<Value>().await.unwrap()
+        }
+    };
+    let v1 = served(1).await;
+    assert_eq!(v1["kind"], "kinematic", "{v1}");
+    assert_eq!(v1["session_id"], "old");
+    assert_eq!(v1["target_to_base"], identity);
+    let v2 = served(2).await;
+    assert_eq!(v2["kind"], "hand_eye", "{v2}");
+    assert_eq!(v2["board_scale"], 1.0);
+    // The typed read: the old row is the kinematic variant.
+    let stored = store
+        .get_parameter_set("OLD-1", Some(1))
+        .await
+        .unwrap()
+        .unwrap();
+    assert!(stored.parameters.kinematic().is_some());
+    // A hand–eye set has no model to evaluate: 409, as before.
+    let r = app
+        .post_json(
+            "/v1/robots/OLD-1/parameter-sets/2/forward",
+            &json!({"joints_deg": [[0.0, 0.0, 0.0, 0.0, 0.0, 0.0]]}),
+        )
+        .await;
+    assert_eq!(r.status(), 409);
 }

@@ -12,6 +12,7 @@ use robocal::domain::{
     new_id, now_rfc3339, now_unix_ms, IdempotencyClaim, IdempotencyScope, ImageMeta, JobState,
     JointsDeg, LeaseStatus, Scope, StoredResponse,
 };
+use robocal::schema::job::JobOptions;
 use robocal::schema::pose_body::ImagePointDoc;
 use robocal::schema::session::{PoseSet, SessionBody};
 use robocal::store::{self, DynStore, StoreError};
@@ -34,16 +35,18 @@ fn robot(serial: &str) -> RobotRecord {
 
 fn new_job(session_id: &str, serial: &str) -> NewJob {
     NewJob {
-        kind: "calibration".into(),
         session_id: session_id.to_string(),
         serial: serial.to_string(),
-        options: json!({}),
+        options: JobOptions::Calibration(Default::default()),
         max_attempts: 2,
     }
 }
 
 fn set(n: usize) -> NewParameterSet {
-    NewParameterSet::approved(json!({"n": n}), json!({"rms_mm": n as f64 * 0.01}))
+    NewParameterSet::approved(
+        placeholder_set(&format!("n{n}")),
+        json!({"rms_mm": n as f64 * 0.01}),
+    )
 }
 
 fn pose(sha: Option<&ImageMeta>) -> NewPose {
@@ -207,7 +210,7 @@ async fn every_store_operation_round_trips() {
     );
     let done = JobOutcome::Succeeded {
         parameter_set: Some(set(1)),
-        summary: json!({"ok": true}),
+        summary: Default::default(),
         detections: vec![],
         check: None,
     };
@@ -217,7 +220,7 @@ async fn every_store_operation_round_trips() {
     );
     let finished = s.get_job(&c1.id).await.unwrap().unwrap();
     assert_eq!(finished.state, JobState::Succeeded);
-    assert_eq!(finished.result.unwrap()["version"], 1);
+    assert_eq!(finished.result.unwrap().calibration().version, Some(1));
     assert_eq!(
         s.finish_job(&c1.id, "w1", &done).await.unwrap(),
         LeaseStatus::Lost
@@ -280,7 +283,7 @@ async fn every_store_operation_round_trips() {
         1
     );
     let latest = s.get_parameter_set("R1", None).await.unwrap().unwrap();
-    assert_eq!((latest.version, latest.parameters), (2, json!({"n": 2})));
+    assert_eq!((latest.version, latest.parameters.session_id()), (2, "n2"));
     let v1 = s.get_parameter_set("R1", Some(1)).await.unwrap().unwrap();
     assert_eq!(v1.job_id.as_deref(), Some(j1.id.as_str()));
     assert!(s.get_parameter_set("R1", Some(3)).await.unwrap().is_none());
@@ -419,8 +422,8 @@ async fn concurrent_replicas_number_parameter_sets_without_gaps() {
             .unwrap()
             .unwrap();
         assert_eq!(
-            stored.parameters,
-            json!({"n": i}),
+            stored.parameters.session_id(),
+            format!("n{i}"),
             "version {v} of {serial} holds its own write"
         );
         by_serial.entry(serial).or_default().push(v);
@@ -463,7 +466,7 @@ async fn concurrent_claimers_take_each_job_exactly_once() {
                 assert_eq!(job.attempt, 1, "a job is claimed once");
                 let outcome = JobOutcome::Succeeded {
                     parameter_set: Some(set(0)),
-                    summary: json!({}),
+                    summary: Default::default(),
                     detections: vec![],
                     check: None,
                 };

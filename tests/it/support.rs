@@ -380,3 +380,32 @@ pub fn is_finished(v: &Value) -> bool {
         Some("succeeded" | "failed" | "cancelled")
     )
 }
+
+/// A kinematic set whose content the test does not check (an empty joint
+/// table, identity frames), told apart by its `session_id`.
+pub fn placeholder_set(session_id: &str) -> robocal::domain::CalibratedSet {
+    robocal::domain::CalibratedSet::Kinematic(robocal::domain::ParameterSet::placeholder(
+        session_id,
+    ))
+}
+
+/// A tracker set (no camera) whose content the test does not check.
+pub fn tracker_set() -> robocal::domain::CalibratedSet {
+    robocal::domain::CalibratedSet::Kinematic(robocal::domain::ParameterSet {
+        instrument: robocal::schema::session::Instrument::Tracker,
+        ..robocal::domain::ParameterSet::placeholder("tracker")
+    })
+}
+
+/// A camera calibrated without a robot model (a stage camera set) with
+/// `intrinsics` (`{"fx",...,"k3"}`).
+pub fn camera_only_set(intrinsics: Value) -> robocal::domain::CalibratedSet {
+    robocal::domain::CalibratedSet::StageCamera(robocal::domain::StageCameraSet {
+        instrument: "stage".into(),
+        session_id: "camera".into(),
+        camera: serde_json::from_value(intrinsics).expect("intrinsics"),
+        camera_mode: "stage".into(),
+        camera_std: None,
+        sequences: Vec::new(),
+    })
+}

@@ -426,10 +426,9 @@ async fn notify_wakes_other_replicas_without_polling() {
     let start = Instant::now();
     loop {
         let job = NewJob {
-            kind: "calibration".into(),
             session_id: session.id.clone(),
             serial: "N1".into(),
-            options: json!({}),
+            options: robocal::schema::job::JobOptions::Calibration(Default::default()),
             max_attempts: 1,
         };
         a.enqueue_job(&job, 1000).await.unwrap();
@@ -450,10 +449,9 @@ async fn notify_wakes_other_replicas_without_polling() {
     let _ = tokio::time::timeout(Duration::from_millis(10), wake.notified()).await;
     let t = Instant::now();
     let job = NewJob {
-        kind: "calibration".into(),
         session_id: session.id.clone(),
         serial: "N1".into(),
-        options: json!({}),
+        options: robocal::schema::job::JobOptions::Calibration(Default::default()),
         max_attempts: 1,
     };
     a.enqueue_job(&job, 1000).await.unwrap();

@@ -18,6 +18,19 @@ pub enum Verdict {
     NoInformationGain,
 }
 
+impl Verdict {
+    /// Its serde name (`kept`, `not_identifiable`, ...).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Verdict::Kept => "kept",
+            Verdict::NotIdentifiable => "not_identifiable",
+            Verdict::NotSignificant => "not_significant",
+            Verdict::DoesNotGeneralise => "does_not_generalise",
+            Verdict::NoInformationGain => "no_information_gain",
+        }
+    }
+}
+
 /// One line of the selection report.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct TermReport {
@@ -48,5 +61,24 @@ pub(super) fn line(
         std_dev,
         unit: term.unit().into(),
         why,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Verdict;
+
+    /// `as_str` is the name the report's JSON carries.
+    #[test]
+    fn verdict_names_are_their_serde_names() {
+        for v in [
+            Verdict::Kept,
+            Verdict::NotIdentifiable,
+            Verdict::NotSignificant,
+            Verdict::DoesNotGeneralise,
+            Verdict::NoInformationGain,
+        ] {
+            assert_eq!(serde_json::to_value(v).unwrap(), v.as_str());
+        }
     }
 }

@@ -119,7 +119,7 @@ pub struct PoseImageUpload {
 }
 
 /// How a pose's points were measured by the last calibration job.
-#[derive(Debug, Serialize, Deserialize, ToSchema)]
+#[derive(Debug, Serialize, ToSchema)]
 pub struct PoseDetectionOut {
     pub job_id: String,
     /// Why no dots were detected on this pose's image.
@@ -152,9 +152,7 @@ impl From<PoseRecord> for PoseOut {
             ),
             (None, None) => (uploaded(), None),
         };
-        let detection = p
-            .detection
-            .and_then(|d| serde_json::from_value::<PoseDetectionOut>(d).ok());
+        let detection = p.detection.and_then(|d| stored_detection(&p.id, d));
         let source = if p.image.is_some() {
             "image"
         } else if p.measured.is_none() {
@@ -188,5 +186,31 @@ impl From<PoseRecord> for PoseOut {
 /// One image point in the served form (`points` mixes these with a job's
 /// points, which carry residuals).
 fn point_json(p: &ImagePointDoc) -> Value {
-    serde_json::to_value(p).unwrap_or_default()
+    serde_json::json!({"row": p.row, "col": p.col, "x": p.x, "y": p.y})
+}
+
+/// What a job stored of its measurement on a pose, as served: `None`
+/// until a job has stamped it with its id (the detect stage's interim
+/// write carries none). A document that does not read is logged with the
+/// pose, not served as a blank.
+fn stored_detection(pose_id: &str, doc: Value) -> Option<PoseDetectionOut> {
+    #[derive(Deserialize)]
+    struct Stored {
+        job_id: Option<String>,
+        #[serde(default)]
+        error: Option<String>,
+        #[serde(default)]
+        residual_rms_px: Option<f64>,
+    }
+    match serde_json::from_value::<Stored>(doc) {
+        Ok(s) => Some(PoseDetectionOut {
+            job_id: s.job_id?,
+            error: s.error,
+            residual_rms_px: s.residual_rms_px,
+        }),
+        Err(e) => {
+            tracing::error!(pose_id, error = %e, "stored detection unreadable");
+            None
+        }
+    }
 }

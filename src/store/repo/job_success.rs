@@ -4,13 +4,15 @@
 //! verdict (and `check.finished`). The job's `result` document is built
 //! here, once.
 
-use serde_json::{json, Value};
 use sqlx::Transaction;
 
 use super::detections::write_detections_tx;
 use super::results::insert_parameter_set_tx;
 use super::webhooks::record_event_tx;
-use crate::domain::{now_unix_ms, CheckDoc, DomainEvent, ReleaseStatus, GATE_ACTOR};
+use crate::domain::{
+    now_unix_ms, CalibrationResult, CheckDoc, DomainEvent, JobResult, JobSummary, ReleaseStatus,
+    GATE_ACTOR,
+};
 use crate::store::backend::Backend;
 use crate::store::{NewParameterSet, PoseDetection, StoreResult};
 
@@ -20,7 +22,7 @@ pub(super) struct Success<'a> {
     pub session_id: &'a str,
     pub serial: &'a str,
     pub parameter_set: Option<&'a NewParameterSet>,
-    pub summary: &'a Value,
+    pub summary: &'a JobSummary,
     pub detections: &'a [PoseDetection],
     pub check: Option<&'a CheckDoc>,
 }
@@ -29,21 +31,22 @@ pub(super) struct Success<'a> {
 pub(super) async fn record_success_tx<B: Backend>(
     tx: &mut Transaction<'static, B::Db>,
     s: Success<'_>,
-) -> StoreResult<(Value, Option<i64>)> {
+) -> StoreResult<(JobResult, Option<i64>)> {
     if !s.detections.is_empty() {
         write_detections_tx::<B>(tx, s.session_id, s.detections).await?;
     }
-    let mut result = json!({ "summary": s.summary });
+    let mut result = CalibrationResult {
+        summary: s.summary.clone(),
+        ..CalibrationResult::default()
+    };
     let mut version = None;
     if let Some(set) = s.parameter_set {
         let stored = insert_parameter_set_tx::<B>(tx, s.serial, Some(s.job_id), set).await?;
         version = Some(stored);
-        result["serial"] = json!(s.serial);
-        result["version"] = json!(stored);
-        result["status"] = json!(set.release.status.as_str());
-        if let Some(reason) = &set.release.reason {
-            result["status_reason"] = json!(reason);
-        }
+        result.serial = Some(s.serial.to_string());
+        result.version = Some(stored);
+        result.status = Some(set.release.status);
+        result.status_reason = set.release.reason.clone();
         if set.release.status == ReleaseStatus::Approved {
             let event = DomainEvent::SetApproved {
                 serial: s.serial.to_string(),
@@ -54,11 +57,6 @@ pub(super) async fn record_success_tx<B: Backend>(
         }
     }
     if let Some(check) = s.check {
-        if let (Ok(Value::Object(fields)), Some(out)) =
-            (serde_json::to_value(check), result.as_object_mut())
-        {
-            out.extend(fields);
-        }
         let event = DomainEvent::CheckFinished {
             job_id: s.job_id.to_string(),
             serial: s.serial.to_string(),
@@ -67,5 +65,5 @@ pub(super) async fn record_success_tx<B: Backend>(
         };
         record_event_tx::<B>(tx, &event, now_unix_ms()).await?;
     }
-    Ok((result, version))
+    Ok((JobResult::new(result, s.check.cloned()), version))
 }

@@ -27,10 +27,10 @@ impl<B: Backend> JobStore for B {
              RETURNING {COLUMNS}"
         ))
         .bind(new_id())
-        .bind(&j.kind)
+        .bind(j.options.kind().as_str())
         .bind(&j.session_id)
         .bind(&j.serial)
-        .bind(j.options.to_string())
+        .bind(serde_json::to_string(&j.options)?)
         .bind(j.max_attempts)
         .bind(now_rfc3339())
         .bind(max_queued)
@@ -73,7 +73,7 @@ impl<B: Backend> JobStore for B {
         .bind(limit)
         .bind(filter.state.map(JobState::as_str).unwrap_or(""))
         .bind(filter.serial.as_deref().unwrap_or(""))
-        .bind(filter.kind.as_deref().unwrap_or(""))
+        .bind(filter.kind.map_or("", |k| k.as_str()))
         .fetch_all(self.pool())
         .await?;
         let items = rows.iter().map(job).collect::<StoreResult<Vec<_>>>()?;
@@ -237,7 +237,7 @@ impl<B: Backend> JobStore for B {
                 };
                 let (result, stored) = record_success_tx::<B>(&mut tx, success).await?;
                 version = stored;
-                ("succeeded", None, Some(result.to_string()))
+                ("succeeded", None, Some(serde_json::to_string(&result)?))
             }
             JobOutcome::Failed { error } => ("failed", Some(error.clone()), None),
             JobOutcome::Retry { error } if attempts < max_attempts => {
@@ -333,7 +333,7 @@ impl<B: Backend> JobStore for B {
 fn finished_event(j: &JobRecord) -> DomainEvent {
     DomainEvent::JobFinished {
         job_id: j.id.clone(),
-        kind: j.kind.clone(),
+        kind: j.kind.as_str().to_string(),
         serial: j.serial.clone(),
         session_id: j.session_id.clone(),
         state: j.state,

@@ -23,7 +23,6 @@ mod robots;
 mod sessions;
 mod webhooks;
 
-pub use release::CHECK_KIND;
 pub use robots::{prior_text, UPSERT_ROBOT};
 
 #[async_trait]

@@ -5,14 +5,13 @@ use async_trait::async_trait;
 use sqlx::Transaction;
 
 use super::webhooks::record_event_tx;
-use crate::domain::{now_rfc3339, now_unix_ms, Decision, DomainEvent, Release, ReleaseStatus};
+use crate::domain::{
+    now_rfc3339, now_unix_ms, Decision, DomainEvent, JobKind, Release, ReleaseStatus,
+};
 use crate::store::backend::Backend;
 use crate::store::rows::{job, parameter_set, release_status, Columns, JOB_COLUMNS};
 use crate::store::statement::query;
 use crate::store::{JobRecord, ParameterSetRecord, ReleaseStore, StoreResult};
-
-/// The job kind of a quick re-check (as `jobs.kind`).
-pub const CHECK_KIND: &str = "check";
 
 /// Appends one decision to the set's log inside the caller's transaction.
 pub(super) async fn record_decision_tx<B: Backend>(
@@ -133,7 +132,7 @@ impl<B: Backend> ReleaseStore for B {
             JOB_COLUMNS
         ))
         .bind(serial)
-        .bind(CHECK_KIND)
+        .bind(JobKind::Check.as_str())
         .bind(limit)
         .fetch_all(self.pool())
         .await?;

@@ -35,7 +35,7 @@ pub(super) async fn insert_parameter_set_tx<B: Backend>(
     .bind(serial)
     .bind(version)
     .bind(job_id)
-    .bind(set.parameters.to_string())
+    .bind(serde_json::to_string(&set.parameters)?)
     .bind(&now)
     .bind(release.status.as_str())
     .bind(release.reason.as_deref())

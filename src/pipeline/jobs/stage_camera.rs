@@ -2,20 +2,19 @@
 //! stage, the stage calibration of `robocal-calib` (the intrinsics fitted
 //! with the stage's translations as constraints, every image's camera
 //! position, the paper's assessment per sequence), then its parameter set
-//! and report ([`super::stage_results`]). No robot is identified.
+//! and report ([`crate::pipeline::stage_results`]). No robot is identified.
 
 use nalgebra::Vector3;
 use robocal_calib::camera::calibrate::CalibrationOptions;
 use robocal_calib::camera::observations::ImageSize;
 use robocal_calib::stage::{calibrate_stage, StageError, StageView};
 
-use super::camera_stage::view_of;
-use super::measure::Measured;
-use super::stage_results::stage_output;
-use super::{Input, Output, PipelineError, Stage};
-use crate::domain::Target;
+use crate::domain::{CalibratedSet, Target};
+use crate::pipeline::camera_stage::view_of;
+use crate::pipeline::measure::Measured;
+use crate::pipeline::stage_results::stage_output;
+use crate::pipeline::{Input, Output, PipelineError, Stage};
 use crate::schema::session::CameraDoc;
-use crate::store::NewParameterSet;
 
 /// The rest of a stage session's job after the detect stage.
 pub fn run(
@@ -53,7 +52,7 @@ pub fn run(
     // A stage set holds a camera, no robot model: nothing to be better
     // than, so only a non-finite result is held back (as a hand–eye set).
     let after = out.report.after.norm.mean_mm;
-    let gate = super::gate::outcome(
+    let gate = crate::pipeline::gate::outcome(
         after,
         f64::INFINITY,
         "no earlier set (a stage calibration of the camera)".into(),
@@ -65,11 +64,11 @@ pub fn run(
     report.gate = Some(gate.report);
     within(Stage::Report, "done", 1.0);
     Ok(Output {
-        parameter_set: Some(NewParameterSet {
-            parameters: serde_json::to_value(&out.parameters).unwrap_or_default(),
-            report: serde_json::to_value(&report).unwrap_or_default(),
-            release: gate.release,
-        }),
+        parameter_set: Some(crate::pipeline::output::new_set(
+            CalibratedSet::StageCamera(out.parameters),
+            &report,
+            gate.release,
+        )?),
         summary: out.summary,
         detections: Vec::new(),
         check: None,

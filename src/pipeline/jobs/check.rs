@@ -9,10 +9,10 @@ use robocal_calib::kinematics::recheck::{
 };
 use robocal_calib::kinematics::ParamLayout;
 
-use super::camera_stage::CameraStep;
-use super::measuring::Measuring;
-use super::{Input, Output, PipelineError, Stage, Summary};
 use crate::domain::{controller_change, CheckDoc, CheckSuspect, CheckVerdict};
+use crate::pipeline::camera_stage::CameraStep;
+use crate::pipeline::measuring::Measuring;
+use crate::pipeline::{Input, Output, PipelineError, Stage, Summary};
 
 /// Joint noise (encoders, repeatability) assumed in the check's
 /// covariance for a set that does not carry the joint refinement's

@@ -1,21 +1,22 @@
 //! A flange-pose session's job after the camera stage (issue 14): the
-//! hand–eye fit ([`super::flange_stage`]), then its parameter set and
-//! report ([`super::hand_eye_results`]); no kinematics are identified.
+//! hand–eye fit ([`crate::pipeline::flange_stage`]), then its parameter set and
+//! report ([`crate::pipeline::hand_eye_results`]); no kinematics are identified.
 
-use super::camera_stage::CameraStep;
-use super::flange_stage::hand_eye;
-use super::measure::Measured;
-use super::{PipelineError, Stage};
+use crate::domain::CalibratedSet;
+use crate::pipeline::camera_stage::CameraStep;
+use crate::pipeline::flange_stage::hand_eye;
+use crate::pipeline::measure::Measured;
+use crate::pipeline::{PipelineError, Stage};
 
 /// The rest of a flange-pose session's job after the camera stage: the
 /// hand–eye fit, then its parameter set and report.
 pub fn run(
-    input: &super::Input,
+    input: &crate::pipeline::Input,
     measured: &Measured,
     camera: &CameraStep,
     mut notes: Vec<String>,
     within: &dyn Fn(Stage, &str, f64),
-) -> Result<super::Output, PipelineError> {
+) -> Result<crate::pipeline::Output, PipelineError> {
     within(Stage::Identify, "hand–eye from flange poses", 0.0);
     let step = hand_eye(&input.poses, measured, camera)?;
     within(Stage::Report, "building the report", 0.0);
@@ -26,13 +27,14 @@ pub fn run(
             measured.points.len()
         ));
     }
-    let mut out = super::hand_eye_results::hand_eye_output(input, measured, camera, &step, notes);
+    let mut out =
+        crate::pipeline::hand_eye_results::hand_eye_output(input, measured, camera, &step, notes);
     // A hand–eye set holds no kinematics to evaluate on another set's
     // terms, and its `before` is its `after` (the flange poses against the
     // images): nothing to be better than, so only a non-finite result is
     // held back, as before the gate every such set was served.
     let after = out.report.after.norm.mean_mm;
-    let gate = super::gate::outcome(
+    let gate = crate::pipeline::gate::outcome(
         after,
         f64::INFINITY,
         "no earlier set (a hand–eye calibration)".into(),
@@ -42,12 +44,12 @@ pub fn run(
     );
     out.report.gate = Some(gate.report);
     within(Stage::Report, "done", 1.0);
-    Ok(super::Output {
-        parameter_set: Some(crate::store::NewParameterSet {
-            parameters: serde_json::to_value(&out.parameters).unwrap_or_default(),
-            report: serde_json::to_value(&out.report).unwrap_or_default(),
-            release: gate.release,
-        }),
+    Ok(crate::pipeline::Output {
+        parameter_set: Some(crate::pipeline::output::new_set(
+            CalibratedSet::HandEye(out.parameters),
+            &out.report,
+            gate.release,
+        )?),
         summary: out.summary,
         detections: Vec::new(),
         check: None,

@@ -17,12 +17,13 @@ use robocal_calib::kinematics::regions::{joint_refine_regions, session_of, Regio
 use robocal_calib::kinematics::CalibratedModel;
 use robocal_calib::stats::AccuracyStats;
 
-use super::camera_stage::CameraStep;
-use super::identify_stage::{identify_robot, Identified};
-use super::measure::Measured;
-use super::measuring::Measuring;
-use super::screen_stage::{self, Outlier};
-use super::{camera_session, validate as validate_input, Input, PipelineError, Stage};
+use crate::pipeline::camera_stage::CameraStep;
+use crate::pipeline::identify_stage::{identify_robot, Identified};
+use crate::pipeline::measure::Measured;
+use crate::pipeline::measuring::Measuring;
+use crate::pipeline::prelude::{camera_session, check_cancelled, flange_guess};
+use crate::pipeline::screen_stage::{self, Outlier};
+use crate::pipeline::{validate as validate_input, Input, PipelineError, Stage};
 use crate::schema::session::Instrument;
 use crate::store::PoseDetection;
 
@@ -32,7 +33,7 @@ const MIN_SIGMA_PX: f64 = 1e-3;
 
 /// One session's own stages: its camera, its screening and its pose-level
 /// identification (the joint fit's start, and its "before").
-pub(super) struct SessionFit {
+pub(in crate::pipeline) struct SessionFit {
     pub input: Input,
     pub measured: Measured,
     pub step: CameraStep,
@@ -41,7 +42,7 @@ pub(super) struct SessionFit {
 }
 
 /// One session's validation in the joint fit's model.
-pub(super) struct SessionValidation {
+pub(in crate::pipeline) struct SessionValidation {
     pub before: AccuracyStats,
     pub after: AccuracyStats,
     /// (pose index in the session, error before, error after), mm.
@@ -53,7 +54,7 @@ pub(super) struct SessionValidation {
 }
 
 /// The joint fit and what goes with it.
-pub(super) struct JointFit {
+pub(in crate::pipeline) struct JointFit {
     pub refined: JointRefinement,
     /// The covariance as each session sees it (its own board's base values
     /// in the base slots); the first is the set's own.
@@ -74,7 +75,7 @@ impl JointFit {
 
 /// Everything the multi-session job found, for the report stage
 /// (`regions_results`).
-pub(super) struct Fitted {
+pub(in crate::pipeline) struct Fitted {
     pub fits: Vec<SessionFit>,
     pub joint: JointFit,
     pub validations: Vec<SessionValidation>,
@@ -83,7 +84,7 @@ pub(super) struct Fitted {
 
 /// Runs the multi-session job's fits (`input` is the first session, its
 /// `regions` the others).
-pub(super) fn run(
+pub(in crate::pipeline) fn run(
     input: &Input,
     within: &dyn Fn(Stage, &str, f64),
     detected: &dyn Fn(Vec<PoseDetection>),
@@ -107,7 +108,7 @@ pub(super) fn run(
         );
         fits.push(fit);
     }
-    super::check_cancelled(cancel)?;
+    check_cancelled(cancel)?;
     within(Stage::Identify, "joint refinement over every session", 0.5);
     let joint = joint_fit(&fits)?;
     let validations = fits
@@ -172,7 +173,7 @@ fn fit_session(
             &input.robot,
             &input.poses,
             Some(&step),
-            super::flange_guess(&input),
+            flange_guess(&input),
             Measuring::camera_pose(),
             input.options.validation,
             false,
@@ -198,7 +199,7 @@ fn fit_session(
 }
 
 /// A session's calibration poses as the joint refinement takes them.
-pub(super) fn images_of(fit: &SessionFit) -> Vec<ImagePose> {
+pub(in crate::pipeline) fn images_of(fit: &SessionFit) -> Vec<ImagePose> {
     fit.identified
         .cal
         .iter()

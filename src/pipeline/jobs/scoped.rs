@@ -14,17 +14,16 @@ use robocal_calib::kinematics::identify::{
 use robocal_calib::kinematics::initial::initial_world_to_base;
 use robocal_calib::kinematics::{ParamKind, ParamLayout};
 
-use super::camera_stage::{camera_report, CameraStep};
-use super::identify_stage::split;
-use super::measure::Measured;
-use super::measuring::Measuring;
-use super::results::residual_field;
-use super::{Input, Output, PipelineError, Stage, Summary};
-use crate::domain::ParameterSet;
+use crate::domain::{CalibratedSet, ParameterSet};
+use crate::pipeline::camera_stage::{camera_report, CameraStep};
+use crate::pipeline::identify_stage::split;
+use crate::pipeline::measure::Measured;
+use crate::pipeline::measuring::Measuring;
+use crate::pipeline::results::residual_field;
+use crate::pipeline::{Input, Output, PipelineError, Stage, Summary};
 use crate::report::{DetectionReport, IdentifiabilityReport, PoseReport, Report};
 use crate::schema::job::CalibrationScope;
 use crate::schema::PoseOut;
-use crate::store::NewParameterSet;
 
 fn numerical(message: impl std::fmt::Display) -> PipelineError {
     PipelineError::numerical(Stage::Identify, message)
@@ -141,7 +140,7 @@ pub fn run(
     ));
     // No nominal model takes part in a partial scope: "before" is the
     // approved set, the only comparison.
-    let gate = super::gate::outcome(
+    let gate = crate::pipeline::gate::outcome(
         after.norm.mean_mm,
         f64::INFINITY,
         approved.id.clone(),
@@ -216,11 +215,11 @@ pub fn run(
     };
     within(Stage::Report, "done", 1.0);
     Ok(Output {
-        parameter_set: Some(NewParameterSet {
-            parameters: serde_json::to_value(&set).unwrap_or_default(),
-            report: serde_json::to_value(&report).unwrap_or_default(),
-            release: gate.release,
-        }),
+        parameter_set: Some(crate::pipeline::output::new_set(
+            CalibratedSet::Kinematic(set),
+            &report,
+            gate.release,
+        )?),
         summary,
         detections: Vec::new(),
         check: None,
