@@ -23,9 +23,11 @@ pub mod grid;
 pub mod homography;
 pub mod image;
 pub mod order;
+mod png_rows;
 mod order_reading;
 pub mod saddle;
 pub mod site_prediction;
+pub mod source_header;
 pub mod target;
 pub mod threshold;
 
@@ -39,6 +41,7 @@ pub use detect::{
 pub use drawing::{BoardDrawing, Mark};
 pub use ellipse::{DotQuality, Ellipse};
 pub use error::DetectError;
+pub use source_header::{read_header, SourceFormat, SourceHeader};
 pub use image::{decode_grey, decode_image, DecodeLimits, DecodedGrey, GrayImage, GreyLevels};
 pub use target::TargetSpec;
 
