@@ -6,7 +6,9 @@ use std::io::Cursor;
 
 use image::{DynamicImage, ImageBuffer, Luma, Rgb, Rgba};
 use reqwest::multipart::{Form, Part};
-use serde_json::Value;
+use serde_json::{json, Value};
+
+use robocal::store;
 
 use crate::support::*;
 
@@ -47,22 +49,27 @@ fn assert_refused(status: u16, problem: &Value, option: &str) {
     assert!(message.contains(option), "{message}");
 }
 
-/// A session without a camera had no size to compare an image with: its
-/// images were decoded at any size up to the per-side limit.
+/// A session stored before the server's ceiling was lowered (or before
+/// there was one) names a camera over it: its images were decoded at that
+/// size because they matched it.
 #[tokio::test]
-async fn an_image_of_a_session_without_camera_is_held_to_the_pixel_ceiling() {
+async fn an_image_over_the_pixel_ceiling_is_refused_even_when_its_session_camera_allows_it() {
     let app = spawn_app_with(|c| c.max_camera_pixels = 10_000).await;
-    let r = app.put_json("/v1/robots/NOCAM", &robot_body()).await;
-    assert_eq!(r.status(), 201);
+    assert_eq!(app.put_json("/v1/robots/OLDCAM", &robot_body()).await.status(), 201);
     let mut body = session_body();
-    body.as_object_mut().unwrap().remove("camera");
-    let s = app.new_session("NOCAM", &body).await;
+    body["camera"]["width"] = json!(200);
+    body["camera"]["height"] = json!(100);
+    // Through the API the camera is refused now ...
+    let r = app.post_json("/v1/robots/OLDCAM/sessions", &body).await;
+    assert_eq!(r.status(), 422);
+    // ... but a session stored before keeps it.
+    let store = store::connect(&app.database_url).await.unwrap();
+    let spec = serde_json::from_value(body).unwrap();
+    let s = store.create_session("OLDCAM", "camera", &spec).await.unwrap().id;
 
-    let png = |w, h| encoded(&grey8(w, h), image::ImageFormat::Png);
-    let (status, problem) = post_image(&app, &s, png(200, 100), "image/png").await;
+    let png = encoded(&grey8(200, 100), image::ImageFormat::Png);
+    let (status, problem) = post_image(&app, &s, png, "image/png").await;
     assert_refused(status, &problem, "--max-camera-pixels");
-    let (status, pose) = post_image(&app, &s, png(100, 50), "image/png").await;
-    assert_eq!(status, 201, "{pose}");
 }
 
 /// Bytes per pixel come from the header: a 16-bit RGBA PNG is decoded row

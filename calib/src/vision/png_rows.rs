@@ -3,11 +3,13 @@
 //! image costs its grey output (4 bytes a pixel) instead of the 14 the
 //! whole-image path holds (8 decoded, 2 luma, 4 f32). The levels are
 //! exactly those of [`super::DecodedGrey::from_dynamic`] on the `image`
-//! crate's decode (same palette and low-depth expansion, same luma
-//! weights and integer rounding). Adam7 files are left to that path.
+//! crate's decode (same palette and low-depth expansion; each row goes
+//! through the crate's own colour conversion). Adam7 files are left to
+//! that path.
 
 use std::io::Cursor;
 
+use image::{DynamicImage, ImageBuffer};
 use png::{BitDepth, ColorType, Decoder, Reader, Transformations};
 
 use super::error::DetectError;
@@ -16,11 +18,6 @@ use super::image::{DecodedGrey, GrayImage};
 /// Bytes the PNG decoder may allocate besides its output (row buffers,
 /// text and colour-profile chunks); rows are at most 12 000 RGBA16 pixels.
 const PNG_DECODER_BYTES: u64 = 16 * 1024 * 1024;
-/// The `image` crate's sRGB luma weights and their divisor (`rgb_to_luma`).
-const LUMA_WEIGHTS: [u32; 3] = [2126, 7152, 722];
-const LUMA_DIV: u32 = 10_000;
-/// 16-bit to 8-bit grey-level scale (as in [`super::image`]).
-const U16_TO_U8_SCALE: f32 = 1.0 / 257.0;
 
 /// A reader past the header, with the `image` crate's transformation
 /// (palette to RGB(A), low depths to 8 bits, tRNS to alpha).
@@ -48,7 +45,9 @@ pub(crate) fn is_deep(color: ColorType, depth: BitDepth) -> bool {
 }
 
 /// Decodes a non-interlaced PNG row by row; `Ok(None)` for an Adam7 file
-/// (the caller decodes it whole).
+/// (the caller decodes it whole). Each row is converted by the `image`
+/// crate itself (a one-row image through [`DecodedGrey::from_dynamic`]),
+/// so the levels are those of the whole-image path to the bit.
 pub(crate) fn decode(bytes: &[u8]) -> Result<Option<DecodedGrey>, DetectError> {
     let mut reader = open(bytes)?;
     if reader.info().interlaced {
@@ -56,52 +55,82 @@ pub(crate) fn decode(bytes: &[u8]) -> Result<Option<DecodedGrey>, DetectError> {
     }
     let (width, height) = (reader.info().width, reader.info().height);
     let (color, depth) = reader.output_color_type();
-    let samples = color.samples();
     let pixels = width as usize * height as usize;
-    let decode_err = |e: png::DecodingError| DetectError::Decode(e.to_string());
-    if is_deep(color, depth) {
-        let mut data = Vec::with_capacity(pixels);
-        while let Some(row) = reader.next_row().map_err(decode_err)? {
-            data.extend(row.data().chunks_exact(2 * samples).map(|px| {
-                let sample = |i: usize| u32::from(u16::from_be_bytes([px[2 * i], px[2 * i + 1]]));
-                let level = if samples >= 3 {
-                    luma([sample(0), sample(1), sample(2)])
-                } else {
-                    sample(0)
-                };
-                level as f32 * U16_TO_U8_SCALE
-            }));
+    let deep = is_deep(color, depth);
+    let (mut levels, mut floats) = if deep {
+        (Vec::new(), Vec::with_capacity(pixels))
+    } else {
+        (Vec::with_capacity(pixels), Vec::new())
+    };
+    while let Some(row) = reader
+        .next_row()
+        .map_err(|e| DetectError::Decode(e.to_string()))?
+    {
+        match DecodedGrey::from_dynamic(row_image(row.data(), width, color, depth)?) {
+            DecodedGrey::Levels8(g) => levels.extend_from_slice(g.as_raw()),
+            DecodedGrey::Float(g) => floats.extend_from_slice(&g.data),
         }
-        let grey = GrayImage::new(width as usize, height as usize, data)?;
+    }
+    if deep {
+        let grey = GrayImage::new(width as usize, height as usize, floats)?;
         return Ok(Some(DecodedGrey::Float(grey)));
     }
-    let bytes_per_sample = if depth == BitDepth::Sixteen { 2 } else { 1 };
-    let mut data = Vec::with_capacity(pixels);
-    while let Some(row) = reader.next_row().map_err(decode_err)? {
-        data.extend(row.data().chunks_exact(bytes_per_sample * samples).map(|px| {
-            if bytes_per_sample == 2 {
-                // 16-bit grey+alpha: the grey sample rounded to 8 bits.
-                ((u32::from(u16::from_be_bytes([px[0], px[1]])) + 128) / 257) as u8
-            } else if samples >= 3 {
-                luma([px[0], px[1], px[2]].map(u32::from)) as u8
-            } else {
-                px[0]
-            }
-        }));
-    }
-    let grey = image::GrayImage::from_raw(width, height, data)
+    let grey = image::GrayImage::from_raw(width, height, levels)
         .ok_or_else(|| DetectError::Decode("PNG ended before its last row".into()))?;
     Ok(Some(DecodedGrey::Levels8(grey)))
 }
 
-/// The `image` crate's integer sRGB luma of one pixel.
-fn luma(rgb: [u32; 3]) -> u32 {
-    (LUMA_WEIGHTS[0] * rgb[0] + LUMA_WEIGHTS[1] * rgb[1] + LUMA_WEIGHTS[2] * rgb[2]) / LUMA_DIV
+/// One decoded row as a one-row image of the `image` crate's layout
+/// (16-bit samples from PNG's big-endian order).
+fn row_image(
+    data: &[u8],
+    width: u32,
+    color: ColorType,
+    depth: BitDepth,
+) -> Result<DynamicImage, DetectError> {
+    let bad_row = || DetectError::Decode("PNG row of an unexpected length".into());
+    let wide = || -> Vec<u16> {
+        data.chunks_exact(2)
+            .map(|b| u16::from_be_bytes([b[0], b[1]]))
+            .collect()
+    };
+    let image = match (color, depth) {
+        (ColorType::Grayscale, BitDepth::Eight) => {
+            ImageBuffer::from_raw(width, 1, data.to_vec()).map(DynamicImage::ImageLuma8)
+        }
+        (ColorType::GrayscaleAlpha, BitDepth::Eight) => {
+            ImageBuffer::from_raw(width, 1, data.to_vec()).map(DynamicImage::ImageLumaA8)
+        }
+        (ColorType::Rgb, BitDepth::Eight) => {
+            ImageBuffer::from_raw(width, 1, data.to_vec()).map(DynamicImage::ImageRgb8)
+        }
+        (ColorType::Rgba, BitDepth::Eight) => {
+            ImageBuffer::from_raw(width, 1, data.to_vec()).map(DynamicImage::ImageRgba8)
+        }
+        (ColorType::Grayscale, BitDepth::Sixteen) => {
+            ImageBuffer::from_raw(width, 1, wide()).map(DynamicImage::ImageLuma16)
+        }
+        (ColorType::GrayscaleAlpha, BitDepth::Sixteen) => {
+            ImageBuffer::from_raw(width, 1, wide()).map(DynamicImage::ImageLumaA16)
+        }
+        (ColorType::Rgb, BitDepth::Sixteen) => {
+            ImageBuffer::from_raw(width, 1, wide()).map(DynamicImage::ImageRgb16)
+        }
+        (ColorType::Rgba, BitDepth::Sixteen) => {
+            ImageBuffer::from_raw(width, 1, wide()).map(DynamicImage::ImageRgba16)
+        }
+        _ => {
+            return Err(DetectError::Decode(format!(
+                "PNG layout {color:?} at {depth:?} after expansion"
+            )))
+        }
+    };
+    image.ok_or_else(bad_row)
 }
 
 #[cfg(test)]
 mod tests {
-    use image::{DynamicImage, ImageBuffer, Luma, LumaA, Rgb, Rgba};
+    use image::{Luma, LumaA, Rgb, Rgba};
 
     use super::*;
 
