@@ -35,17 +35,29 @@ struct Args {
     #[arg(long, default_value = "sqlite")]
     backend: String,
     /// Administrative URL of the PostgreSQL server (a database is created per run).
-    #[arg(long, env = "ROBOCAL_TEST_PG_URL", default_value = "postgres://postgres@127.0.0.1:5432/test")]
+    #[arg(
+        long,
+        env = "ROBOCAL_TEST_PG_URL",
+        default_value = "postgres://postgres@127.0.0.1:5432/test"
+    )]
     pg_url: String,
 }
 
 fn robot(serial: &str) -> RobotRecord {
-    let joints: Vec<_> = [(100.0, -90.0, 615.0), (705.0, 0.0, 0.0), (135.0, -90.0, 0.0),
-        (0.0, 90.0, 755.0), (0.0, -90.0, 0.0), (0.0, 0.0, 85.0)]
-        .iter()
-        .map(|(a, alpha, d)| json!({"type":"revolute","a_mm":a,"alpha_deg":alpha,"d_mm":d,
-            "theta_offset_deg":0.0,"min_deg":-170.0,"max_deg":170.0}))
-        .collect();
+    let joints: Vec<_> = [
+        (100.0, -90.0, 615.0),
+        (705.0, 0.0, 0.0),
+        (135.0, -90.0, 0.0),
+        (0.0, 90.0, 755.0),
+        (0.0, -90.0, 0.0),
+        (0.0, 0.0, 85.0),
+    ]
+    .iter()
+    .map(|(a, alpha, d)| {
+        json!({"type":"revolute","a_mm":a,"alpha_deg":alpha,"d_mm":d,
+            "theta_offset_deg":0.0,"min_deg":-170.0,"max_deg":170.0})
+    })
+    .collect();
     let now = robocal::domain::now_rfc3339();
     RobotRecord {
         serial: serial.to_string(),
@@ -61,7 +73,13 @@ fn robot(serial: &str) -> RobotRecord {
 
 /// Enqueues a `kind` job of `session` and, unless `outcome` is `None`
 /// (left running), finishes it so.
-async fn job(store: &DynStore, serial: &str, session: &str, kind: &str, outcome: Option<JobOutcome>) {
+async fn job(
+    store: &DynStore,
+    serial: &str,
+    session: &str,
+    kind: &str,
+    outcome: Option<JobOutcome>,
+) {
     let new = NewJob {
         kind: kind.into(),
         session_id: session.into(),
@@ -77,7 +95,10 @@ async fn job(store: &DynStore, serial: &str, session: &str, kind: &str, outcome:
         .unwrap()
         .expect("the job just queued");
     if let Some(outcome) = outcome {
-        store.finish_job(&claimed.id, "bench", &outcome).await.unwrap();
+        store
+            .finish_job(&claimed.id, "bench", &outcome)
+            .await
+            .unwrap();
     }
 }
 
@@ -94,9 +115,16 @@ async fn seed(store: &DynStore, robots: usize) {
         store.put_robot(&robot(&serial)).await.unwrap();
         for _ in 0..2 {
             let set = NewParameterSet::approved(json!({ "instrument": "camera" }), report.clone());
-            store.insert_parameter_set(&serial, None, &set).await.unwrap();
+            store
+                .insert_parameter_set(&serial, None, &set)
+                .await
+                .unwrap();
         }
-        let session = store.create_session(&serial, "camera", &session_body).await.unwrap().id;
+        let session = store
+            .create_session(&serial, "camera", &session_body)
+            .await
+            .unwrap()
+            .id;
         let succeeded = JobOutcome::Succeeded {
             parameter_set: None,
             summary: json!({}),
@@ -142,7 +170,11 @@ async fn main() {
     let store = store::connect(&database_url).await.unwrap();
     let seeding = Instant::now();
     seed(&store, args.robots).await;
-    println!("seeded {} robots in {:.1} s", args.robots, seeding.elapsed().as_secs_f64());
+    println!(
+        "seeded {} robots in {:.1} s",
+        args.robots,
+        seeding.elapsed().as_secs_f64()
+    );
 
     let mut config = ServeConfig::for_database(&database_url);
     config.bind = "127.0.0.1:0".parse().unwrap();
@@ -154,13 +186,17 @@ async fn main() {
     let first = client.get(&url).send().await.unwrap();
     assert_eq!(first.status(), 200);
     let body = first.text().await.unwrap();
-    assert!(body.contains(&format!("R{:05}", args.robots.min(500) - 1)), "every robot shown");
+    assert!(
+        body.contains(&format!("R{:05}", args.robots.min(500) - 1)),
+        "every robot shown"
+    );
 
     let next = Arc::new(std::sync::atomic::AtomicUsize::new(0));
     let start = Instant::now();
     let viewers: Vec<_> = (0..args.viewers)
         .map(|_| {
-            let (client, url, next, pages) = (client.clone(), url.clone(), next.clone(), args.pages);
+            let (client, url, next, pages) =
+                (client.clone(), url.clone(), next.clone(), args.pages);
             tokio::spawn(async move {
                 let mut took = Vec::new();
                 while next.fetch_add(1, std::sync::atomic::Ordering::SeqCst) < pages {

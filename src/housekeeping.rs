@@ -92,8 +92,13 @@ pub async fn sweep(store: &DynStore, spool_dir: &Path) {
     }
     match store.collect_orphan_blobs().await {
         Ok(0) => {}
-        Ok(n) => tracing::info!(collected = n, "images of uploads cut off by a crash were deleted"),
-        Err(e) => tracing::warn!(error = %e, "orphan image collection failed; retried at the next sweep"),
+        Ok(n) => tracing::info!(
+            collected = n,
+            "images of uploads cut off by a crash were deleted"
+        ),
+        Err(e) => {
+            tracing::warn!(error = %e, "orphan image collection failed; retried at the next sweep")
+        }
     }
     let cutoff = now_unix_ms() - BLOB_GRACE.as_millis() as i64;
     match store.collect_blobs(cutoff).await {

@@ -125,10 +125,7 @@ impl DecodeGate {
                     key: key.to_string(),
                 };
             }
-            slots = self
-                .changed
-                .wait(slots)
-                .unwrap_or_else(|e| e.into_inner());
+            slots = self.changed.wait(slots).unwrap_or_else(|e| e.into_inner());
         }
     }
 }

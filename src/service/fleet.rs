@@ -5,12 +5,14 @@
 //! with [`results::LATEST`]), so the page shows whatever `latest` means.
 
 use super::error::{ServiceError, ServiceResult};
-pub use super::fleet_cache::{Accuracy, SummaryCache};
 use super::fleet_cache::{accuracy_of, accuracy_of_value, SetKey};
+pub use super::fleet_cache::{Accuracy, SummaryCache};
 use super::results;
 use crate::domain::{ControllerIdentity, JobState, ReleaseStatus, Serial};
 use crate::report::Report;
-use crate::store::{CheckHead, DynStore, FleetRow, JobFilter, JobHead, JobRecord, ParameterSetRecord, SetHead};
+use crate::store::{
+    CheckHead, DynStore, FleetRow, JobFilter, JobHead, JobRecord, ParameterSetRecord, SetHead,
+};
 
 /// Robots listed on the fleet page (the first, by serial).
 pub const MAX_ROBOTS: i64 = 500;
@@ -233,9 +235,14 @@ async fn last_failed(store: &DynStore, serial: &str) -> ServiceResult<Option<Job
 /// current sets' reports only when a set is new to `cache`.
 pub async fn fleet(store: &DynStore, cache: &SummaryCache) -> ServiceResult<Vec<RobotSummary>> {
     let rows = store.fleet_rows(MAX_ROBOTS).await?;
-    let unknown = rows.iter().filter_map(|r| r.current.as_ref().map(|s| (r, s))).any(|(r, s)| {
-        cache.get(&set_key(&r.serial, s.version, &s.created_at)).is_none()
-    });
+    let unknown = rows
+        .iter()
+        .filter_map(|r| r.current.as_ref().map(|s| (r, s)))
+        .any(|(r, s)| {
+            cache
+                .get(&set_key(&r.serial, s.version, &s.created_at))
+                .is_none()
+        });
     if unknown {
         let mut reported = std::collections::HashSet::new();
         for current in store.fleet_reports(MAX_ROBOTS).await? {
@@ -243,7 +250,10 @@ pub async fn fleet(store: &DynStore, cache: &SummaryCache) -> ServiceResult<Vec<
             reported.insert(key.clone());
             cache.put(key, accuracy_of(&current.report));
         }
-        for (r, s) in rows.iter().filter_map(|r| r.current.as_ref().map(|s| (r, s))) {
+        for (r, s) in rows
+            .iter()
+            .filter_map(|r| r.current.as_ref().map(|s| (r, s)))
+        {
             let key = set_key(&r.serial, s.version, &s.created_at);
             if !reported.contains(&key) {
                 cache.put(key, None);

@@ -112,6 +112,10 @@ mod tests {
         cache.put(key.clone(), None);
         assert_eq!(cache.get(&key), Some(None));
         let recreated = ("R1".to_string(), 1, "2026-01-02T00:00:00.000Z".to_string());
-        assert_eq!(cache.get(&recreated), None, "a re-created robot's v1 is another set");
+        assert_eq!(
+            cache.get(&recreated),
+            None,
+            "a re-created robot's v1 is another set"
+        );
     }
 }

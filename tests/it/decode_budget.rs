@@ -27,9 +27,10 @@ fn grey8(w: u32, h: u32) -> DynamicImage {
 
 /// Posts `bytes` as the `image` part of a pose; the response status and body.
 async fn post_image(app: &TestApp, session: &str, bytes: Vec<u8>, mime: &str) -> (u16, Value) {
-    let form = Form::new()
-        .text("joints_deg", "[0,0,0,0,0,0]")
-        .part("image", Part::bytes(bytes).file_name("view").mime_str(mime).unwrap());
+    let form = Form::new().text("joints_deg", "[0,0,0,0,0,0]").part(
+        "image",
+        Part::bytes(bytes).file_name("view").mime_str(mime).unwrap(),
+    );
     let r = app
         .client
         .post(app.url(&format!("/v1/sessions/{session}/poses")))
@@ -55,7 +56,12 @@ fn assert_refused(status: u16, problem: &Value, option: &str) {
 #[tokio::test]
 async fn an_image_over_the_pixel_ceiling_is_refused_even_when_its_session_camera_allows_it() {
     let app = spawn_app_with(|c| c.max_camera_pixels = 10_000).await;
-    assert_eq!(app.put_json("/v1/robots/OLDCAM", &robot_body()).await.status(), 201);
+    assert_eq!(
+        app.put_json("/v1/robots/OLDCAM", &robot_body())
+            .await
+            .status(),
+        201
+    );
     let mut body = session_body();
     body["camera"]["width"] = json!(200);
     body["camera"]["height"] = json!(100);
@@ -65,7 +71,11 @@ async fn an_image_over_the_pixel_ceiling_is_refused_even_when_its_session_camera
     // ... but a session stored before keeps it.
     let store = store::connect(&app.database_url).await.unwrap();
     let spec = serde_json::from_value(body).unwrap();
-    let s = store.create_session("OLDCAM", "camera", &spec).await.unwrap().id;
+    let s = store
+        .create_session("OLDCAM", "camera", &spec)
+        .await
+        .unwrap()
+        .id;
 
     let png = encoded(&grey8(200, 100), image::ImageFormat::Png);
     let (status, problem) = post_image(&app, &s, png, "image/png").await;
@@ -85,20 +95,41 @@ async fn a_decode_over_the_byte_budget_is_refused_from_the_header() {
     let rgba16 = DynamicImage::ImageRgba16(ImageBuffer::from_fn(w, h, |x, y| {
         Rgba([(x * 1000) as u16, (y * 1000) as u16, 40_000, 65_535])
     }));
-    let (status, pose) = post_image(&app, &s, encoded(&rgba16, image::ImageFormat::Png), "image/png").await;
+    let (status, pose) = post_image(
+        &app,
+        &s,
+        encoded(&rgba16, image::ImageFormat::Png),
+        "image/png",
+    )
+    .await;
     assert_eq!(status, 201, "16-bit RGBA PNG, 4 bytes a pixel: {pose}");
-    let (status, pose) =
-        post_image(&app, &s, encoded(&grey8(w, h), image::ImageFormat::Png), "image/png").await;
+    let (status, pose) = post_image(
+        &app,
+        &s,
+        encoded(&grey8(w, h), image::ImageFormat::Png),
+        "image/png",
+    )
+    .await;
     assert_eq!(status, 201, "8-bit grey PNG, 5 bytes a pixel: {pose}");
 
     let rgb = DynamicImage::ImageRgb8(ImageBuffer::from_fn(w, h, |x, y| {
         Rgb([(x * 4) as u8, (y * 5) as u8, 90])
     }));
-    let (status, problem) =
-        post_image(&app, &s, encoded(&rgb, image::ImageFormat::Jpeg), "image/jpeg").await;
+    let (status, problem) = post_image(
+        &app,
+        &s,
+        encoded(&rgb, image::ImageFormat::Jpeg),
+        "image/jpeg",
+    )
+    .await;
     assert_refused(status, &problem, "--max-decode-bytes");
     let detail = problem["errors"][0]["message"].as_str().unwrap();
     assert!(detail.contains("8-bit RGB JPEG"), "{detail}");
-    let session: Value = app.get(&format!("/v1/sessions/{s}")).await.json().await.unwrap();
+    let session: Value = app
+        .get(&format!("/v1/sessions/{s}"))
+        .await
+        .json()
+        .await
+        .unwrap();
     assert_eq!(session["pose_count"], 2, "{session}");
 }

@@ -54,7 +54,8 @@ async fn the_images_and_spool_file_of_an_upload_killed_midway_go_at_restart() {
     ];
     let c = reqwest::Client::new();
     let mut first = spawn_binary(&args, &[("ROBOCAL_TEST_UPLOAD_DELAY_MS", "500")]);
-    let (session, pose, acknowledged) = robot_with_session(&c, &first.base, "KILL-UP", 7, "cal").await;
+    let (session, pose, acknowledged) =
+        robot_with_session(&c, &first.base, "KILL-UP", 7, "cal").await;
 
     let images: Vec<Vec<u8>> = (0..6).map(|i| png(CAMERA_W, CAMERA_H, 60 + i)).collect();
     let names: Vec<String> = (0..images.len()).map(|i| format!("v{i}.png")).collect();
@@ -64,7 +65,12 @@ async fn the_images_and_spool_file_of_an_upload_killed_midway_go_at_restart() {
         .collect();
     let manifest = serde_json::to_vec(&manifest).unwrap();
     let mut entries: Vec<(&str, &[u8])> = vec![("poses.json", &manifest)];
-    entries.extend(names.iter().map(String::as_str).zip(images.iter().map(Vec::as_slice)));
+    entries.extend(
+        names
+            .iter()
+            .map(String::as_str)
+            .zip(images.iter().map(Vec::as_slice)),
+    );
     let zip = zip_bytes(&entries);
     let upload = {
         let url = format!("{}/v1/sessions/{session}/dataset", first.base);
@@ -83,7 +89,11 @@ async fn the_images_and_spool_file_of_an_upload_killed_midway_go_at_restart() {
         store.get_blob(&first_image).await.unwrap().is_some()
     })
     .await;
-    assert_eq!(spool_files(&spool), 1, "the archive is spooled while it is read");
+    assert_eq!(
+        spool_files(&spool),
+        1,
+        "the archive is spooled while it is read"
+    );
     first.child.kill().unwrap(); // SIGKILL mid-upload: no clean-up at all
     first.child.wait().unwrap();
     assert!(upload.await.unwrap().is_err(), "the upload was cut off");
@@ -102,12 +112,18 @@ async fn the_images_and_spool_file_of_an_upload_killed_midway_go_at_restart() {
     assert_eq!(spool_files(&spool), 0, "the spool file is gone");
     // What was acknowledged before the kill is all there.
     let stored = c
-        .get(format!("{}/v1/sessions/{session}/poses/{pose}/image", second.base))
+        .get(format!(
+            "{}/v1/sessions/{session}/poses/{pose}/image",
+            second.base
+        ))
         .send()
         .await
         .unwrap();
     assert_eq!(stored.status(), 200);
-    assert_eq!(sha256_hex(&stored.bytes().await.unwrap()), sha256_hex(&acknowledged));
+    assert_eq!(
+        sha256_hex(&stored.bytes().await.unwrap()),
+        sha256_hex(&acknowledged)
+    );
     let listed: Value = c
         .get(format!("{}/v1/sessions/{session}", second.base))
         .send()
@@ -155,7 +171,10 @@ async fn the_sqlite_file_shrinks_when_a_robot_s_images_are_deleted() {
     }
     let (w, h) = (640u32, 480u32);
     let app = spawn_app().await;
-    assert_eq!(app.put_json("/v1/robots/BIG", &robot_body()).await.status(), 201);
+    assert_eq!(
+        app.put_json("/v1/robots/BIG", &robot_body()).await.status(),
+        201
+    );
     let mut body = session_body();
     body["camera"]["width"] = json!(w);
     body["camera"]["height"] = json!(h);
@@ -169,7 +188,12 @@ async fn the_sqlite_file_shrinks_when_a_robot_s_images_are_deleted() {
         .collect();
     let manifest = serde_json::to_vec(&manifest).unwrap();
     let mut entries: Vec<(&str, &[u8])> = vec![("poses.json", &manifest)];
-    entries.extend(names.iter().map(String::as_str).zip(images.iter().map(Vec::as_slice)));
+    entries.extend(
+        names
+            .iter()
+            .map(String::as_str)
+            .zip(images.iter().map(Vec::as_slice)),
+    );
     let r = app
         .client
         .post(app.url(&format!("/v1/sessions/{session}/dataset")))
@@ -180,9 +204,17 @@ async fn the_sqlite_file_shrinks_when_a_robot_s_images_are_deleted() {
         .unwrap();
     assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
     let full = sqlite_file_bytes(&app.database_url).await;
-    assert!(full as usize > image_bytes, "{full} bytes hold {image_bytes} of images");
+    assert!(
+        full as usize > image_bytes,
+        "{full} bytes hold {image_bytes} of images"
+    );
 
-    let r = app.client.delete(app.url("/v1/robots/BIG")).send().await.unwrap();
+    let r = app
+        .client
+        .delete(app.url("/v1/robots/BIG"))
+        .send()
+        .await
+        .unwrap();
     assert_eq!(r.status(), 204);
     let after = sqlite_file_bytes(&app.database_url).await;
     assert!(

@@ -23,8 +23,8 @@ pub mod grid;
 pub mod homography;
 pub mod image;
 pub mod order;
-mod png_rows;
 mod order_reading;
+mod png_rows;
 pub mod saddle;
 pub mod site_prediction;
 pub mod source_header;
@@ -41,8 +41,8 @@ pub use detect::{
 pub use drawing::{BoardDrawing, Mark};
 pub use ellipse::{DotQuality, Ellipse};
 pub use error::DetectError;
-pub use source_header::{read_header, SourceFormat, SourceHeader};
 pub use image::{decode_grey, decode_image, DecodeLimits, DecodedGrey, GrayImage, GreyLevels};
+pub use source_header::{read_header, SourceFormat, SourceHeader};
 pub use target::TargetSpec;
 
 #[cfg(test)]

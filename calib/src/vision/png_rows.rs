@@ -154,7 +154,12 @@ mod tests {
             Rgb([level(x, y, 0), level(x, y, 1), level(x, y, 2)])
         });
         let rgba16 = ImageBuffer::from_fn(w, h, |x, y| {
-            Rgba([level(x, y, 0), level(x, y, 1), level(x, y, 2), level(x, y, 3)])
+            Rgba([
+                level(x, y, 0),
+                level(x, y, 1),
+                level(x, y, 2),
+                level(x, y, 3),
+            ])
         });
         let deep = [
             ("L16", DynamicImage::ImageLuma16(l16)),
@@ -162,10 +167,7 @@ mod tests {
             ("RGB16", DynamicImage::ImageRgb16(rgb16)),
             ("RGBA16", DynamicImage::ImageRgba16(rgba16)),
         ];
-        let mut all: Vec<_> = deep
-            .iter()
-            .map(|(n, img)| (*n, img.clone()))
-            .collect();
+        let mut all: Vec<_> = deep.iter().map(|(n, img)| (*n, img.clone())).collect();
         for (name, img) in deep {
             let name8 = match name {
                 "L16" => "L8",
@@ -208,12 +210,18 @@ mod tests {
                 enc.set_color(color);
                 enc.set_depth(depth);
                 if palette {
-                    enc.set_palette((0..16u8).flat_map(|i| [i * 16, 255 - i * 9, i * 3]).collect::<Vec<_>>());
+                    enc.set_palette(
+                        (0..16u8)
+                            .flat_map(|i| [i * 16, 255 - i * 9, i * 3])
+                            .collect::<Vec<_>>(),
+                    );
                 }
                 let mut writer = enc.write_header().unwrap();
                 let bits = depth as u32;
                 let line = (w * bits).div_ceil(8) as usize;
-                let data: Vec<u8> = (0..line * h as usize).map(|i| (i * 37 % 251) as u8).collect();
+                let data: Vec<u8> = (0..line * h as usize)
+                    .map(|i| (i * 37 % 251) as u8)
+                    .collect();
                 writer.write_image_data(&data).unwrap();
             }
             let whole = DecodedGrey::from_dynamic(image::load_from_memory(&out).unwrap());

@@ -6,7 +6,9 @@ use crate::schema::session::SessionBody;
 use crate::store::backend::{is_foreign_key_violation, Backend};
 use crate::store::rows::{pose, session, Columns};
 use crate::store::statement::query;
-use crate::store::{writer, NewPose, PoseRecord, SessionRecord, SessionStore, StoreError, StoreResult};
+use crate::store::{
+    writer, NewPose, PoseRecord, SessionRecord, SessionStore, StoreError, StoreResult,
+};
 
 const SESSION_COLUMNS: &str = "s.id, s.serial, s.instrument, s.spec, s.created_at,
     (SELECT count(*) FROM poses p WHERE p.session_id = s.id) AS pose_count";

@@ -10,7 +10,8 @@ use std::time::Duration;
 
 use async_trait::async_trait;
 use sqlx::sqlite::{
-    SqliteAutoVacuum, SqliteConnectOptions, SqliteJournalMode, SqlitePool, SqlitePoolOptions, SqliteSynchronous,
+    SqliteAutoVacuum, SqliteConnectOptions, SqliteJournalMode, SqlitePool, SqlitePoolOptions,
+    SqliteSynchronous,
 };
 use sqlx::{Sqlite, Transaction};
 
@@ -169,7 +170,9 @@ const AUTO_VACUUM_INCREMENTAL: i64 = 2;
 /// rewrites it (new files have it from their first connection). A failure
 /// (another process holds the file) is logged; the next start retries.
 async fn incremental_vacuum_on(pool: &SqlitePool) {
-    let mode: Result<i64, _> = sqlx::query_scalar("PRAGMA auto_vacuum").fetch_one(pool).await;
+    let mode: Result<i64, _> = sqlx::query_scalar("PRAGMA auto_vacuum")
+        .fetch_one(pool)
+        .await;
     if matches!(mode, Ok(AUTO_VACUUM_INCREMENTAL)) {
         return;
     }
@@ -209,8 +212,12 @@ impl Backend for SqliteStore {
     /// waits for readers; one they hold back is finished by a later one).
     async fn reclaim_space(&self) -> StoreResult<()> {
         let mut conn = self.pool.acquire().await?;
-        sqlx::query("PRAGMA incremental_vacuum").execute(&mut *conn).await?;
-        sqlx::query("PRAGMA wal_checkpoint(PASSIVE)").execute(&mut *conn).await?;
+        sqlx::query("PRAGMA incremental_vacuum")
+            .execute(&mut *conn)
+            .await?;
+        sqlx::query("PRAGMA wal_checkpoint(PASSIVE)")
+            .execute(&mut *conn)
+            .await?;
         Ok(())
     }
 
