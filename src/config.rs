@@ -57,6 +57,13 @@ pub struct ServeConfig {
     #[arg(long, env = "ROBOCAL_MAX_CAMERA_PIXELS", default_value_t = 50_000_000)]
     pub max_camera_pixels: u64,
 
+    /// Most bytes one image decode may hold (grey output, decoder buffers,
+    /// the detector's copy), priced from the header's size, bit depth and
+    /// channels before decoding; an image over it is refused with a 422
+    /// naming its part. The decode gate holds one such decode per worker.
+    #[arg(long, env = "ROBOCAL_MAX_DECODE_BYTES", default_value_t = 512 * MIB)]
+    pub max_decode_bytes: u64,
+
     /// Largest accepted dataset archive, bytes (compressed upload and unpacked total).
     #[arg(long, env = "ROBOCAL_MAX_ARCHIVE_BYTES", default_value_t = 2048 * MIB)]
     pub max_archive_bytes: u64,
@@ -168,6 +175,16 @@ pub struct ServeConfig {
     )]
     pub test_stage_delay_ms: u64,
 
+    /// Test hook: a dataset upload pauses this long after each stored
+    /// image (0 = off), so a kill test finds images stored and no pose.
+    #[arg(
+        long,
+        env = "ROBOCAL_TEST_UPLOAD_DELAY_MS",
+        default_value_t = 0,
+        hide = true
+    )]
+    pub test_upload_delay_ms: u64,
+
     /// Test hook: a succeeded job whose pipeline identified no parameter set
     /// stores a marker set (naming the job) as the serial's next version, so
     /// the fleet tests can check versions and exactly-once completion.
@@ -221,6 +238,10 @@ impl ServeConfig {
             (
                 "max_camera_pixels",
                 self.max_camera_pixels.min(i64::MAX as u64) as i64,
+            ),
+            (
+                "max_decode_bytes",
+                self.max_decode_bytes.min(i64::MAX as u64) as i64,
             ),
             ("header_timeout_secs", self.header_timeout_secs as i64),
             ("body_idle_timeout_secs", self.body_idle_timeout_secs as i64),

@@ -6,7 +6,9 @@
 //!
 //! Both sweeps leave alone what an upload in progress may still need: the
 //! spool dir defaults to the shared temp dir (other robocal processes may
-//! be spooling there) and an image is stored before its pose.
+//! be spooling there) and an image is stored before its pose. An image
+//! whose writer process is known to be gone (`store::writer`: same host,
+//! its process no longer running) goes at once, like a spool file.
 
 use std::path::Path;
 use std::time::{Duration, SystemTime};
@@ -88,11 +90,24 @@ pub async fn sweep(store: &DynStore, spool_dir: &Path) {
             tracing::warn!(error = %e, dir = %spool_dir.display(), "cannot clean the upload spool dir")
         }
     }
+    match store.collect_orphan_blobs().await {
+        Ok(0) => {}
+        Ok(n) => tracing::info!(
+            collected = n,
+            "images of uploads cut off by a crash were deleted"
+        ),
+        Err(e) => {
+            tracing::warn!(error = %e, "orphan image collection failed; retried at the next sweep")
+        }
+    }
     let cutoff = now_unix_ms() - BLOB_GRACE.as_millis() as i64;
     match store.collect_blobs(cutoff).await {
         Ok(0) => {}
         Ok(n) => tracing::info!(collected = n, "images no pose names were deleted"),
         Err(e) => tracing::warn!(error = %e, "image collection failed; retried at the next sweep"),
+    }
+    if let Err(e) = store.reclaim_space().await {
+        tracing::warn!(error = %e, "freed database space not returned; retried at the next sweep");
     }
 }
 

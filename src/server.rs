@@ -9,7 +9,7 @@ use tokio::task::JoinHandle;
 
 use crate::api::{self, AppState, QUEUE_FULL_RETRY_AFTER_SECS};
 use crate::config::ServeConfig;
-use crate::imaging::DecodeGate;
+use crate::imaging::{DecodeBudget, DecodeGate};
 use crate::jobs::pool::{PoolConfig, WorkerPool};
 use crate::jobs::queue::QueuePolicy;
 use crate::listen;
@@ -85,7 +85,13 @@ pub async fn start(mut config: ServeConfig) -> Result<RunningServer, StartError>
     // Cross-process wake-ups (PostgreSQL LISTEN/NOTIFY); polling stays as the fallback.
     let listening = store.watch_jobs(wake.clone(), shutdown_rx.clone());
     // One decode per worker at a time, uploads and jobs together.
-    let decode_gate = Arc::new(DecodeGate::new(config.worker_count()));
+    let decode_gate = Arc::new(DecodeGate::with_budget(
+        config.worker_count(),
+        DecodeBudget {
+            max_pixels: config.max_camera_pixels,
+            max_bytes: config.max_decode_bytes,
+        },
+    ));
     let pool = WorkerPool::start(
         store.clone(),
         PoolConfig {
@@ -138,6 +144,7 @@ pub async fn start(mut config: ServeConfig) -> Result<RunningServer, StartError>
         workers_alive: pool.alive.clone(),
         decode_gate,
         tokens,
+        fleet_cache: Arc::new(crate::service::fleet::SummaryCache::new()),
     };
     let limits = listen::Limits {
         header_timeout: state.config.header_timeout(),

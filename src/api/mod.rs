@@ -74,6 +74,8 @@ pub struct AppState {
     pub decode_gate: Arc<crate::imaging::DecodeGate>,
     /// The tokens as last read, so open streams end on revocation.
     pub tokens: token_watch::Tokens,
+    /// The fleet pages' accuracy per parameter set, read once per set.
+    pub fleet_cache: Arc<crate::service::fleet::SummaryCache>,
 }
 
 #[derive(OpenApi)]

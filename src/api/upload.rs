@@ -110,6 +110,7 @@ async fn upload_dataset(
     let limits = DatasetLimits {
         max_image_bytes: state.config.max_image_bytes,
         max_total_bytes: state.config.max_archive_bytes,
+        test_pause_per_image: std::time::Duration::from_millis(state.config.test_upload_delay_ms),
     };
     let session_id = intake.session.id.clone();
     let stored = intake.add_dataset(archive.path(), limits).await?;

@@ -2,18 +2,16 @@
 //! session camera before a single pixel is decoded, the decoder's
 //! allocation is capped to what the header's size needs, and decodes run
 //! under a [`DecodeGate`] shared by uploads and jobs so that concurrent
-//! uploads cannot multiply the memory of one decode (issue 12).
+//! uploads cannot multiply the memory of one decode; the header's bit
+//! depth and channels price a decode in bytes before it starts.
 
 mod found;
 mod gate;
 
-use std::io::Cursor;
-
-use image::{ImageFormat, ImageReader};
-use robocal_calib::vision::{self, DecodeLimits, DecodedGrey};
+use robocal_calib::vision::{self, DecodeLimits, DecodedGrey, SourceHeader};
 
 pub use found::detect;
-pub use gate::{DecodeGate, DecodePermit};
+pub use gate::{DecodeBudget, DecodeGate, DecodePermit, JOBS_KEY};
 
 use crate::domain::{ImageDetection, Target};
 use crate::schema::session::MAX_IMAGE_SIDE;
@@ -23,24 +21,26 @@ const MAX_BYTES_PER_PIXEL: u64 = 8;
 /// Decoder working memory beyond the pixel buffer (rows, tables), bytes.
 const DECODE_SLACK_BYTES: u64 = 16 * 1024 * 1024;
 
-/// Format and `(width, height)` from the header alone (PNG or JPEG only).
-pub fn header(bytes: &[u8]) -> Result<(ImageFormat, u32, u32), String> {
-    let format = image::guess_format(bytes).map_err(|_| "not a PNG or JPEG image".to_string())?;
-    if !matches!(format, ImageFormat::Png | ImageFormat::Jpeg) {
-        return Err(format!(
-            "{format:?} images are not accepted; send PNG or JPEG"
-        ));
-    }
-    let (width, height) = ImageReader::with_format(Cursor::new(bytes), format)
-        .into_dimensions()
-        .map_err(|e| format!("cannot read the image header: {e}"))?;
-    Ok((format, width, height))
+/// The header alone (PNG or JPEG only): format, size, sample layout.
+pub fn header(bytes: &[u8]) -> Result<SourceHeader, String> {
+    vision::read_header(bytes).map_err(|e| match e {
+        vision::DetectError::Decode(m) if m.starts_with("not a PNG") => {
+            "not a PNG or JPEG image; send PNG or JPEG".to_string()
+        }
+        e => format!("cannot read the image header: {e}"),
+    })
 }
 
-/// Checks the header's size against the limits and the session camera's
-/// `expected` size, without decoding. Returns `(width, height)`.
-pub fn check_header(bytes: &[u8], expected: Option<(u32, u32)>) -> Result<(u32, u32), String> {
-    let (_, w, h) = header(bytes)?;
+/// Checks the header against the per-side limit, the session camera's
+/// `expected` size and the decode `budget` (pixels, and the bytes the
+/// decode would hold given its bit depth and channels), without decoding.
+pub fn check_header(
+    bytes: &[u8],
+    expected: Option<(u32, u32)>,
+    budget: DecodeBudget,
+) -> Result<SourceHeader, String> {
+    let head = header(bytes)?;
+    let (w, h) = (head.width, head.height);
     if let Some((ew, eh)) = expected {
         if (w, h) != (ew, eh) {
             return Err(format!("image is {w}x{h}, the session camera is {ew}x{eh}"));
@@ -51,20 +51,39 @@ pub fn check_header(bytes: &[u8], expected: Option<(u32, u32)>) -> Result<(u32, 
             "image is {w}x{h}; at most {MAX_IMAGE_SIDE} pixels per side"
         ));
     }
-    Ok((w, h))
+    if head.pixels() > budget.max_pixels {
+        return Err(format!(
+            "image is {w}x{h} = {} pixels; this server decodes at most {} \
+             (server option --max-camera-pixels)",
+            head.pixels(),
+            budget.max_pixels
+        ));
+    }
+    if head.decode_bytes() > budget.max_bytes {
+        return Err(format!(
+            "a {} decodes into {} bytes ({} a pixel); this server decodes at most {} \
+             (server option --max-decode-bytes): send 8-bit grey or a smaller image",
+            head.describe(),
+            head.decode_bytes(),
+            head.bytes_per_pixel(),
+            budget.max_bytes
+        ));
+    }
+    Ok(head)
 }
 
-/// Decodes to grey after [`check_header`], the decoder allowed no more
-/// memory than the header's size needs (a lying header fails, it does not
-/// allocate). 8-bit sources stay 8-bit ([`DecodedGrey`]): the chessboard
-/// and ChArUco detectors read them as they are. The caller holds a
+/// Decodes to grey after [`check_header`] against the gate's budget, the
+/// decoder allowed no more memory than the header's size needs (a lying
+/// header fails, it does not allocate). 8-bit sources stay 8-bit
+/// ([`DecodedGrey`]); PNGs are decoded row by row. The caller holds a
 /// [`DecodePermit`].
 pub fn decode_checked(
     bytes: &[u8],
     expected: Option<(u32, u32)>,
-    _permit: &DecodePermit<'_>,
+    permit: &DecodePermit<'_>,
 ) -> Result<DecodedGrey, String> {
-    let (w, h) = check_header(bytes, expected)?;
+    let head = check_header(bytes, expected, permit.budget())?;
+    let (w, h) = (head.width, head.height);
     let limits = DecodeLimits {
         max_width: w,
         max_height: h,
@@ -82,17 +101,20 @@ pub struct Inspected {
     pub detection: Option<ImageDetection>,
 }
 
-/// Checks (header first), decodes once under `gate` and detects `target`.
-/// `Err` only for images that cannot be accepted (not PNG/JPEG, wrong size,
-/// undecodable); a board not found is an `Ok` with the reason inside.
+/// Checks (header first), decodes once under `gate` in `key`'s share
+/// and detects `target`. `Err` only for images that cannot be accepted
+/// (not PNG/JPEG, wrong size, over budget, undecodable); a board not
+/// found is an `Ok` with the reason inside.
 pub fn inspect(
     bytes: &[u8],
     expected: Option<(u32, u32)>,
     target: Option<&Target>,
     gate: &DecodeGate,
+    key: &str,
 ) -> Result<Inspected, String> {
-    let (width, height) = check_header(bytes, expected)?;
-    let permit = gate.acquire();
+    let head = check_header(bytes, expected, gate.budget())?;
+    let (width, height) = (head.width, head.height);
+    let permit = gate.acquire(key);
     let gray = decode_checked(bytes, expected, &permit)?;
     let detection = target.map(|t| detect(&gray, t));
     drop(gray);

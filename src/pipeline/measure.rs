@@ -83,7 +83,7 @@ fn detect_pose(image: &PoseImage, target: &Target, images: &ImageSource) -> (Ima
         Err(e) => return (ImageDetection::failed(e, "read", false), false),
     };
     let found = Ok(bytes).and_then(|bytes| {
-        let permit = images.gate.acquire();
+        let permit = images.gate.acquire(imaging::JOBS_KEY);
         let gray = imaging::decode_checked(&bytes, Some((image.width, image.height)), &permit)
             .map_err(|e| ImageDetection::failed(e, "decode", false))?;
         drop(bytes);

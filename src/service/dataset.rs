@@ -25,6 +25,9 @@ pub struct DatasetLimits {
     pub max_image_bytes: u64,
     /// Total of all decompressed entries.
     pub max_total_bytes: u64,
+    /// Test hook: a pause after each stored image (zero: none), so a test
+    /// can kill the process with images stored and no pose yet.
+    pub test_pause_per_image: std::time::Duration,
 }
 
 #[derive(Debug, thiserror::Error)]

@@ -65,6 +65,7 @@ impl PoseIntake {
         limits: DatasetLimits,
     ) -> ServiceResult<Vec<PoseRecord>> {
         let path = archive.to_path_buf();
+        let pause_per_image = limits.test_pause_per_image;
         let mut reader = tokio::task::spawn_blocking(move || DatasetReader::open(&path, limits))
             .await
             .map_err(ServiceError::internal)??;
@@ -143,6 +144,9 @@ impl PoseIntake {
                     }
                 };
                 staged.stored(&ingested.meta.sha256);
+                if !pause_per_image.is_zero() {
+                    tokio::time::sleep(pause_per_image).await;
+                }
                 if failure.is_some() {
                     continue;
                 }

@@ -4,13 +4,15 @@
 //! `…/parameter-sets/latest` reads it ([`results::find_parameter_set`]
 //! with [`results::LATEST`]), so the page shows whatever `latest` means.
 
-use serde::Deserialize;
-
 use super::error::{ServiceError, ServiceResult};
+use super::fleet_cache::{accuracy_of, accuracy_of_value, SetKey};
+pub use super::fleet_cache::{Accuracy, SummaryCache};
 use super::results;
-use crate::domain::{ControllerIdentity, JobState, ReleaseStatus, Serial};
-use crate::report::{AccuracySummary, Report};
-use crate::store::{DynStore, JobFilter, JobRecord, ParameterSetRecord};
+use crate::domain::{CheckDoc, ControllerIdentity, JobState, ReleaseStatus, Serial};
+use crate::report::Report;
+use crate::store::{
+    DynStore, FleetRow, JobFilter, JobHead, JobRecord, ParameterSetRecord, SetHead,
+};
 
 /// Robots listed on the fleet page (the first, by serial).
 pub const MAX_ROBOTS: i64 = 500;
@@ -34,17 +36,6 @@ pub struct SetSummary {
     pub status: ReleaseStatus,
     pub status_by: Option<String>,
     pub status_reason: Option<String>,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Accuracy {
-    pub validation_poses: usize,
-    pub before_mean_mm: f64,
-    pub after_mean_mm: f64,
-    /// A hand–eye set's reprojection RMS (px): such a set identified no
-    /// kinematics, so its before and after are the same model and the
-    /// pages show what it measured instead.
-    pub hand_eye_rms_px: Option<f64>,
 }
 
 /// The latest re-check of a robot and what it found (`pass`, `drift`,
@@ -99,24 +90,6 @@ pub struct RobotDetail {
     pub recent_jobs: Vec<JobBrief>,
 }
 
-/// The key of a report's validation figures after calibration.
-const AFTER_KEY: &str = "after";
-
-/// The report's validation statistics, read without the rest of it.
-#[derive(Deserialize)]
-struct ReportAccuracy {
-    before: AccuracySummary,
-    after: AccuracySummary,
-    #[serde(default)]
-    hand_eye: Option<HandEyeFit>,
-}
-
-/// The part of a report's hand–eye section the pages show.
-#[derive(Deserialize)]
-struct HandEyeFit {
-    reprojection_rms_px: f64,
-}
-
 impl From<JobRecord> for JobBrief {
     fn from(j: JobRecord) -> JobBrief {
         JobBrief {
@@ -132,28 +105,59 @@ impl From<JobRecord> for JobBrief {
     }
 }
 
-async fn summary_of(store: &DynStore, set: &ParameterSetRecord) -> ServiceResult<SetSummary> {
+impl From<JobHead> for JobBrief {
+    fn from(j: JobHead) -> JobBrief {
+        JobBrief {
+            id: j.id,
+            serial: j.serial,
+            kind: j.kind,
+            state: j.state,
+            stage: j.stage,
+            progress: j.progress,
+            created_at: j.created_at,
+            error: j.error,
+        }
+    }
+}
+
+fn set_key(serial: &str, version: i64, created_at: &str) -> SetKey {
+    (serial.to_string(), version, created_at.to_string())
+}
+
+/// A set's accuracy from the cache, or read from its report and kept.
+async fn accuracy(
+    store: &DynStore,
+    cache: &SummaryCache,
+    set: &ParameterSetRecord,
+) -> ServiceResult<Option<Accuracy>> {
+    let key = set_key(&set.serial, set.version, &set.created_at);
+    if let Some(known) = cache.get(&key) {
+        return Ok(known);
+    }
     let report = store.get_report(&set.serial, set.version).await?;
-    // A report without validation figures (a test marker) shows none; one
-    // whose figures do not read is an error, not a blank.
-    let accuracy = report
-        .filter(|r| r.get(AFTER_KEY).is_some())
-        .map(serde_json::from_value::<ReportAccuracy>)
-        .transpose()
-        .map_err(|e| {
-            ServiceError::internal(format!("stored report {}/{}: {e}", set.serial, set.version))
-        })?
-        .map(|r| Accuracy {
-            validation_poses: r.after.norm.n,
-            before_mean_mm: r.before.norm.mean_mm,
-            after_mean_mm: r.after.norm.mean_mm,
-            hand_eye_rms_px: r.hand_eye.map(|h| h.reprojection_rms_px),
-        });
+    let found = report
+        .map(|r| accuracy_of_value(r).map_err(|e| stored_report_error(&set.serial, set.version, e)))
+        .transpose()?
+        .flatten();
+    cache.put(key, found);
+    Ok(found)
+}
+
+/// A stored report whose figures do not read: an error naming the set, not a blank.
+fn stored_report_error(serial: &str, version: i64, e: serde_json::Error) -> ServiceError {
+    ServiceError::internal(format!("stored report {serial}/{version}: {e}"))
+}
+
+async fn summary_of(
+    store: &DynStore,
+    cache: &SummaryCache,
+    set: &ParameterSetRecord,
+) -> ServiceResult<SetSummary> {
     Ok(SetSummary {
         version: set.version,
         created_at: set.created_at.clone(),
         job_id: set.job_id.clone(),
-        accuracy,
+        accuracy: accuracy(store, cache, set).await?,
         status: set.status,
         status_by: set.status_by.clone(),
         status_reason: set.status_reason.clone(),
@@ -161,26 +165,40 @@ async fn summary_of(store: &DynStore, set: &ParameterSetRecord) -> ServiceResult
 }
 
 /// The set `latest` names, summarised (`None` when the robot has none).
-async fn current_set(store: &DynStore, serial: &str) -> ServiceResult<Option<SetSummary>> {
+async fn current_set(
+    store: &DynStore,
+    cache: &SummaryCache,
+    serial: &str,
+) -> ServiceResult<Option<SetSummary>> {
     match results::find_parameter_set(store, serial, results::LATEST).await {
-        Ok(set) => Ok(Some(summary_of(store, &set).await?)),
+        Ok(set) => Ok(Some(summary_of(store, cache, &set).await?)),
         Err(ServiceError::NotFound { .. }) => Ok(None),
         Err(e) => Err(e),
     }
+}
+
+/// What a succeeded re-check judged, and when.
+fn check_summary(
+    check: &CheckDoc,
+    created_at: String,
+    finished_at: Option<String>,
+) -> Option<CheckSummary> {
+    Some(CheckSummary {
+        verdict: check.verdict.as_str().to_string(),
+        at: finished_at.unwrap_or(created_at),
+        checked_version: Some(check.checked_version).filter(|v| *v >= 1),
+    })
 }
 
 /// The robot's last judged quick re-check, if any.
 async fn last_check(store: &DynStore, serial: &str) -> ServiceResult<Option<CheckSummary>> {
     let checks = store.list_checks(serial, 1).await?;
     Ok(checks.into_iter().next().and_then(|job| {
-        let check = job.result.as_ref()?.check()?;
-        let verdict = check.verdict.as_str().to_string();
-        let checked_version = Some(check.checked_version).filter(|v| *v >= 1);
-        Some(CheckSummary {
-            verdict,
-            at: job.finished_at.unwrap_or(job.created_at),
-            checked_version,
-        })
+        check_summary(
+            job.result.as_ref()?.check()?,
+            job.created_at,
+            job.finished_at,
+        )
     }))
 }
 
@@ -217,32 +235,91 @@ async fn last_failed(store: &DynStore, serial: &str) -> ServiceResult<Option<Job
         .map(JobBrief::from))
 }
 
-/// Every robot (the first [`MAX_ROBOTS`] by serial) with what it runs now.
-pub async fn fleet(store: &DynStore) -> ServiceResult<Vec<RobotSummary>> {
-    let robots = store.list_robots(MAX_ROBOTS, None).await?.items;
-    let active = active_jobs(store, None).await?;
-    let mut rows = Vec::with_capacity(robots.len());
-    for robot in robots {
-        rows.push(RobotSummary {
-            current: current_set(store, &robot.serial).await?,
-            last_check: last_check(store, &robot.serial).await?,
-            last_failed: last_failed(store, &robot.serial).await?,
-            jobs_in_progress: active
-                .iter()
-                .filter(|j| j.serial == robot.serial)
-                .cloned()
-                .collect(),
-            serial: robot.serial,
-            model: robot.model,
-            controller: robot.controller,
+/// Every robot (the first [`MAX_ROBOTS`] by serial) with what it runs
+/// now: one statement for the robots with their current set, re-check and
+/// newest job, one per job state for the jobs in progress, and the
+/// current sets' reports only when a set is new to `cache`.
+pub async fn fleet(store: &DynStore, cache: &SummaryCache) -> ServiceResult<Vec<RobotSummary>> {
+    let rows = store.fleet_rows(MAX_ROBOTS).await?;
+    let unknown = rows
+        .iter()
+        .filter_map(|r| r.current.as_ref().map(|s| (r, s)))
+        .any(|(r, s)| {
+            cache
+                .get(&set_key(&r.serial, s.version, &s.created_at))
+                .is_none()
         });
+    if unknown {
+        let mut reported = std::collections::HashSet::new();
+        for current in store.fleet_reports(MAX_ROBOTS).await? {
+            let key = set_key(&current.serial, current.version, &current.set_created_at);
+            reported.insert(key.clone());
+            let found = accuracy_of(&current.report)
+                .map_err(|e| stored_report_error(&current.serial, current.version, e))?;
+            cache.put(key, found);
+        }
+        for (r, s) in rows
+            .iter()
+            .filter_map(|r| r.current.as_ref().map(|s| (r, s)))
+        {
+            let key = set_key(&r.serial, s.version, &s.created_at);
+            if !reported.contains(&key) {
+                cache.put(key, None);
+            }
+        }
     }
-    Ok(rows)
+    let active = active_jobs(store, None).await?;
+    rows.into_iter()
+        .map(|row| robot_summary(row, cache, &active))
+        .collect()
+}
+
+/// A fleet row with its cached accuracy and its jobs in progress.
+fn robot_summary(
+    row: FleetRow,
+    cache: &SummaryCache,
+    active: &[JobBrief],
+) -> ServiceResult<RobotSummary> {
+    let last_check = row.last_check.and_then(|head| {
+        let check = head.result.as_ref()?.check()?;
+        check_summary(check, head.created_at, head.finished_at)
+    });
+    let current = row.current.map(|set: SetHead| SetSummary {
+        accuracy: cache
+            .get(&set_key(&row.serial, set.version, &set.created_at))
+            .flatten(),
+        version: set.version,
+        created_at: set.created_at,
+        job_id: set.job_id,
+        status: set.status,
+        status_by: set.status_by,
+        status_reason: set.status_reason,
+    });
+    Ok(RobotSummary {
+        current,
+        last_check,
+        last_failed: row
+            .newest_job
+            .filter(|j| j.state == JobState::Failed)
+            .map(JobBrief::from),
+        jobs_in_progress: active
+            .iter()
+            .filter(|j| j.serial == row.serial)
+            .cloned()
+            .collect(),
+        serial: row.serial,
+        model: row.model,
+        controller: row.controller,
+    })
 }
 
 /// A robot's page: its current set, every version (the newest
 /// [`MAX_VERSIONS`]) and its recent jobs; 404 for an unknown serial.
-pub async fn robot(store: &DynStore, serial: &str) -> ServiceResult<RobotDetail> {
+pub async fn robot(
+    store: &DynStore,
+    cache: &SummaryCache,
+    serial: &str,
+) -> ServiceResult<RobotDetail> {
     let serial =
         Serial::parse(serial).map_err(|e| ServiceError::invalid("serial", e.to_string()))?;
     let robot = store
@@ -255,7 +332,7 @@ pub async fn robot(store: &DynStore, serial: &str) -> ServiceResult<RobotDetail>
         .await?
         .items
     {
-        versions.push(summary_of(store, &set).await?);
+        versions.push(summary_of(store, cache, &set).await?);
     }
     let filter = JobFilter {
         serial: Some(serial.to_string()),
@@ -270,7 +347,7 @@ pub async fn robot(store: &DynStore, serial: &str) -> ServiceResult<RobotDetail>
         .collect();
     Ok(RobotDetail {
         summary: RobotSummary {
-            current: current_set(store, &serial).await?,
+            current: current_set(store, cache, &serial).await?,
             last_check: last_check(store, &serial).await?,
             last_failed: last_failed(store, &serial).await?,
             jobs_in_progress: active_jobs(store, Some(&serial)).await?,

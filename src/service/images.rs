@@ -24,14 +24,17 @@ pub struct Ingested {
 /// size and target, and the process's decode gate.
 #[derive(Clone)]
 pub struct ImageCheck {
+    /// The session's key in the decode gate's fair share.
+    pub session_id: String,
     pub camera_size: Option<(u32, u32)>,
     pub target: Option<Target>,
     pub gate: Arc<DecodeGate>,
 }
 
 impl ImageCheck {
-    pub fn of(spec: &SessionBody, gate: Arc<DecodeGate>) -> ImageCheck {
+    pub fn of(session_id: &str, spec: &SessionBody, gate: Arc<DecodeGate>) -> ImageCheck {
         ImageCheck {
+            session_id: session_id.to_string(),
             camera_size: spec.camera.as_ref().map(|c| (c.width, c.height)),
             // Checked when the session was created.
             target: spec.target.as_ref().and_then(|t| Target::from_doc(t).ok()),
@@ -62,7 +65,13 @@ pub async fn ingest_image(
 /// Blocking: the header check, one bounded decode under the gate, the dot
 /// detector, and the image's hash.
 pub fn inspect_and_hash(bytes: &[u8], check: &ImageCheck) -> Result<Ingested, String> {
-    let inspected = imaging::inspect(bytes, check.camera_size, check.target.as_ref(), &check.gate)?;
+    let inspected = imaging::inspect(
+        bytes,
+        check.camera_size,
+        check.target.as_ref(),
+        &check.gate,
+        &check.session_id,
+    )?;
     let content_type = match image::guess_format(bytes) {
         Ok(image::ImageFormat::Jpeg) => "image/jpeg",
         _ => "image/png",

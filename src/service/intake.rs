@@ -109,7 +109,7 @@ impl PoseIntake {
 
     /// What an image of this session is checked against.
     pub fn image_check(&self) -> ImageCheck {
-        ImageCheck::of(&self.spec, self.gate.clone())
+        ImageCheck::of(&self.session.id, &self.spec, self.gate.clone())
     }
 
     /// Stores one JSON pose (image points or a tracker measurement).

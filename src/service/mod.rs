@@ -22,6 +22,7 @@ pub mod events;
 pub mod export;
 pub mod filter;
 pub mod fleet;
+mod fleet_cache;
 pub mod images;
 pub mod intake;
 pub mod release;

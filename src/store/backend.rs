@@ -66,6 +66,12 @@ pub trait Backend: Send + Sync + 'static {
     /// once even when two processes create the same serial at once.
     async fn upsert_robot(&self, robot: &RobotRecord) -> StoreResult<bool>;
 
+    /// See [`Store::reclaim_space`](super::Store::reclaim_space); nothing
+    /// where the database reuses freed space by itself.
+    async fn reclaim_space(&self) -> StoreResult<()> {
+        Ok(())
+    }
+
     /// See [`Store::watch_jobs`](super::Store::watch_jobs).
     fn listen_for_jobs(&self, _wake: Arc<Notify>, _shutdown: watch::Receiver<bool>) -> bool {
         false

@@ -22,10 +22,12 @@ mod migrations;
 pub mod postgres;
 mod records;
 mod repo;
+pub use repo::{CheckHead, CurrentReport, FleetRow, JobHead, SetHead};
 mod rows;
 pub mod sqlite;
 mod statement;
 pub mod write_guard;
+pub mod writer;
 
 #[derive(Debug, thiserror::Error)]
 pub enum StoreError {
@@ -102,6 +104,10 @@ pub trait SessionStore: Send + Sync {
     /// `touched_before_ms` (unix ms); returns how many. The grace keeps the
     /// images of uploads in progress, stored but not yet attached to poses.
     async fn collect_blobs(&self, touched_before_ms: i64) -> StoreResult<u64>;
+    /// Deletes every image no pose names whose last writer is a process
+    /// known to be gone ([`writer::is_gone`]: killed mid-upload); returns
+    /// how many. Run at start-up, so a crash's images go at once.
+    async fn collect_orphan_blobs(&self) -> StoreResult<u64>;
     async fn get_blob(&self, sha256: &str) -> StoreResult<Option<Vec<u8>>>;
     /// Inserts all poses in one transaction (all or none), in order.
     /// `Conflict` when an image was collected meanwhile (the only other
@@ -217,6 +223,17 @@ pub trait ReleaseStore: Send + Sync {
     async fn list_decisions(&self, serial: &str) -> StoreResult<Vec<Decision>>;
     /// The serial's succeeded re-check jobs, newest first.
     async fn list_checks(&self, serial: &str, limit: i64) -> StoreResult<Vec<JobRecord>>;
+}
+
+/// The fleet page's reads: a constant number of statements whatever the
+/// number of robots.
+#[async_trait]
+pub trait FleetStore: Send + Sync {
+    /// The first `limit` robots by serial, each with the set `latest`
+    /// serves, its newest succeeded re-check and its newest job.
+    async fn fleet_rows(&self, limit: i64) -> StoreResult<Vec<FleetRow>>;
+    /// The reports of those robots' current sets.
+    async fn fleet_reports(&self, limit: i64) -> StoreResult<Vec<CurrentReport>>;
 }
 
 #[async_trait]
@@ -345,6 +362,7 @@ pub trait Store:
     + JobStore
     + ResultStore
     + ReleaseStore
+    + FleetStore
     + AuthStore
     + CampaignPlanStore
     + WebhookStore
@@ -353,6 +371,10 @@ pub trait Store:
     async fn ping(&self) -> StoreResult<()>;
     /// Backend name for logs ("sqlite", "postgres").
     fn backend(&self) -> &'static str;
+    /// Gives the space of deleted rows back to the file system (SQLite:
+    /// incremental vacuum and a checkpoint, so the file shrinks after a
+    /// robot's images are deleted; PostgreSQL's autovacuum reuses it).
+    async fn reclaim_space(&self) -> StoreResult<()>;
     /// Wakes `wake` (one idle worker) whenever another process makes a job
     /// claimable, until `shutdown`. Returns `false` when the backend has no
     /// such events (SQLite: one process, whose own enqueues wake it); workers

@@ -24,7 +24,7 @@ pub fn opt_json(text: Option<&str>) -> StoreResult<Option<Value>> {
 }
 
 /// A nullable JSON column read as its typed document.
-fn opt_typed<T: serde::de::DeserializeOwned>(text: Option<&str>) -> StoreResult<Option<T>> {
+pub fn opt_typed<T: serde::de::DeserializeOwned>(text: Option<&str>) -> StoreResult<Option<T>> {
     Ok(text.map(serde_json::from_str).transpose()?)
 }
 
@@ -41,6 +41,7 @@ pub trait Columns: Row {
     fn int(&self, col: &'static str) -> i64;
     fn opt_int(&self, col: &'static str) -> Option<i64>;
     fn real(&self, col: &'static str) -> f64;
+    fn opt_real(&self, col: &'static str) -> Option<f64>;
     fn bytes(&self, col: &'static str) -> Vec<u8>;
     fn opt_bytes(&self, col: &'static str) -> Option<Vec<u8>>;
 }
@@ -74,6 +75,9 @@ where
         self.get(col)
     }
     fn real(&self, col: &'static str) -> f64 {
+        self.get(col)
+    }
+    fn opt_real(&self, col: &'static str) -> Option<f64> {
         self.get(col)
     }
     fn bytes(&self, col: &'static str) -> Vec<u8> {

@@ -271,7 +271,9 @@ async fn aubo_campaign_calibrates_through_the_service() {
 /// four group-1 poses are flagged, and the hand–eye does not bend.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn aubo_wrong_joint_file_is_flagged_and_does_not_bend_the_fit() {
-    if !crate::support::numerics_run_here("aubo_wrong_joint_file_is_flagged_and_does_not_bend_the_fit") {
+    if !crate::support::numerics_run_here(
+        "aubo_wrong_joint_file_is_flagged_and_does_not_bend_the_fit",
+    ) {
         return;
     }
     let app = spawn_app_with(|c| c.test_validate_only = false).await;

@@ -65,7 +65,9 @@ pub fn numerics_run_here(test: &str) -> bool {
     let run = backend() == Backend::Sqlite
         || std::env::var_os(NUMERICS_ON_PG_VAR).is_some_and(|v| v != "0");
     if !run {
-        eprintln!("{test}: not run on PostgreSQL (a numerics test; set {NUMERICS_ON_PG_VAR}=1 to run it)");
+        eprintln!(
+            "{test}: not run on PostgreSQL (a numerics test; set {NUMERICS_ON_PG_VAR}=1 to run it)"
+        );
     }
     run
 }

@@ -233,7 +233,9 @@ pub fn decode_image(bytes: &[u8], limits: &DecodeLimits) -> Result<GrayImage, De
     Ok(decode_grey(bytes, limits)?.to_float().into_owned())
 }
 
-/// [`decode_image`] keeping 8-bit sources 8-bit ([`DecodedGrey`]).
+/// [`decode_image`] keeping 8-bit sources 8-bit ([`DecodedGrey`]). A
+/// non-interlaced PNG is decoded row by row (`png_rows`); what the
+/// decode holds is [`super::SourceHeader::bytes_per_pixel`].
 pub fn decode_grey(bytes: &[u8], limits: &DecodeLimits) -> Result<DecodedGrey, DetectError> {
     if bytes.is_empty() {
         return Err(DetectError::Decode("empty input".into()));
@@ -248,6 +250,12 @@ pub fn decode_grey(bytes: &[u8], limits: &DecodeLimits) -> Result<DecodedGrey, D
             max_width: limits.max_width,
             max_height: limits.max_height,
         });
+    }
+    if image::guess_format(bytes).ok() == Some(image::ImageFormat::Png) {
+        // Row by row, so the decoder never holds the image's own layout.
+        if let Some(grey) = super::png_rows::decode(bytes)? {
+            return Ok(grey);
+        }
     }
     let mut r = reader(bytes)?;
     let mut lim = Limits::default();

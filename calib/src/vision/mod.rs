@@ -24,8 +24,10 @@ pub mod homography;
 pub mod image;
 pub mod order;
 mod order_reading;
+mod png_rows;
 pub mod saddle;
 pub mod site_prediction;
+pub mod source_header;
 pub mod target;
 pub mod threshold;
 
@@ -40,6 +42,7 @@ pub use drawing::{BoardDrawing, Mark};
 pub use ellipse::{DotQuality, Ellipse};
 pub use error::DetectError;
 pub use image::{decode_grey, decode_image, DecodeLimits, DecodedGrey, GrayImage, GreyLevels};
+pub use source_header::{read_header, SourceFormat, SourceHeader};
 pub use target::TargetSpec;
 
 #[cfg(test)]

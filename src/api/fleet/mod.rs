@@ -82,7 +82,7 @@ async fn fleet_page(
     let Some(viewer) = access::viewer(&state, &headers, &uri).await? else {
         return Ok(see_other("/login"));
     };
-    let robots = fleet::fleet(&state.store).await?;
+    let robots = fleet::fleet(&state.store, &state.fleet_cache).await?;
     Ok(html(
         StatusCode::OK,
         pages::fleet_page(&robots, now_unix_ms(), viewer.can_log_out()),
@@ -98,7 +98,7 @@ async fn robot_page(
     let Some(viewer) = access::viewer(&state, &headers, &uri).await? else {
         return Ok(see_other("/login"));
     };
-    match fleet::robot(&state.store, &serial).await {
+    match fleet::robot(&state.store, &state.fleet_cache, &serial).await {
         Ok(detail) => Ok(html(
             StatusCode::OK,
             pages::robot_page(&detail, now_unix_ms(), viewer.can_log_out()),

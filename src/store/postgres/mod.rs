@@ -108,6 +108,11 @@ const MIGRATIONS: &[Embedded] = &[
         "robot prior",
         include_str!("../../../migrations/postgres/0040_robot_prior.sql"),
     ),
+    (
+        70,
+        "fleet index and blob writer",
+        include_str!("../../../migrations/postgres/0070_fleet_index_and_blob_writer.sql"),
+    ),
 ];
 
 /// Connections per replica. Each worker holds at most one while it claims or

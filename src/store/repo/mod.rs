@@ -15,6 +15,7 @@ use super::{Store, StoreResult};
 mod auth;
 mod campaign_plans;
 mod detections;
+mod fleet;
 mod job_success;
 mod jobs;
 mod release;
@@ -23,6 +24,7 @@ mod robots;
 mod sessions;
 mod webhooks;
 
+pub use fleet::{CheckHead, CurrentReport, FleetRow, JobHead, SetHead};
 pub use robots::{prior_text, UPSERT_ROBOT};
 
 #[async_trait]
@@ -34,6 +36,10 @@ impl<B: Backend> Store for B {
 
     fn backend(&self) -> &'static str {
         B::NAME
+    }
+
+    async fn reclaim_space(&self) -> StoreResult<()> {
+        Backend::reclaim_space(self).await
     }
 
     fn watch_jobs(&self, wake: Arc<Notify>, shutdown: watch::Receiver<bool>) -> bool {

@@ -102,6 +102,10 @@ impl<B: Backend> RobotStore for B {
         if let Err(e) = self.discard_blobs(&images).await {
             tracing::warn!(error = %e, serial, "images of the deleted robot left for the periodic collection");
         }
+        // The file shrinks now, not at the next sweep (best effort too).
+        if let Err(e) = Backend::reclaim_space(self).await {
+            tracing::warn!(error = %e, "space of the deleted robot left for the next sweep");
+        }
         Ok(deleted > 0)
     }
 

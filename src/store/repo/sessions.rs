@@ -6,7 +6,9 @@ use crate::schema::session::SessionBody;
 use crate::store::backend::{is_foreign_key_violation, Backend};
 use crate::store::rows::{pose, session, Columns};
 use crate::store::statement::query;
-use crate::store::{NewPose, PoseRecord, SessionRecord, SessionStore, StoreError, StoreResult};
+use crate::store::{
+    writer, NewPose, PoseRecord, SessionRecord, SessionStore, StoreError, StoreResult,
+};
 
 const SESSION_COLUMNS: &str = "s.id, s.serial, s.instrument, s.spec, s.created_at,
     (SELECT count(*) FROM poses p WHERE p.session_id = s.id) AS pose_count";
@@ -87,9 +89,11 @@ impl<B: Backend> SessionStore for B {
         // Two writers storing the same image: the second waits for the
         // first's commit on the primary key, then only renews `touched_ms`.
         query(
-            "INSERT INTO blobs (sha256, size_bytes, content_type, data, created_at, touched_ms)
-             VALUES ($1, $2, $3, $4, $5, $6)
-             ON CONFLICT (sha256) DO UPDATE SET touched_ms = excluded.touched_ms",
+            "INSERT INTO blobs (sha256, size_bytes, content_type, data, created_at, touched_ms,
+                                stored_by)
+             VALUES ($1, $2, $3, $4, $5, $6, $7)
+             ON CONFLICT (sha256) DO UPDATE SET touched_ms = excluded.touched_ms,
+                                                stored_by = excluded.stored_by",
         )
         .bind(&meta.sha256)
         .bind(meta.size_bytes)
@@ -97,6 +101,7 @@ impl<B: Backend> SessionStore for B {
         .bind(data)
         .bind(now_rfc3339())
         .bind(now_unix_ms())
+        .bind(writer::current())
         .execute(self.pool())
         .await?;
         Ok(())
@@ -124,6 +129,29 @@ impl<B: Backend> SessionStore for B {
         .bind(touched_before_ms)
         .execute(self.pool())
         .await?)
+    }
+
+    async fn collect_orphan_blobs(&self) -> StoreResult<u64> {
+        let writers: Vec<String> = query(
+            "SELECT DISTINCT stored_by FROM blobs WHERE stored_by IS NOT NULL
+             AND NOT EXISTS (SELECT 1 FROM poses WHERE image_sha256 = blobs.sha256)",
+        )
+        .fetch_all(self.pool())
+        .await?
+        .iter()
+        .map(|r| r.string("stored_by"))
+        .collect();
+        let mut deleted = 0;
+        for gone in writers.iter().filter(|w| writer::is_gone(w)) {
+            deleted += query(
+                "DELETE FROM blobs WHERE stored_by = $1
+                 AND NOT EXISTS (SELECT 1 FROM poses WHERE image_sha256 = blobs.sha256)",
+            )
+            .bind(gone)
+            .execute(self.pool())
+            .await?;
+        }
+        Ok(deleted)
     }
 
     async fn get_blob(&self, sha256: &str) -> StoreResult<Option<Vec<u8>>> {

@@ -10,7 +10,8 @@ use std::time::Duration;
 
 use async_trait::async_trait;
 use sqlx::sqlite::{
-    SqliteConnectOptions, SqliteJournalMode, SqlitePool, SqlitePoolOptions, SqliteSynchronous,
+    SqliteAutoVacuum, SqliteConnectOptions, SqliteJournalMode, SqlitePool, SqlitePoolOptions,
+    SqliteSynchronous,
 };
 use sqlx::{Sqlite, Transaction};
 
@@ -94,6 +95,11 @@ const MIGRATIONS: &[Embedded] = &[
         "robot prior",
         include_str!("../../../migrations/sqlite/0040_robot_prior.sql"),
     ),
+    (
+        70,
+        "fleet index and blob writer",
+        include_str!("../../../migrations/sqlite/0070_fleet_index_and_blob_writer.sql"),
+    ),
 ];
 
 /// How long a statement waits for a competing writer before giving up.
@@ -115,6 +121,7 @@ impl SqliteStore {
             .journal_mode(SqliteJournalMode::Wal)
             .synchronous(SqliteSynchronous::Full)
             .foreign_keys(true)
+            .auto_vacuum(SqliteAutoVacuum::Incremental)
             .busy_timeout(BUSY_TIMEOUT);
         // Switching a new file to WAL takes an exclusive lock that does not
         // wait on `busy_timeout`: processes opening one new file at the same
@@ -151,7 +158,33 @@ impl SqliteStore {
                 Err(e) => return Err(StoreError::Backend(format!("migrations failed: {e}"))),
             }
         }
+        incremental_vacuum_on(&pool).await;
         Ok(SqliteStore { pool })
+    }
+}
+
+/// `PRAGMA auto_vacuum` value of incremental vacuum.
+const AUTO_VACUUM_INCREMENTAL: i64 = 2;
+
+/// Turns incremental vacuum on for a file made without it: one `VACUUM`
+/// rewrites it (new files have it from their first connection). A failure
+/// (another process holds the file) is logged; the next start retries.
+async fn incremental_vacuum_on(pool: &SqlitePool) {
+    let mode: Result<i64, _> = sqlx::query_scalar("PRAGMA auto_vacuum")
+        .fetch_one(pool)
+        .await;
+    if matches!(mode, Ok(AUTO_VACUUM_INCREMENTAL)) {
+        return;
+    }
+    tracing::info!("turning on incremental vacuum (one VACUUM of the database file)");
+    let mut conn = match pool.acquire().await {
+        Ok(conn) => conn,
+        Err(e) => return tracing::warn!(error = %e, "cannot turn on incremental vacuum"),
+    };
+    for step in ["PRAGMA auto_vacuum = INCREMENTAL", "VACUUM"] {
+        if let Err(e) = sqlx::query(step).execute(&mut *conn).await {
+            return tracing::warn!(error = %e, "cannot turn on incremental vacuum");
+        }
     }
 }
 
@@ -172,6 +205,20 @@ impl Backend for SqliteStore {
 
     fn pool(&self) -> &SqlitePool {
         &self.pool
+    }
+
+    /// Frees the file's unused pages, then checkpoints the WAL so the
+    /// database file itself is truncated (a passive checkpoint: it never
+    /// waits for readers; one they hold back is finished by a later one).
+    async fn reclaim_space(&self) -> StoreResult<()> {
+        let mut conn = self.pool.acquire().await?;
+        sqlx::query("PRAGMA incremental_vacuum")
+            .execute(&mut *conn)
+            .await?;
+        sqlx::query("PRAGMA wal_checkpoint(PASSIVE)")
+            .execute(&mut *conn)
+            .await?;
+        Ok(())
     }
 
     /// `BEGIN IMMEDIATE`: takes the write lock up front, so two writers that
