@@ -232,6 +232,7 @@ fn run_stages(
     let mut report = results::report(&context, &identified, &set);
     let gate = gate::decide(
         &identified,
+        &set,
         context.instrument,
         input.approved.as_ref(),
         paper_camera && camera.is_some(),

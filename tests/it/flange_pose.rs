@@ -407,6 +407,16 @@ async fn rct_wrist_photos_with_flange_poses_through_the_service() {
         let left_out = notes.contains("left out of the camera calibration")
             && notes.contains(&format!("{label} ("));
         assert_eq!(p["outlier"] == true, failed || left_out, "{p}");
+        // The reason is the true one: a view the camera calibration left
+        // out says so (not "only 0 board points": its board was found).
+        if left_out && !failed {
+            let reason = p["reason"].as_str().unwrap();
+            assert!(
+                reason.starts_with("left out of the camera calibration: "),
+                "{p}"
+            );
+        }
+        assert!(!p["reason"].to_string().contains("board points"), "{p}");
     }
     app.shutdown().await;
 }

@@ -26,6 +26,7 @@ pub(crate) mod export;
 pub(crate) mod filter;
 pub(crate) mod fixtures;
 pub(crate) mod flange_pose;
+pub(crate) mod gate_trace;
 pub(crate) mod fleet_browser;
 pub(crate) mod fleet_page;
 pub(crate) mod half_turn;

@@ -50,6 +50,9 @@ pub async fn robot_with_decided_sets(app: &TestApp, serial: &str) {
                 compared_mean_mm: Some(0.011),
                 mean_mm: Some(0.012),
                 worse: true,
+                basis: None,
+                compared_own_mean_mm: None,
+                compared_own_session_id: None,
             });
         }
         let set = NewParameterSet {
