@@ -39,20 +39,18 @@ const POSE_PAGE: i64 = 100;
 async fn require_calibration_poses(store: &DynStore, session: &SessionRecord) -> ServiceResult<()> {
     let needed = crate::pipeline::MIN_CALIBRATION_POSES;
     let (mut cal, mut after) = (0, None::<String>);
-    if session.pose_count >= needed as i64 {
-        loop {
-            let page = store
-                .list_poses(&session.id, POSE_PAGE, after.as_deref())
-                .await?;
-            cal += page
-                .items
-                .iter()
-                .filter(|p| p.set == crate::schema::session::PoseSet::Cal)
-                .count();
-            match page.next_cursor {
-                Some(next) if cal < needed => after = Some(next),
-                _ => break,
-            }
+    loop {
+        let page = store
+            .list_poses(&session.id, POSE_PAGE, after.as_deref())
+            .await?;
+        cal += page
+            .items
+            .iter()
+            .filter(|p| p.set == crate::schema::session::PoseSet::Cal)
+            .count();
+        match page.next_cursor {
+            Some(next) if cal < needed => after = Some(next),
+            _ => break,
         }
     }
     if cal >= needed {

@@ -27,15 +27,16 @@ async fn the_same_job_on_the_same_images_is_the_same_set_not_a_better_one() {
         )
         .await;
     assert_eq!(job2["state"], "succeeded", "{job2}");
-    let set = |v: u32| app.get_ok(&format!("/v1/robots/{SERIAL}/parameter-sets/{v}"));
-    let (set1, set2) = (set(1).await, set(2).await);
+    let sets = format!("/v1/robots/{SERIAL}/parameter-sets");
+    let set1 = app.get_ok(&format!("{sets}/1")).await;
+    let set2 = app.get_ok(&format!("{sets}/2")).await;
     assert_eq!(set1["status"], "approved", "{}", set1["status_reason"]);
     // The scenario: the two jobs gave the same parameters.
     assert!(set1["parameters"].is_array(), "{set1}");
     assert_eq!(set1["parameters"], set2["parameters"]);
     assert_eq!(set1["kinematics"], set2["kinematics"]);
-    let report = |v: u32| app.get_ok(&format!("/v1/robots/{SERIAL}/parameter-sets/{v}/report"));
-    let (report1, report2) = (report(1).await, report(2).await);
+    let report1 = app.get_ok(&format!("{sets}/1/report")).await;
+    let report2 = app.get_ok(&format!("{sets}/2/report")).await;
     let gate = &report2["gate"];
     eprintln!("gate of the re-run: {gate}");
     assert_eq!(gate["compared_with"], format!("{SERIAL}/1"), "{gate}");
