@@ -82,13 +82,13 @@ pub async fn start_calibration(
             ),
         )]));
     }
-    require_calibration_poses(store, session).await?;
     if session.spec.instrument == crate::schema::session::Instrument::Stage {
         super::stage_layout::check(store, session).await?;
     }
     if !options.scope.is_full() {
         require_approved(store, &session.serial, "scope").await?;
     }
+    require_calibration_poses(store, session).await?;
     Ok(enqueue_calibration(store, policy, session, options).await?)
 }
 

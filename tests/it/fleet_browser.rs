@@ -400,7 +400,7 @@ async fn a_person_signs_in_sees_the_fleet_and_follows_a_robot_in_chromium() {
         .await;
     let row = browser.text(&format!("#job-{failed}")).await;
     assert!(
-        row.contains(&failed) && row.contains("calibration poses"),
+        row.contains(&failed) && row.contains(super::fleet_page::FAILED_JOB_REASON),
         "{row}"
     );
     browser.quit().await;
