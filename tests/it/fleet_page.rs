@@ -260,6 +260,10 @@ async fn anonymous_pages_refuse_a_rebound_host() {
     assert_eq!(r.status(), 421);
 }
 
+/// How long the failing job may take: its 3 poses each wait the test's
+/// stage delay (15 s a pose in the browser test) before it fails.
+const FAILED_JOB_WAIT: std::time::Duration = std::time::Duration::from_secs(150);
+
 /// Why [`robot_with_failed_job`]'s job failed, as its error says.
 pub const FAILED_JOB_REASON: &str = "val_set";
 
@@ -277,7 +281,7 @@ pub async fn robot_with_failed_job(app: &TestApp, serial: &str) -> String {
         .unwrap()
         .to_string();
     let done = app
-        .wait_job(&job, std::time::Duration::from_secs(60), is_finished)
+        .wait_job(&job, FAILED_JOB_WAIT, is_finished)
         .await;
     assert_eq!(done["state"], "failed", "{done}");
     job
