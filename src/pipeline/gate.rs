@@ -64,8 +64,7 @@ fn refit_mean_mm(
     let instrument = id.identification.layout.instrument;
     // The job's own measurements, borrowed; converted only when needed.
     type Data<'a> = Cow<'a, [Measurement]>;
-    let (instrument, cal_data, val_data): (_, Data, Data) = if set.layout_instrument()
-        == instrument
+    let (instrument, cal_data, val_data): (_, Data, Data) = if set.layout_instrument() == instrument
     {
         (
             instrument,

@@ -39,7 +39,11 @@ fn orient(need: [f64; 2], portrait: [f64; 2]) -> Option<(&'static str, [f64; 2])
 
 /// `target` scaled so its page fills the sheet `(name, portrait size)`,
 /// and that page. `None` when not even one step fits.
-pub fn fill(target: &PrintableTarget, name: &str, portrait: [f64; 2]) -> Option<(PrintableTarget, Page)> {
+pub fn fill(
+    target: &PrintableTarget,
+    name: &str,
+    portrait: [f64; 2],
+) -> Option<(PrintableTarget, Page)> {
     let main = target.main_length_mm();
     let at = |length: f64| {
         let scaled = target.scaled(length / main, ROUND_MM);
@@ -92,7 +96,10 @@ mod tests {
         let fits = |t: &PrintableTarget| orient(Page::need_mm(&t.drawing()), portrait).is_some();
         assert!(fits(scaled), "{scaled:?}");
         let main = scaled.main_length_mm();
-        assert!(!fits(&scaled.scaled((main + STEP_MM) / main, ROUND_MM)), "{scaled:?}");
+        assert!(
+            !fits(&scaled.scaled((main + STEP_MM) / main, ROUND_MM)),
+            "{scaled:?}"
+        );
     }
 
     #[test]
@@ -105,11 +112,16 @@ mod tests {
         assert_eq!(page.sheet, "A4 landscape, board scaled to fill it");
         assert_eq!(page.size_mm, [297.0, 210.0]);
         assert_eq!((s.square_mm / STEP_MM).fract(), 0.0, "{}", s.square_mm);
-        assert!((s.marker_mm / s.square_mm - 18.0 / 25.0).abs() < 1e-3, "{s:?}");
+        assert!(
+            (s.marker_mm / s.square_mm - 18.0 / 25.0).abs() < 1e-3,
+            "{s:?}"
+        );
         assert_fills(&scaled, a4);
         // The sheet says the board as drawn.
         assert!(
-            page.text.iter().any(|(_, t)| t.contains(&format!("\"square_mm\": {}", s.square_mm))),
+            page.text
+                .iter()
+                .any(|(_, t)| t.contains(&format!("\"square_mm\": {}", s.square_mm))),
             "{:?}",
             page.text
         );
@@ -132,6 +144,9 @@ mod tests {
         };
         assert!(t.pitch_mm > 25.0, "{t:?}");
         assert!(page.sheet.starts_with("A3 "), "{}", page.sheet);
-        assert!((t.dot_diameter_mm / t.pitch_mm - 0.32).abs() < 1e-3, "{t:?}");
+        assert!(
+            (t.dot_diameter_mm / t.pitch_mm - 0.32).abs() < 1e-3,
+            "{t:?}"
+        );
     }
 }

@@ -98,7 +98,10 @@ pub fn parse_pairs(pairs: &[(String, String)]) -> Result<PrintRequest, PrintErro
         if super::fill::fill(t, name, size).is_none() {
             c.fail(
                 "page",
-                format!("the board does not fit a {name} sheet at a {} mm step", super::fill::STEP_MM),
+                format!(
+                    "the board does not fit a {name} sheet at a {} mm step",
+                    super::fill::STEP_MM
+                ),
             );
         }
     }

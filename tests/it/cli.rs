@@ -128,7 +128,10 @@ async fn upload_calibrate_forward_and_compensate_through_the_binary() {
         summary.starts_with("job ") && summary.contains(&format!("{SERIAL} parameter set v1")),
         "{summary}"
     );
-    assert!(serde_json::from_str::<Value>(&summary).is_err(), "{summary}");
+    assert!(
+        serde_json::from_str::<Value>(&summary).is_err(),
+        "{summary}"
+    );
     let log = text(&out.stderr);
     assert!(!log.contains('\r'), "{log:?}");
     assert!(log.lines().any(|l| l.contains('%')), "{log:?}");

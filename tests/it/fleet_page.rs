@@ -280,9 +280,7 @@ pub async fn robot_with_failed_job(app: &TestApp, serial: &str) -> String {
         .as_str()
         .unwrap()
         .to_string();
-    let done = app
-        .wait_job(&job, FAILED_JOB_WAIT, is_finished)
-        .await;
+    let done = app.wait_job(&job, FAILED_JOB_WAIT, is_finished).await;
     assert_eq!(done["state"], "failed", "{done}");
     job
 }

@@ -55,7 +55,10 @@ async fn the_same_job_on_the_same_images_is_the_same_set_not_a_better_one() {
     // the gate's, and how the gate figured both.
     assert_eq!(gate["compared_own_mean_mm"], report1["after"]["mean_mm"]);
     assert_eq!(gate["compared_own_session_id"], session.as_str());
-    assert!(gate["basis"].as_str().is_some_and(|b| b.contains("held")), "{gate}");
+    assert!(
+        gate["basis"].as_str().is_some_and(|b| b.contains("held")),
+        "{gate}"
+    );
     let html = app
         .get(&format!("/v1/robots/{SERIAL}/parameter-sets/2/report.html"))
         .await

@@ -272,13 +272,19 @@ async fn page_a4_scales_the_board_to_fill_the_sheet() {
         .text()
         .await
         .unwrap();
-    assert!(svg.contains(r#"width="297mm" height="420mm""#), "A3 as given");
+    assert!(
+        svg.contains(r#"width="297mm" height="420mm""#),
+        "A3 as given"
+    );
     let r = app
         .get(&format!("/v1/targets/render?{query}&page=a4"))
         .await;
     assert_eq!(r.status(), 200);
     let svg = r.text().await.unwrap();
-    assert!(svg.contains(r#"width="297mm" height="210mm""#), "A4 landscape");
+    assert!(
+        svg.contains(r#"width="297mm" height="210mm""#),
+        "A4 landscape"
+    );
     let square_mm: f64 = svg
         .split("\"square_mm\": ")
         .nth(1)
