@@ -58,8 +58,12 @@ async fn main() -> ExitCode {
             cal,
             val,
             seed,
+            target,
             dir,
-        } => robocal::cli::campaign::simulate(&robot, &dir, cal, val, seed)
+        } => robocal::cli::campaign::SimBoard::parse(&target)
+            .and_then(|board| {
+                robocal::cli::campaign::simulate_board(&robot, &dir, cal, val, seed, board)
+            })
             .map(|_| eprintln!("campaign written to {}", dir.display())),
         Command::Upload {
             serial,
@@ -86,11 +90,15 @@ async fn main() -> ExitCode {
             serial,
             session,
             wait,
+            json,
             server,
         } => match server.client() {
             Ok(client) => robocal::cli::calibrate(&client, &serial, &session, wait)
                 .await
-                .map(|job| println!("{job}"))
+                .map(|job| match json {
+                    true => println!("{}", job.json()),
+                    false => println!("{job}"),
+                })
                 .map_err(|e| e.to_string()),
             Err(e) => Err(e),
         },

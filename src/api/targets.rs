@@ -15,8 +15,9 @@ pub fn router() -> OpenApiRouter<AppState> {
     OpenApiRouter::new().routes(routes!(render_target))
 }
 
-/// A target drawn 1:1 on the smallest ISO sheet that holds it, with a scale
-/// bar and the session `target` spec in the margin.
+/// A target drawn 1:1 on the smallest ISO sheet that holds it (or scaled to
+/// fill the sheet `page` names), with a scale bar and the session `target`
+/// spec in the margin.
 #[utoipa::path(get, path = "/v1/targets/render", tag = "targets",
     params(
         ("kind" = Option<String>, Query, description = "Target kind: `dots` (default; robocal's dot grid), `charuco`, `chessboard` or `asymmetric_circles` (OpenCV's asymmetric grid)"),
@@ -32,6 +33,7 @@ pub fn router() -> OpenApiRouter<AppState> {
         ("dictionary" = Option<String>, Query, description = "charuco: an OpenCV predefined dictionary name, e.g. `DICT_5X5_100`"),
         ("legacy_layout" = Option<bool>, Query, description = "charuco: the layout of OpenCV < 4.6 (default false)"),
         ("format" = Option<String>, Query, description = "`svg` (default) or `pdf`"),
+        ("page" = Option<String>, Query, description = "`a4`, `a3`, `a2`, `a1` or `a0`: the board scaled (every length by one factor, the pitch or square a multiple of 0.5 mm) to fill that sheet; the footer states the board as drawn"),
     ),
     responses(
         (status = 200, description = "The page: SVG in millimetres (`format=svg`) or a one-page PDF (`format=pdf`)", content_type = "image/svg+xml", body = String),

@@ -13,7 +13,6 @@ use rand::{rngs::StdRng, SeedableRng};
 use robocal_calib::sim::campaign::{simulate_campaign, Campaign, CampaignSpec};
 use robocal_calib::sim::campaign_io::image_name;
 use robocal_calib::sim::render::RenderOptions;
-use robocal_calib::sim::render_circles::render_target;
 use robocal_calib::sim::rendered_camera::rendered_camera;
 use robocal_calib::vision::TargetSpec;
 use serde::{Deserialize, Serialize};
@@ -27,6 +26,8 @@ use crate::schema::pose_body::DatasetPoseDoc;
 use crate::schema::robot::RobotBody;
 use crate::schema::session::SessionBody;
 use crate::schema::Checker;
+
+pub use super::sim_board::SimBoard;
 
 /// Spreads per-pose noise seeds apart (the golden-ratio constant).
 const NOISE_SEED_STRIDE: u64 = 0x9e37_79b9_7f4a_7c15;
@@ -66,8 +67,9 @@ pub fn rendered_spec(
     Ok(spec)
 }
 
-/// Simulates a campaign of `preset` and writes it to `out`; returns the
-/// campaign (its truth) so callers that judge it need not simulate again.
+/// Simulates a campaign of `preset` on the dot grid and writes it to
+/// `out`; returns the campaign (its truth) so callers that judge it need
+/// not simulate again.
 pub fn simulate(
     preset: &str,
     out: &Path,
@@ -75,17 +77,29 @@ pub fn simulate(
     val: usize,
     seed: u64,
 ) -> Result<(CampaignSpec, Campaign), String> {
+    simulate_board(preset, out, cal, val, seed, SimBoard::Dots)
+}
+
+/// [`simulate`] with the images showing `board` (the same views, the
+/// board in the same target frame).
+pub fn simulate_board(
+    preset: &str,
+    out: &Path,
+    cal: usize,
+    val: usize,
+    seed: u64,
+    board: SimBoard,
+) -> Result<(CampaignSpec, Campaign), String> {
     let spec = rendered_spec(preset, cal, val, seed)?;
     let (intrinsics, (width, height), pixel_um) = rendered_camera(preset);
     let campaign = simulate_campaign(&spec).map_err(|e| e.to_string())?;
     std::fs::create_dir_all(out.join("images")).map_err(|e| e.to_string())?;
-    let target = simulated_target();
     let options = RenderOptions::default();
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let errors: Vec<String> = std::thread::scope(|scope| {
         let handles: Vec<_> = (0..threads)
             .map(|t| {
-                let (campaign, target, options) = (&campaign, &target, &options);
+                let (campaign, options) = (&campaign, &options);
                 scope.spawn(move || {
                     let mut errors = Vec::new();
                     for (i, pose) in campaign.poses.iter().enumerate().skip(t).step_by(threads) {
@@ -94,17 +108,15 @@ pub fn simulate(
                             seed ^ (i as u64 + 1).wrapping_mul(NOISE_SEED_STRIDE),
                         );
                         let camera_to_target = pose.target_to_camera.inverse();
-                        let rendered = render_target(
+                        let rendered = board.render(
                             &campaign.truth.intrinsics,
                             &camera_to_target,
-                            target,
-                            width as usize,
-                            height as usize,
+                            (width as usize, height as usize),
                             options,
                             &mut rng,
                         );
-                        let saved = rendered.map_err(|e| e.to_string()).and_then(|view| {
-                            view.image
+                        let saved = rendered.and_then(|image| {
+                            image
                                 .to_luma8()
                                 .save(out.join(image_name(i)))
                                 .map_err(|e| e.to_string())
@@ -130,11 +142,7 @@ pub fn simulate(
             .map_err(|e| e.to_string())?,
         session: serde_json::from_value(json!({
             "instrument": "camera",
-            "target": {
-                "rows": target.rows, "cols": target.cols, "pitch_mm": target.pitch_mm,
-                "dot_diameter_mm": target.dot_diameter_mm,
-                "origin_marker_diameter_mm": target.origin_marker_diameter_mm,
-            },
+            "target": board.session_target(),
             "camera": {
                 "width": width, "height": height, "pixel_size_um": pixel_um,
                 "nominal_focal_mm": intrinsics.fx * pixel_um / 1000.0,

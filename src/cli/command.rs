@@ -51,6 +51,11 @@ pub enum Command {
         /// Random seed of the perturbations, poses and image noise.
         #[arg(long, default_value_t = 1)]
         seed: u64,
+        /// The board the images show: the 9x9 dot grid, an 8x7-corner
+        /// chessboard or a 10x8-square ChArUco board (DICT_5X5_100), all
+        /// on a 25 mm pitch; campaign.json describes it.
+        #[arg(long, value_parser = super::sim_board::SimBoard::NAMES, default_value = "dots")]
+        target: String,
         /// Output directory (campaign.json, poses.json, images/, truth.json).
         dir: std::path::PathBuf,
     },
@@ -84,6 +89,10 @@ pub enum Command {
         /// Show progress until the job ends.
         #[arg(long)]
         wait: bool,
+        /// Print the finished job's whole JSON document (`GET
+        /// /v1/jobs/{id}`) instead of the summary.
+        #[arg(long)]
+        json: bool,
         #[command(flatten)]
         server: ServerArgs,
     },

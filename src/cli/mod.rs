@@ -14,6 +14,7 @@ mod jobs;
 pub use jobs::{jobs, JobFilters};
 pub mod plan;
 pub mod release;
+mod sim_board;
 
 use std::io::{IsTerminal, Write};
 use std::path::Path;
@@ -209,6 +210,17 @@ impl Calibration {
     pub fn job_id(&self) -> &str {
         match self {
             Calibration::Started { job_id } | Calibration::Succeeded { job_id, .. } => job_id,
+        }
+    }
+
+    /// The JSON `calibrate --json` prints: `{"job_id": …}`, or the
+    /// finished job's whole document as the server wrote it.
+    pub fn json(&self) -> String {
+        match self {
+            Calibration::Started { job_id } => {
+                serde_json::to_string(&Started { job_id }).unwrap_or_default()
+            }
+            Calibration::Succeeded { job, .. } => job.clone(),
         }
     }
 }

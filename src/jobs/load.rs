@@ -162,10 +162,24 @@ async fn approved_set(store: &DynStore, serial: &str) -> Result<Option<ApprovedS
     let Some(record) = store.get_parameter_set(serial, None).await? else {
         return Ok(None);
     };
+    // Its own report's headline, which the gate's report shows beside
+    // the gate's own figure of it.
+    let report = store.get_report(serial, record.version).await?;
+    let report_mean_mm = report
+        .as_ref()
+        .and_then(|r| r.pointer("/after/mean_mm"))
+        .and_then(serde_json::Value::as_f64);
+    let report_session_id = report
+        .as_ref()
+        .and_then(|r| r.get("session_id"))
+        .and_then(serde_json::Value::as_str)
+        .map(str::to_string);
     Ok(record.parameters.into_kinematic().map(|set| ApprovedSet {
         id: format!("{serial}/{}", record.version),
         version: record.version,
         set,
+        report_mean_mm,
+        report_session_id,
     }))
 }
 

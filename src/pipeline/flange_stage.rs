@@ -64,13 +64,26 @@ fn view_points(step: &CameraStep, i: usize) -> Vec<BoardPoint> {
         .collect()
 }
 
-/// Why pose `i` had no board points: its detection failure, if any.
-fn detection_reason(measured: &Measured, poses: &[PoseInput], i: usize) -> Option<String> {
-    measured
+/// Why pose `i` had no board points: its detection failure, or why the
+/// camera calibration left its view out (a board found, but no initial
+/// pose from the homography), if either.
+fn missing_view_reason(
+    measured: &Measured,
+    step: &CameraStep,
+    poses: &[PoseInput],
+    i: usize,
+) -> Option<String> {
+    let detection = measured
         .failures
         .iter()
         .find(|f| f.pose_id == poses[i].id)
-        .map(|f| format!("no board in the image: {}", f.reason))
+        .map(|f| format!("no board in the image: {}", f.reason));
+    detection.or_else(|| {
+        step.left_out
+            .iter()
+            .find(|(pose, _)| *pose == i)
+            .map(|(_, why)| format!("left out of the camera calibration: {why}"))
+    })
 }
 
 /// Hand–eye and board from the calibration poses' flange poses and images.
@@ -114,7 +127,7 @@ pub fn hand_eye(
         .filter(|(_, v)| v.outlier)
         .map(|(&i, v)| Outlier {
             pose: i,
-            reason: detection_reason(measured, poses, i)
+            reason: missing_view_reason(measured, step, poses, i)
                 .or_else(|| v.reason.clone())
                 .unwrap_or_else(|| "left out by the screening".into()),
         })

@@ -75,6 +75,10 @@ pub struct ApprovedSet {
     /// The set's version.
     pub version: i64,
     pub set: ParameterSet,
+    /// The headline mean 3-D validation error its own report gives (mm).
+    pub report_mean_mm: Option<f64>,
+    /// The session its own report measured.
+    pub report_session_id: Option<String>,
 }
 
 impl Input {

@@ -21,6 +21,7 @@ use robocal_calib::kinematics::model_ladder::{
     climb, errors_mm, fit_rung, heldout_score, LadderInput, Rung, RungScore,
 };
 use robocal_calib::kinematics::prior::KinematicPrior;
+use robocal_calib::kinematics::term_model::TermModel;
 use robocal_calib::kinematics::{CalibratedModel, ParamLayout, RobotModel};
 
 use super::camera_stage::CameraStep;
@@ -82,15 +83,25 @@ impl HeldOut {
         }
     }
 
-    /// Mean held-out camera position error (mm) of `robot`'s kinematics,
-    /// held, with only the board, hand–eye and camera fitted per fold.
-    pub fn mean_mm_of(&self, robot: &RobotModel) -> Result<f64, String> {
+    /// Mean held-out camera position error (mm) of `held`'s kinematics,
+    /// held, with only the board, hand–eye and camera fitted per fold. Its
+    /// kept non-geometric terms are held at their values: every pose's
+    /// joints deflected through them first (`TermModel::deflected`), as the
+    /// set would be served.
+    pub fn mean_mm_of(&self, held: &TermModel) -> Result<f64, String> {
+        let deflected;
+        let this = if held.has_terms() {
+            deflected = self.deflected(held)?;
+            &deflected
+        } else {
+            self
+        };
         let nominal = CalibratedModel {
-            robot: robot.clone(),
+            robot: held.model.robot.clone(),
             ..self.nominal_frames.clone()
         };
         let prior = KinematicPrior::default();
-        let score = heldout_score(Rung::HandEye, &self.input(&nominal, &prior));
+        let score = heldout_score(Rung::HandEye, &this.input(&nominal, &prior));
         if let Some(why) = score.failed {
             return Err(why);
         }
@@ -99,6 +110,36 @@ impl HeldOut {
             return Err("no held-out pose could be measured".into());
         }
         Ok(errors.iter().map(Vector3::norm).sum::<f64>() / errors.len() as f64)
+    }
+
+    /// The same comparison with every pose's joints deflected by `held`'s terms.
+    fn deflected(&self, held: &TermModel) -> Result<HeldOut, String> {
+        let images = self
+            .images
+            .iter()
+            .map(|p| {
+                Ok(ImagePose {
+                    joints_rad: held.deflected(&p.joints_rad).map_err(|e| e.to_string())?,
+                    observations: p.observations.clone(),
+                })
+            })
+            .collect::<Result<Vec<_>, String>>()?;
+        let measured = self
+            .measured
+            .iter()
+            .map(|m| match m {
+                Some(m) => held
+                    .deflect_measurements(std::slice::from_ref(m))
+                    .map(|mut d| d.pop())
+                    .map_err(|e| e.to_string()),
+                None => Ok(None),
+            })
+            .collect::<Result<Vec<_>, String>>()?;
+        Ok(HeldOut {
+            images,
+            measured,
+            ..self.clone()
+        })
     }
 }
 

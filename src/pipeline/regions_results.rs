@@ -145,6 +145,7 @@ pub(super) fn output(input: &Input, fitted: Fitted) -> Result<Output, PipelineEr
     combined.after = validations[0].after;
     let decision = gate::decide(
         &combined,
+        &set,
         crate::schema::session::Instrument::Camera,
         input.approved.as_ref(),
         false,

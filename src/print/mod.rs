@@ -6,6 +6,7 @@
 //! the same geometry the detectors use; this module only lays out the page
 //! and writes the two formats.
 
+pub mod fill;
 pub mod page;
 pub mod pdf;
 pub mod query;
@@ -37,9 +38,17 @@ pub fn render_args(args: &[String]) -> Result<Vec<u8>, String> {
     Ok(render(&request))
 }
 
-/// The page of a parsed request in its format.
+/// The page of a parsed request in its format: on the smallest ISO sheet
+/// that holds the board, or with `page` the board scaled to fill that
+/// sheet (`fill.rs`; parsing checked that it fits).
 pub fn render(request: &PrintRequest) -> Vec<u8> {
-    let page = Page::layout(&request.target.drawing(), &request.target.spec_lines());
+    let filled = request
+        .page
+        .and_then(|(name, size)| fill::fill(&request.target, name, size));
+    let page = match filled {
+        Some((_, page)) => page,
+        None => Page::layout(&request.target.drawing(), &request.target.spec_lines()),
+    };
     match request.format {
         PageFormat::Svg => svg::write_svg(&page).into_bytes(),
         PageFormat::Pdf => pdf::write_pdf(&page),

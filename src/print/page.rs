@@ -19,7 +19,7 @@ pub const SCALE_BAR_HEIGHT_MM: f64 = 3.0;
 /// Text height, mm (about 10 pt).
 pub const TEXT_MM: f64 = 3.5;
 /// ISO 216 sheets tried in order, portrait (width, height), mm.
-const SHEETS_MM: [(&str, f64, f64); 5] = [
+pub const SHEETS_MM: [(&str, f64, f64); 5] = [
     ("A4", 210.0, 297.0),
     ("A3", 297.0, 420.0),
     ("A2", 420.0, 594.0),
@@ -69,11 +69,25 @@ impl Page {
     /// holds it with the margins and the footer; a custom sheet otherwise.
     /// `spec_lines` are printed under the scale bar.
     pub fn layout(board: &BoardDrawing, spec_lines: &[String]) -> Page {
-        let need = [
+        let (sheet, size_mm) = sheet_for(Self::need_mm(board));
+        Self::layout_on(board, spec_lines, sheet, size_mm)
+    }
+
+    /// The page size `board` needs with the margins and the footer, mm.
+    pub fn need_mm(board: &BoardDrawing) -> [f64; 2] {
+        [
             board.size_mm[0] + 2.0 * PAGE_MARGIN_MM,
             board.size_mm[1] + 2.0 * PAGE_MARGIN_MM + FOOTER_MM,
-        ];
-        let (sheet, size_mm) = sheet_for(need);
+        ]
+    }
+
+    /// [`Self::layout`] on a given sheet (`sheet` names it).
+    pub fn layout_on(
+        board: &BoardDrawing,
+        spec_lines: &[String],
+        sheet: String,
+        size_mm: [f64; 2],
+    ) -> Page {
         // Board centred horizontally, at the top margin.
         let board_min_mm = [(size_mm[0] - board.size_mm[0]) / 2.0, PAGE_MARGIN_MM];
         let shift = [

@@ -46,6 +46,9 @@ pub type PrintError = Vec<FieldError>;
 pub struct PrintRequest {
     pub target: PrintableTarget,
     pub format: PageFormat,
+    /// `page=a4` … `a0`: the board scaled to fill that sheet (name,
+    /// portrait size mm); `None`: drawn as given on the smallest sheet.
+    pub page: Option<(&'static str, [f64; 2])>,
 }
 
 /// Parses the pairs; every problem is reported with the key it concerns.
@@ -65,6 +68,16 @@ pub fn parse_pairs(pairs: &[(String, String)]) -> Result<PrintRequest, PrintErro
             PageFormat::Svg
         }
     };
+    let page = match map.remove("page") {
+        None => None,
+        Some(name) => {
+            let found = super::fill::sheet(name);
+            if found.is_none() {
+                c.fail("page", "must be an ISO sheet: a4, a3, a2, a1 or a0");
+            }
+            found
+        }
+    };
     let target = match map.remove("kind").unwrap_or("dots") {
         "dots" => dots(&mut c, &mut map),
         "charuco" => charuco(&mut c, &mut map),
@@ -81,9 +94,24 @@ pub fn parse_pairs(pairs: &[(String, String)]) -> Result<PrintRequest, PrintErro
     for k in map.keys() {
         c.fail(*k, "unknown parameter for this kind");
     }
+    if let (Some(t), Some((name, size))) = (&target, page) {
+        if super::fill::fill(t, name, size).is_none() {
+            c.fail(
+                "page",
+                format!(
+                    "the board does not fit a {name} sheet at a {} mm step",
+                    super::fill::STEP_MM
+                ),
+            );
+        }
+    }
     c.finish()?;
     target
-        .map(|target| PrintRequest { target, format })
+        .map(|target| PrintRequest {
+            target,
+            format,
+            page,
+        })
         .ok_or_else(|| vec![FieldError::new("kind", "incomplete target")])
 }
 

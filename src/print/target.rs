@@ -33,6 +33,47 @@ impl PrintableTarget {
         }
     }
 
+    /// The length that sets the board's size: the dot pitch, the square.
+    pub fn main_length_mm(&self) -> f64 {
+        match self {
+            PrintableTarget::Dots(t) => t.pitch_mm,
+            PrintableTarget::Charuco(t) => t.square_mm,
+            PrintableTarget::Chessboard(t) => t.square_mm,
+            PrintableTarget::AsymmetricCircles(t) => t.pitch_mm,
+        }
+    }
+
+    /// Every length times `k`; the main length exactly, the others rounded
+    /// to `round_mm` (the sizes a person types into a session).
+    pub fn scaled(&self, k: f64, round_mm: f64) -> PrintableTarget {
+        let r = |v: f64| (v * k / round_mm).round() * round_mm;
+        let main = self.main_length_mm() * k;
+        match self {
+            PrintableTarget::Dots(t) => PrintableTarget::Dots(TargetSpec {
+                pitch_mm: main,
+                dot_diameter_mm: r(t.dot_diameter_mm),
+                origin_marker_diameter_mm: t.origin_marker_diameter_mm.map(r),
+                ..*t
+            }),
+            PrintableTarget::Charuco(t) => PrintableTarget::Charuco(CharucoSpec {
+                square_mm: main,
+                marker_mm: r(t.marker_mm),
+                ..t.clone()
+            }),
+            PrintableTarget::Chessboard(t) => PrintableTarget::Chessboard(ChessboardSpec {
+                square_mm: main,
+                ..t.clone()
+            }),
+            PrintableTarget::AsymmetricCircles(t) => {
+                PrintableTarget::AsymmetricCircles(AsymmetricCirclesSpec {
+                    pitch_mm: main,
+                    dot_diameter_mm: r(t.dot_diameter_mm),
+                    ..*t
+                })
+            }
+        }
+    }
+
     /// The margin text: the spec as a session's `target` JSON, so the sheet
     /// says how to configure a session for it.
     pub fn spec_lines(&self) -> Vec<String> {

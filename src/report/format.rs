@@ -288,6 +288,9 @@ mod tests {
             compared_mean_mm: Some(0.011),
             mean_mm: Some(0.012),
             worse: true,
+            basis: None,
+            compared_own_mean_mm: None,
+            compared_own_session_id: None,
         });
         // Read without its set: the gate's own warning.
         assert!(headline(&report).starts_with("WORSE THAN BEFORE"));

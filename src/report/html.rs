@@ -54,6 +54,7 @@ figcaption { font-size: 9pt; color: var(--muted); margin-top: 2px; }
 .release { border-left: 5px solid #222; padding: 6px 10px; margin: 0 0 10px 0; }
 .release.status-candidate, .release.status-unknown { border-color: #d9730d; background: #fdf3e7; }
 .release.status-rejected { border-color: #a33; background: #fbeaea; }
+.gate { margin: 6px 0 10px 0; }
 .release.status-approved { border-color: #2e7d32; background: #edf6ee; }
 .warn { color: #a33; }
 ul.notes li { margin: 3px 0; }
@@ -179,6 +180,7 @@ fn header(page: &mut String, report: &Report) {
         mm(b.max_mm),
         mm(a.max_mm)
     );
+    super::gate_section::gate_section(page, report);
 }
 
 fn accuracy(page: &mut String, report: &Report) {

@@ -9,6 +9,7 @@ mod field;
 mod field_key;
 mod field_marks;
 pub mod format;
+mod gate_section;
 pub mod hand_eye;
 mod hand_eye_section;
 mod html;

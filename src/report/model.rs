@@ -301,4 +301,17 @@ pub struct GateReport {
     pub mean_mm: Option<f64>,
     /// This set predicts the same validation poses worse than before.
     pub worse: bool,
+    /// How `mean_mm` and `compared_mean_mm` were both figured, when an
+    /// approved set was compared (one rule for the two sets).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub basis: Option<String>,
+    /// The headline mean 3-D validation error the compared set's own
+    /// report gives (mm), on its own session's poses and by its own
+    /// headline rule: it differs from `compared_mean_mm` when the poses or
+    /// the rule differ (`basis` says how the gate figured it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub compared_own_mean_mm: Option<f64>,
+    /// The session the compared set's own report measured.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub compared_own_session_id: Option<String>,
 }

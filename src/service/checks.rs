@@ -29,6 +29,42 @@ async fn require_approved(
     })
 }
 
+/// Calibration poses read per page while counting them.
+const POSE_PAGE: i64 = 100;
+
+/// 422 naming `poses` when the session has fewer calibration poses than
+/// the job's validate stage needs (`pipeline::MIN_CALIBRATION_POSES`): a
+/// job that can only fail is refused at the POST, not queued. Reads pages
+/// only until enough are counted.
+async fn require_calibration_poses(store: &DynStore, session: &SessionRecord) -> ServiceResult<()> {
+    let needed = crate::pipeline::MIN_CALIBRATION_POSES;
+    let (mut cal, mut after) = (0, None::<String>);
+    loop {
+        let page = store
+            .list_poses(&session.id, POSE_PAGE, after.as_deref())
+            .await?;
+        cal += page
+            .items
+            .iter()
+            .filter(|p| p.set == crate::schema::session::PoseSet::Cal)
+            .count();
+        match page.next_cursor {
+            Some(next) if cal < needed => after = Some(next),
+            _ => break,
+        }
+    }
+    if cal >= needed {
+        return Ok(());
+    }
+    Err(ServiceError::invalid(
+        "poses",
+        format!(
+            "session {} has {cal} calibration poses (of {} poses); a calibration needs at least {needed}: upload more poses with set \"cal\" first",
+            session.id, session.pose_count
+        ),
+    ))
+}
+
 /// Queues a calibration; a partial scope needs an approved set.
 pub async fn start_calibration(
     store: &DynStore,
@@ -52,6 +88,7 @@ pub async fn start_calibration(
     if !options.scope.is_full() {
         require_approved(store, &session.serial, "scope").await?;
     }
+    require_calibration_poses(store, session).await?;
     Ok(enqueue_calibration(store, policy, session, options).await?)
 }
 

@@ -97,3 +97,25 @@ async fn bad_charuco_specs_are_422_naming_the_field() {
     );
     app.shutdown().await;
 }
+
+/// `robocal simulate --target charuco` (and `chessboard`): the campaign
+/// written with the board drawn and described, calibrated through the
+/// service like the dot grid's.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn simulate_writes_charuco_and_chessboard_campaigns_that_calibrate() {
+    use crate::board_campaign::{CAL_POSES, VAL_POSES};
+    use robocal::cli::campaign::{simulate_board, SimBoard};
+    for (board, kind, serial) in [
+        (SimBoard::Charuco, "charuco", "SIM-CHARUCO"),
+        (SimBoard::Chessboard, "chessboard", "SIM-CHESS"),
+    ] {
+        let dir = tempfile::tempdir().unwrap();
+        simulate_board("irb2400", dir.path(), CAL_POSES, VAL_POSES, 3, board).unwrap();
+        let campaign: Value = serde_json::from_str(
+            &std::fs::read_to_string(dir.path().join("campaign.json")).unwrap(),
+        )
+        .unwrap();
+        assert_eq!(campaign["session"]["target"]["kind"], kind, "{campaign}");
+        calibrates_through_the_service(dir.path(), serial, kind).await;
+    }
+}

@@ -122,7 +122,16 @@ async fn upload_calibrate_forward_and_compensate_through_the_binary() {
         ],
     )
     .await;
-    ok(&out);
+    // The end is a short summary, not the job document.
+    let summary = ok(&out);
+    assert!(
+        summary.starts_with("job ") && summary.contains(&format!("{SERIAL} parameter set v1")),
+        "{summary}"
+    );
+    assert!(
+        serde_json::from_str::<Value>(&summary).is_err(),
+        "{summary}"
+    );
     let log = text(&out.stderr);
     assert!(!log.contains('\r'), "{log:?}");
     assert!(log.lines().any(|l| l.contains('%')), "{log:?}");
@@ -334,10 +343,14 @@ async fn flange_pose_campaign_uploads_and_calibrates_through_the_binary() {
             "--session",
             &session,
             "--wait",
+            "--json",
         ],
     )
     .await;
-    ok(&out);
+    // --json: the finished job's whole document.
+    let job: Value = serde_json::from_str(&ok(&out)).unwrap();
+    assert_eq!(job["state"], "succeeded", "{job}");
+    assert_eq!(job["result"]["serial"], serial, "{job}");
     let report: Value = app
         .get(&format!("/v1/robots/{serial}/parameter-sets/latest/report"))
         .await

@@ -85,7 +85,7 @@ async fn approve_reject_list_webhooks_and_delete_without_curl() {
         .find(|l| l.starts_with(&failed))
         .unwrap_or_else(|| panic!("the failed job, whole id: {jobs}"));
     assert!(
-        row.contains("calibration") && row.contains("calibration poses"),
+        row.contains("calibration") && row.contains(crate::fleet_page::FAILED_JOB_REASON),
         "{row}"
     );
     let none = ok(&robocal(&app, &["jobs", "--serial", "CLI-R"]).await);

@@ -369,6 +369,15 @@ async fn a_person_signs_in_sees_the_fleet_and_follows_a_robot_in_chromium() {
         status.starts_with("APPROVED by anonymous") && status.contains("re-measured on the cell"),
         "{status}"
     );
+    // The gate's "before" is traced: both figures, and v1's own report's.
+    let gate = browser.text("#release-gate").await;
+    let own = robocal::report::format::mm(super::release_reports::GATE_OWN_MEAN_MM);
+    assert!(
+        gate.contains("CELL-9/1 on these poses")
+            && gate.contains("CELL-9/1 in its own report (session session-of-v1)")
+            && gate.contains(&format!("{own} mm")),
+        "{gate}"
+    );
     browser.screenshot("report-approved.png").await;
     browser.goto(&app.url("/robots/CELL-9/reports/4")).await;
     let status = browser.text("#release-status").await;
@@ -391,7 +400,7 @@ async fn a_person_signs_in_sees_the_fleet_and_follows_a_robot_in_chromium() {
         .await;
     let row = browser.text(&format!("#job-{failed}")).await;
     assert!(
-        row.contains(&failed) && row.contains("calibration poses"),
+        row.contains(&failed) && row.contains(super::fleet_page::FAILED_JOB_REASON),
         "{row}"
     );
     browser.quit().await;

@@ -260,10 +260,18 @@ async fn anonymous_pages_refuse_a_rebound_host() {
     assert_eq!(r.status(), 421);
 }
 
-/// Robot `serial` whose only job failed (one calibration pose); its id.
+/// How long the failing job may take: its 3 poses each wait the test's
+/// stage delay (15 s a pose in the browser test) before it fails.
+const FAILED_JOB_WAIT: std::time::Duration = std::time::Duration::from_secs(150);
+
+/// Why [`robot_with_failed_job`]'s job failed, as its error says.
+pub const FAILED_JOB_REASON: &str = "val_set";
+
+/// Robot `serial` whose only job failed (calibration poses but no
+/// validation pose for the default `val_set`); its id.
 pub async fn robot_with_failed_job(app: &TestApp, serial: &str) -> String {
     let session = app.robot_and_session(serial).await;
-    app.add_point_poses(&session, 1, 0).await;
+    app.add_point_poses(&session, 3, 0).await;
     let r = app
         .post_json(&format!("/v1/sessions/{session}/calibrations"), &json!({}))
         .await;
@@ -272,9 +280,7 @@ pub async fn robot_with_failed_job(app: &TestApp, serial: &str) -> String {
         .as_str()
         .unwrap()
         .to_string();
-    let done = app
-        .wait_job(&job, std::time::Duration::from_secs(60), is_finished)
-        .await;
+    let done = app.wait_job(&job, FAILED_JOB_WAIT, is_finished).await;
     assert_eq!(done["state"], "failed", "{done}");
     job
 }
@@ -292,7 +298,7 @@ async fn a_robot_whose_job_failed_says_why_with_the_whole_job_id() {
         .unwrap();
     assert!(page.contains("class=\"card robot failed\" id=\"robot-FP-F\""));
     assert!(card.contains("calibration failed</span>: "), "{card}");
-    assert!(card.contains("calibration poses"), "the reason: {card}");
+    assert!(card.contains(FAILED_JOB_REASON), "the reason: {card}");
     assert!(
         card.contains(&format!("href=\"/robots/FP-F#job-{job}\">job {job}</a>")),
         "{card}"
@@ -312,5 +318,5 @@ async fn a_robot_whose_job_failed_says_why_with_the_whole_job_id() {
         row.contains(&format!("<td class=\"id\">{job}</td>")),
         "{row}"
     );
-    assert!(row.contains("calibration poses"), "{row}");
+    assert!(row.contains(FAILED_JOB_REASON), "{row}");
 }

@@ -41,10 +41,32 @@ async fn calibration_job_validates_and_succeeds() {
     assert_eq!(done["attempts"], 1);
 }
 
+/// A calibration that cannot start (2 poses; the validate stage needs 3
+/// calibration poses) is refused at the POST with a 422 naming `poses`,
+/// not queued to fail later; one more calibration pose and it starts.
 #[tokio::test]
-async fn job_with_too_few_poses_fails_naming_the_problem() {
+async fn too_few_poses_are_a_422_at_the_post_naming_poses() {
     let app = spawn_app().await;
     let session = app.robot_and_session("J2").await;
+    app.add_point_poses(&session, 2, 0).await;
+    let r = start_job(
+        &app,
+        &session,
+        Some(json!({"validation": {"holdout_fraction": 0.3}})),
+    )
+    .await;
+    assert_eq!(r.status(), 422);
+    let p: Value = r.json().await.unwrap();
+    assert_eq!(p["errors"][0]["field"], "poses", "{p}");
+    let message = p["errors"][0]["message"].as_str().unwrap();
+    assert!(message.contains("2 calibration poses"), "{p}");
+    let jobs: Value = app.get_ok("/v1/jobs?serial=J2").await;
+    assert_eq!(jobs["items"].as_array().unwrap().len(), 0, "{jobs}");
+    // Validation poses do not count: 2 cal + 3 val is still refused.
+    let more = app.new_session("J2", &session_body()).await;
+    app.add_point_poses(&more, 2, 3).await;
+    let r = start_job(&app, &more, None).await;
+    assert_eq!(r.status(), 422);
     app.add_point_poses(&session, 1, 0).await;
     let r = start_job(
         &app,
@@ -52,20 +74,7 @@ async fn job_with_too_few_poses_fails_naming_the_problem() {
         Some(json!({"validation": {"holdout_fraction": 0.3}})),
     )
     .await;
-    let job = r.json::<Value>().await.unwrap()["job_id"]
-        .as_str()
-        .unwrap()
-        .to_string();
-    let done = app.wait_job(&job, WAIT, is_finished).await;
-    assert_eq!(done["state"], "failed");
-    assert!(
-        done["error"]
-            .as_str()
-            .unwrap()
-            .contains("calibration poses"),
-        "{done}"
-    );
-    assert_eq!(done["attempts"], 1, "bad input is not retried");
+    assert_eq!(r.status(), 202, "{}", r.text().await.unwrap());
 }
 
 #[tokio::test]

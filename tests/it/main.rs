@@ -29,6 +29,7 @@ pub(crate) mod fixtures;
 pub(crate) mod flange_pose;
 pub(crate) mod fleet_browser;
 pub(crate) mod fleet_page;
+pub(crate) mod gate_trace;
 pub(crate) mod half_turn;
 pub(crate) mod hostile;
 pub(crate) mod hostile_uploads;

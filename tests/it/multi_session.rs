@@ -389,7 +389,11 @@ async fn a_multi_session_job_refuses_empty_unknown_and_foreign_sessions() {
         )
         .await;
     problem_field(r, "sessions").await;
-    // One session is that session's own calibration.
+    // One session is that session's own calibration: refused while it
+    // has no calibration pose (422 naming `poses`), queued once it has.
+    let r = app.post_json(path, &json!({"sessions": [mine]})).await;
+    problem_field(r, "poses").await;
+    app.add_point_poses(&mine, 3, 1).await;
     let r = app.post_json(path, &json!({"sessions": [mine]})).await;
     assert_eq!(r.status(), 202, "{}", r.text().await.unwrap());
 }

@@ -13,6 +13,9 @@ use serde_json::json;
 
 use crate::support::*;
 
+/// The headline v1's own report gave, as v2's gate section shows it (mm).
+pub const GATE_OWN_MEAN_MM: f64 = 0.00743;
+
 /// The job ids of the stored sets v1..v4.
 pub fn job_of(version: i64) -> String {
     format!("0193a5c2-0000-7000-8000-00000000000{version}")
@@ -50,6 +53,9 @@ pub async fn robot_with_decided_sets(app: &TestApp, serial: &str) {
                 compared_mean_mm: Some(0.011),
                 mean_mm: Some(0.012),
                 worse: true,
+                basis: Some("both sets' kinematics held, frames re-fitted".into()),
+                compared_own_mean_mm: Some(GATE_OWN_MEAN_MM),
+                compared_own_session_id: Some("session-of-v1".into()),
             });
         }
         let set = NewParameterSet {

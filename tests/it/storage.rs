@@ -141,7 +141,10 @@ async fn dot_segment_serials_are_refused_when_sent_raw() {
 async fn a_deleted_robots_past_does_not_come_back() {
     let app = spawn_app().await;
     let session = app.robot_and_session("GONE-1").await;
-    upload_pose(&app, &session, png(CAMERA_W, CAMERA_H, 1), "a.png").await;
+    // Enough calibration poses for a job to be queued.
+    for (seed, name) in [(1, "a.png"), (2, "b.png"), (3, "c.png")] {
+        upload_pose(&app, &session, png(CAMERA_W, CAMERA_H, seed), name).await;
+    }
     let job: Value = app
         .post_json(&format!("/v1/sessions/{session}/calibrations"), &json!({}))
         .await

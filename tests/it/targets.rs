@@ -257,3 +257,49 @@ async fn printed_chessboard_is_detected_in_opencv_order() {
     }
     app.shutdown().await;
 }
+
+/// `page=a4`: the board scaled to fill the sheet it is printed on (a
+/// 10x8 ChArUco board of 25 mm squares would otherwise need A3 and fill
+/// half of it); the footer gives the square as drawn. An unknown sheet is
+/// a 422 naming `page`.
+#[tokio::test]
+async fn page_a4_scales_the_board_to_fill_the_sheet() {
+    let app = spawn_app().await;
+    let query = "kind=charuco&squares=10,8&square_mm=25&marker_mm=18&dictionary=DICT_5X5_100";
+    let svg = app
+        .get(&format!("/v1/targets/render?{query}"))
+        .await
+        .text()
+        .await
+        .unwrap();
+    assert!(
+        svg.contains(r#"width="297mm" height="420mm""#),
+        "A3 as given"
+    );
+    let r = app
+        .get(&format!("/v1/targets/render?{query}&page=a4"))
+        .await;
+    assert_eq!(r.status(), 200);
+    let svg = r.text().await.unwrap();
+    assert!(
+        svg.contains(r#"width="297mm" height="210mm""#),
+        "A4 landscape"
+    );
+    let square_mm: f64 = svg
+        .split("\"square_mm\": ")
+        .nth(1)
+        .and_then(|rest| rest.split(',').next())
+        .and_then(|v| v.trim().parse().ok())
+        .expect("the footer states the square");
+    // 8 rows of squares and the board's white border in A4's 210 mm less
+    // margins and footer (160 mm); `print::fill`'s unit tests show one
+    // half-millimetre step more would not fit.
+    assert!((16.0..20.0).contains(&square_mm), "{square_mm}");
+    let r = app
+        .get(&format!("/v1/targets/render?{query}&page=b5"))
+        .await;
+    assert_eq!(r.status(), 422);
+    let p: Value = r.json().await.unwrap();
+    assert_eq!(p["errors"][0]["field"], "page", "{p}");
+    app.shutdown().await;
+}

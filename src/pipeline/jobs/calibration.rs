@@ -118,6 +118,7 @@ pub fn run(
     let mut report = results::report(&context, &identified, &set);
     let gate = gate::decide(
         &identified,
+        &set,
         context.instrument,
         input.approved.as_ref(),
         paper_camera && camera.is_some(),
