@@ -26,6 +26,7 @@ mod input;
 mod measure;
 mod measuring;
 mod model_selection;
+mod position_selection;
 mod output;
 mod regions_job;
 mod regions_results;

@@ -14,7 +14,7 @@ use crate::domain::{
     CheckDoc, ImageDetection, ImageMeta, JobState, JointsDeg, MeasuredPose, PoseSet, Release,
     ReleaseStatus,
 };
-use crate::domain::{ControllerIdentity, StageReading};
+use crate::domain::{ControllerIdentity, PoseGroup, StageReading};
 use crate::schema::flange_pose::FlangePoseDoc;
 use crate::schema::pose_body::ImagePointDoc;
 use crate::schema::session::SessionBody;
@@ -86,6 +86,8 @@ pub struct PoseRecord {
     pub flange_pose: Option<FlangePoseDoc>,
     /// The stage's reading of a stage session's image (`joints_deg` empty).
     pub stage_reading: Option<StageReading>,
+    /// The arm configuration the client named (see [`NewPose::group`]).
+    pub group: Option<PoseGroup>,
     pub created_at: String,
 }
 
@@ -122,6 +124,9 @@ pub struct NewPose {
     pub flange_pose: Option<FlangePoseDoc>,
     /// The checked stage reading of a stage session's image.
     pub stage_reading: Option<StageReading>,
+    /// The arm configuration the client named for the pose (its `group`);
+    /// `None`: a job groups the pose by its joints 1–3.
+    pub group: Option<PoseGroup>,
 }
 
 #[derive(Debug, Clone)]

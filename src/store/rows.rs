@@ -7,7 +7,9 @@ use sqlx::{Decode, Row, Type};
 
 use super::StoreError;
 use super::StoreResult;
-use crate::domain::{ImageMeta, JobState, JointsDeg, PoseSet, ReleaseStatus, Scope, TokenRecord};
+use crate::domain::{
+    ImageMeta, JobState, JointsDeg, PoseGroup, PoseSet, ReleaseStatus, Scope, TokenRecord,
+};
 use crate::store::{
     ClaimedJob, JobRecord, ParameterSetRecord, PoseRecord, RobotRecord, SessionRecord,
 };
@@ -112,6 +114,7 @@ pub fn pose(row: &impl Columns) -> StoreResult<PoseRecord> {
         image_detection: opt_typed(row.opt_str("image_detection"))?,
         flange_pose: opt_typed(row.opt_str("flange_pose"))?,
         stage_reading: opt_typed(row.opt_str("stage_reading"))?,
+        group: row.opt_string("pose_group").map(PoseGroup::stored),
         created_at: row.string("created_at"),
     })
 }

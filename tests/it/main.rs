@@ -66,6 +66,7 @@ pub(crate) mod terms;
 pub(crate) mod terms_gate;
 pub(crate) mod test_db;
 pub(crate) mod timeouts;
+pub(crate) mod tracker_ladder;
 pub(crate) mod tls;
 pub(crate) mod tokens;
 pub(crate) mod uncertainty;

@@ -62,6 +62,7 @@ fn pose(sha: Option<&ImageMeta>) -> NewPose {
         image_detection: None,
         flange_pose: None,
         stage_reading: None,
+        group: None,
     }
 }
 

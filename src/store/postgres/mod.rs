@@ -108,6 +108,11 @@ const MIGRATIONS: &[Embedded] = &[
         "robot prior",
         include_str!("../../../migrations/postgres/0040_robot_prior.sql"),
     ),
+    (
+        80,
+        "pose group",
+        include_str!("../../../migrations/postgres/0080_pose_group.sql"),
+    ),
 ];
 
 /// Connections per replica. Each worker holds at most one while it claims or

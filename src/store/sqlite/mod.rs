@@ -94,6 +94,11 @@ const MIGRATIONS: &[Embedded] = &[
         "robot prior",
         include_str!("../../../migrations/sqlite/0040_robot_prior.sql"),
     ),
+    (
+        80,
+        "pose group",
+        include_str!("../../../migrations/sqlite/0080_pose_group.sql"),
+    ),
 ];
 
 /// How long a statement waits for a competing writer before giving up.
