@@ -12,7 +12,7 @@ use robocal_calib::kinematics::identify::Observed;
 use robocal_calib::kinematics::presets;
 use robocal_calib::sim::grouped_campaign::Grouping;
 use robocal_calib::sim::tracker_campaign::{grouped_positions, simulate_tracker, TrackerSpec};
-use serde_json::{json, Value};
+use serde_json::json;
 
 use crate::support::spawn_app_with;
 
