@@ -239,6 +239,7 @@ fn main() {
             prior: &prior,
             noise: t.noise,
             hold_intrinsics: false,
+            candidates: None,
         };
         let ladder = climb(&input, &Rung::ALL).expect("five groups");
         chosen.push(ladder.chosen.as_str());

@@ -235,6 +235,7 @@ pub fn run_local_with(
             measured_position_mm: None,
             measured_pose: None,
             stage_reading: None,
+            group: entry.group.clone(),
         });
     }
     let input = Input {

@@ -3,7 +3,7 @@
 use std::sync::Arc;
 use std::time::Duration;
 
-use crate::domain::{label_or_number, FlangePose, JobKind};
+use crate::domain::{label_or_number, FlangePose, JobKind, PoseGroup};
 use crate::imaging::DecodeGate;
 use crate::pipeline::{
     ApprovedSet, FixedCamera, ImageSource, Input, PoseImage, PoseInput, RegionInput,
@@ -245,6 +245,7 @@ async fn load_poses(store: &DynStore, session_id: &str) -> Result<Vec<PoseInput>
                 measured_position_mm: measured.measured_position_mm,
                 measured_pose: measured.measured_pose,
                 stage_reading: p.stage_reading,
+                group: p.group.map(PoseGroup::into_string),
             });
         }
         match page.next_cursor {

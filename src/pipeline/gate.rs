@@ -168,16 +168,17 @@ pub fn decide(
         );
     }
     if let Some(m) = &id.model_selection {
+        // Camera rungs are judged on image points, tracker rungs on positions.
         let rms = |rung: &str| {
-            m.rungs
-                .iter()
-                .find(|r| r.rung == rung)
-                .and_then(|r| r.heldout_rms_px)
+            let r = m.rungs.iter().find(|r| r.rung == rung)?;
+            r.heldout_rms_px
+                .map(|v| (v, "px"))
+                .or(r.heldout_rms_mm.map(|v| (v, "mm")))
         };
-        if let (Some(kept), Some(nominal)) = (rms(&m.chosen), rms(HAND_EYE_RUNG)) {
+        if let (Some((kept, unit)), Some((nominal, _))) = (rms(&m.chosen), rms(HAND_EYE_RUNG)) {
             if kept > nominal {
                 blockers.push(format!(
-                    "hard warning: predicts held-out configurations worse than the nominal kinematics ({kept:.3} px against {nominal:.3} px)"
+                    "hard warning: predicts held-out configurations worse than the nominal kinematics ({kept:.3} {unit} against {nominal:.3} {unit})"
                 ));
             }
         }

@@ -23,11 +23,15 @@ use robocal_calib::stats::AccuracyStats;
 use super::camera_stage::CameraStep;
 use super::measuring::Measuring;
 use super::model_selection::{select, HeldOut, PoseErrors, SelectionInput};
+use super::position_selection::{
+    apply_choice, select_positions, PositionSelectionInput, TERMS_DO_NOT_PREDICT,
+};
 use super::{PipelineError, PoseInput, Stage};
 use crate::domain::TermsDoc;
 use crate::report::model_selection::ModelSelectionReport;
 use crate::schema::job::{Measurement as MeasurementKind, Validation};
 use crate::schema::session::PoseSet;
+use robocal_calib::kinematics::model_ladder::Rung;
 use robocal_calib::kinematics::prior::KinematicPrior;
 
 /// The identified model and the numbers the report needs.
@@ -89,6 +93,18 @@ fn numerical(stage: Stage, message: impl std::fmt::Display) -> PipelineError {
         stage: stage.as_str(),
         message: message.to_string(),
     }
+}
+
+/// The parameters the campaign could not determine (weak or poorly
+/// determined), for the model selection's report.
+fn undetermined(identification: &Identification) -> Vec<String> {
+    let ident = &identification.identifiability;
+    ident
+        .weak
+        .iter()
+        .chain(&ident.poorly_determined)
+        .cloned()
+        .collect()
 }
 
 /// The calibration and validation split (indices into `usable`).
@@ -187,6 +203,36 @@ pub fn identify_robot(
             covariance = c.clone();
         }
     }
+    if camera.is_none() {
+        // A tracker: how much of the kinematics, and whether the terms,
+        // the campaign carries, judged on configurations held out
+        // (docs/method.md §6.8).
+        let chosen = select_positions(&PositionSelectionInput {
+            poses,
+            measuring,
+            instrument,
+            cal: &cal,
+            val: &val,
+            identification: &identification,
+            candidates,
+            prior,
+            options,
+        })
+        .map_err(|e| numerical(Stage::Identify, e))?;
+        if let Some(mut chosen) = chosen {
+            let refit = chosen.refit.take();
+            let changed = apply_choice(chosen.chosen, refit, &mut identification, &mut selection);
+            if let Some((m, sd, cov)) = changed {
+                (model, std_devs, covariance) = (m, sd, cov);
+            }
+            chosen.report.undetermined = undetermined(&identification);
+            heldout_errors = chosen.heldout_errors.take();
+            if heldout_errors.is_some() {
+                held_out = Some(HeldOut::Positions(chosen.held_out));
+            }
+            model_selection = Some(chosen.report);
+        }
+    }
     if let (Some(step), true) = (
         camera,
         joint_refinement && measuring.kind == MeasurementKind::Pose,
@@ -229,9 +275,10 @@ pub fn identify_robot(
         };
         let mut joint = joint;
         let mut free = free.clone();
-        if selection.is_none() {
-            // How much of the kinematics the campaign carries, judged on
-            // configurations held out (docs/method.md §6).
+        {
+            // How much of the kinematics (and whether the terms) the
+            // campaign carries, judged on configurations held out
+            // (docs/method.md §6.8).
             let chosen = select(&SelectionInput {
                 poses,
                 camera: step,
@@ -243,9 +290,15 @@ pub fn identify_robot(
                 campaign_free: &free,
                 prior,
                 hold_intrinsics,
+                candidates,
             })
             .map_err(|e| numerical(Stage::Identify, e))?;
             if let Some(mut chosen) = chosen {
+                if chosen.chosen != Rung::FullTerms {
+                    if let Some(s) = selection.as_mut() {
+                        s.drop_terms(TERMS_DO_NOT_PREDICT);
+                    }
+                }
                 if let Some((refit, kept)) = chosen.refit.take() {
                     joint = refit;
                     free = kept;
@@ -256,16 +309,10 @@ pub fn identify_robot(
                         .collect();
                     ident.free = free.clone();
                 }
-                let ident = &identification.identifiability;
-                chosen.report.undetermined = ident
-                    .weak
-                    .iter()
-                    .chain(&ident.poorly_determined)
-                    .cloned()
-                    .collect();
+                chosen.report.undetermined = undetermined(&identification);
                 heldout_errors = chosen.heldout_errors.take();
                 if heldout_errors.is_some() {
-                    held_out = Some(chosen.held_out);
+                    held_out = Some(HeldOut::Images(chosen.held_out));
                 }
                 model_selection = Some(chosen.report);
             }

@@ -125,6 +125,8 @@ pub struct PoseInput {
     pub measured_pose: Option<PoseDoc>,
     /// A stage session's image: the stage's reading.
     pub stage_reading: Option<StageReading>,
+    /// The arm configuration the client named (`None`: grouped by joints).
+    pub group: Option<String>,
 }
 
 /// A pose's image as a job sees it.

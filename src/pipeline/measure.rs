@@ -219,6 +219,7 @@ mod tests {
             measured_position_mm: None,
             stage_reading: None,
             measured_pose: None,
+            group: None,
         }
     }
 

@@ -3,7 +3,8 @@
 //! configurations it was not fitted to (docs/method.md §6.8 "Model selection
 //! by held-out groups", calib's `model_ladder`).
 //!
-//! The poses are grouped by configuration. When the validation poses repeat
+//! The poses are grouped by configuration (a pose's `group` as uploaded,
+//! else joints 1–3 within a few degrees). When the validation poses repeat
 //! calibration configurations, they cannot show a model that bent weakly
 //! determined links to those configurations: the comparison then pools
 //! calibration and validation poses, and the headline before/after become
@@ -20,12 +21,14 @@ use robocal_calib::kinematics::joint_refine::{ImageNoise, ImagePose, JointRefine
 use robocal_calib::kinematics::model_ladder::{
     climb, errors_mm, fit_rung, heldout_score, LadderInput, Rung, RungScore,
 };
+use robocal_calib::kinematics::nongeometric::CandidateOptions;
 use robocal_calib::kinematics::prior::KinematicPrior;
 use robocal_calib::kinematics::term_model::TermModel;
 use robocal_calib::kinematics::{CalibratedModel, ParamLayout, RobotModel};
 
 use super::camera_stage::CameraStep;
 use super::measuring::Measuring;
+use super::position_selection::PositionHeldOut;
 use super::PoseInput;
 use crate::report::model_selection::{
     ModelSelectionReport, RungReport, LEAVE_GROUP_OUT, VALIDATION_POSES,
@@ -47,12 +50,34 @@ pub struct SelectionInput<'a> {
     pub campaign_free: &'a [usize],
     pub prior: KinematicPrior,
     pub hold_intrinsics: bool,
+    /// Term candidates when the job selects terms (`full` is then the
+    /// refinement with the kept terms; the ladder gains `full_terms`).
+    pub candidates: Option<&'a CandidateOptions>,
 }
 
 /// A held-out comparison that can judge other kinematics the same way
-/// (the release gate's approved set).
+/// (the release gate's approved set): on image points (camera jobs) or
+/// tool positions (tracker jobs).
 #[derive(Debug, Clone)]
-pub struct HeldOut {
+pub enum HeldOut {
+    Images(ImageHeldOut),
+    Positions(PositionHeldOut),
+}
+
+impl HeldOut {
+    /// Mean held-out position error (mm) of `held`'s kinematics and kept
+    /// terms, held, with only the frames (and the camera) fitted per fold.
+    pub fn mean_mm_of(&self, held: &TermModel) -> Result<f64, String> {
+        match self {
+            HeldOut::Images(h) => h.mean_mm_of(held),
+            HeldOut::Positions(h) => h.mean_mm_of(held),
+        }
+    }
+}
+
+/// The camera jobs' held-out comparison, on image points.
+#[derive(Debug, Clone)]
+pub struct ImageHeldOut {
     pub nominal_frames: CalibratedModel,
     pub intrinsics: Intrinsics,
     pub images: Vec<ImagePose>,
@@ -63,7 +88,7 @@ pub struct HeldOut {
     pub hold_intrinsics: bool,
 }
 
-impl HeldOut {
+impl ImageHeldOut {
     fn input<'a>(
         &'a self,
         nominal: &'a CalibratedModel,
@@ -80,6 +105,7 @@ impl HeldOut {
             prior,
             noise: self.noise,
             hold_intrinsics: self.hold_intrinsics,
+            candidates: None,
         }
     }
 
@@ -89,7 +115,7 @@ impl HeldOut {
     /// joints deflected through them first (`TermModel::deflected`), as the
     /// set would be served.
     pub fn mean_mm_of(&self, held: &TermModel) -> Result<f64, String> {
-        let deflected;
+        let deflected: ImageHeldOut;
         let this = if held.has_terms() {
             deflected = self.deflected(held)?;
             &deflected
@@ -113,7 +139,7 @@ impl HeldOut {
     }
 
     /// The same comparison with every pose's joints deflected by `held`'s terms.
-    fn deflected(&self, held: &TermModel) -> Result<HeldOut, String> {
+    fn deflected(&self, held: &TermModel) -> Result<ImageHeldOut, String> {
         let images = self
             .images
             .iter()
@@ -135,7 +161,7 @@ impl HeldOut {
                 None => Ok(None),
             })
             .collect::<Result<Vec<_>, String>>()?;
-        Ok(HeldOut {
+        Ok(ImageHeldOut {
             images,
             measured,
             ..self.clone()
@@ -148,13 +174,14 @@ pub type PoseErrors = (usize, Vector3<f64>, Vector3<f64>);
 
 /// The model kept, and what the report and the gate need of the choice.
 pub struct Selected {
+    pub chosen: Rung,
     /// The kept rung refitted on the calibration poses (`None`: the full
     /// model given is kept).
     pub refit: Option<(JointRefinement, Vec<usize>)>,
     /// Held-out errors per pose (session index, nominal rung, kept rung)
     /// when the headline is leave-group-out.
     pub heldout_errors: Option<Vec<PoseErrors>>,
-    pub held_out: HeldOut,
+    pub held_out: ImageHeldOut,
     pub report: ModelSelectionReport,
 }
 
@@ -188,7 +215,9 @@ pub fn select(s: &SelectionInput) -> Result<Option<Selected>, IdentifyError> {
         .iter()
         .map(|&i| s.poses[i].joints_deg.to_radians())
         .collect();
-    let groups_all = configuration_groups(&joints, &[]);
+    // A pose's explicit `group` wins; the others are clustered on joints 1–3.
+    let labels: Vec<Option<String>> = all.iter().map(|&i| s.poses[i].group.clone()).collect();
+    let groups_all = configuration_groups(&joints, &labels);
     let cal_at: Vec<usize> = (0..cal.len()).collect();
     let val_at: Vec<usize> = (cal.len()..all.len()).collect();
     let shared = shares_configurations(&groups_all, &cal_at, &val_at);
@@ -196,7 +225,7 @@ pub fn select(s: &SelectionInput) -> Result<Option<Selected>, IdentifyError> {
     let groups: Vec<usize> = if shared {
         groups_all
     } else {
-        configuration_groups(&joints[..cal.len()], &[])
+        configuration_groups(&joints[..cal.len()], &labels[..cal.len()])
     };
     let intrinsics = s.full.intrinsics;
     let images = image_poses(s, &pool);
@@ -223,7 +252,7 @@ pub fn select(s: &SelectionInput) -> Result<Option<Selected>, IdentifyError> {
             sigma_rad: s.full.joint_sigma_rad,
         },
     };
-    let held_out = HeldOut {
+    let held_out = ImageHeldOut {
         nominal_frames: nominal_frames.clone(),
         intrinsics,
         images,
@@ -235,13 +264,17 @@ pub fn select(s: &SelectionInput) -> Result<Option<Selected>, IdentifyError> {
     };
     let input = LadderInput {
         campaign_free: s.campaign_free,
+        candidates: s.candidates,
         ..held_out.input(&nominal_frames, &s.prior)
     };
-    let Some(ladder) = climb(&input, &Rung::ALL) else {
+    let Some(ladder) = climb(&input, &Rung::WITH_TERMS) else {
         return Ok(None);
     };
     let refit = match ladder.chosen {
-        Rung::Full => None,
+        // The job's own fit: the full model, or with terms on its
+        // refinement with the kept terms.
+        Rung::FullTerms => None,
+        Rung::Full if s.candidates.is_none() => None,
         rung => {
             // The kept rung on the calibration poses, its noise estimated.
             let cal_images = image_poses(s, &cal);
@@ -286,6 +319,7 @@ pub fn select(s: &SelectionInput) -> Result<Option<Selected>, IdentifyError> {
                 description: sc.rung.describe().to_string(),
                 parameters: sc.parameters,
                 heldout_rms_px: sc.heldout_rms_px.is_finite().then_some(sc.heldout_rms_px),
+                heldout_rms_mm: None,
                 heldout_mean_mm: mean_mm(sc),
                 failed: sc.failed.clone(),
             })
@@ -295,6 +329,7 @@ pub fn select(s: &SelectionInput) -> Result<Option<Selected>, IdentifyError> {
         undetermined: Vec::new(),
     };
     Ok(Some(Selected {
+        chosen: ladder.chosen,
         refit,
         heldout_errors,
         held_out,

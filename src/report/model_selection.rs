@@ -14,13 +14,20 @@ use super::format::{escape_xml, significant};
 /// One rung of the ladder.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 pub struct RungReport {
-    /// `hand_eye`, `joint_offsets`, `joint_offsets_prior`, `full` or `full_prior`.
+    /// `hand_eye`, `joint_offsets`, `joint_offsets_prior`, `full`,
+    /// `full_prior` or `full_terms` (full geometry with the non-geometric
+    /// terms the selection keeps).
     pub rung: String,
     pub description: String,
     /// Free parameters (kinematics, board and hand–eye).
     pub parameters: usize,
-    /// RMS reprojection error of the held-out configurations' image points (px).
+    /// RMS reprojection error of the held-out configurations' image points
+    /// (px; camera jobs).
     pub heldout_rms_px: Option<f64>,
+    /// RMS length of the held-out configurations' tool position errors
+    /// (mm; tracker jobs, where the rungs are judged on it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub heldout_rms_mm: Option<f64>,
     /// Mean 3-D camera position error at the held-out poses (mm).
     pub heldout_mean_mm: Option<f64>,
     /// Why the rung could not be scored, if it could not.
@@ -66,14 +73,22 @@ pub fn html(page: &mut String, m: &ModelSelectionReport) {
     } else {
         "the validation poses are configurations the fit never saw"
     };
+    // Tracker jobs judge the rungs on positions, camera jobs on pixels.
+    let on_positions = m.rungs.iter().any(|r| r.heldout_rms_mm.is_some());
+    let unit = if on_positions { "mm" } else { "px" };
     let _ = write!(
         page,
         "<section>\n<h3>Model chosen by held-out configurations</h3>\n<p>{} distinct arm configurations, {} folds; {}.</p>\n\
          <table class=\"data\"><tr><th>model</th><th class=\"num\">parameters</th>\
-         <th class=\"num\">held-out RMS [px]</th><th class=\"num\">held-out mean [mm]</th><th></th></tr>\n",
+         <th class=\"num\">held-out RMS [{unit}]</th><th class=\"num\">held-out mean [mm]</th><th></th></tr>\n",
         m.configurations, m.folds, validation
     );
     for r in &m.rungs {
+        let rms = if on_positions {
+            r.heldout_rms_mm
+        } else {
+            r.heldout_rms_px
+        };
         let mark = if r.rung == m.chosen { "kept" } else { "" };
         let _ = writeln!(
             page,
@@ -81,7 +96,7 @@ pub fn html(page: &mut String, m: &ModelSelectionReport) {
             escape_xml(&r.rung),
             escape_xml(&r.description),
             r.parameters,
-            cell(r.heldout_rms_px, 4),
+            cell(rms, 4),
             cell(r.heldout_mean_mm, 4),
             r.failed.as_deref().map(escape_xml).unwrap_or_else(|| mark.to_string())
         );

@@ -9,7 +9,7 @@ use utoipa::ToSchema;
 use super::flange_pose::FlangePoseDoc;
 use super::session::{CameraDoc, Instrument, MAX_POINTS_PER_POSE};
 use super::{Checker, FieldError, PoseDoc, MAX_LENGTH_MM};
-use crate::domain::{check_robot_pose, PoseSet, RobotPose};
+use crate::domain::{check_robot_pose, PoseGroup, PoseSet, RobotPose};
 
 /// How far a pose's `measured_pose` translation may lie from its
 /// `measured_position_mm` (mm): both are the one tool point, so they
@@ -45,6 +45,13 @@ pub struct PoseJsonBody {
     #[serde(default)]
     #[schema(max_length = 200)]
     pub label: Option<String>,
+    /// The arm configuration the pose was taken in, e.g. `"shoulder_a"`:
+    /// poses of one group are held out together when the job judges which
+    /// model predicts configurations it was not fitted to. 1 to 32 of
+    /// `A-Z a-z 0-9 _ -`. Absent: grouped by joints 1–3 (within 3°).
+    #[serde(default)]
+    #[schema(pattern = "^[A-Za-z0-9_-]{1,32}$")]
+    pub group: Option<String>,
 }
 
 impl PoseJsonBody {
@@ -70,6 +77,7 @@ impl PoseJsonBody {
         if let Some(Err(rule)) = self.label.as_deref().map(crate::domain::check_label) {
             c.fail("label", rule);
         }
+        check_group(&mut c, "group", self.group.as_deref());
         match instrument {
             Instrument::Stage => c.fail(
                 "image",
@@ -132,6 +140,18 @@ impl PoseJsonBody {
     }
 }
 
+/// Checks an optional group name, failing `field` ([`PoseGroup::parse`]);
+/// the typed group when there is one and it passes.
+pub fn check_group(c: &mut Checker, field: &str, group: Option<&str>) -> Option<PoseGroup> {
+    match group.map(PoseGroup::parse)? {
+        Ok(g) => Some(g),
+        Err(rule) => {
+            c.fail(field, rule);
+            None
+        }
+    }
+}
+
 fn check_points(c: &mut Checker, points: &[ImagePointDoc], camera: Option<&CameraDoc>) {
     if points.is_empty() || points.len() > MAX_POINTS_PER_POSE {
         c.fail(
@@ -167,4 +187,8 @@ pub struct DatasetPoseDoc {
     pub image: String,
     #[serde(default)]
     pub set: PoseSet,
+    /// The arm configuration the photo was taken in (as a pose's `group`).
+    #[serde(default)]
+    #[schema(pattern = "^[A-Za-z0-9_-]{1,32}$")]
+    pub group: Option<String>,
 }

@@ -12,6 +12,7 @@ use super::images::ingest_image;
 use super::intake::PoseIntake;
 use super::staged_images::StagedImages;
 use crate::domain::{check_robot_pose, label_from_archive_path, RobotPose};
+use crate::schema::pose_body::check_group;
 use crate::schema::session::Instrument;
 use crate::schema::Checker;
 use crate::store::{NewPose, PoseRecord};
@@ -75,6 +76,7 @@ impl PoseIntake {
         }
         let mut session_kind = self.pose_kind;
         let mut robot_poses: Vec<Option<RobotPose>> = Vec::with_capacity(reader.manifest.len());
+        let mut groups = Vec::with_capacity(reader.manifest.len());
         for (i, p) in reader.manifest.iter().enumerate() {
             let prefix = format!("poses.json[{i}].");
             let (kind, typed) = check_robot_pose(
@@ -89,6 +91,11 @@ impl PoseIntake {
                 session_kind = session_kind.or(Some(kind));
             }
             robot_poses.push(typed);
+            groups.push(check_group(
+                &mut c,
+                &format!("{prefix}group"),
+                p.group.as_deref(),
+            ));
         }
         c.finish()?;
         let mut robot_poses = robot_poses
@@ -162,6 +169,7 @@ impl PoseIntake {
                     image_detection: ingested.detection,
                     flange_pose,
                     stage_reading: None,
+                    group: groups[k].clone(),
                 });
             }
             if failure.is_some() && in_flight.is_empty() {

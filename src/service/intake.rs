@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use super::error::{ServiceError, ServiceResult};
 use super::images::{ingest_image, ImageCheck};
-use crate::domain::{check_robot_pose, JointsDeg, PoseKind, StageReading};
+use crate::domain::{check_robot_pose, JointsDeg, PoseGroup, PoseKind, StageReading};
 use crate::imaging::DecodeGate;
 use crate::schema::flange_pose::FlangePoseDoc;
 use crate::schema::pose_body::PoseJsonBody;
@@ -36,6 +36,8 @@ pub struct ImagePose {
     pub image: Vec<u8>,
     /// The image's file name, as a label.
     pub label: Option<String>,
+    /// The `group` part, checked by the HTTP edge.
+    pub group: Option<PoseGroup>,
     /// A stage session's parts: the stage's reading and the
     /// sequence, as sent (checked by [`StageReading::check`]).
     pub stage_position_mm: Option<[f64; 3]>,
@@ -151,6 +153,8 @@ impl PoseIntake {
             image_detection: None,
             flange_pose,
             stage_reading: None,
+            // Checked with the body above.
+            group: body.group.as_deref().and_then(|g| PoseGroup::parse(g).ok()),
         };
         self.store_one(pose).await
     }
@@ -233,6 +237,7 @@ impl PoseIntake {
             image_detection: ingested.detection,
             flange_pose,
             stage_reading,
+            group: upload.group,
         };
         self.store_one(pose).await
     }

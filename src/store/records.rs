@@ -16,7 +16,7 @@ use crate::domain::{
     CalibratedSet, CheckDoc, ImageDetection, ImageMeta, JobKind, JobResult, JobState, JobSummary,
     JointsDeg, MeasuredPose, PoseSet, Release, ReleaseStatus,
 };
-use crate::domain::{ControllerIdentity, StageReading};
+use crate::domain::{ControllerIdentity, PoseGroup, StageReading};
 use crate::schema::job::JobOptions;
 use crate::schema::session::SessionBody;
 use crate::schema::PoseDoc;
@@ -87,6 +87,8 @@ pub struct PoseRecord {
     pub flange_pose: Option<FlangePoseDoc>,
     /// The stage's reading of a stage session's image (`joints_deg` empty).
     pub stage_reading: Option<StageReading>,
+    /// The arm configuration the client named (see [`NewPose::group`]).
+    pub group: Option<PoseGroup>,
     pub created_at: String,
 }
 
@@ -123,6 +125,9 @@ pub struct NewPose {
     pub flange_pose: Option<FlangePoseDoc>,
     /// The checked stage reading of a stage session's image.
     pub stage_reading: Option<StageReading>,
+    /// The arm configuration the client named for the pose (its `group`);
+    /// `None`: a job groups the pose by its joints 1–3.
+    pub group: Option<PoseGroup>,
 }
 
 #[derive(Debug, Clone)]

@@ -8,7 +8,8 @@ use sqlx::{Decode, Row, Type};
 use super::StoreError;
 use super::StoreResult;
 use crate::domain::{
-    ImageMeta, JobKind, JobResult, JobState, JointsDeg, PoseSet, ReleaseStatus, Scope, TokenRecord,
+    ImageMeta, JobKind, JobResult, JobState, JointsDeg, PoseGroup, PoseSet, ReleaseStatus, Scope,
+    TokenRecord,
 };
 use crate::schema::job::JobOptions;
 use crate::store::{
@@ -119,6 +120,7 @@ pub fn pose(row: &impl Columns) -> StoreResult<PoseRecord> {
         image_detection: opt_typed(row.opt_str("image_detection"))?,
         flange_pose: opt_typed(row.opt_str("flange_pose"))?,
         stage_reading: opt_typed(row.opt_str("stage_reading"))?,
+        group: row.opt_string("pose_group").map(PoseGroup::stored),
         created_at: row.string("created_at"),
     })
 }

@@ -71,6 +71,7 @@ pub(crate) mod test_db;
 pub(crate) mod timeouts;
 pub(crate) mod tls;
 pub(crate) mod tokens;
+pub(crate) mod tracker_ladder;
 pub(crate) mod uncertainty;
 pub(crate) mod ur5_tracker_set;
 pub(crate) mod webhook_slow;

@@ -42,12 +42,24 @@ fn campaign(error_scale: f64, val: usize) -> Campaign {
 }
 
 /// Creates the robot and a session, posts every pose as image points with
-/// the set `set_of(index, pose)` gives, runs the default job; the report.
+/// the set `set_of(index)` gives, runs the default job; the set and its
+/// report.
 async fn calibrate(
     app: &TestApp,
     serial: &str,
     c: &Campaign,
     set_of: impl Fn(usize) -> &'static str,
+) -> (Value, Value) {
+    calibrate_grouped(app, serial, c, set_of, |_| None).await
+}
+
+/// [`calibrate`] with each pose's explicit `group` (`group_of(index)`).
+async fn calibrate_grouped(
+    app: &TestApp,
+    serial: &str,
+    c: &Campaign,
+    set_of: impl Fn(usize) -> &'static str,
+    group_of: impl Fn(usize) -> Option<&'static str>,
 ) -> (Value, Value) {
     let r = app
         .put_json(
@@ -73,11 +85,12 @@ async fn calibrate(
             .map(|(k, p)| json!({"row": k / cols, "col": k % cols, "x": p.x, "y": p.y}))
             .collect();
         let joints: Vec<f64> = pose.joints_rad.iter().map(|q| q.to_degrees()).collect();
+        let mut body = json!({"joints_deg": joints, "set": set_of(i), "image_points": points});
+        if let Some(g) = group_of(i) {
+            body["group"] = json!(g);
+        }
         let r = app
-            .post_json(
-                &format!("/v1/sessions/{session}/poses"),
-                &json!({"joints_deg": joints, "set": set_of(i), "image_points": points}),
-            )
+            .post_json(&format!("/v1/sessions/{session}/poses"), &body)
             .await;
         assert_eq!(r.status(), 201, "{}", r.text().await.unwrap());
     }
@@ -189,4 +202,27 @@ async fn identification_that_does_not_pay_keeps_the_nominal_geometry() {
         .as_str()
         .unwrap()
         .contains("stay nominal"));
+}
+
+/// Explicit `group` fields win over the clustering on joints 1–3: three
+/// shot configurations named one group are merged, one configuration
+/// named two groups is split, and the two unnamed configurations are
+/// still found by their joints (clustering alone finds 6).
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn explicit_groups_are_held_out_as_named() {
+    let app = spawn_app_with(|c| c.test_validate_only = false).await;
+    let c = campaign(1.0, 0);
+    let group_of = |i: usize| match i / 4 {
+        0..=2 => Some("merged"),
+        3 if i % 2 == 0 => Some("split_a"),
+        3 => Some("split_b"),
+        _ => None,
+    };
+    let val = |i: usize| if i % 4 == 3 { "val" } else { "cal" };
+    let (_, report) = calibrate_grouped(&app, "IRB-NAMED", &c, val, group_of).await;
+    let m = &report["model_selection"];
+    eprintln!("model selection: {m}");
+    assert_eq!(m["configurations"], 1 + 2 + 2, "{m}");
+    assert_eq!(m["folds"], 5, "{m}");
+    assert_eq!(m["val_shares_configurations"], true, "{m}");
 }

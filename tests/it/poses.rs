@@ -128,3 +128,75 @@ async fn dataset_zip_creates_all_poses() {
         .unwrap();
     assert_eq!(s["pose_count"], 4);
 }
+
+/// A pose's `group` (JSON, multipart part, dataset manifest) is stored and
+/// served back; a bad one is refused with a 422 naming it.
+#[tokio::test]
+async fn pose_group_is_stored_and_a_bad_one_is_named() {
+    let app = spawn_app().await;
+    let session = app.robot_and_session("G1").await;
+    let url = format!("/v1/sessions/{session}/poses");
+    let points = json!([{"row": 0, "col": 0, "x": 10.5, "y": 20.0}]);
+    let r = app
+        .post_json(
+            &url,
+            &json!({"joints_deg": [0, 1, 2, 3, 4, 5], "image_points": points, "group": "shoulder_a-1"}),
+        )
+        .await;
+    assert_eq!(r.status(), 201);
+    let pose: Value = r.json().await.unwrap();
+    let id = pose["id"].as_str().unwrap();
+    let got: Value = app.get(&format!("{url}/{id}")).await.json().await.unwrap();
+    assert_eq!(got["group"], "shoulder_a-1", "{got}");
+    for bad in ["a b", "", "x/y", &"g".repeat(33)] {
+        let r = app
+            .post_json(
+                &url,
+                &json!({"joints_deg": [0, 1, 2, 3, 4, 5], "image_points": points, "group": bad}),
+            )
+            .await;
+        assert_eq!(r.status(), 422, "{bad:?}");
+        let p: Value = r.json().await.unwrap();
+        assert_eq!(p["errors"][0]["field"], "group", "{p}");
+    }
+    let multipart = |group: &str| {
+        Form::new()
+            .text("joints_deg", "[1, 2, 3, 4, 5, 6]")
+            .text("group", group.to_string())
+            .part("image", image_part(png(CAMERA_W, CAMERA_H, 3), "p.png"))
+    };
+    let send = |form: Form| app.client.post(app.url(&url)).multipart(form).send();
+    let r = send(multipart("wrist_b")).await.unwrap();
+    assert_eq!(r.status(), 201);
+    assert_eq!(r.json::<Value>().await.unwrap()["group"], "wrist_b");
+    let r = send(multipart("wrist b!")).await.unwrap();
+    assert_eq!(r.status(), 422);
+    let p: Value = r.json().await.unwrap();
+    assert_eq!(p["errors"][0]["field"], "group", "{p}");
+
+    let image = png(CAMERA_W, CAMERA_H, 4);
+    let dataset = |group: &str| {
+        let manifest = json!([
+            {"joints_deg": [0, 1, 2, 3, 4, 5], "image": "a.png", "group": group}
+        ])
+        .to_string();
+        zip_bytes(&[("poses.json", manifest.as_bytes()), ("a.png", &image)])
+    };
+    let post_dataset = |body: Vec<u8>| {
+        app.client
+            .post(app.url(&format!("/v1/sessions/{session}/dataset")))
+            .header("content-type", "application/zip")
+            .body(body)
+            .send()
+    };
+    let r = post_dataset(dataset("day2")).await.unwrap();
+    assert_eq!(r.status(), 201);
+    let out: Value = r.json().await.unwrap();
+    let id = out["pose_ids"][0].as_str().unwrap();
+    let got: Value = app.get(&format!("{url}/{id}")).await.json().await.unwrap();
+    assert_eq!(got["group"], "day2");
+    let r = post_dataset(dataset("day 2")).await.unwrap();
+    assert_eq!(r.status(), 422);
+    let p: Value = r.json().await.unwrap();
+    assert_eq!(p["errors"][0]["field"], "poses.json[0].group", "{p}");
+}

@@ -65,6 +65,7 @@ fn pose(sha: Option<&ImageMeta>) -> NewPose {
         image_detection: None,
         flange_pose: None,
         stage_reading: None,
+        group: None,
     }
 }
 

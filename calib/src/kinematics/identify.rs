@@ -59,7 +59,7 @@ pub struct Identification {
     pub termination: Termination,
 }
 
-fn options(mode: IdentifyMode) -> LmOptions {
+pub(super) fn options(mode: IdentifyMode) -> LmOptions {
     match mode {
         IdentifyMode::Paper => LmOptions::paper(),
         IdentifyMode::Weighted => LmOptions {
@@ -91,6 +91,7 @@ pub fn fit_parameters(
         free: which,
         data,
         whitening: &w,
+        prior: None,
     };
     let report = solve(
         &problem,
@@ -143,6 +144,7 @@ pub fn identify(
         free: &all,
         data: cal,
         whitening: &w,
+        prior: None,
     };
     let (_, jac_all) = probe
         .evaluate(&before, true)
@@ -160,6 +162,7 @@ pub fn identify(
             free: &free,
             data: cal,
             whitening: w,
+            prior: None,
         };
         solve(&problem, x0, &self::options(options.mode))
     };
@@ -184,6 +187,7 @@ pub fn identify(
         free: &free,
         data: cal,
         whitening: &w,
+        prior: None,
     };
     let jac = at_solution
         .jacobian(&DVector::zeros(free.len()))

@@ -19,8 +19,12 @@ use super::identify::{validate, Measurement};
 use super::identify_error::IdentifyError;
 use super::image_pose::{ImageNoise, ImagePose};
 use super::joint_refine::{joint_refine, joint_refine_with_prior, JointRefinement};
+use super::ladder_terms::fit_on;
+pub use super::ladder_terms::fit_terms_rung;
+use super::nongeometric::CandidateOptions;
 use super::params::{CalibratedModel, ParamKind, ParamLayout};
 use super::prior::{KinematicPrior, PriorRows};
+use super::term_validate::validate_with_terms;
 use crate::camera::model::Intrinsics;
 
 /// At most this many folds: with more groups (a well-spread campaign, every
@@ -50,6 +54,9 @@ pub enum Rung {
     /// + every structurally identifiable parameter, held towards nominal
     ///   by the prior (maximum a posteriori).
     FullPrior,
+    /// `Full` + the non-geometric terms (compliance, gear harmonics) the
+    /// term selection keeps on the fitted poses (method.md §6.6).
+    FullTerms,
 }
 
 impl Rung {
@@ -61,6 +68,16 @@ impl Rung {
         Rung::FullPrior,
     ];
 
+    /// The geometric rungs, then the non-geometric terms on the richest.
+    pub const WITH_TERMS: [Rung; 6] = [
+        Rung::HandEye,
+        Rung::JointOffsets,
+        Rung::JointOffsetsPrior,
+        Rung::Full,
+        Rung::FullPrior,
+        Rung::FullTerms,
+    ];
+
     pub fn as_str(self) -> &'static str {
         match self {
             Rung::HandEye => "hand_eye",
@@ -68,6 +85,7 @@ impl Rung {
             Rung::JointOffsetsPrior => "joint_offsets_prior",
             Rung::Full => "full",
             Rung::FullPrior => "full_prior",
+            Rung::FullTerms => "full_terms",
         }
     }
 
@@ -84,6 +102,7 @@ impl Rung {
             Rung::JointOffsetsPrior => "+ every joint zero, with its prior",
             Rung::Full => "+ every parameter the campaign determines",
             Rung::FullPrior => "+ every identifiable parameter, with priors",
+            Rung::FullTerms => "full + the non-geometric terms the selection keeps",
         }
     }
 }
@@ -108,6 +127,9 @@ pub struct LadderInput<'a> {
     /// Noise, with the joint noise known (estimated once beforehand).
     pub noise: ImageNoise,
     pub hold_intrinsics: bool,
+    /// Term candidates of the `full_terms` rung (`None`: no terms rung);
+    /// the rung selects them from the training poses' `measured` poses.
+    pub candidates: Option<&'a CandidateOptions>,
 }
 
 /// A rung's held-out prediction.
@@ -173,7 +195,7 @@ pub fn rung_free(
             .copied()
             .filter(|&i| is_frame(layout, i) || offset(i))
             .collect(),
-        Rung::Full => campaign_free.to_vec(),
+        Rung::Full | Rung::FullTerms => campaign_free.to_vec(),
         Rung::FullPrior => identifiable.to_vec(),
     };
     free.sort_unstable();
@@ -190,6 +212,10 @@ pub fn fit_rung(
 ) -> Result<(JointRefinement, Vec<usize>), IdentifyError> {
     let layout = ParamLayout::new(&input.nominal.robot, super::Instrument::Camera);
     let free = rung_free(rung, &layout, input.campaign_free, input.identifiable);
+    if rung == Rung::FullTerms {
+        // Selected from the poses' measurements ([`fit_terms_rung`]).
+        return Err(IdentifyError::NoPoses);
+    }
     let fit = if rung.has_prior() {
         let rows = PriorRows::new(input.prior, &layout, &free, input.nominal, input.nominal);
         joint_refine_with_prior(
@@ -229,7 +255,11 @@ pub fn folds(groups: &[usize]) -> Vec<Vec<usize>> {
 
 /// Reprojection residuals (px) of `poses` predicted by `fit`.
 fn squared_residuals(fit: &JointRefinement, pose: &ImagePose) -> Option<(f64, usize)> {
-    let inv = fit.model.world_to_tool(&pose.joints_rad).ok()?.inverse();
+    let camera = match &fit.terms {
+        Some(t) => t.terms.world_to_tool(&fit.model, &pose.joints_rad),
+        None => fit.model.world_to_tool(&pose.joints_rad),
+    };
+    let inv = camera.ok()?.inverse();
     let mut sum = 0.0;
     for (p, uv) in &pose.observations {
         let pred = fit.intrinsics.project(&(inv * p))?;
@@ -246,13 +276,12 @@ fn score(rung: Rung, input: &LadderInput, folds: &[Vec<usize>]) -> RungScore {
     let mut parameters = 0;
     let mut failed = None;
     for fold in folds {
-        let train: Vec<ImagePose> = (0..input.poses.len())
+        let train: Vec<usize> = (0..input.poses.len())
             .filter(|i| !fold.contains(i))
-            .map(|i| input.poses[i].clone())
             .collect();
-        let fit = match fit_rung(rung, input, &train, input.noise) {
-            Ok((fit, free)) => {
-                parameters = free.len();
+        let fit = match fit_on(rung, input, &train) {
+            Ok((fit, count)) => {
+                parameters = count;
                 fit
             }
             Err(e) => {
@@ -269,7 +298,12 @@ fn score(rung: Rung, input: &LadderInput, folds: &[Vec<usize>]) -> RungScore {
                 None => failed = Some(format!("pose {i} could not be predicted")),
             }
             if let Some(Some(m)) = input.measured.get(i) {
-                if let Ok((_, e)) = validate(&fit.model, std::slice::from_ref(m)) {
+                let one = std::slice::from_ref(m);
+                let predicted = match &fit.terms {
+                    Some(t) => validate_with_terms(&fit.model, &t.terms, one),
+                    None => validate(&fit.model, one),
+                };
+                if let Ok((_, e)) = predicted {
                     errors.push((i, [e[0].x, e[0].y, e[0].z]));
                 }
             }
@@ -303,18 +337,13 @@ pub fn climb(input: &LadderInput, rungs: &[Rung]) -> Option<Ladder> {
         return None;
     }
     let folds = folds(input.groups);
-    let scores: Vec<RungScore> = rungs.iter().map(|&r| score(r, input, &folds)).collect();
-    let mut best: Option<&RungScore> = None;
-    for s in &scores {
-        if !s.heldout_rms_px.is_finite() {
-            continue;
-        }
-        match best {
-            Some(b) if s.heldout_rms_px >= b.heldout_rms_px * (1.0 - RICHER_MARGIN) => {}
-            _ => best = Some(s),
-        }
-    }
-    let best = best?;
+    let scores: Vec<RungScore> = rungs
+        .iter()
+        .filter(|&&r| r != Rung::FullTerms || input.candidates.is_some())
+        .map(|&r| score(r, input, &folds))
+        .collect();
+    let errors: Vec<f64> = scores.iter().map(|s| s.heldout_rms_px).collect();
+    let best = &scores[keep_best(&errors)?];
     let hand_eye = scores.iter().find(|s| s.rung == Rung::HandEye);
     let reason = match hand_eye {
         Some(h) if best.rung != Rung::HandEye => format!(
@@ -339,6 +368,23 @@ pub fn climb(input: &LadderInput, rungs: &[Rung]) -> Option<Ladder> {
         reason,
         scores,
     })
+}
+
+/// Which of a ladder's rungs to keep, given each rung's held-out error in
+/// ladder order (simplest first; not finite: not scored): a richer rung
+/// must beat the best simpler one by more than [`RICHER_MARGIN`].
+pub fn keep_best(heldout_errors: &[f64]) -> Option<usize> {
+    let mut best: Option<usize> = None;
+    for (k, &e) in heldout_errors.iter().enumerate() {
+        if !e.is_finite() {
+            continue;
+        }
+        match best {
+            Some(b) if e >= heldout_errors[b] * (1.0 - RICHER_MARGIN) => {}
+            _ => best = Some(k),
+        }
+    }
+    best
 }
 
 /// The held-out camera position errors of `score` as vectors, in pose order.

@@ -107,6 +107,7 @@ fn input<'a>(
         prior,
         noise: noise(),
         hold_intrinsics: false,
+        candidates: None,
     }
 }
 

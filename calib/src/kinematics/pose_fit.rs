@@ -1,7 +1,8 @@
 //! The pose-level identification problem (method.md §6): each pose's
 //! measured-minus-predicted tool pose (6 rows: mm and small-angle rad) or
 //! position (3 rows), whitened by its weights ([`super::weights`]), over the
-//! free entries of the parameter vector.
+//! free entries of the parameter vector; with a prior (method.md §6.7), one
+//! pseudo-observation per free parameter after the poses' rows.
 
 use nalgebra::{DMatrix, DVector};
 
@@ -9,6 +10,7 @@ use super::identify_error::IdentifyError;
 use super::jacobian::tool_pose_jacobian;
 use super::measurement::{Measurement, Observed};
 use super::params::{CalibratedModel, ParamLayout};
+use super::prior::PriorRows;
 use crate::geometry::pose_error;
 use crate::solver::LeastSquaresProblem;
 
@@ -19,6 +21,8 @@ pub(super) struct PoseFit<'a> {
     pub(super) free: &'a [usize],
     pub(super) data: &'a [Measurement],
     pub(super) whitening: &'a [DMatrix<f64>],
+    /// The kinematic prior over `free` (`None`: maximum likelihood).
+    pub(super) prior: Option<&'a PriorRows>,
 }
 
 impl PoseFit<'_> {
@@ -69,15 +73,33 @@ impl PoseFit<'_> {
 impl LeastSquaresProblem for PoseFit<'_> {
     fn residuals(&self, x: &DVector<f64>) -> Option<DVector<f64>> {
         let m = self.layout.apply(self.reference, &self.full(x));
-        Some(self.evaluate(&m, false)?.0)
+        let r = self.evaluate(&m, false)?.0;
+        let Some(p) = self.prior else {
+            return Some(r);
+        };
+        let data_rows = r.len();
+        let mut out = DVector::zeros(data_rows + p.len());
+        out.rows_mut(0, data_rows).copy_from(&r);
+        for k in 0..p.len() {
+            out[data_rows + k] = p.residual(k, x[k]);
+        }
+        Some(out)
     }
 
     fn jacobian(&self, x: &DVector<f64>) -> Option<DMatrix<f64>> {
         let m = self.layout.apply(self.reference, &self.full(x));
         let (_, jac) = self.evaluate(&m, true)?;
-        Some(DMatrix::from_fn(jac.nrows(), self.free.len(), |r, c| {
-            jac[(r, self.free[c])]
-        }))
+        let prior_rows = self.prior.map_or(0, PriorRows::len);
+        let data_rows = jac.nrows();
+        Some(DMatrix::from_fn(
+            data_rows + prior_rows,
+            self.free.len(),
+            |r, c| match (r < data_rows, self.prior) {
+                (true, _) => jac[(r, self.free[c])],
+                (false, Some(p)) if r - data_rows == c => p.weight[c],
+                _ => 0.0,
+            },
+        ))
     }
 }
 
@@ -105,6 +127,7 @@ pub(super) fn unweighted_residuals(
         free: &[],
         data,
         whitening: &identity,
+        prior: None,
     };
     let (r, _) = probe.evaluate(model, false).ok_or(IdentifyError::NoPoses)?;
     Ok((0..data.len())

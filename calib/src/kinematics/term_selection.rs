@@ -81,6 +81,26 @@ pub struct TermIdentification {
     pub criterion: &'static str,
 }
 
+impl TermIdentification {
+    /// Drops every kept term (`why`: the reason each line then states):
+    /// the geometric fit becomes the model, as when the selection keeps
+    /// none. The model ladder does this when the terms do not predict held-out
+    /// configurations better (method.md §6.8).
+    pub fn drop_terms(&mut self, why: &str) {
+        for line in &mut self.report {
+            if line.verdict == Verdict::Kept {
+                line.verdict = Verdict::NoInformationGain;
+                line.why = why.to_string();
+            }
+        }
+        self.model = self.geometric.model.clone();
+        self.terms = self.terms.subset(&[]);
+        self.term_std_devs.clear();
+        self.term_covariance = None;
+        self.geometric_covariance = None;
+    }
+}
+
 /// Identify geometry and the candidate terms of `candidates`, keeping only
 /// identifiable and significant ones (see the module doc).
 pub fn identify_with_terms(

@@ -198,6 +198,9 @@ fn ladder(
             },
         },
         hold_intrinsics: false,
+        // The geometric rungs: a job with terms on runs term selection
+        // instead (below), as it did before the ladder had a terms rung.
+        candidates: None,
     };
     let Some(chosen) = climb(&input, &Rung::ALL) else {
         return Ok((full, None));

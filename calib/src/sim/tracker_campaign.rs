@@ -8,6 +8,7 @@ use nalgebra::{Matrix6, Translation3, UnitQuaternion, Vector3};
 use rand::{rngs::StdRng, Rng, SeedableRng};
 use rand_distr::{Distribution, Normal};
 
+use super::grouped_campaign::Grouping;
 use crate::geometry::{rotation_from_vector, Pose};
 use crate::kinematics::identify::{Measurement, Observed};
 use crate::kinematics::nongeometric::{NonGeometric, TermKind};
@@ -159,6 +160,77 @@ pub fn simulate_tracker(nominal: &RobotModel, spec: &TrackerSpec) -> TrackerCamp
         start,
         measurements,
     }
+}
+
+/// Measurements of `c`'s true robot (with its terms) at `joints_rad`, the
+/// position with the campaign's white noise; `None` where it cannot be
+/// evaluated.
+fn measure_position(
+    c: &TrackerCampaign,
+    joints_rad: Vec<f64>,
+    noise_mm: f64,
+    rng: &mut StdRng,
+) -> Option<Measurement> {
+    let noise = Normal::new(0.0, noise_mm.max(f64::MIN_POSITIVE)).expect("finite sigma");
+    let p = c.true_terms.world_to_tool(&c.truth, &joints_rad).ok()?;
+    Some(Measurement {
+        joints_rad,
+        observed: Observed::Position {
+            position_mm: p.translation.vector + Vector3::from_fn(|_, _| noise.sample(rng)),
+            covariance: None,
+        },
+    })
+}
+
+/// A tracker campaign of `c`'s robot shot in configuration groups
+/// (method.md §7.6), as [`super::grouped_campaign`] shoots camera ones:
+/// `grouping.groups` anchors drawn over the joint span, and inside each
+/// only the wrist moving (joints 1–3 within the grouping's jitter). Then
+/// `val` validation positions spread over the joint span. Returns the
+/// calibration measurements (group after group) and the validation ones.
+pub fn grouped_positions(
+    c: &TrackerCampaign,
+    grouping: Grouping,
+    val: usize,
+    noise_mm: f64,
+    seed: u64,
+) -> (Vec<Measurement>, Vec<Measurement>) {
+    let mut rng = StdRng::seed_from_u64(seed);
+    let dof = c.truth.robot.dof();
+    let spread = |rng: &mut StdRng| -> Vec<f64> {
+        (0..dof)
+            .map(|_| rng.random_range(-JOINT_SPAN_RAD..JOINT_SPAN_RAD))
+            .collect()
+    };
+    let mut cal = Vec::with_capacity(grouping.groups * grouping.per_group);
+    for _ in 0..grouping.groups {
+        let anchor = spread(&mut rng);
+        let mut placed = 0;
+        while placed < grouping.per_group {
+            let q: Vec<f64> = anchor
+                .iter()
+                .enumerate()
+                .map(|(j, a)| {
+                    let r = if j < 3 {
+                        grouping.shoulder_jitter_deg
+                    } else {
+                        grouping.wrist_range_deg
+                    };
+                    a + rng.random_range(-r..=r).to_radians()
+                })
+                .collect();
+            if let Some(m) = measure_position(c, q, noise_mm, &mut rng) {
+                cal.push(m);
+                placed += 1;
+            }
+        }
+    }
+    let mut out = Vec::with_capacity(val);
+    while out.len() < val {
+        let q = spread(&mut rng);
+        out.extend(measure_position(c, q, noise_mm, &mut rng));
+    }
+    (cal, out)
 }
 
 #[cfg(test)]

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use utoipa::ToSchema;
 
-use crate::domain::ImageMeta;
+use crate::domain::{ImageMeta, PoseGroup};
 use crate::schema::flange_pose::FlangePoseDoc;
 use crate::schema::pose_body::ImagePointDoc;
 use crate::schema::session::PoseSet;
@@ -62,6 +62,10 @@ pub struct PoseOut {
     /// `label`. Absent when none was given; reports then number the pose.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub label: Option<String>,
+    /// The arm configuration the pose was taken in, as uploaded. Absent:
+    /// a job groups the pose by its joints 1–3.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub group: Option<String>,
     pub created_at: String,
 }
 
@@ -113,6 +117,12 @@ pub struct PoseImageUpload {
     pub sequence: Option<u32>,
     /// `cal` (default) or `val`.
     pub set: Option<PoseSet>,
+    /// The arm configuration the photo was taken in, e.g. `shoulder_a`
+    /// (1 to 32 of `A-Z a-z 0-9 _ -`): poses of one group are held out
+    /// together when the job chooses its model. Absent: grouped by joints
+    /// 1–3.
+    #[schema(pattern = "^[A-Za-z0-9_-]{1,32}$")]
+    pub group: Option<String>,
     /// The photo of the board, PNG or JPEG.
     #[schema(value_type = String, format = Binary)]
     pub image: Vec<u8>,
@@ -178,6 +188,7 @@ impl From<PoseRecord> for PoseOut {
             measured_position_mm: measured.measured_position_mm,
             measured_pose: measured.measured_pose,
             label: p.label,
+            group: p.group.map(PoseGroup::into_string),
             created_at: p.created_at,
         }
     }

@@ -13,7 +13,7 @@ use super::extract::{is_json, parse_json, read_limited, Paging};
 use super::sessions::find_session;
 use super::upload::{read_field_capped, read_field_limited};
 use super::AppState;
-use crate::domain::label_from_file_name;
+use crate::domain::{label_from_file_name, PoseGroup};
 use crate::schema::flange_pose::FlangePoseDoc;
 use crate::schema::pose_body::PoseJsonBody;
 use crate::schema::session::PoseSet;
@@ -38,7 +38,7 @@ pub fn router() -> OpenApiRouter<AppState> {
 
 /// Add one pose: `multipart/form-data` (parts `joints_deg` or
 /// `flange_pose`, or for a stage session `stage_position_mm` and
-/// `sequence`; `set`, `image`) or JSON with `image_points` (camera) or `measured_position_mm` (tracker).
+/// `sequence`; `set`, `group`, `image`) or JSON with `image_points` (camera) or `measured_position_mm` (tracker).
 #[utoipa::path(post, path = "/v1/sessions/{id}/poses", tag = "poses",
     params(("id" = String, Path, description = "Session id")),
     request_body(content(
@@ -81,7 +81,7 @@ async fn add_pose(
 }
 
 /// Reads the parts of a multipart pose (`joints_deg` or `flange_pose`,
-/// `set`, `image`);
+/// `set`, `group`, `image`);
 /// the service checks their values.
 async fn read_image_pose(mut multipart: Multipart, max_image_bytes: u64) -> ApiResult<ImagePose> {
     let malformed = |e: axum::extract::multipart::MultipartError| {
@@ -89,6 +89,7 @@ async fn read_image_pose(mut multipart: Multipart, max_image_bytes: u64) -> ApiR
     };
     let (mut joints, mut set, mut image, mut label) = (None, PoseSet::Cal, None, None);
     let (mut flange_pose, mut stage_position_mm, mut sequence) = (None, None, None);
+    let mut group = None;
     while let Some(mut field) = multipart.next_field().await.map_err(malformed)? {
         let name = field.name().unwrap_or("").to_string();
         match name.as_str() {
@@ -132,6 +133,13 @@ async fn read_image_pose(mut multipart: Multipart, max_image_bytes: u64) -> ApiR
                 set = PoseSet::parse(text.trim().trim_matches('"'))
                     .ok_or_else(|| ApiError::invalid("set", "\"cal\" or \"val\""))?;
             }
+            "group" => {
+                let bytes = read_text_part(&mut field, "group").await?;
+                let text = String::from_utf8_lossy(&bytes);
+                let parsed = PoseGroup::parse(text.trim().trim_matches('"'))
+                    .map_err(|rule| ApiError::invalid("group", rule))?;
+                group = Some(parsed);
+            }
             "image" => {
                 label = field.file_name().and_then(label_from_file_name);
                 image =
@@ -140,7 +148,7 @@ async fn read_image_pose(mut multipart: Multipart, max_image_bytes: u64) -> ApiR
             other => {
                 return Err(ApiError::invalid(
                     shortened(other),
-                    "unknown part (expected joints_deg or flange_pose, or stage_position_mm and sequence; set, image)",
+                    "unknown part (expected joints_deg or flange_pose, or stage_position_mm and sequence; set, group, image)",
                 ))
             }
         }
@@ -152,6 +160,7 @@ async fn read_image_pose(mut multipart: Multipart, max_image_bytes: u64) -> ApiR
         set,
         image,
         label,
+        group,
         stage_position_mm,
         sequence,
     })

@@ -113,6 +113,11 @@ const MIGRATIONS: &[Embedded] = &[
         "fleet index and blob writer",
         include_str!("../../../migrations/postgres/0070_fleet_index_and_blob_writer.sql"),
     ),
+    (
+        80,
+        "pose group",
+        include_str!("../../../migrations/postgres/0080_pose_group.sql"),
+    ),
 ];
 
 /// Connections per replica. Each worker holds at most one while it claims or

@@ -1,7 +1,7 @@
 use async_trait::async_trait;
 
 use super::page_cursor;
-use crate::domain::{new_id, now_rfc3339, now_unix_ms, ImageMeta, Page};
+use crate::domain::{new_id, now_rfc3339, now_unix_ms, ImageMeta, Page, PoseGroup};
 use crate::schema::session::SessionBody;
 use crate::store::backend::{is_foreign_key_violation, Backend};
 use crate::store::rows::{pose, session, Columns};
@@ -13,7 +13,7 @@ use crate::store::{
 const SESSION_COLUMNS: &str = "s.id, s.serial, s.instrument, s.spec, s.created_at,
     (SELECT count(*) FROM poses p WHERE p.session_id = s.id) AS pose_count";
 const POSE_COLUMNS: &str =
-    "id, session_id, joints_deg, pose_set, image_meta, points, measured, label, detection, image_detection, flange_pose, stage_reading, created_at";
+    "id, session_id, joints_deg, pose_set, image_meta, points, measured, label, detection, image_detection, flange_pose, stage_reading, pose_group, created_at";
 
 #[async_trait]
 impl<B: Backend> SessionStore for B {
@@ -190,13 +190,14 @@ impl<B: Backend> SessionStore for B {
                 image_detection: p.image_detection.clone(),
                 flange_pose: p.flange_pose.clone(),
                 stage_reading: p.stage_reading,
+                group: p.group.clone(),
                 created_at: now_rfc3339(),
             };
             query(
                 "INSERT INTO poses (id, session_id, joints_deg, pose_set, image_sha256,
                    image_meta, points, measured, label, image_detection, flange_pose, stage_reading,
-                   created_at)
-                 VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, $13)",
+                   pose_group, created_at)
+                 VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, $13, $14)",
             )
             .bind(&record.id)
             .bind(session_id)
@@ -240,6 +241,7 @@ impl<B: Backend> SessionStore for B {
                     .map(serde_json::to_string)
                     .transpose()?,
             )
+            .bind(record.group.as_ref().map(PoseGroup::as_str))
             .bind(&record.created_at)
             .execute(&mut tx)
             .await

@@ -100,6 +100,11 @@ const MIGRATIONS: &[Embedded] = &[
         "fleet index and blob writer",
         include_str!("../../../migrations/sqlite/0070_fleet_index_and_blob_writer.sql"),
     ),
+    (
+        80,
+        "pose group",
+        include_str!("../../../migrations/sqlite/0080_pose_group.sql"),
+    ),
 ];
 
 /// How long a statement waits for a competing writer before giving up.
