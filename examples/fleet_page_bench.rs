@@ -15,7 +15,8 @@ use std::time::{Duration, Instant};
 
 use clap::Parser;
 use robocal::config::ServeConfig;
-use robocal::domain::now_unix_ms;
+use robocal::domain::{now_unix_ms, CalibratedSet, JobKind, JobSummary, ParameterSet};
+use robocal::schema::job::JobOptions;
 use robocal::report::sample::sample_report;
 use robocal::store::{self, DynStore, JobOutcome, NewJob, NewParameterSet, RobotRecord};
 use serde_json::json;
@@ -77,14 +78,17 @@ async fn job(
     store: &DynStore,
     serial: &str,
     session: &str,
-    kind: &str,
+    kind: JobKind,
     outcome: Option<JobOutcome>,
 ) {
+    let options = match kind {
+        JobKind::Calibration => JobOptions::Calibration(Default::default()),
+        JobKind::Check => JobOptions::Check(Default::default()),
+    };
     let new = NewJob {
-        kind: kind.into(),
         session_id: session.into(),
         serial: serial.into(),
-        options: json!({}),
+        options,
         max_attempts: 1,
     };
     store.enqueue_job(&new, i64::MAX).await.unwrap();
@@ -114,7 +118,10 @@ async fn seed(store: &DynStore, robots: usize) {
         let serial = format!("R{i:05}");
         store.put_robot(&robot(&serial)).await.unwrap();
         for _ in 0..2 {
-            let set = NewParameterSet::approved(json!({ "instrument": "camera" }), report.clone());
+            let set = NewParameterSet::approved(
+                CalibratedSet::Kinematic(ParameterSet::placeholder(serial.as_str())),
+                report.clone(),
+            );
             store
                 .insert_parameter_set(&serial, None, &set)
                 .await
@@ -127,18 +134,18 @@ async fn seed(store: &DynStore, robots: usize) {
             .id;
         let succeeded = JobOutcome::Succeeded {
             parameter_set: None,
-            summary: json!({}),
+            summary: JobSummary::default(),
             detections: vec![],
             check: None,
         };
-        job(store, &serial, &session, "calibration", Some(succeeded)).await;
+        job(store, &serial, &session, JobKind::Calibration, Some(succeeded)).await;
         let failed = |e: &str| Some(JobOutcome::Failed { error: e.into() });
-        job(store, &serial, &session, "check", failed("no poses")).await;
+        job(store, &serial, &session, JobKind::Check, failed("no poses")).await;
         if i % 10 == 0 {
-            job(store, &serial, &session, "calibration", failed("bad input")).await;
+            job(store, &serial, &session, JobKind::Calibration, failed("bad input")).await;
         }
         if i % 20 == 0 {
-            job(store, &serial, &session, "calibration", None).await;
+            job(store, &serial, &session, JobKind::Calibration, None).await;
         }
     }
 }
