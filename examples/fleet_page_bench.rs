@@ -16,8 +16,8 @@ use std::time::{Duration, Instant};
 use clap::Parser;
 use robocal::config::ServeConfig;
 use robocal::domain::{now_unix_ms, CalibratedSet, JobKind, JobSummary, ParameterSet};
-use robocal::schema::job::JobOptions;
 use robocal::report::sample::sample_report;
+use robocal::schema::job::JobOptions;
 use robocal::store::{self, DynStore, JobOutcome, NewJob, NewParameterSet, RobotRecord};
 use serde_json::json;
 use sqlx::{Connection, PgConnection};
@@ -138,11 +138,25 @@ async fn seed(store: &DynStore, robots: usize) {
             detections: vec![],
             check: None,
         };
-        job(store, &serial, &session, JobKind::Calibration, Some(succeeded)).await;
+        job(
+            store,
+            &serial,
+            &session,
+            JobKind::Calibration,
+            Some(succeeded),
+        )
+        .await;
         let failed = |e: &str| Some(JobOutcome::Failed { error: e.into() });
         job(store, &serial, &session, JobKind::Check, failed("no poses")).await;
         if i % 10 == 0 {
-            job(store, &serial, &session, JobKind::Calibration, failed("bad input")).await;
+            job(
+                store,
+                &serial,
+                &session,
+                JobKind::Calibration,
+                failed("bad input"),
+            )
+            .await;
         }
         if i % 20 == 0 {
             job(store, &serial, &session, JobKind::Calibration, None).await;

@@ -23,22 +23,28 @@ pub struct FlangePoseDoc {
     pub matrix: Option<[[f64; 3]; 3]>,
 }
 
-/// The schema of an optional 3x3 row-major rotation: three rows of three
-/// numbers (serde reads fixed-size arrays, any other length is refused).
+/// The schema of an optional 3x3 row-major rotation.
 fn matrix3_schema() -> utoipa::openapi::schema::Array {
+    optional_matrix_schema(
+        3,
+        "3x3 row-major rotation of the flange in the base frame (instead of rotation_deg)",
+    )
+}
+
+/// The schema of an optional `side`x`side` row-major matrix: `side` rows of
+/// `side` numbers (serde reads fixed-size arrays, any other length is
+/// refused), with its description.
+pub fn optional_matrix_schema(side: usize, description: &str) -> utoipa::openapi::schema::Array {
     use utoipa::openapi::schema::{ArrayBuilder, ObjectBuilder, SchemaType, Type};
-    const SIDE: usize = 3;
     let row = ArrayBuilder::new()
         .items(ObjectBuilder::new().schema_type(Type::Number))
-        .min_items(Some(SIDE))
-        .max_items(Some(SIDE));
+        .min_items(Some(side))
+        .max_items(Some(side));
     ArrayBuilder::new()
         .schema_type(SchemaType::from_iter([Type::Array, Type::Null]))
         .items(row)
-        .min_items(Some(SIDE))
-        .max_items(Some(SIDE))
-        .description(Some(
-            "3x3 row-major rotation of the flange in the base frame (instead of rotation_deg)",
-        ))
+        .min_items(Some(side))
+        .max_items(Some(side))
+        .description(Some(description))
         .build()
 }

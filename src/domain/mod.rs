@@ -12,7 +12,7 @@ mod controller;
 mod events;
 mod field_error;
 mod flange_pose;
-mod flange_pose_doc;
+pub mod flange_pose_doc;
 mod frame_pose;
 mod hand_eye_set;
 mod image_detection;

@@ -30,9 +30,7 @@ use super::camera_stage::CameraStep;
 use super::measuring::Measuring;
 use super::position_selection::PositionHeldOut;
 use super::PoseInput;
-use crate::report::model_selection::{
-    ModelSelectionReport, RungReport, LEAVE_GROUP_OUT, VALIDATION_POSES,
-};
+use crate::report::model_selection::{validation_basis, ModelSelectionReport, RungReport};
 
 /// What the model selection needs of the job.
 pub struct SelectionInput<'a> {
@@ -304,12 +302,7 @@ pub fn select(s: &SelectionInput) -> Result<Option<Selected>, IdentifyError> {
     let report = ModelSelectionReport {
         configurations: group_count(&held_out.groups),
         val_shares_configurations: shared,
-        validation: if shared {
-            LEAVE_GROUP_OUT
-        } else {
-            VALIDATION_POSES
-        }
-        .to_string(),
+        validation: validation_basis(shared),
         folds: ladder.folds,
         rungs: ladder
             .scores

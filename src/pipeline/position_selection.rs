@@ -29,9 +29,7 @@ use robocal_calib::kinematics::{CalibratedModel, Instrument};
 use super::measuring::Measuring;
 use super::model_selection::PoseErrors;
 use super::PoseInput;
-use crate::report::model_selection::{
-    ModelSelectionReport, RungReport, LEAVE_GROUP_OUT, VALIDATION_POSES,
-};
+use crate::report::model_selection::{validation_basis, ModelSelectionReport, RungReport};
 
 /// What the tracker model selection needs of the job.
 pub struct PositionSelectionInput<'a> {
@@ -201,12 +199,7 @@ pub fn select_positions(
     let report = ModelSelectionReport {
         configurations: group_count(&held_out.groups),
         val_shares_configurations: shared,
-        validation: if shared {
-            LEAVE_GROUP_OUT
-        } else {
-            VALIDATION_POSES
-        }
-        .to_string(),
+        validation: validation_basis(shared),
         folds: ladder.folds,
         rungs: ladder
             .scores
@@ -266,6 +259,7 @@ pub fn apply_choice(
                 .map(|i| layout.params[i].name.clone())
                 .collect();
             ident.free = fit.free.clone();
+            let fit = *fit;
             Some((fit.model, fit.std_devs, fit.covariance))
         }
         // `full` (the pose-level fit itself).

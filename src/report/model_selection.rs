@@ -62,6 +62,18 @@ pub const LEAVE_GROUP_OUT: &str = "leave_group_out";
 /// The uploaded (or held-out) validation poses.
 pub const VALIDATION_POSES: &str = "validation_poses";
 
+/// The validation a report's headline uses: leave-group-out when the
+/// validation poses share configurations with the calibration poses
+/// (method.md §7.6), else the validation poses themselves.
+pub fn validation_basis(val_shares_configurations: bool) -> String {
+    if val_shares_configurations {
+        LEAVE_GROUP_OUT
+    } else {
+        VALIDATION_POSES
+    }
+    .to_string()
+}
+
 fn cell(v: Option<f64>, digits: i32) -> String {
     v.map_or_else(|| "—".to_string(), |x| significant(x, digits))
 }

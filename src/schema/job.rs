@@ -104,12 +104,46 @@ pub struct CalibrationOptions {
 pub struct CheckOptions {}
 
 /// A job's `options`, by its kind: a calibration's request body, or a
-/// re-check's (empty).
-#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+/// re-check's (empty). Described as `anyOf`, not `oneOf`: a calibration's
+/// options are also a valid (empty-schema) re-check's, and the job's
+/// `kind` beside them says which they are.
+#[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(untagged)]
 pub enum JobOptions {
     Calibration(CalibrationOptions),
     Check(CheckOptions),
+}
+
+impl utoipa::PartialSchema for JobOptions {
+    fn schema() -> utoipa::openapi::RefOr<utoipa::openapi::schema::Schema> {
+        use utoipa::openapi::schema::AnyOfBuilder;
+        use utoipa::openapi::Ref;
+        AnyOfBuilder::new()
+            .item(Ref::from_schema_name("CalibrationOptions"))
+            .item(Ref::from_schema_name("CheckOptions"))
+            .description(Some(
+                "A job's `options`, by its `kind`: a calibration's request body, or a \
+                 re-check's (empty).",
+            ))
+            .into()
+    }
+}
+
+impl utoipa::ToSchema for JobOptions {
+    fn schemas(
+        schemas: &mut Vec<(
+            String,
+            utoipa::openapi::RefOr<utoipa::openapi::schema::Schema>,
+        )>,
+    ) {
+        for (name, schema) in [
+            ("CalibrationOptions", <CalibrationOptions as utoipa::PartialSchema>::schema()),
+            ("CheckOptions", <CheckOptions as utoipa::PartialSchema>::schema()),
+        ] {
+            schemas.push((name.into(), schema));
+        }
+        <CalibrationOptions as utoipa::ToSchema>::schemas(schemas);
+    }
 }
 
 impl JobOptions {

@@ -33,22 +33,12 @@ pub struct PoseDoc {
     pub matrix: Option<[[f64; 4]; 4]>,
 }
 
-/// The schema of an optional 4x4 row-major matrix: four rows of four
-/// numbers (serde reads fixed-size arrays, any other length is refused).
+/// The schema of an optional 4x4 row-major homogeneous matrix.
 fn matrix4_schema() -> utoipa::openapi::schema::Array {
-    use utoipa::openapi::schema::{ArrayBuilder, ObjectBuilder, SchemaType, Type};
-    const SIDE: usize = 4;
-    let row = ArrayBuilder::new()
-        .items(ObjectBuilder::new().schema_type(Type::Number))
-        .min_items(Some(SIDE))
-        .max_items(Some(SIDE));
-    ArrayBuilder::new()
-        .schema_type(SchemaType::from_iter([Type::Array, Type::Null]))
-        .items(row)
-        .min_items(Some(SIDE))
-        .max_items(Some(SIDE))
-        .description(Some("4x4 row-major homogeneous matrix (optional)"))
-        .build()
+    crate::domain::flange_pose_doc::optional_matrix_schema(
+        4,
+        "4x4 row-major homogeneous matrix (optional)",
+    )
 }
 
 impl PoseDoc {

@@ -214,7 +214,7 @@ async fn explicit_groups_are_held_out_as_named() {
     let c = campaign(1.0, 0);
     let group_of = |i: usize| match i / 4 {
         0..=2 => Some("merged"),
-        3 if i % 2 == 0 => Some("split_a"),
+        3 if i.is_multiple_of(2) => Some("split_a"),
         3 => Some("split_b"),
         _ => None,
     };

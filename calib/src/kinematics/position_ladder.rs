@@ -46,7 +46,7 @@ pub struct PositionLadderInput<'a> {
 /// A rung fitted on some measurements.
 #[derive(Debug, Clone)]
 pub enum PositionFit {
-    Geometric(PoseMapFit),
+    Geometric(Box<PoseMapFit>),
     Terms(Box<TermIdentification>),
 }
 
@@ -127,7 +127,7 @@ pub fn fit_position_rung(
         prior,
         input.options,
     )?;
-    Ok(PositionFit::Geometric(fit))
+    Ok(PositionFit::Geometric(Box::new(fit)))
 }
 
 /// Score one rung by held-out prediction over `folds`.

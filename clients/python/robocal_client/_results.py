@@ -31,12 +31,29 @@ from ._generated.models import (
     ForwardRequest,
     ForwardResponse,
     History,
+    HandEyeSetOut,
+    KinematicSetOut,
     ParameterSetList,
-    ParameterSetOut,
     Report,
+    StageCameraSetOut,
 )
-from ._generated.types import UNSET
-from ._http import ndjson_lines, unwrap
+from ._generated.types import UNSET, Response
+from ._http import FIRST_ERROR_STATUS, ndjson_lines, unwrap
+from .errors import ProblemError
+
+ParameterSetOut = KinematicSetOut | HandEyeSetOut | StageCameraSetOut
+"""A served parameter set: its `kind` (`kinematic`, `hand_eye`,
+`stage_camera`) says which."""
+
+
+
+def _parameter_set(answer: Response[Any]) -> ParameterSetOut:
+    """The served set (one of the three kinds), else `ProblemError`."""
+    parsed = answer.parsed
+    ok = int(answer.status_code) < FIRST_ERROR_STATUS
+    if ok and isinstance(parsed, (KinematicSetOut, HandEyeSetOut, StageCameraSetOut)):
+        return parsed
+    raise ProblemError.from_answer(int(answer.status_code), answer.content, answer.status_code.phrase)
 
 Version = int | str
 """A parameter-set version: a number or `"latest"`."""
@@ -48,7 +65,7 @@ class ResultsMixin(Base):
         return unwrap(answer, ParameterSetList)
 
     def get_parameter_set(self, serial: str, version: Version = "latest") -> ParameterSetOut:
-        return unwrap(get_parameter_set.sync_detailed(serial, str(version), client=self.api), ParameterSetOut)
+        return _parameter_set(get_parameter_set.sync_detailed(serial, str(version), client=self.api))
 
     def report(self, serial: str, version: Version = "latest", compare: Version | None = None) -> Report:
         """The accuracy report: `before`/`after` validation errors (mm),
@@ -111,8 +128,8 @@ class ResultsMixin(Base):
     def approve(self, serial: str, version: Version, reason: str | None = None) -> ParameterSetOut:
         """Release the set for production (a `release` scope)."""
         body = DecisionBody(reason=UNSET if reason is None else reason)
-        return unwrap(approve.sync_detailed(serial, str(version), client=self.api, body=body), ParameterSetOut)
+        return _parameter_set(approve.sync_detailed(serial, str(version), client=self.api, body=body))
 
     def reject(self, serial: str, version: Version, reason: str) -> ParameterSetOut:
         body = DecisionBody(reason=reason)
-        return unwrap(reject.sync_detailed(serial, str(version), client=self.api, body=body), ParameterSetOut)
+        return _parameter_set(reject.sync_detailed(serial, str(version), client=self.api, body=body))

@@ -5,6 +5,7 @@ from .axis_stats_report import AxisStatsReport
 from .board_scale_report import BoardScaleReport
 from .box_doc import BoxDoc
 from .calibration_options import CalibrationOptions
+from .calibration_result import CalibrationResult
 from .calibration_scope import CalibrationScope
 from .camera_doc import CameraDoc
 from .camera_report import CameraReport
@@ -12,6 +13,8 @@ from .campaign_plan_body import CampaignPlanBody
 from .campaign_plan_out import CampaignPlanOut
 from .check_body import CheckBody
 from .check_doc import CheckDoc
+from .check_options import CheckOptions
+from .check_result import CheckResult
 from .check_suspect import CheckSuspect
 from .check_verdict import CheckVerdict
 from .compensate_line import CompensateLine
@@ -48,6 +51,9 @@ from .frame_pose import FramePose
 from .frame_report import FrameReport
 from .gate_report import GateReport
 from .hand_eye_report import HandEyeReport
+from .hand_eye_set import HandEyeSet
+from .hand_eye_set_kind import HandEyeSetKind
+from .hand_eye_set_out import HandEyeSetOut
 from .health import Health
 from .history import History
 from .history_check import HistoryCheck
@@ -61,15 +67,19 @@ from .intrinsics import Intrinsics
 from .intrinsics_std import IntrinsicsStd
 from .job_accepted import JobAccepted
 from .job_event_frame import JobEventFrame
+from .job_kind import JobKind
 from .job_list import JobList
 from .job_out import JobOut
-from .job_out_options import JobOutOptions
-from .job_out_result_type_0 import JobOutResultType0
+from .job_state import JobState
+from .job_summary import JobSummary
 from .joint_doc import JointDoc
 from .joint_type import JointType
 from .keep_out_doc import KeepOutDoc
 from .kept_term import KeptTerm
 from .kept_term_term import KeptTermTerm
+from .kinematic_set import KinematicSet
+from .kinematic_set_kind import KinematicSetKind
+from .kinematic_set_out import KinematicSetOut
 from .kinematics_doc import KinematicsDoc
 from .local_model import LocalModel
 from .map_point import MapPoint
@@ -78,9 +88,8 @@ from .measurement_accuracy_report import MeasurementAccuracyReport
 from .model_selection_report import ModelSelectionReport
 from .parameter_change import ParameterChange
 from .parameter_report import ParameterReport
-from .parameter_set_fields import ParameterSetFields
+from .parameter_set_identity import ParameterSetIdentity
 from .parameter_set_list import ParameterSetList
-from .parameter_set_out import ParameterSetOut
 from .plan_purpose_doc import PlanPurposeDoc
 from .planned_pose_doc import PlannedPoseDoc
 from .pose_detection_out import PoseDetectionOut
@@ -111,11 +120,16 @@ from .robot_list import RobotList
 from .robot_out import RobotOut
 from .rung_report import RungReport
 from .sequence_accuracy_report import SequenceAccuracyReport
+from .session_board import SessionBoard
 from .session_body import SessionBody
 from .session_list import SessionList
 from .session_out import SessionOut
 from .session_spec_out import SessionSpecOut
 from .solver_start import SolverStart
+from .stage_camera_set import StageCameraSet
+from .stage_camera_set_kind import StageCameraSetKind
+from .stage_camera_set_out import StageCameraSetOut
+from .stage_sequence import StageSequence
 from .target_doc import TargetDoc
 from .target_error import TargetError
 from .target_kind import TargetKind
@@ -146,6 +160,7 @@ __all__ = (
     "BoardScaleReport",
     "BoxDoc",
     "CalibrationOptions",
+    "CalibrationResult",
     "CalibrationScope",
     "CameraDoc",
     "CameraReport",
@@ -153,6 +168,8 @@ __all__ = (
     "CampaignPlanOut",
     "CheckBody",
     "CheckDoc",
+    "CheckOptions",
+    "CheckResult",
     "CheckSuspect",
     "CheckVerdict",
     "CompensateLine",
@@ -189,6 +206,9 @@ __all__ = (
     "FrameReport",
     "GateReport",
     "HandEyeReport",
+    "HandEyeSet",
+    "HandEyeSetKind",
+    "HandEyeSetOut",
     "Health",
     "History",
     "HistoryCheck",
@@ -202,16 +222,20 @@ __all__ = (
     "IntrinsicsStd",
     "JobAccepted",
     "JobEventFrame",
+    "JobKind",
     "JobList",
     "JobOut",
-    "JobOutOptions",
-    "JobOutResultType0",
+    "JobState",
+    "JobSummary",
     "JointDoc",
     "JointType",
     "KeepOutDoc",
     "KeptTerm",
     "KeptTermTerm",
     "KinematicsDoc",
+    "KinematicSet",
+    "KinematicSetKind",
+    "KinematicSetOut",
     "LocalModel",
     "MapPoint",
     "Measurement",
@@ -219,9 +243,8 @@ __all__ = (
     "ModelSelectionReport",
     "ParameterChange",
     "ParameterReport",
-    "ParameterSetFields",
+    "ParameterSetIdentity",
     "ParameterSetList",
-    "ParameterSetOut",
     "PlannedPoseDoc",
     "PlanPurposeDoc",
     "PoseDetectionOut",
@@ -252,11 +275,16 @@ __all__ = (
     "RobotOut",
     "RungReport",
     "SequenceAccuracyReport",
+    "SessionBoard",
     "SessionBody",
     "SessionList",
     "SessionOut",
     "SessionSpecOut",
     "SolverStart",
+    "StageCameraSet",
+    "StageCameraSetKind",
+    "StageCameraSetOut",
+    "StageSequence",
     "TargetDoc",
     "TargetError",
     "TargetKind",

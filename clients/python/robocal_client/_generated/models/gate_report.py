@@ -36,6 +36,13 @@ class GateReport:
             compared_mean_mm (float | None | Unset): Mean 3-D validation error of what it was compared with (mm); absent
                 when there was nothing to compare with (a hand–eye calibration).
             mean_mm (float | None | Unset): Mean 3-D validation error of this set (mm); absent when not finite.
+            basis (None | str | Unset): How `mean_mm` and `compared_mean_mm` were both figured, when an
+                approved set was compared (one rule for the two sets).
+            compared_own_mean_mm (float | None | Unset): The headline mean 3-D validation error the compared set's own
+                report gives (mm), on its own session's poses and by its own
+                headline rule: it differs from `compared_mean_mm` when the poses or
+                the rule differ (`basis` says how the gate figured it).
+            compared_own_session_id (None | str | Unset): The session the compared set's own report measured.
      """
 
     status: str
@@ -44,6 +51,9 @@ class GateReport:
     worse: bool
     compared_mean_mm: float | None | Unset = UNSET
     mean_mm: float | None | Unset = UNSET
+    basis: None | str | Unset = UNSET
+    compared_own_mean_mm: float | None | Unset = UNSET
+    compared_own_session_id: None | str | Unset = UNSET
     additional_properties: dict[str, Any] = _attrs_field(init=False, factory=dict)
 
 
@@ -71,6 +81,24 @@ class GateReport:
         else:
             mean_mm = self.mean_mm
 
+        basis: None | str | Unset
+        if isinstance(self.basis, Unset):
+            basis = UNSET
+        else:
+            basis = self.basis
+
+        compared_own_mean_mm: float | None | Unset
+        if isinstance(self.compared_own_mean_mm, Unset):
+            compared_own_mean_mm = UNSET
+        else:
+            compared_own_mean_mm = self.compared_own_mean_mm
+
+        compared_own_session_id: None | str | Unset
+        if isinstance(self.compared_own_session_id, Unset):
+            compared_own_session_id = UNSET
+        else:
+            compared_own_session_id = self.compared_own_session_id
+
 
         field_dict: dict[str, Any] = {}
         field_dict.update(self.additional_properties)
@@ -84,6 +112,12 @@ class GateReport:
             field_dict["compared_mean_mm"] = compared_mean_mm
         if mean_mm is not UNSET:
             field_dict["mean_mm"] = mean_mm
+        if basis is not UNSET:
+            field_dict["basis"] = basis
+        if compared_own_mean_mm is not UNSET:
+            field_dict["compared_own_mean_mm"] = compared_own_mean_mm
+        if compared_own_session_id is not UNSET:
+            field_dict["compared_own_session_id"] = compared_own_session_id
 
         return field_dict
 
@@ -120,6 +154,36 @@ class GateReport:
         mean_mm = _parse_mean_mm(d.pop("mean_mm", UNSET))
 
 
+        def _parse_basis(data: object) -> None | str | Unset:
+            if data is None:
+                return data
+            if isinstance(data, Unset):
+                return data
+            return cast(None | str | Unset, data)
+
+        basis = _parse_basis(d.pop("basis", UNSET))
+
+
+        def _parse_compared_own_mean_mm(data: object) -> float | None | Unset:
+            if data is None:
+                return data
+            if isinstance(data, Unset):
+                return data
+            return cast(float | None | Unset, data)
+
+        compared_own_mean_mm = _parse_compared_own_mean_mm(d.pop("compared_own_mean_mm", UNSET))
+
+
+        def _parse_compared_own_session_id(data: object) -> None | str | Unset:
+            if data is None:
+                return data
+            if isinstance(data, Unset):
+                return data
+            return cast(None | str | Unset, data)
+
+        compared_own_session_id = _parse_compared_own_session_id(d.pop("compared_own_session_id", UNSET))
+
+
         gate_report = cls(
             status=status,
             reason=reason,
@@ -127,6 +191,9 @@ class GateReport:
             worse=worse,
             compared_mean_mm=compared_mean_mm,
             mean_mm=mean_mm,
+            basis=basis,
+            compared_own_mean_mm=compared_own_mean_mm,
+            compared_own_session_id=compared_own_session_id,
         )
 
 

@@ -8,12 +8,16 @@ from attrs import field as _attrs_field
 
 from ..types import UNSET, Unset
 
+from ..models.job_kind import JobKind
+from ..models.job_state import JobState
 from ..types import UNSET, Unset
 from typing import cast
 
 if TYPE_CHECKING:
-  from ..models.job_out_options import JobOutOptions
-  from ..models.job_out_result_type_0 import JobOutResultType0
+  from ..models.calibration_options import CalibrationOptions
+  from ..models.calibration_result import CalibrationResult
+  from ..models.check_options import CheckOptions
+  from ..models.check_result import CheckResult
 
 
 
@@ -28,36 +32,37 @@ class JobOut:
     """ 
         Attributes:
             id (str):
-            kind (str):
+            kind (JobKind): What a job does: `calibration` (identify a parameter set) or `check`
+                (judge a short session against the latest approved set).
             session_id (str):
             serial (str):
-            state (str):  Example: queued.
+            state (JobState):
             progress (float): 0..1 over the whole job.
             attempts (int):
             max_attempts (int):
-            options (JobOutOptions):
+            options (CalibrationOptions | CheckOptions): A job's `options`, by its `kind`: a calibration's request body, or
+                a re-check's (empty).
             created_at (str):
             stage (None | str | Unset):
             error (None | str | Unset):
-            result (JobOutResultType0 | None | Unset): `{"serial","version"}` when a parameter set was stored, and a
-                `summary`.
+            result (CalibrationResult | CheckResult | None | Unset):
             started_at (None | str | Unset):
             finished_at (None | str | Unset):
      """
 
     id: str
-    kind: str
+    kind: JobKind
     session_id: str
     serial: str
-    state: str
+    state: JobState
     progress: float
     attempts: int
     max_attempts: int
-    options: JobOutOptions
+    options: CalibrationOptions | CheckOptions
     created_at: str
     stage: None | str | Unset = UNSET
     error: None | str | Unset = UNSET
-    result: JobOutResultType0 | None | Unset = UNSET
+    result: CalibrationResult | CheckResult | None | Unset = UNSET
     started_at: None | str | Unset = UNSET
     finished_at: None | str | Unset = UNSET
     additional_properties: dict[str, Any] = _attrs_field(init=False, factory=dict)
@@ -67,17 +72,19 @@ class JobOut:
 
 
     def to_dict(self) -> dict[str, Any]:
-        from ..models.job_out_options import JobOutOptions # noqa: PLC0415
-        from ..models.job_out_result_type_0 import JobOutResultType0 # noqa: PLC0415
+        from ..models.calibration_options import CalibrationOptions # noqa: PLC0415
+        from ..models.calibration_result import CalibrationResult # noqa: PLC0415
+        from ..models.check_options import CheckOptions # noqa: PLC0415
+        from ..models.check_result import CheckResult # noqa: PLC0415
         id = self.id
 
-        kind = self.kind
+        kind = self.kind.value
 
         session_id = self.session_id
 
         serial = self.serial
 
-        state = self.state
+        state = self.state.value
 
         progress = self.progress
 
@@ -85,7 +92,12 @@ class JobOut:
 
         max_attempts = self.max_attempts
 
-        options = self.options.to_dict()
+        options: dict[str, Any]
+        if isinstance(self.options, CalibrationOptions):
+            options = self.options.to_dict()
+        else:
+            options = self.options.to_dict()
+
 
         created_at = self.created_at
 
@@ -104,7 +116,9 @@ class JobOut:
         result: dict[str, Any] | None | Unset
         if isinstance(self.result, Unset):
             result = UNSET
-        elif isinstance(self.result, JobOutResultType0):
+        elif isinstance(self.result, CheckResult):
+            result = self.result.to_dict()
+        elif isinstance(self.result, CalibrationResult):
             result = self.result.to_dict()
         else:
             result = self.result
@@ -153,18 +167,26 @@ class JobOut:
 
     @classmethod
     def from_dict(cls: type[T], src_dict: Mapping[str, Any]) -> T:
-        from ..models.job_out_options import JobOutOptions # noqa: PLC0415
-        from ..models.job_out_result_type_0 import JobOutResultType0 # noqa: PLC0415
+        from ..models.calibration_options import CalibrationOptions # noqa: PLC0415
+        from ..models.calibration_result import CalibrationResult # noqa: PLC0415
+        from ..models.check_options import CheckOptions # noqa: PLC0415
+        from ..models.check_result import CheckResult # noqa: PLC0415
         d = dict(src_dict)
         id = d.pop("id")
 
-        kind = d.pop("kind")
+        kind = JobKind(d.pop("kind"))
+
+
+
 
         session_id = d.pop("session_id")
 
         serial = d.pop("serial")
 
-        state = d.pop("state")
+        state = JobState(d.pop("state"))
+
+
+
 
         progress = d.pop("progress")
 
@@ -172,9 +194,26 @@ class JobOut:
 
         max_attempts = d.pop("max_attempts")
 
-        options = JobOutOptions.from_dict(d.pop("options"))
+        def _parse_options(data: object) -> CalibrationOptions | CheckOptions:
+            try:
+                if not isinstance(data, dict):
+                    raise TypeError()
+                componentsschemas_job_options_type_0 = CalibrationOptions.from_dict(data)
 
 
+
+                return componentsschemas_job_options_type_0
+            except (TypeError, ValueError, AttributeError, KeyError):
+                pass
+            if not isinstance(data, dict):
+                raise TypeError()
+            componentsschemas_job_options_type_1 = CheckOptions.from_dict(data)
+
+
+
+            return componentsschemas_job_options_type_1
+
+        options = _parse_options(d.pop("options"))
 
 
         created_at = d.pop("created_at")
@@ -199,7 +238,7 @@ class JobOut:
         error = _parse_error(d.pop("error", UNSET))
 
 
-        def _parse_result(data: object) -> JobOutResultType0 | None | Unset:
+        def _parse_result(data: object) -> CalibrationResult | CheckResult | None | Unset:
             if data is None:
                 return data
             if isinstance(data, Unset):
@@ -207,14 +246,24 @@ class JobOut:
             try:
                 if not isinstance(data, dict):
                     raise TypeError()
-                result_type_0 = JobOutResultType0.from_dict(data)
+                componentsschemas_job_result_type_0 = CheckResult.from_dict(data)
 
 
 
-                return result_type_0
+                return componentsschemas_job_result_type_0
             except (TypeError, ValueError, AttributeError, KeyError):
                 pass
-            return cast(JobOutResultType0 | None | Unset, data)
+            try:
+                if not isinstance(data, dict):
+                    raise TypeError()
+                componentsschemas_job_result_type_1 = CalibrationResult.from_dict(data)
+
+
+
+                return componentsschemas_job_result_type_1
+            except (TypeError, ValueError, AttributeError, KeyError):
+                pass
+            return cast(CalibrationResult | CheckResult | None | Unset, data)
 
         result = _parse_result(d.pop("result", UNSET))
 

@@ -12,7 +12,9 @@ from ..types import UNSET, Unset
 from typing import cast
 
 if TYPE_CHECKING:
-  from ..models.parameter_set_out import ParameterSetOut
+  from ..models.hand_eye_set_out import HandEyeSetOut
+  from ..models.kinematic_set_out import KinematicSetOut
+  from ..models.stage_camera_set_out import StageCameraSetOut
 
 
 
@@ -26,11 +28,11 @@ T = TypeVar("T", bound="ParameterSetList")
 class ParameterSetList:
     """ 
         Attributes:
-            items (list[ParameterSetOut]):
+            items (list[HandEyeSetOut | KinematicSetOut | StageCameraSetOut]):
             next_cursor (None | str | Unset):
      """
 
-    items: list[ParameterSetOut]
+    items: list[HandEyeSetOut | KinematicSetOut | StageCameraSetOut]
     next_cursor: None | str | Unset = UNSET
     additional_properties: dict[str, Any] = _attrs_field(init=False, factory=dict)
 
@@ -39,10 +41,19 @@ class ParameterSetList:
 
 
     def to_dict(self) -> dict[str, Any]:
-        from ..models.parameter_set_out import ParameterSetOut # noqa: PLC0415
+        from ..models.hand_eye_set_out import HandEyeSetOut # noqa: PLC0415
+        from ..models.kinematic_set_out import KinematicSetOut # noqa: PLC0415
+        from ..models.stage_camera_set_out import StageCameraSetOut # noqa: PLC0415
         items = []
         for items_item_data in self.items:
-            items_item = items_item_data.to_dict()
+            items_item: dict[str, Any]
+            if isinstance(items_item_data, KinematicSetOut):
+                items_item = items_item_data.to_dict()
+            elif isinstance(items_item_data, HandEyeSetOut):
+                items_item = items_item_data.to_dict()
+            else:
+                items_item = items_item_data.to_dict()
+
             items.append(items_item)
 
 
@@ -68,14 +79,43 @@ class ParameterSetList:
 
     @classmethod
     def from_dict(cls: type[T], src_dict: Mapping[str, Any]) -> T:
-        from ..models.parameter_set_out import ParameterSetOut # noqa: PLC0415
+        from ..models.hand_eye_set_out import HandEyeSetOut # noqa: PLC0415
+        from ..models.kinematic_set_out import KinematicSetOut # noqa: PLC0415
+        from ..models.stage_camera_set_out import StageCameraSetOut # noqa: PLC0415
         d = dict(src_dict)
         items = []
         _items = d.pop("items")
         for items_item_data in (_items):
-            items_item = ParameterSetOut.from_dict(items_item_data)
+            def _parse_items_item(data: object) -> HandEyeSetOut | KinematicSetOut | StageCameraSetOut:
+                try:
+                    if not isinstance(data, dict):
+                        raise TypeError()
+                    componentsschemas_parameter_set_out_type_0 = KinematicSetOut.from_dict(data)
 
 
+
+                    return componentsschemas_parameter_set_out_type_0
+                except (TypeError, ValueError, AttributeError, KeyError):
+                    pass
+                try:
+                    if not isinstance(data, dict):
+                        raise TypeError()
+                    componentsschemas_parameter_set_out_type_1 = HandEyeSetOut.from_dict(data)
+
+
+
+                    return componentsschemas_parameter_set_out_type_1
+                except (TypeError, ValueError, AttributeError, KeyError):
+                    pass
+                if not isinstance(data, dict):
+                    raise TypeError()
+                componentsschemas_parameter_set_out_type_2 = StageCameraSetOut.from_dict(data)
+
+
+
+                return componentsschemas_parameter_set_out_type_2
+
+            items_item = _parse_items_item(items_item_data)
 
             items.append(items_item)
 

@@ -41,6 +41,10 @@ class PoseImageUpload:
                 `[x, y, z]` in mm (the stage's axes).
             sequence (int | None | Unset): Stage sessions: the sequence (board placement) of the image, 1 to 1000.
             set_ (None | PoseSet | Unset):
+            group (None | str | Unset): The arm configuration the photo was taken in, e.g. `shoulder_a`
+                (1 to 32 of `A-Z a-z 0-9 _ -`): poses of one group are held out
+                together when the job chooses its model. Absent: grouped by joints
+                1–3.
      """
 
     image: File
@@ -49,6 +53,7 @@ class PoseImageUpload:
     stage_position_mm: None | str | Unset = UNSET
     sequence: int | None | Unset = UNSET
     set_: None | PoseSet | Unset = UNSET
+    group: None | str | Unset = UNSET
     additional_properties: dict[str, Any] = _attrs_field(init=False, factory=dict)
 
 
@@ -91,6 +96,12 @@ class PoseImageUpload:
         else:
             set_ = self.set_
 
+        group: None | str | Unset
+        if isinstance(self.group, Unset):
+            group = UNSET
+        else:
+            group = self.group
+
 
         field_dict: dict[str, Any] = {}
         field_dict.update(self.additional_properties)
@@ -107,6 +118,8 @@ class PoseImageUpload:
             field_dict["sequence"] = sequence
         if set_ is not UNSET:
             field_dict["set"] = set_
+        if group is not UNSET:
+            field_dict["group"] = group
 
         return field_dict
 
@@ -156,6 +169,14 @@ class PoseImageUpload:
                 files.append(("set", (None, str(self.set_).encode(), "text/plain")))
             else:
                 files.append(("set",  (None, str(self.set_.value).encode(), "text/plain")))
+
+
+        if not isinstance(self.group, Unset):
+            if isinstance(self.group, str):
+
+                files.append(("group", (None, str(self.group).encode(), "text/plain")))
+            else:
+                files.append(("group", (None, str(self.group).encode(), "text/plain")))
 
 
 
@@ -237,6 +258,16 @@ class PoseImageUpload:
         set_ = _parse_set_(d.pop("set", UNSET))
 
 
+        def _parse_group(data: object) -> None | str | Unset:
+            if data is None:
+                return data
+            if isinstance(data, Unset):
+                return data
+            return cast(None | str | Unset, data)
+
+        group = _parse_group(d.pop("group", UNSET))
+
+
         pose_image_upload = cls(
             image=image,
             joints_deg=joints_deg,
@@ -244,6 +275,7 @@ class PoseImageUpload:
             stage_position_mm=stage_position_mm,
             sequence=sequence,
             set_=set_,
+            group=group,
         )
 
 

@@ -39,6 +39,10 @@ class PoseJsonBody:
             measured_pose (None | PoseDoc | Unset):
             label (None | str | Unset): What the pose is called in reports (e.g. the photo's file name); 1
                 to 200 characters. Absent: the pose is numbered (`#12`).
+            group (None | str | Unset): The arm configuration the pose was taken in, e.g. `"shoulder_a"`:
+                poses of one group are held out together when the job judges which
+                model predicts configurations it was not fitted to. 1 to 32 of
+                `A-Z a-z 0-9 _ -`. Absent: grouped by joints 1–3 (within 3°).
      """
 
     joints_deg: list[float] | None | Unset = UNSET
@@ -48,6 +52,7 @@ class PoseJsonBody:
     measured_position_mm: list[float] | None | Unset = UNSET
     measured_pose: None | PoseDoc | Unset = UNSET
     label: None | str | Unset = UNSET
+    group: None | str | Unset = UNSET
 
 
 
@@ -117,6 +122,12 @@ class PoseJsonBody:
         else:
             label = self.label
 
+        group: None | str | Unset
+        if isinstance(self.group, Unset):
+            group = UNSET
+        else:
+            group = self.group
+
 
         field_dict: dict[str, Any] = {}
 
@@ -136,6 +147,8 @@ class PoseJsonBody:
             field_dict["measured_pose"] = measured_pose
         if label is not UNSET:
             field_dict["label"] = label
+        if group is not UNSET:
+            field_dict["group"] = group
 
         return field_dict
 
@@ -268,6 +281,16 @@ class PoseJsonBody:
         label = _parse_label(d.pop("label", UNSET))
 
 
+        def _parse_group(data: object) -> None | str | Unset:
+            if data is None:
+                return data
+            if isinstance(data, Unset):
+                return data
+            return cast(None | str | Unset, data)
+
+        group = _parse_group(d.pop("group", UNSET))
+
+
         pose_json_body = cls(
             joints_deg=joints_deg,
             flange_pose=flange_pose,
@@ -276,6 +299,7 @@ class PoseJsonBody:
             measured_position_mm=measured_position_mm,
             measured_pose=measured_pose,
             label=label,
+            group=group,
         )
 
         return pose_json_body

@@ -57,6 +57,8 @@ class PoseOut:
             label (None | str | Unset): What the pose is called: the uploaded image's file name (multipart
                 filename, or its path in a dataset archive) or a JSON pose's
                 `label`. Absent when none was given; reports then number the pose.
+            group (None | str | Unset): The arm configuration the pose was taken in, as uploaded. Absent:
+                a job groups the pose by its joints 1–3.
      """
 
     id: str
@@ -76,6 +78,7 @@ class PoseOut:
     measured_position_mm: list[float] | None | Unset = UNSET
     measured_pose: None | PoseDoc | Unset = UNSET
     label: None | str | Unset = UNSET
+    group: None | str | Unset = UNSET
     additional_properties: dict[str, Any] = _attrs_field(init=False, factory=dict)
 
 
@@ -181,6 +184,12 @@ class PoseOut:
         else:
             label = self.label
 
+        group: None | str | Unset
+        if isinstance(self.group, Unset):
+            group = UNSET
+        else:
+            group = self.group
+
 
         field_dict: dict[str, Any] = {}
         field_dict.update(self.additional_properties)
@@ -212,6 +221,8 @@ class PoseOut:
             field_dict["measured_pose"] = measured_pose
         if label is not UNSET:
             field_dict["label"] = label
+        if group is not UNSET:
+            field_dict["group"] = group
 
         return field_dict
 
@@ -399,6 +410,16 @@ class PoseOut:
         label = _parse_label(d.pop("label", UNSET))
 
 
+        def _parse_group(data: object) -> None | str | Unset:
+            if data is None:
+                return data
+            if isinstance(data, Unset):
+                return data
+            return cast(None | str | Unset, data)
+
+        group = _parse_group(d.pop("group", UNSET))
+
+
         pose_out = cls(
             id=id,
             session_id=session_id,
@@ -417,6 +438,7 @@ class PoseOut:
             measured_position_mm=measured_position_mm,
             measured_pose=measured_pose,
             label=label,
+            group=group,
         )
 
 

@@ -25,10 +25,15 @@ class RungReport:
     """ One rung of the ladder.
 
         Attributes:
-            rung (str): `hand_eye`, `joint_offsets`, `joint_offsets_prior`, `full` or `full_prior`.
+            rung (str): `hand_eye`, `joint_offsets`, `joint_offsets_prior`, `full`,
+                `full_prior` or `full_terms` (full geometry with the non-geometric
+                terms the selection keeps).
             description (str):
             parameters (int): Free parameters (kinematics, board and hand–eye).
-            heldout_rms_px (float | None | Unset): RMS reprojection error of the held-out configurations' image points (px).
+            heldout_rms_px (float | None | Unset): RMS reprojection error of the held-out configurations' image points
+                (px; camera jobs).
+            heldout_rms_mm (float | None | Unset): RMS length of the held-out configurations' tool position errors
+                (mm; tracker jobs, where the rungs are judged on it).
             heldout_mean_mm (float | None | Unset): Mean 3-D camera position error at the held-out poses (mm).
             failed (None | str | Unset): Why the rung could not be scored, if it could not.
      """
@@ -37,6 +42,7 @@ class RungReport:
     description: str
     parameters: int
     heldout_rms_px: float | None | Unset = UNSET
+    heldout_rms_mm: float | None | Unset = UNSET
     heldout_mean_mm: float | None | Unset = UNSET
     failed: None | str | Unset = UNSET
     additional_properties: dict[str, Any] = _attrs_field(init=False, factory=dict)
@@ -57,6 +63,12 @@ class RungReport:
             heldout_rms_px = UNSET
         else:
             heldout_rms_px = self.heldout_rms_px
+
+        heldout_rms_mm: float | None | Unset
+        if isinstance(self.heldout_rms_mm, Unset):
+            heldout_rms_mm = UNSET
+        else:
+            heldout_rms_mm = self.heldout_rms_mm
 
         heldout_mean_mm: float | None | Unset
         if isinstance(self.heldout_mean_mm, Unset):
@@ -80,6 +92,8 @@ class RungReport:
         })
         if heldout_rms_px is not UNSET:
             field_dict["heldout_rms_px"] = heldout_rms_px
+        if heldout_rms_mm is not UNSET:
+            field_dict["heldout_rms_mm"] = heldout_rms_mm
         if heldout_mean_mm is not UNSET:
             field_dict["heldout_mean_mm"] = heldout_mean_mm
         if failed is not UNSET:
@@ -108,6 +122,16 @@ class RungReport:
         heldout_rms_px = _parse_heldout_rms_px(d.pop("heldout_rms_px", UNSET))
 
 
+        def _parse_heldout_rms_mm(data: object) -> float | None | Unset:
+            if data is None:
+                return data
+            if isinstance(data, Unset):
+                return data
+            return cast(float | None | Unset, data)
+
+        heldout_rms_mm = _parse_heldout_rms_mm(d.pop("heldout_rms_mm", UNSET))
+
+
         def _parse_heldout_mean_mm(data: object) -> float | None | Unset:
             if data is None:
                 return data
@@ -133,6 +157,7 @@ class RungReport:
             description=description,
             parameters=parameters,
             heldout_rms_px=heldout_rms_px,
+            heldout_rms_mm=heldout_rms_mm,
             heldout_mean_mm=heldout_mean_mm,
             failed=failed,
         )

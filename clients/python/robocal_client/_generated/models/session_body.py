@@ -31,7 +31,7 @@ class SessionBody:
     """ `POST /v1/robots/{serial}/sessions` body.
 
         Attributes:
-            instrument (Instrument | Unset):
+            instrument (Instrument | Unset): The session's instrument.
             target (None | TargetDoc | Unset):
             camera (CameraDoc | None | Unset):
             flange_to_camera_guess (None | PoseDoc | Unset):

@@ -32,7 +32,7 @@ class SessionOut:
     with.
 
         Attributes:
-            instrument (Instrument):
+            instrument (Instrument): The session's instrument.
             id (str):
             serial (str):
             pose_count (int):

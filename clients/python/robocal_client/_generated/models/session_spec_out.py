@@ -32,7 +32,7 @@ class SessionSpecOut:
     response schema: open to the session's identity fields).
 
         Attributes:
-            instrument (Instrument):
+            instrument (Instrument): The session's instrument.
             target (None | TargetDoc | Unset):
             camera (CameraDoc | None | Unset):
             flange_to_camera_guess (None | PoseDoc | Unset):

@@ -142,7 +142,7 @@ def sync_detailed(
 ) -> Response[PoseOut | Problem]:
     """ Add one pose: `multipart/form-data` (parts `joints_deg` or
     `flange_pose`, or for a stage session `stage_position_mm` and
-    `sequence`; `set`, `image`) or JSON with `image_points` (camera) or `measured_position_mm`
+    `sequence`; `set`, `group`, `image`) or JSON with `image_points` (camera) or `measured_position_mm`
     (tracker).
 
     Args:
@@ -182,7 +182,7 @@ def sync(
 ) -> PoseOut | Problem | None:
     """ Add one pose: `multipart/form-data` (parts `joints_deg` or
     `flange_pose`, or for a stage session `stage_position_mm` and
-    `sequence`; `set`, `image`) or JSON with `image_points` (camera) or `measured_position_mm`
+    `sequence`; `set`, `group`, `image`) or JSON with `image_points` (camera) or `measured_position_mm`
     (tracker).
 
     Args:
@@ -217,7 +217,7 @@ async def asyncio_detailed(
 ) -> Response[PoseOut | Problem]:
     """ Add one pose: `multipart/form-data` (parts `joints_deg` or
     `flange_pose`, or for a stage session `stage_position_mm` and
-    `sequence`; `set`, `image`) or JSON with `image_points` (camera) or `measured_position_mm`
+    `sequence`; `set`, `group`, `image`) or JSON with `image_points` (camera) or `measured_position_mm`
     (tracker).
 
     Args:
@@ -257,7 +257,7 @@ async def asyncio(
 ) -> PoseOut | Problem | None:
     """ Add one pose: `multipart/form-data` (parts `joints_deg` or
     `flange_pose`, or for a stage session `stage_position_mm` and
-    `sequence`; `set`, `image`) or JSON with `image_points` (camera) or `measured_position_mm`
+    `sequence`; `set`, `group`, `image`) or JSON with `image_points` (camera) or `measured_position_mm`
     (tracker).
 
     Args:

@@ -8,8 +8,10 @@ from ...client import AuthenticatedClient, Client
 from ...types import Response, UNSET
 from ... import errors
 
-from ...models.parameter_set_out import ParameterSetOut
+from ...models.hand_eye_set_out import HandEyeSetOut
+from ...models.kinematic_set_out import KinematicSetOut
 from ...models.problem import Problem
+from ...models.stage_camera_set_out import StageCameraSetOut
 from typing import cast
 
 
@@ -35,11 +37,38 @@ def _get_kwargs(
 
 
 
-def _parse_response(*, client: AuthenticatedClient | Client, response: httpx.Response) -> ParameterSetOut | Problem | None:
+def _parse_response(*, client: AuthenticatedClient | Client, response: httpx.Response) -> HandEyeSetOut | KinematicSetOut | StageCameraSetOut | Problem | None:
     if response.status_code == 200:
-        response_200 = ParameterSetOut.from_dict(response.json())
+        def _parse_response_200(data: object) -> HandEyeSetOut | KinematicSetOut | StageCameraSetOut:
+            try:
+                if not isinstance(data, dict):
+                    raise TypeError()
+                componentsschemas_parameter_set_out_type_0 = KinematicSetOut.from_dict(data)
 
 
+
+                return componentsschemas_parameter_set_out_type_0
+            except (TypeError, ValueError, AttributeError, KeyError):
+                pass
+            try:
+                if not isinstance(data, dict):
+                    raise TypeError()
+                componentsschemas_parameter_set_out_type_1 = HandEyeSetOut.from_dict(data)
+
+
+
+                return componentsschemas_parameter_set_out_type_1
+            except (TypeError, ValueError, AttributeError, KeyError):
+                pass
+            if not isinstance(data, dict):
+                raise TypeError()
+            componentsschemas_parameter_set_out_type_2 = StageCameraSetOut.from_dict(data)
+
+
+
+            return componentsschemas_parameter_set_out_type_2
+
+        response_200 = _parse_response_200(response.json())
 
         return response_200
 
@@ -84,7 +113,7 @@ def _parse_response(*, client: AuthenticatedClient | Client, response: httpx.Res
         return None
 
 
-def _build_response(*, client: AuthenticatedClient | Client, response: httpx.Response) -> Response[ParameterSetOut | Problem]:
+def _build_response(*, client: AuthenticatedClient | Client, response: httpx.Response) -> Response[HandEyeSetOut | KinematicSetOut | StageCameraSetOut | Problem]:
     return Response(
         status_code=HTTPStatus(response.status_code),
         content=response.content,
@@ -99,7 +128,7 @@ def sync_detailed(
     *,
     client: AuthenticatedClient | Client,
 
-) -> Response[ParameterSetOut | Problem]:
+) -> Response[HandEyeSetOut | KinematicSetOut | StageCameraSetOut | Problem]:
     """ One parameter set (`latest` allowed).
 
     Args:
@@ -111,7 +140,7 @@ def sync_detailed(
         httpx.TimeoutException: If the request takes longer than Client.timeout.
 
     Returns:
-        Response[ParameterSetOut | Problem]
+        Response[HandEyeSetOut | KinematicSetOut | StageCameraSetOut | Problem]
      """
 
 
@@ -133,7 +162,7 @@ def sync(
     *,
     client: AuthenticatedClient | Client,
 
-) -> ParameterSetOut | Problem | None:
+) -> HandEyeSetOut | KinematicSetOut | StageCameraSetOut | Problem | None:
     """ One parameter set (`latest` allowed).
 
     Args:
@@ -145,7 +174,7 @@ def sync(
         httpx.TimeoutException: If the request takes longer than Client.timeout.
 
     Returns:
-        ParameterSetOut | Problem
+        HandEyeSetOut | KinematicSetOut | StageCameraSetOut | Problem
      """
 
 
@@ -162,7 +191,7 @@ async def asyncio_detailed(
     *,
     client: AuthenticatedClient | Client,
 
-) -> Response[ParameterSetOut | Problem]:
+) -> Response[HandEyeSetOut | KinematicSetOut | StageCameraSetOut | Problem]:
     """ One parameter set (`latest` allowed).
 
     Args:
@@ -174,7 +203,7 @@ async def asyncio_detailed(
         httpx.TimeoutException: If the request takes longer than Client.timeout.
 
     Returns:
-        Response[ParameterSetOut | Problem]
+        Response[HandEyeSetOut | KinematicSetOut | StageCameraSetOut | Problem]
      """
 
 
@@ -196,7 +225,7 @@ async def asyncio(
     *,
     client: AuthenticatedClient | Client,
 
-) -> ParameterSetOut | Problem | None:
+) -> HandEyeSetOut | KinematicSetOut | StageCameraSetOut | Problem | None:
     """ One parameter set (`latest` allowed).
 
     Args:
@@ -208,7 +237,7 @@ async def asyncio(
         httpx.TimeoutException: If the request takes longer than Client.timeout.
 
     Returns:
-        ParameterSetOut | Problem
+        HandEyeSetOut | KinematicSetOut | StageCameraSetOut | Problem
      """
 
 

@@ -9,8 +9,10 @@ from ...types import Response, UNSET
 from ... import errors
 
 from ...models.decision_body import DecisionBody
-from ...models.parameter_set_out import ParameterSetOut
+from ...models.hand_eye_set_out import HandEyeSetOut
+from ...models.kinematic_set_out import KinematicSetOut
 from ...models.problem import Problem
+from ...models.stage_camera_set_out import StageCameraSetOut
 from ...types import UNSET, Unset
 from typing import cast
 
@@ -46,11 +48,38 @@ def _get_kwargs(
 
 
 
-def _parse_response(*, client: AuthenticatedClient | Client, response: httpx.Response) -> ParameterSetOut | Problem | None:
+def _parse_response(*, client: AuthenticatedClient | Client, response: httpx.Response) -> HandEyeSetOut | KinematicSetOut | StageCameraSetOut | Problem | None:
     if response.status_code == 200:
-        response_200 = ParameterSetOut.from_dict(response.json())
+        def _parse_response_200(data: object) -> HandEyeSetOut | KinematicSetOut | StageCameraSetOut:
+            try:
+                if not isinstance(data, dict):
+                    raise TypeError()
+                componentsschemas_parameter_set_out_type_0 = KinematicSetOut.from_dict(data)
 
 
+
+                return componentsschemas_parameter_set_out_type_0
+            except (TypeError, ValueError, AttributeError, KeyError):
+                pass
+            try:
+                if not isinstance(data, dict):
+                    raise TypeError()
+                componentsschemas_parameter_set_out_type_1 = HandEyeSetOut.from_dict(data)
+
+
+
+                return componentsschemas_parameter_set_out_type_1
+            except (TypeError, ValueError, AttributeError, KeyError):
+                pass
+            if not isinstance(data, dict):
+                raise TypeError()
+            componentsschemas_parameter_set_out_type_2 = StageCameraSetOut.from_dict(data)
+
+
+
+            return componentsschemas_parameter_set_out_type_2
+
+        response_200 = _parse_response_200(response.json())
 
         return response_200
 
@@ -123,7 +152,7 @@ def _parse_response(*, client: AuthenticatedClient | Client, response: httpx.Res
         return None
 
 
-def _build_response(*, client: AuthenticatedClient | Client, response: httpx.Response) -> Response[ParameterSetOut | Problem]:
+def _build_response(*, client: AuthenticatedClient | Client, response: httpx.Response) -> Response[HandEyeSetOut | KinematicSetOut | StageCameraSetOut | Problem]:
     return Response(
         status_code=HTTPStatus(response.status_code),
         content=response.content,
@@ -139,7 +168,7 @@ def sync_detailed(
     client: AuthenticatedClient | Client,
     body: DecisionBody | Unset = UNSET,
 
-) -> Response[ParameterSetOut | Problem]:
+) -> Response[HandEyeSetOut | KinematicSetOut | StageCameraSetOut | Problem]:
     """ Reject a parameter set: kept for the record, never served as `latest`.
 
     Args:
@@ -152,7 +181,7 @@ def sync_detailed(
         httpx.TimeoutException: If the request takes longer than Client.timeout.
 
     Returns:
-        Response[ParameterSetOut | Problem]
+        Response[HandEyeSetOut | KinematicSetOut | StageCameraSetOut | Problem]
      """
 
 
@@ -176,7 +205,7 @@ def sync(
     client: AuthenticatedClient | Client,
     body: DecisionBody | Unset = UNSET,
 
-) -> ParameterSetOut | Problem | None:
+) -> HandEyeSetOut | KinematicSetOut | StageCameraSetOut | Problem | None:
     """ Reject a parameter set: kept for the record, never served as `latest`.
 
     Args:
@@ -189,7 +218,7 @@ def sync(
         httpx.TimeoutException: If the request takes longer than Client.timeout.
 
     Returns:
-        ParameterSetOut | Problem
+        HandEyeSetOut | KinematicSetOut | StageCameraSetOut | Problem
      """
 
 
@@ -208,7 +237,7 @@ async def asyncio_detailed(
     client: AuthenticatedClient | Client,
     body: DecisionBody | Unset = UNSET,
 
-) -> Response[ParameterSetOut | Problem]:
+) -> Response[HandEyeSetOut | KinematicSetOut | StageCameraSetOut | Problem]:
     """ Reject a parameter set: kept for the record, never served as `latest`.
 
     Args:
@@ -221,7 +250,7 @@ async def asyncio_detailed(
         httpx.TimeoutException: If the request takes longer than Client.timeout.
 
     Returns:
-        Response[ParameterSetOut | Problem]
+        Response[HandEyeSetOut | KinematicSetOut | StageCameraSetOut | Problem]
      """
 
 
@@ -245,7 +274,7 @@ async def asyncio(
     client: AuthenticatedClient | Client,
     body: DecisionBody | Unset = UNSET,
 
-) -> ParameterSetOut | Problem | None:
+) -> HandEyeSetOut | KinematicSetOut | StageCameraSetOut | Problem | None:
     """ Reject a parameter set: kept for the record, never served as `latest`.
 
     Args:
@@ -258,7 +287,7 @@ async def asyncio(
         httpx.TimeoutException: If the request takes longer than Client.timeout.
 
     Returns:
-        ParameterSetOut | Problem
+        HandEyeSetOut | KinematicSetOut | StageCameraSetOut | Problem
      """
 
 

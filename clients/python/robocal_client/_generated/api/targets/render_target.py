@@ -29,6 +29,7 @@ def _get_kwargs(
     dictionary: str | Unset = UNSET,
     legacy_layout: bool | Unset = UNSET,
     format_: str | Unset = UNSET,
+    page: str | Unset = UNSET,
 
 ) -> dict[str, Any]:
     
@@ -62,6 +63,8 @@ def _get_kwargs(
     params["legacy_layout"] = legacy_layout
 
     params["format"] = format_
+
+    params["page"] = page
 
 
     params = {k: v for k, v in params.items() if v is not UNSET and v is not None}
@@ -149,10 +152,12 @@ def sync_detailed(
     dictionary: str | Unset = UNSET,
     legacy_layout: bool | Unset = UNSET,
     format_: str | Unset = UNSET,
+    page: str | Unset = UNSET,
 
 ) -> Response[Problem | str]:
-    """ A target drawn 1:1 on the smallest ISO sheet that holds it, with a scale
-    bar and the session `target` spec in the margin.
+    """ A target drawn 1:1 on the smallest ISO sheet that holds it (or scaled to
+    fill the sheet `page` names), with a scale bar and the session `target`
+    spec in the margin.
 
     Args:
         kind (str | Unset):
@@ -168,6 +173,7 @@ def sync_detailed(
         dictionary (str | Unset):
         legacy_layout (bool | Unset):
         format_ (str | Unset):
+        page (str | Unset):
 
     Raises:
         errors.UnexpectedStatus: If the server returns an undocumented status code and Client.raise_on_unexpected_status is True.
@@ -192,6 +198,7 @@ marker_mm=marker_mm,
 dictionary=dictionary,
 legacy_layout=legacy_layout,
 format_=format_,
+page=page,
 
     )
 
@@ -217,10 +224,12 @@ def sync(
     dictionary: str | Unset = UNSET,
     legacy_layout: bool | Unset = UNSET,
     format_: str | Unset = UNSET,
+    page: str | Unset = UNSET,
 
 ) -> Problem | str | None:
-    """ A target drawn 1:1 on the smallest ISO sheet that holds it, with a scale
-    bar and the session `target` spec in the margin.
+    """ A target drawn 1:1 on the smallest ISO sheet that holds it (or scaled to
+    fill the sheet `page` names), with a scale bar and the session `target`
+    spec in the margin.
 
     Args:
         kind (str | Unset):
@@ -236,6 +245,7 @@ def sync(
         dictionary (str | Unset):
         legacy_layout (bool | Unset):
         format_ (str | Unset):
+        page (str | Unset):
 
     Raises:
         errors.UnexpectedStatus: If the server returns an undocumented status code and Client.raise_on_unexpected_status is True.
@@ -261,6 +271,7 @@ marker_mm=marker_mm,
 dictionary=dictionary,
 legacy_layout=legacy_layout,
 format_=format_,
+page=page,
 
     ).parsed
 
@@ -280,10 +291,12 @@ async def asyncio_detailed(
     dictionary: str | Unset = UNSET,
     legacy_layout: bool | Unset = UNSET,
     format_: str | Unset = UNSET,
+    page: str | Unset = UNSET,
 
 ) -> Response[Problem | str]:
-    """ A target drawn 1:1 on the smallest ISO sheet that holds it, with a scale
-    bar and the session `target` spec in the margin.
+    """ A target drawn 1:1 on the smallest ISO sheet that holds it (or scaled to
+    fill the sheet `page` names), with a scale bar and the session `target`
+    spec in the margin.
 
     Args:
         kind (str | Unset):
@@ -299,6 +312,7 @@ async def asyncio_detailed(
         dictionary (str | Unset):
         legacy_layout (bool | Unset):
         format_ (str | Unset):
+        page (str | Unset):
 
     Raises:
         errors.UnexpectedStatus: If the server returns an undocumented status code and Client.raise_on_unexpected_status is True.
@@ -323,6 +337,7 @@ marker_mm=marker_mm,
 dictionary=dictionary,
 legacy_layout=legacy_layout,
 format_=format_,
+page=page,
 
     )
 
@@ -348,10 +363,12 @@ async def asyncio(
     dictionary: str | Unset = UNSET,
     legacy_layout: bool | Unset = UNSET,
     format_: str | Unset = UNSET,
+    page: str | Unset = UNSET,
 
 ) -> Problem | str | None:
-    """ A target drawn 1:1 on the smallest ISO sheet that holds it, with a scale
-    bar and the session `target` spec in the margin.
+    """ A target drawn 1:1 on the smallest ISO sheet that holds it (or scaled to
+    fill the sheet `page` names), with a scale bar and the session `target`
+    spec in the margin.
 
     Args:
         kind (str | Unset):
@@ -367,6 +384,7 @@ async def asyncio(
         dictionary (str | Unset):
         legacy_layout (bool | Unset):
         format_ (str | Unset):
+        page (str | Unset):
 
     Raises:
         errors.UnexpectedStatus: If the server returns an undocumented status code and Client.raise_on_unexpected_status is True.
@@ -392,5 +410,6 @@ marker_mm=marker_mm,
 dictionary=dictionary,
 legacy_layout=legacy_layout,
 format_=format_,
+page=page,
 
     )).parsed

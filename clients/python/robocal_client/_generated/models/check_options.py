@@ -14,13 +14,16 @@ from ..types import UNSET, Unset
 
 
 
-T = TypeVar("T", bound="JobOutOptions")
+T = TypeVar("T", bound="CheckOptions")
 
 
 
 @_attrs_define
-class JobOutOptions:
-    
+class CheckOptions:
+    """ A re-check's options: none (the session and the latest approved set
+    are the whole input).
+
+     """
 
     additional_properties: dict[str, Any] = _attrs_field(init=False, factory=dict)
 
@@ -40,12 +43,12 @@ class JobOutOptions:
     @classmethod
     def from_dict(cls: type[T], src_dict: Mapping[str, Any]) -> T:
         d = dict(src_dict)
-        job_out_options = cls(
+        check_options = cls(
         )
 
 
-        job_out_options.additional_properties = d
-        return job_out_options
+        check_options.additional_properties = d
+        return check_options
 
     @property
     def additional_keys(self) -> list[str]:

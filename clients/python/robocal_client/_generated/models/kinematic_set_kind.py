@@ -1,0 +1,7 @@
+from enum import StrEnum
+
+class KinematicSetKind(StrEnum):
+    KINEMATIC = "kinematic"
+
+    def __str__(self) -> str:
+        return str(self.value)
