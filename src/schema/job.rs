@@ -137,8 +137,14 @@ impl utoipa::ToSchema for JobOptions {
         )>,
     ) {
         for (name, schema) in [
-            ("CalibrationOptions", <CalibrationOptions as utoipa::PartialSchema>::schema()),
-            ("CheckOptions", <CheckOptions as utoipa::PartialSchema>::schema()),
+            (
+                "CalibrationOptions",
+                <CalibrationOptions as utoipa::PartialSchema>::schema(),
+            ),
+            (
+                "CheckOptions",
+                <CheckOptions as utoipa::PartialSchema>::schema(),
+            ),
         ] {
             schemas.push((name.into(), schema));
         }
