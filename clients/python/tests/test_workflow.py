@@ -33,6 +33,7 @@ def test_report_is_typed_and_calibration_improves(calibrated: Calibrated) -> Non
 
 def test_parameter_set_and_list(calibrated: Calibrated) -> None:
     latest = calibrated.client.get_parameter_set(calibrated.serial)
+    assert isinstance(latest, models.KinematicSetOut)
     assert latest.version == 1
     assert isinstance(latest.kinematics, models.KinematicsDoc) and len(latest.kinematics.joints) == 6
     listed = calibrated.client.list_parameter_sets(calibrated.serial)
@@ -45,7 +46,9 @@ def test_compensate_streams_one_line_per_target(calibrated: Calibrated) -> None:
     joints = [p["joints_deg"] for p in poses[:3]]
     # Targets the arm reaches: where the calibrated model puts the flange
     # camera at known joints (the camera is the tool, in the board frame).
-    camera = client.get_parameter_set(calibrated.serial).flange_to_camera
+    served = client.get_parameter_set(calibrated.serial)
+    assert isinstance(served, models.KinematicSetOut)
+    camera = served.flange_to_camera
     assert isinstance(camera, models.FramePose)
     tool = {"translation_mm": camera.translation_mm, "rotation_deg": camera.rotation_deg}
     forward = client.forward(calibrated.serial, {"joints_deg": joints, "tool": tool})
