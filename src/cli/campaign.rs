@@ -14,7 +14,6 @@ use robocal_calib::sim::campaign::{simulate_campaign, Campaign, CampaignSpec};
 use robocal_calib::sim::campaign_io::image_name;
 use robocal_calib::sim::render::RenderOptions;
 use robocal_calib::sim::rendered_camera::rendered_camera;
-use robocal_calib::vision::TargetSpec;
 use serde::{Deserialize, Serialize};
 use serde_json::json;
 
@@ -27,16 +26,10 @@ use crate::schema::robot::RobotBody;
 use crate::schema::session::SessionBody;
 use crate::schema::Checker;
 
-pub use super::sim_board::SimBoard;
+pub use super::sim_board::{simulated_target, SimBoard};
 
 /// Spreads per-pose noise seeds apart (the golden-ratio constant).
 const NOISE_SEED_STRIDE: u64 = 0x9e37_79b9_7f4a_7c15;
-
-/// The board every simulated campaign uses: 9x9 dots of 8 mm on a 25 mm
-/// pitch with a 12 mm origin marker.
-pub fn simulated_target() -> TargetSpec {
-    TargetSpec::robocal_9x9()
-}
 
 /// The name of a campaign's robot and session documents.
 pub const CAMPAIGN_FILE: &str = "campaign.json";

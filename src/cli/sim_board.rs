@@ -13,9 +13,8 @@ use robocal_calib::sim::render_circles::render_target;
 use robocal_calib::vision::charuco::CharucoSpec;
 use robocal_calib::vision::chessboard::ChessboardSpec;
 use robocal_calib::vision::image::GrayImage;
+use robocal_calib::vision::TargetSpec;
 use serde_json::{json, Value};
-
-use super::campaign::simulated_target;
 
 /// Squares of the simulated boards, mm: the dot grid's pitch.
 const SQUARE_MM: f64 = 25.0;
@@ -140,4 +139,10 @@ impl SimBoard {
         };
         image.map_err(|e| e.to_string())
     }
+}
+
+/// The board every simulated campaign uses: 9x9 dots of 8 mm on a 25 mm
+/// pitch with a 12 mm origin marker.
+pub fn simulated_target() -> TargetSpec {
+    TargetSpec::robocal_9x9()
 }

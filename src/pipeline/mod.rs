@@ -29,6 +29,7 @@ mod measure;
 mod measuring;
 mod model_selection;
 mod output;
+mod pose_errors;
 mod position_selection;
 mod prelude;
 mod regions_results;

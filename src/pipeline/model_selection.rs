@@ -167,8 +167,7 @@ impl ImageHeldOut {
     }
 }
 
-/// One pose's position error (session pose index, before, after; mm).
-pub type PoseErrors = (usize, Vector3<f64>, Vector3<f64>);
+pub use super::pose_errors::PoseErrors;
 
 /// The model kept, and what the report and the gate need of the choice.
 pub struct Selected {

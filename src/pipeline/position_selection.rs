@@ -2,7 +2,7 @@
 //! the campaign can carry, and whether its non-geometric terms predict,
 //! chosen by how each model predicts the tool positions of arm
 //! configurations it was not fitted to (docs/method.md §6.8, calib's
-//! `position_ladder`). As for camera jobs ([`super::model_selection`]):
+//! `position_ladder`). As for camera jobs (`model_selection.rs`):
 //! poses are grouped by their `group`, else joints 1–3; when the validation
 //! poses repeat calibration configurations the comparison pools both and
 //! the headline before/after are the held-out predictions.
@@ -27,7 +27,7 @@ use robocal_calib::kinematics::term_selection::TermIdentification;
 use robocal_calib::kinematics::{CalibratedModel, Instrument};
 
 use super::measuring::Measuring;
-use super::model_selection::PoseErrors;
+use super::pose_errors::PoseErrors;
 use super::PoseInput;
 use crate::report::model_selection::{validation_basis, ModelSelectionReport, RungReport};
 
