@@ -92,16 +92,7 @@ pub struct RobotDetail {
 
 impl From<JobRecord> for JobBrief {
     fn from(j: JobRecord) -> JobBrief {
-        JobBrief {
-            id: j.id,
-            serial: j.serial,
-            kind: j.kind.as_str().into(),
-            state: j.state,
-            stage: j.stage,
-            progress: j.progress,
-            created_at: j.created_at,
-            error: j.error,
-        }
+        JobHead::from(j).into()
     }
 }
 

@@ -59,6 +59,22 @@ pub struct JobHead {
     pub error: Option<String>,
 }
 
+/// A whole job as the fleet page shows it.
+impl From<crate::store::JobRecord> for JobHead {
+    fn from(j: crate::store::JobRecord) -> JobHead {
+        JobHead {
+            id: j.id,
+            serial: j.serial,
+            kind: j.kind.as_str().into(),
+            state: j.state,
+            stage: j.stage,
+            progress: j.progress,
+            created_at: j.created_at,
+            error: j.error,
+        }
+    }
+}
+
 /// One robot of the fleet page.
 #[derive(Debug, Clone)]
 pub struct FleetRow {
